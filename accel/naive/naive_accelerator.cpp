@@ -1,0 +1,56 @@
+#include "accel/naive/naive_accelerator.h"
+
+#include <chrono>
+
+namespace bvhlab {
+
+BuildStats NaiveAccelerator::build(const PrimitiveSet& prims) {
+    const auto start = std::chrono::steady_clock::now();
+    prims_ = prims;
+    BuildStats stats;
+    stats.buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    stats.primitives = prims.valid.size();
+    // One leaf holding everything: the SAH cost of brute force is C_isect * N.
+    stats.nodes = 1;
+    stats.leaves = 1;
+    stats.avgLeafPrimitives = double(prims.valid.size());
+    stats.maxLeafPrimitives = prims.valid.size();
+    stats.maxDepth = 0;
+    stats.sah = SahCost{double(prims.valid.size()), 1.0, 1.0};
+    stats.bytes = 0;
+    return stats;
+}
+
+bool NaiveAccelerator::findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const {
+    ++counters.queries;
+    if (!ray.isValid()) return false;
+    const ShearedRay sheared(ray);
+    float tmax = ray.tmax;
+    bool found = false;
+    for (uint32_t prim : prims_.valid) {
+        TriangleHitT<float> h;
+        if (intersectTriangle(sheared, prims_.triangles[prim], ray.tmin, tmax, h)) {
+            tmax = h.t;
+            hit = {h.t, prim, h.u, h.v};
+            found = true;
+        }
+    }
+    counters.intersectionTests += prims_.valid.size();
+    counters.traversalSteps += 1;
+    return found;
+}
+
+bool NaiveAccelerator::isOccluded(const Ray& ray, QueryCounters& counters) const {
+    ++counters.queries;
+    counters.traversalSteps += 1;
+    if (!ray.isValid()) return false;
+    const ShearedRay sheared(ray);
+    TriangleHitT<float> h;
+    for (uint32_t prim : prims_.valid) {
+        ++counters.intersectionTests;
+        if (intersectTriangle(sheared, prims_.triangles[prim], ray.tmin, ray.tmax, h)) return true;
+    }
+    return false;
+}
+
+}  // namespace bvhlab

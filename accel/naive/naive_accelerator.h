@@ -1,0 +1,22 @@
+// Brute force: every query tests every valid triangle. Slow and obviously right, it is the
+// reference every other accelerator is tested against.
+#pragma once
+
+#include "framework/accelerator.h"
+
+#include <vector>
+
+namespace bvhlab {
+
+class NaiveAccelerator final : public Accelerator {
+public:
+    std::string_view name() const override { return "naive"; }
+    BuildStats build(const PrimitiveSet& prims) override;
+    bool findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const override;
+    bool isOccluded(const Ray& ray, QueryCounters& counters) const override;
+
+private:
+    PrimitiveSet prims_;
+};
+
+}  // namespace bvhlab

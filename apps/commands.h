@@ -1,0 +1,12 @@
+// One function per subcommand, each in its own file, adding itself to the program.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace bvhlab {
+
+void addRenderCommand(CLI::App& app);
+void addRaycastCommand(CLI::App& app);
+void addKeysCommand(CLI::App& app);
+
+}  // namespace bvhlab

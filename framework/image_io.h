@@ -1,0 +1,26 @@
+// Writing the framebuffer: OpenEXR with every channel, PNG for looking at, and the
+// traversal-cost heat map.
+#pragma once
+
+#include "framework/framebuffer.h"
+
+#include <filesystem>
+#include <string>
+
+namespace bvhlab {
+
+// Channels R G B, Z (depth), primitive (uint), N.X N.Y N.Z, cost.traversal, cost.intersection.
+void writeExr(const std::filesystem::path& file, const Framebuffer& fb);
+
+// Tone-mapped colour: clamped to [0,1], sRGB-encoded.
+void writePng(const std::filesystem::path& file, const Framebuffer& fb);
+
+// Per-pixel traversal steps through a perceptual colour map, scaled to the 99th percentile
+// so a few expensive pixels do not wash out the rest. Returns that scale.
+float writeHeatmapPng(const std::filesystem::path& file, const Framebuffer& fb);
+
+// One float channel of an EXR file (for tests and image comparisons).
+std::vector<float> readExrChannel(const std::filesystem::path& file, const std::string& channel, int& width,
+                                  int& height);
+
+}  // namespace bvhlab

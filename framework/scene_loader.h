@@ -1,0 +1,20 @@
+// Reads a scene file, choosing the reader by extension (.obj .ply .off .nff, each optionally
+// .gz). Throws InputError with file and line on malformed input.
+#pragma once
+
+#include "framework/scene.h"
+
+namespace bvhlab {
+
+Scene loadScene(const std::filesystem::path& file);
+
+// The readers loadScene dispatches to; each takes the file's (decompressed) bytes.
+Scene readObj(const std::filesystem::path& file, const std::string& bytes);
+Scene readPly(const std::filesystem::path& file, const std::string& bytes);
+Scene readOff(const std::filesystem::path& file, const std::string& bytes);
+Scene readNff(const std::filesystem::path& file, const std::string& bytes);
+
+// The whole file as bytes, gunzipped when it is gzip-compressed.
+std::string readFileBytes(const std::filesystem::path& file);
+
+}  // namespace bvhlab

@@ -1,0 +1,91 @@
+// The one ray-triangle test all of our accelerators share: the watertight test of
+// Woop, Benthin and Wald (JCGT 2013). The ray is sheared so that it runs along +z from
+// the origin; the three 2D edge functions then decide inside/outside with consistent
+// rounding along shared edges, so a ray cannot slip between two adjacent triangles.
+#pragma once
+
+#include "framework/ray.h"
+
+#include <cmath>
+#include <type_traits>
+
+namespace bvhlab {
+
+struct Triangle {
+    Vec3 v0, v1, v2;
+
+    Bounds3 bounds() const {
+        Bounds3 b(v0);
+        b.extend(v1);
+        b.extend(v2);
+        return b;
+    }
+    Vec3 centroid() const { return (v0 + v1 + v2) * (1.0f / 3.0f); }
+    Vec3 geometricNormal() const { return glm::cross(v1 - v0, v2 - v0); }
+};
+
+// Per-ray precomputation of the shear (done once per query, not per triangle).
+template <typename Real>
+struct ShearedRayT {
+    using V = glm::vec<3, Real>;
+    V org;
+    int kx, ky, kz;
+    Real sx, sy, sz;
+
+    explicit ShearedRayT(const Ray& ray) : org(ray.org) {
+        const V dir(ray.dir);
+        const V a = glm::abs(dir);
+        kz = (a.x >= a.y && a.x >= a.z) ? 0 : (a.y >= a.z ? 1 : 2);
+        kx = kz == 2 ? 0 : kz + 1;
+        ky = kx == 2 ? 0 : kx + 1;
+        if (dir[kz] < Real(0)) std::swap(kx, ky);  // keep the winding of the 2D projection
+        sx = dir[kx] / dir[kz];
+        sy = dir[ky] / dir[kz];
+        sz = Real(1) / dir[kz];
+    }
+};
+using ShearedRay = ShearedRayT<float>;
+
+// Result of one ray-triangle test; u, v follow the Hit convention (weights of v1 and v2).
+template <typename Real>
+struct TriangleHitT {
+    Real t, u, v;
+};
+
+// Returns true and fills `out` when the ray hits the triangle at t in [tmin, tmax].
+// Real = double gives the reference used by the oracle tests.
+template <typename Real>
+inline bool intersectTriangle(const ShearedRayT<Real>& r, const Triangle& tri, Real tmin, Real tmax,
+                              TriangleHitT<Real>& out) {
+    using V = glm::vec<3, Real>;
+    const V a = V(tri.v0) - r.org;
+    const V b = V(tri.v1) - r.org;
+    const V c = V(tri.v2) - r.org;
+    const Real ax = a[r.kx] - r.sx * a[r.kz], ay = a[r.ky] - r.sy * a[r.kz];
+    const Real bx = b[r.kx] - r.sx * b[r.kz], by = b[r.ky] - r.sy * b[r.kz];
+    const Real cx = c[r.kx] - r.sx * c[r.kz], cy = c[r.ky] - r.sy * c[r.kz];
+
+    Real e0 = cx * by - cy * bx;  // edge v1-v2: weight of v0
+    Real e1 = ax * cy - ay * cx;  // edge v2-v0: weight of v1
+    Real e2 = bx * ay - by * ax;  // edge v0-v1: weight of v2
+    if constexpr (std::is_same_v<Real, float>) {
+        // An exact zero may be a rounding artefact on a shared edge: decide it in double.
+        if (e0 == 0.0f || e1 == 0.0f || e2 == 0.0f) {
+            e0 = float(double(cx) * double(by) - double(cy) * double(bx));
+            e1 = float(double(ax) * double(cy) - double(ay) * double(cx));
+            e2 = float(double(bx) * double(ay) - double(by) * double(ax));
+        }
+    }
+    if ((e0 < 0 || e1 < 0 || e2 < 0) && (e0 > 0 || e1 > 0 || e2 > 0)) return false;
+    const Real det = e0 + e1 + e2;
+    if (det == Real(0)) return false;
+
+    const Real az = r.sz * a[r.kz], bz = r.sz * b[r.kz], cz = r.sz * c[r.kz];
+    const Real invDet = Real(1) / det;
+    const Real t = (e0 * az + e1 * bz + e2 * cz) * invDet;
+    if (!(t >= tmin && t <= tmax)) return false;
+    out = {t, e1 * invDet, e2 * invDet};
+    return true;
+}
+
+}  // namespace bvhlab

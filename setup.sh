@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Installs what bvhlab needs on Debian 12 (only what is missing), then configures and builds
+# it into build/ (Release). Extra arguments go to CMake, e.g. ./setup.sh -DBVHLAB_NATIVE=OFF
+set -euo pipefail
+cd "$(dirname "$0")"
+
+packages=(g++ cmake ninja-build pkg-config git
+          libembree-dev libopenexr-dev libglm-dev libgtest-dev libtbb-dev libtinyobjloader-dev
+          libstb-dev zlib1g-dev libcli11-dev nlohmann-json3-dev libfmt-dev)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "setup: installing ${missing[*]}"
+  sudo=""
+  [ "$(id -u)" -ne 0 ] && sudo="sudo"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release "$@"
+cmake --build build -j "$(nproc)"

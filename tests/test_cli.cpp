@@ -1,0 +1,112 @@
+// The bvhlab program end to end: render writes its files, raycast answers a ray file, and
+// broken input gives a one-line error with file and line and a non-zero exit, never a crash.
+#include "framework/ray_file.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <sys/wait.h>
+
+using namespace bvhlab;
+
+namespace {
+
+struct Result {
+    int exitCode;
+    std::string output;  // stdout and stderr
+};
+
+Result run(const std::string& args) {
+    const std::string command = std::string(BVHLAB_BINARY) + " " + args + " 2>&1";
+    FILE* pipe = popen(command.c_str(), "r");
+    std::string output;
+    char buffer[4096];
+    while (size_t n = fread(buffer, 1, sizeof(buffer), pipe)) output.append(buffer, n);
+    const int status = pclose(pipe);
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), output};
+}
+
+std::filesystem::path tempDir() {
+    const auto dir = std::filesystem::temp_directory_path() / "bvhlab_test_cli";
+    std::filesystem::create_directories(dir);
+    return dir;
+}
+
+}  // namespace
+
+TEST(Cli, RenderWritesImagesAndStatistics) {
+    const auto out = tempDir() / "default";
+    const Result r = run("render -DASDS::type=naive -DSetRayTracing::depthLimit=1 -DCamera::width=80 -DCamera::height=60 --out " + out.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("N_IT"), std::string::npos) << r.output;
+    for (const char* ext : {".exr", ".png", ".json"})
+        EXPECT_TRUE(std::filesystem::exists(out.string() + ext)) << ext;
+    std::ifstream in(out.string() + ".json");
+    const nlohmann::json j = nlohmann::json::parse(in);
+    for (const char* key : {"scene", "accel", "prims", "nodes", "leaves", "sah", "build_ms", "render_ms", "threads",
+                            "env", "provenance"})
+        EXPECT_TRUE(j.contains(key)) << key;
+    EXPECT_EQ(j["accel"], "naive");
+    EXPECT_EQ(j["primary"]["queries"], 80 * 60);
+    EXPECT_GT(j["primary"]["n_it"].get<double>(), 0.0);
+    EXPECT_EQ(j["env"]["ASDS::type"]["from"], "-DASDS::type");
+}
+
+TEST(Cli, BadEnvFileIsOneLineErrorWithFileAndLine) {
+    const auto env = tempDir() / "bad.env";
+    std::ofstream(env) << "# ok\nSetRayTracing::cntSamples 1\nSetRayTracing::shadowz true\n";
+    const Result r = run("render --env " + env.string() + " --out " + (tempDir() / "x").string());
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.output.find("bad.env:3"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("SetRayTracing::shadows"), std::string::npos) << r.output;  // the suggestion
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+}
+
+TEST(Cli, BadValueAndUnknownAcceleratorAreErrors) {
+    Result r = run("render -DSetRayTracing::cntSamples=0 --out " + (tempDir() / "x").string());
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.output.find("cntSamples"), std::string::npos) << r.output;
+    r = run("render -DASDS::type=kdtree --out " + (tempDir() / "x").string());
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.output.find("kdtree"), std::string::npos) << r.output;
+}
+
+TEST(Cli, BrokenSceneIsOneLineErrorWithFileAndLine) {
+    const auto scene = tempDir() / "broken.obj";
+    std::ofstream(scene) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 9\n";
+    const Result r = run("render -DASDS::type=naive --scene " + scene.string() + " --out " + (tempDir() / "x").string());
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.output.find("broken.obj"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("Segmentation"), std::string::npos) << r.output;
+}
+
+TEST(Cli, RaycastAnswersRayFileWithNaive) {
+    const auto scene = tempDir() / "quad.obj";
+    std::ofstream(scene) << "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n";
+    const std::vector<Ray> rays = {{Vec3(0.5f, -0.5f, 5), Vec3(0, 0, -1), 0.0f, kInfinity},
+                                   {Vec3(3, 3, 5), Vec3(0, 0, -1), 0.0f, kInfinity},
+                                   {Vec3(0, 0, 5), Vec3(0, 0, -2), 0.0f, 1.0f}};
+    const auto raysFile = tempDir() / "rays.bin", hitsFile = tempDir() / "hits.bin";
+    writeRayFile(raysFile, rays);
+    Result r = run("raycast -DASDS::type=naive --scene " + scene.string() + " --rays " + raysFile.string() +
+                   " --out " + hitsFile.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("N_IT"), std::string::npos);
+    std::vector<Hit> hits = readHitFile(hitsFile);
+    ASSERT_EQ(hits.size(), 3u);
+    EXPECT_FLOAT_EQ(hits[0].t, 5.0f);
+    EXPECT_EQ(hits[0].primitive, 0u);  // fan (1,2,3), (1,3,4): (0.5,-0.5) lies in the first
+    EXPECT_EQ(hits[1].primitive, kInvalidPrimitive);
+    EXPECT_EQ(hits[2].primitive, kInvalidPrimitive);  // tmax = 1 ends 3 units short (dir has length 2)
+
+    r = run("raycast --any -DASDS::type=naive --scene " + scene.string() + " --rays " + raysFile.string() +
+            " --out " + hitsFile.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    hits = readHitFile(hitsFile);
+    EXPECT_EQ(hits[0].t, 0.0f);
+    EXPECT_EQ(hits[0].primitive, 0u);
+    EXPECT_EQ(hits[1].primitive, kInvalidPrimitive);
+}

@@ -1,0 +1,138 @@
+// Render smoke tests: a lit, a shadowed and a background pixel, and the skipped-work counts.
+#include "accel/naive/naive_accelerator.h"
+#include "framework/camera.h"
+#include "framework/procedural.h"
+#include "framework/renderer.h"
+
+#include <gtest/gtest.h>
+
+using namespace bvhlab;
+
+namespace {
+
+// A floor quad (x, z in [-4, 4] at y = 0) and a floating occluder (x, z in [-1, 1] at y = 1),
+// lit from (20, 10, 0), seen from straight above: the occluder's shadow falls on the floor
+// at x in about [-3.3, -1.1].
+struct ShadowScene {
+    Scene scene;
+    CameraSpec camera{Vec3(0, 10, 0), Vec3(0), Vec3(0, 0, -1), 90.0f, 64, 64};
+    RenderSettings settings;
+
+    ShadowScene() {
+        scene.materials = {{Vec3(0.5f), 0.0f}};
+        addQuad(scene, Vec3(-4, 0, -4), Vec3(0, 0, 8), Vec3(8, 0, 0), 0);
+        addQuad(scene, Vec3(-1, 1, -1), Vec3(0, 0, 2), Vec3(2, 0, 0), 0);
+        scene.finalize();
+        settings.threads = 2;
+        settings.ambient = 0.1f;
+        settings.background = Vec3(0.25f, 0.5f, 0.75f);
+        settings.lights = {{Vec3(20, 10, 0), Vec3(1.0f)}};
+    }
+
+    // The pixel whose centre ray meets the plane y = 0 nearest to (x, 0, z).
+    size_t pixelAt(float x, float z) const {
+        const Camera cam(camera);
+        size_t best = 0;
+        float bestDistance = kInfinity;
+        for (int py = 0; py < camera.height; ++py)
+            for (int px = 0; px < camera.width; ++px) {
+                const Ray r = cam.generateRay(px + 0.5f, py + 0.5f);
+                const Vec3 p = r.at(-r.org.y / r.dir.y);
+                const float d = glm::length(Vec3(p.x - x, 0, p.z - z));
+                if (d < bestDistance) bestDistance = d, best = size_t(py) * camera.width + px;
+            }
+        return best;
+    }
+};
+
+}  // namespace
+
+TEST(Render, LitShadowedAndBackgroundPixels) {
+    ShadowScene s;
+    NaiveAccelerator accel;
+    accel.build(s.scene.primitives());
+    Framebuffer fb(s.camera.width, s.camera.height);
+    const RenderStats stats = render(s.scene, accel, Camera(s.camera), s.settings, fb);
+
+    const Vec3 ambientOnly = Vec3(0.5f) * s.settings.ambient;
+    const size_t shadowed = s.pixelAt(-2.2f, 0.5f), lit = s.pixelAt(3.0f, 0.5f), background = s.pixelAt(4.8f, 4.8f);
+    EXPECT_LT(glm::length(fb.color[shadowed] - ambientOnly), 1e-6f);
+    EXPECT_GT(fb.color[lit].x, ambientOnly.x + 0.1f);
+    EXPECT_EQ(fb.color[background], s.settings.background);
+    EXPECT_LT(fb.primitive[shadowed], 2u);  // the floor
+    EXPECT_LT(fb.primitive[lit], 2u);
+    EXPECT_EQ(fb.primitive[background], kInvalidPrimitive);
+    EXPECT_NEAR(fb.depth[lit], glm::length(Vec3(3.0f, 0, 0.5f) - s.camera.from), 0.2f);
+    EXPECT_GT(fb.traversalSteps[lit], 0.0f);
+
+    EXPECT_EQ(stats.primary.counters.queries, uint64_t(64 * 64));
+    // Both quads face up and the light is above them: one shadow ray per hit pixel.
+    uint64_t hitPixels = 0;
+    for (uint32_t prim : fb.primitive) hitPixels += prim != kInvalidPrimitive;
+    EXPECT_EQ(stats.shadow.counters.queries, hitPixels);
+    EXPECT_EQ(stats.shadowRaysSkippedBackfacing, 0u);
+    EXPECT_EQ(stats.threads, 2);
+}
+
+TEST(Render, ShadowsOffCastsNoShadowRays) {
+    ShadowScene s;
+    s.settings.shadows = false;
+    NaiveAccelerator accel;
+    accel.build(s.scene.primitives());
+    Framebuffer fb(s.camera.width, s.camera.height);
+    const RenderStats stats = render(s.scene, accel, Camera(s.camera), s.settings, fb);
+    EXPECT_EQ(stats.shadow.counters.queries, 0u);
+    EXPECT_GT(stats.shadowRaysSkippedDisabled, 0u);
+    // Without shadow rays the formerly shadowed floor is lit.
+    EXPECT_GT(fb.color[s.pixelAt(-2.2f, 0.5f)].x, 0.1f);
+}
+
+TEST(Render, LightBelowSurfaceSkipsShadowRays) {
+    ShadowScene s;
+    s.settings.lights = {{Vec3(0, -5, 0), Vec3(1.0f)}};
+    NaiveAccelerator accel;
+    accel.build(s.scene.primitives());
+    Framebuffer fb(s.camera.width, s.camera.height);
+    const RenderStats stats = render(s.scene, accel, Camera(s.camera), s.settings, fb);
+    EXPECT_EQ(stats.shadow.counters.queries, 0u);
+    EXPECT_GT(stats.shadowRaysSkippedBackfacing, 0u);
+}
+
+TEST(Render, MirrorBouncesOnlyWithDepthLimit) {
+    Scene scene = makeDefaultScene();
+    NaiveAccelerator accel;
+    accel.build(scene.primitives());
+    CameraSpec spec = *scene.camera;
+    spec.width = 48;
+    spec.height = 36;
+    RenderSettings settings;
+    settings.lights = scene.lights;
+    settings.depthLimit = 1;
+    Framebuffer fb1(spec.width, spec.height);
+    const RenderStats one = render(scene, accel, Camera(spec), settings, fb1);
+    EXPECT_EQ(one.primary.counters.queries, uint64_t(48 * 36));
+    EXPECT_GT(one.bouncesSkipped, 0u);  // the default scene has a mirror in view
+
+    settings.depthLimit = 2;
+    Framebuffer fb2(spec.width, spec.height);
+    const RenderStats two = render(scene, accel, Camera(spec), settings, fb2);
+    EXPECT_EQ(two.primary.counters.queries, uint64_t(48 * 36) + one.bouncesSkipped);
+}
+
+TEST(Render, ImageDoesNotDependOnThreadCount) {
+    Scene scene = makeDefaultScene();
+    NaiveAccelerator accel;
+    accel.build(scene.primitives());
+    CameraSpec spec = *scene.camera;
+    spec.width = 40;
+    spec.height = 30;
+    RenderSettings settings;
+    settings.lights = scene.lights;
+    settings.samples = 4;
+    settings.threads = 1;
+    Framebuffer a(spec.width, spec.height), b(spec.width, spec.height);
+    render(scene, accel, Camera(spec), settings, a);
+    settings.threads = 2;
+    render(scene, accel, Camera(spec), settings, b);
+    EXPECT_EQ(a.color, b.color);
+}
