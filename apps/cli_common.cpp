@@ -18,7 +18,7 @@ void EnvOptions::addTo(CLI::App& command) {
         ->allow_extra_args(false);
 }
 
-Env EnvOptions::load() const {
+Env EnvOptions::load(const std::vector<std::string>& extraFiles) const {
     Env env;
     std::vector<std::string> files = envFiles;
     if (files.empty()) {
@@ -27,13 +27,19 @@ Env EnvOptions::load() const {
         files.push_back(std::filesystem::exists(local) ? local.string()
                                                       : (std::filesystem::path(BVHLAB_SOURCE_DIR) / local).string());
     }
+    files.insert(files.end(), extraFiles.begin(), extraFiles.end());
     for (const std::string& file : files) env.loadFile(file);
     for (const std::string& assignment : overrides) env.setOverride(assignment);
     return env;
 }
 
 Scene loadSceneFor(const std::string& file, const Env& env) {
-    const std::filesystem::path path = !file.empty() ? std::filesystem::path(file) : env.getPath("Scene::file");
+    // A file named on the command line is relative to the working folder, one named in env
+    // to Scene::dir (absolute paths stay as they are).
+    const std::filesystem::path path =
+        !file.empty() ? std::filesystem::path(file)
+        : env.getString("Scene::file").empty() ? std::filesystem::path()
+                                                : env.getPath("Scene::dir") / env.getString("Scene::file");
     const auto start = std::chrono::steady_clock::now();
     Scene scene = path.empty() ? makeDefaultScene() : loadScene(path);
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

@@ -20,11 +20,12 @@ struct EnvOptions {
 
     // Adds --env (repeatable, later files win) and -DSection::key=value (repeatable, wins over files).
     void addTo(CLI::App& command);
-    // Loads env/global.env (or the given files) and applies the overrides.
-    Env load() const;
+    // Loads env/global.env (or the --env files), then `extraFiles` (e.g. a scene's env file),
+    // then applies the -D overrides.
+    Env load(const std::vector<std::string>& extraFiles = {}) const;
 };
 
-// The scene from `file`, else from Scene::file, else the embedded default; load problems
+// The scene from `file`, else from Scene::file (in Scene::dir), else the embedded default; load problems
 // (degenerate triangles, unsupported NFF primitives, warnings) are reported on stderr.
 Scene loadSceneFor(const std::string& file, const Env& env);
 

@@ -8,5 +8,6 @@ namespace bvhlab {
 void addRenderCommand(CLI::App& app);
 void addRaycastCommand(CLI::App& app);
 void addKeysCommand(CLI::App& app);
+void addBenchCommand(CLI::App& app);
 
 }  // namespace bvhlab

@@ -6,6 +6,7 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
     bvhlab::addRenderCommand(app);
     bvhlab::addRaycastCommand(app);
+    bvhlab::addBenchCommand(app);
     bvhlab::addKeysCommand(app);
     CLI11_PARSE(app, argc, argv);
     return 0;

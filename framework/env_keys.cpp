@@ -11,7 +11,8 @@ void registerFrameworkKeys(EnvRegistry& r, const std::vector<std::string>& accel
     r.add({"SetRayTracing::shadows", T::Bool, "true", "cast a shadow ray per light and shading point", 0, 0, {}});
     r.add({"SetRayTracing::threads", T::Int, "0", "render threads (and Embree's); 0 = all hardware threads, 1 = the report's setting", 0, 1024, {}});
 
-    r.add({"Scene::file", T::Path, "", "scene file (.obj .ply .off .nff, optionally .gz); empty = the embedded default scene", 0, 0, {}});
+    r.add({"Scene::dir", T::Path, "../shared/scenes", "folder that relative Scene::file names are read from", 0, 0, {}});
+    r.add({"Scene::file", T::String, "", "scene file (.obj .ply .off .nff, optionally .gz), relative to Scene::dir; empty = the embedded default scene", 0, 0, {}});
     r.add({"Scene::background", T::Vec3, "", "background colour on a miss; empty = the scene's, else dark blue", 0, 0, {}});
 
     r.add({"Camera::from", T::Vec3, "", "eye position; empty = the scene's camera, else a view framing the scene", 0, 0, {}});
