@@ -1,0 +1,309 @@
+#include "accel/embree/embree_accelerator.h"
+
+#include <embree3/rtcore.h>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <mutex>
+#include <type_traits>
+
+static_assert(std::is_same_v<RTCDevice, RTCDeviceTy*>, "Embree's handle types differ from the forward declarations");
+static_assert(std::is_same_v<RTCScene, RTCSceneTy*>, "Embree's handle types differ from the forward declarations");
+
+namespace bvhlab {
+
+namespace {
+
+static_assert(sizeof(Triangle) == 9 * sizeof(float), "a Triangle is copied as nine floats");
+
+// Vertices are stored per triangle (3 per valid primitive) and indexed with 32-bit indices.
+constexpr size_t kMaxPrimitives = std::numeric_limits<uint32_t>::max() / 3;
+
+const char* errorName(RTCError code) {
+    switch (code) {
+    case RTC_ERROR_NONE: return "RTC_ERROR_NONE";
+    case RTC_ERROR_UNKNOWN: return "RTC_ERROR_UNKNOWN";
+    case RTC_ERROR_INVALID_ARGUMENT: return "RTC_ERROR_INVALID_ARGUMENT";
+    case RTC_ERROR_INVALID_OPERATION: return "RTC_ERROR_INVALID_OPERATION";
+    case RTC_ERROR_OUT_OF_MEMORY: return "RTC_ERROR_OUT_OF_MEMORY";
+    case RTC_ERROR_UNSUPPORTED_CPU: return "RTC_ERROR_UNSUPPORTED_CPU";
+    case RTC_ERROR_CANCELLED: return "RTC_ERROR_CANCELLED";
+    }
+    return "unknown RTCError";
+}
+
+RTCBuildQuality toRtc(EmbreeQuality quality) {
+    switch (quality) {
+    case EmbreeQuality::Low: return RTC_BUILD_QUALITY_LOW;
+    case EmbreeQuality::Medium: return RTC_BUILD_QUALITY_MEDIUM;
+    case EmbreeQuality::High: return RTC_BUILD_QUALITY_HIGH;
+    }
+    return RTC_BUILD_QUALITY_MEDIUM;
+}
+
+struct GeometryDeleter {
+    void operator()(RTCGeometryTy* geometry) const { rtcReleaseGeometry(geometry); }
+};
+
+// Largest coordinate Embree accepts in a ray (its FLT_LARGE). Debian's libembree3 is built
+// with assertions enabled, and rtcIntersect1/rtcOccluded1 assert ray.valid() (|org|, |dir|
+// components <= 1.844e18, so no infinities) and tnear >= 0: a ray breaking either aborts the
+// process. Such rays never reach Embree.
+constexpr float kEmbreeLarge = 1.844E18f;
+
+inline bool withinEmbreeRange(const Vec3& v) {
+    return std::abs(v.x) <= kEmbreeLarge && std::abs(v.y) <= kEmbreeLarge && std::abs(v.z) <= kEmbreeLarge;
+}
+
+// A ray in Embree's terms: one or two segments, each with tnear >= 0, in order of increasing t.
+// Embree requires tnear >= 0 (besides the assertion, its traversal clamps the box interval at
+// 0 while the triangle test uses tnear as given). A ray whose interval starts behind its
+// origin is therefore traced in two parts: first [tmin, min(tmax, 0)] from the moved origin
+// org + tmin*dir (tnear 0, and tmin added back to the hit distance), then, if nothing was
+// found there, [0, tmax] from the original origin. Hits at t >= 0 are thus exactly as for a
+// ray with tmin = 0; hits behind the origin carry the rounding of the moved origin and of the
+// sum (absolute error about an ulp of |tmin|). The backward part is skipped when tmin = -inf
+// (it cannot be moved to) or when the moved origin is beyond kEmbreeLarge: hits behind the
+// origin are then not reported. A ray with a direction component beyond kEmbreeLarge (or
+// infinite), or an origin that is, has no segments: it misses without reaching Embree.
+struct Segment {
+    Vec3 org;
+    float tnear, tfar;
+    float shift;  // add to Embree's t to get ours
+};
+
+struct Segments {
+    Segment part[2];
+    int count = 0;
+};
+
+inline Segments segmentsOf(const Ray& ray) {
+    Segments s;
+    if (!withinEmbreeRange(ray.dir)) return s;
+    if (ray.tmin >= 0.0f) {
+        if (withinEmbreeRange(ray.org)) s.part[s.count++] = {ray.org, ray.tmin, ray.tmax, 0.0f};
+        return s;
+    }
+    if (std::isfinite(ray.tmin)) {
+        const Vec3 moved = ray.org + ray.tmin * ray.dir;
+        if (withinEmbreeRange(moved))
+            s.part[s.count++] = {moved, 0.0f, std::min(ray.tmax, 0.0f) - ray.tmin, ray.tmin};
+    }
+    if (ray.tmax >= 0.0f && withinEmbreeRange(ray.org)) s.part[s.count++] = {ray.org, 0.0f, ray.tmax, 0.0f};
+    return s;
+}
+
+inline void toRtc(const Segment& segment, const Vec3& dir, RTCRay& r) {
+    r.org_x = segment.org.x;
+    r.org_y = segment.org.y;
+    r.org_z = segment.org.z;
+    r.tnear = segment.tnear;
+    r.dir_x = dir.x;
+    r.dir_y = dir.y;
+    r.dir_z = dir.z;
+    r.time = 0.0f;
+    r.tfar = segment.tfar;
+    r.mask = 0xFFFFFFFFu;
+    r.id = 0;
+    r.flags = 0;
+}
+
+}  // namespace
+
+struct EmbreeAccelerator::DeviceState {
+    std::mutex mutex;
+    RTCError code = RTC_ERROR_NONE;  // the first error since the last check
+    std::string message;
+    std::atomic<int64_t> bytes{0};  // memory Embree holds, from the memory monitor
+
+    static void onError(void* user, RTCError code, const char* str) {
+        if (code == RTC_ERROR_NONE) return;
+        auto* self = static_cast<DeviceState*>(user);
+        std::lock_guard lock(self->mutex);
+        if (self->code != RTC_ERROR_NONE) return;
+        self->code = code;
+        self->message = str ? str : "";
+    }
+
+    // Possibly called from several of Embree's threads at once; we never cancel an
+    // allocation, so every call counts (bytes > 0 allocated, < 0 freed).
+    static bool onMemory(void* user, ssize_t bytes, bool /*post*/) {
+        static_cast<DeviceState*>(user)->bytes.fetch_add(int64_t(bytes), std::memory_order_relaxed);
+        return true;
+    }
+};
+
+namespace {
+
+// Turns an error Embree reported during `call` into an EmbreeError. Errors reach us through
+// the device's error callback (which records them instead of throwing through Embree's C API)
+// and through the per-thread error code, which is read and cleared here as well.
+template <typename State>
+void check(State& state, RTCDevice device, const char* call) {
+    const RTCError threadCode = rtcGetDeviceError(device);
+    RTCError code;
+    std::string message;
+    {
+        std::lock_guard lock(state.mutex);
+        code = state.code;
+        message = std::move(state.message);
+        state.code = RTC_ERROR_NONE;
+        state.message.clear();
+    }
+    if (code == RTC_ERROR_NONE) code = threadCode;
+    if (code == RTC_ERROR_NONE) return;
+    throw EmbreeError(fmt::format("Embree error in {}: {}{}{}", call, errorName(code), message.empty() ? "" : ": ",
+                                  message));
+}
+
+}  // namespace
+
+EmbreeConfig EmbreeConfig::fromEnv(const Env& env) {
+    EmbreeConfig config;
+    const std::string quality = env.getString("Embree::quality");
+    if (quality == "low") config.quality = EmbreeQuality::Low;
+    else if (quality == "high") config.quality = EmbreeQuality::High;
+    else config.quality = EmbreeQuality::Medium;  // the only other choice the registry allows
+    config.robust = env.getBool("Embree::robust");
+    config.threads = env.getInt("Embree::threads");
+    if (config.threads == 0) config.threads = env.getInt("SetRayTracing::threads");
+    return config;
+}
+
+void EmbreeAccelerator::DeviceDeleter::operator()(RTCDeviceTy* device) const { rtcReleaseDevice(device); }
+void EmbreeAccelerator::SceneDeleter::operator()(RTCSceneTy* scene) const { rtcReleaseScene(scene); }
+
+EmbreeAccelerator::EmbreeAccelerator(const EmbreeConfig& config)
+    : config_(config), state_(std::make_unique<DeviceState>()) {
+    if (config_.threads < 0) throw EmbreeError(fmt::format("Embree: negative thread count {}", config_.threads));
+    deviceConfig_ = fmt::format("threads={}", config_.threads);
+    RTCDevice device = rtcNewDevice(deviceConfig_.c_str());
+    if (!device) {
+        const RTCError code = rtcGetDeviceError(nullptr);
+        throw EmbreeError(fmt::format("Embree error in rtcNewDevice(\"{}\"): {}", deviceConfig_, errorName(code)));
+    }
+    device_.reset(device);
+    rtcSetDeviceErrorFunction(device, &DeviceState::onError, state_.get());
+    rtcSetDeviceMemoryMonitorFunction(device, &DeviceState::onMemory, state_.get());
+    check(*state_, device, "rtcSetDeviceErrorFunction");
+}
+
+EmbreeAccelerator::~EmbreeAccelerator() = default;
+
+BuildStats EmbreeAccelerator::build(const PrimitiveSet& prims) {
+    RTCDevice device = device_.get();
+    const size_t count = prims.valid.size();
+    if (count > kMaxPrimitives)
+        throw EmbreeError(fmt::format("Embree: {} primitives exceed the {} this binding can index", count,
+                                      kMaxPrimitives));
+
+    // Drop the previous structure first: a failed build leaves an empty (always missing) one.
+    scene_.reset();
+    primitiveOf_.assign(prims.valid.begin(), prims.valid.end());
+    const RTCBuildQuality quality = toRtc(config_.quality);
+
+    const auto start = std::chrono::steady_clock::now();
+    std::unique_ptr<RTCSceneTy, SceneDeleter> scene(rtcNewScene(device));
+    check(*state_, device, "rtcNewScene");
+    rtcSetSceneFlags(scene.get(), config_.robust ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE);
+    rtcSetSceneBuildQuality(scene.get(), quality);
+    check(*state_, device, "rtcSetSceneFlags/rtcSetSceneBuildQuality");
+
+    // With no valid primitive the scene stays without geometry: committing an empty scene is
+    // fine and every query then misses.
+    if (count > 0) {
+        std::unique_ptr<RTCGeometryTy, GeometryDeleter> geometry(rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE));
+        check(*state_, device, "rtcNewGeometry");
+        // Only used when the scene quality is low (two-level structure); a hint otherwise.
+        rtcSetGeometryBuildQuality(geometry.get(), quality);
+        // Embree-allocated buffers: Embree over-allocates the vertex buffer so that its last
+        // element can be read with a 16-byte load (the padding rule shared buffers must obey).
+        auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+            geometry.get(), RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 3 * count));
+        check(*state_, device, "rtcSetNewGeometryBuffer(vertex)");
+        auto* indices = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
+            geometry.get(), RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), count));
+        check(*state_, device, "rtcSetNewGeometryBuffer(index)");
+        // Embree's primID i is our primitive valid[i]; its vertices are copied in order, so
+        // Embree's u, v are the weights of v1 and v2 as in our Hit convention.
+        for (size_t i = 0; i < count; ++i) {
+            std::memcpy(vertices + 9 * i, &prims.triangles[prims.valid[i]], sizeof(Triangle));
+            indices[3 * i + 0] = uint32_t(3 * i + 0);
+            indices[3 * i + 1] = uint32_t(3 * i + 1);
+            indices[3 * i + 2] = uint32_t(3 * i + 2);
+        }
+        rtcCommitGeometry(geometry.get());
+        check(*state_, device, "rtcCommitGeometry");
+        rtcAttachGeometry(scene.get(), geometry.get());  // the scene now holds a reference
+        check(*state_, device, "rtcAttachGeometry");
+    }
+    const int64_t bytesBefore = state_->bytes.load();
+    // Embree silently skips primitives with a coordinate beyond 1.844e18 (finite ones of
+    // ours included); rays can then pass through them.
+    rtcCommitScene(scene.get());
+    check(*state_, device, "rtcCommitScene");
+    const auto end = std::chrono::steady_clock::now();
+    const int64_t bytesAfter = state_->bytes.load();
+    scene_ = std::move(scene);
+
+    BuildStats stats;
+    stats.buildMs = std::chrono::duration<double, std::milli>(end - start).count();
+    stats.primitives = count;
+    // nodes, leaves, depth, SAH: Embree's tree is not visible. bytes: what Embree's memory
+    // monitor saw rtcCommitScene keep (allocated minus freed): BVH nodes and Embree's own
+    // copies of the triangles in its leaves, in whole allocator blocks; not our vertex and
+    // index buffers, which only copy the input.
+    if (bytesAfter > bytesBefore) stats.bytes = size_t(bytesAfter - bytesBefore);
+    return stats;
+}
+
+// Interval semantics. Ours is the closed [tmin, tmax]. Embree's documentation promises
+// nothing for hits exactly at or very close to tnear or tfar. In 3.13.5 the default triangle
+// test (Moeller-Trumbore, on unnormalised values) accepts tnear < t <= tfar, so a hit at
+// exactly t == tmin, which we report, Embree misses; with RTC_SCENE_FLAG_ROBUST the Pluecker
+// test accepts tnear <= t <= tfar like ours (and widens the edge tests by an ulp). We pass the
+// interval unchanged rather than nudge tnear: an ulp would not make the default comparison
+// exact either. Negative tmin: see segmentsOf above.
+bool EmbreeAccelerator::findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const {
+    ++counters.queries;
+    if (!ray.isValid() || !scene_) return false;
+    const Segments segments = segmentsOf(ray);
+    for (int i = 0; i < segments.count; ++i) {
+        RTCRayHit rayhit;
+        toRtc(segments.part[i], ray.dir, rayhit.ray);
+        rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        rayhit.hit.primID = RTC_INVALID_GEOMETRY_ID;
+        rayhit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        RTCIntersectContext context;
+        rtcInitIntersectContext(&context);
+        rtcIntersect1(scene_.get(), &context, &rayhit);
+        if (rayhit.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
+            hit = {rayhit.ray.tfar + segments.part[i].shift, primitiveOf_[rayhit.hit.primID], rayhit.hit.u,
+                   rayhit.hit.v};
+            return true;
+        }
+    }
+    return false;
+}
+
+bool EmbreeAccelerator::isOccluded(const Ray& ray, QueryCounters& counters) const {
+    ++counters.queries;
+    if (!ray.isValid() || !scene_) return false;
+    const Segments segments = segmentsOf(ray);
+    for (int i = 0; i < segments.count; ++i) {
+        RTCRay r;
+        toRtc(segments.part[i], ray.dir, r);
+        RTCIntersectContext context;
+        rtcInitIntersectContext(&context);
+        rtcOccluded1(scene_.get(), &context, &r);
+        if (r.tfar == -std::numeric_limits<float>::infinity()) return true;  // Embree's mark of a hit
+    }
+    return false;
+}
+
+}  // namespace bvhlab

@@ -1,0 +1,93 @@
+// Intel Embree 3 behind our interface: the speed reference. One triangle geometry over the
+// valid primitives, queried with rtcIntersect1 / rtcOccluded1.
+//
+// Embree has no counters and no visible tree: N_IT, N_TR, the node statistics and the SAH
+// cost are unavailable (hasCounters() is false, those optional BuildStats fields stay empty);
+// only counters.queries is counted. BuildStats::bytes is Embree's own memory for the structure
+// as its memory monitor reports it (see build()).
+//
+// Threads: each instance owns one RTCDevice created with "threads=N". Embree applies this
+// process-wide: while a device lives it installs a tbb::global_control limiting all TBB
+// parallelism in the process (with several devices alive, the largest request wins; 0 =
+// unlimited). Our own builders and the renderer then run under the same limit, which is what
+// makes build times comparable -- but it also means that merely constructing this accelerator
+// changes the thread count of everything else in the process.
+//
+// Interval semantics (see findNearest in the .cpp): ours is the closed [tmin, tmax]; Embree
+// makes no promise for hits exactly at (or very near) either end -- its default test excludes
+// t == tnear -- and it requires tnear >= 0 (for a negative tmin we trace the part behind the
+// origin from a moved origin, then the rest as usual). Rays
+// with an infinite or huge (> 1.844e18) origin or direction component miss without reaching
+// Embree, whose Debian build asserts on them.
+#pragma once
+
+#include "framework/accelerator.h"
+#include "framework/env.h"
+
+#include <memory>
+#include <stdexcept>
+#include <vector>
+
+// Embree's opaque handles (embree3/rtcore_device.h, rtcore_geometry.h; the Debian build has no
+// API namespace). Declared here so that users of this header need not see Embree's headers;
+// the .cpp checks that they match.
+struct RTCDeviceTy;
+struct RTCSceneTy;
+
+namespace bvhlab {
+
+// An error reported by Embree (device creation, buffer allocation, commit). The message names
+// the Embree call, the error code and Embree's own description.
+class EmbreeError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+enum class EmbreeQuality { Low, Medium, High };
+
+struct EmbreeConfig {
+    EmbreeQuality quality = EmbreeQuality::Medium;
+    bool robust = false;
+    int threads = 0;  // as passed to rtcNewDevice: 0 = all hardware threads
+
+    // Embree::quality, Embree::robust and Embree::threads (0 = SetRayTracing::threads).
+    static EmbreeConfig fromEnv(const Env& env);
+};
+
+class EmbreeAccelerator final : public Accelerator {
+public:
+    // Creates the device; throws EmbreeError when Embree refuses (e.g. unsupported CPU).
+    explicit EmbreeAccelerator(const EmbreeConfig& config = {});
+    explicit EmbreeAccelerator(const Env& env) : EmbreeAccelerator(EmbreeConfig::fromEnv(env)) {}
+    ~EmbreeAccelerator() override;
+    EmbreeAccelerator(const EmbreeAccelerator&) = delete;
+    EmbreeAccelerator& operator=(const EmbreeAccelerator&) = delete;
+
+    std::string_view name() const override { return "embree"; }
+    BuildStats build(const PrimitiveSet& prims) override;
+    bool findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const override;
+    bool isOccluded(const Ray& ray, QueryCounters& counters) const override;
+    bool hasCounters() const override { return false; }
+
+    const EmbreeConfig& config() const { return config_; }
+    // The device's configuration string, e.g. "threads=1".
+    const std::string& deviceConfig() const { return deviceConfig_; }
+
+private:
+    struct DeviceState;  // error and memory callbacks' payload; must outlive the device
+    struct DeviceDeleter {
+        void operator()(RTCDeviceTy* device) const;
+    };
+    struct SceneDeleter {
+        void operator()(RTCSceneTy* scene) const;
+    };
+
+    EmbreeConfig config_;
+    std::string deviceConfig_;
+    std::unique_ptr<DeviceState> state_;
+    std::unique_ptr<RTCDeviceTy, DeviceDeleter> device_;  // declared after state_, before scene_:
+    std::unique_ptr<RTCSceneTy, SceneDeleter> scene_;     // released scene first, then device
+    std::vector<uint32_t> primitiveOf_;                   // Embree primID -> our primitive index
+};
+
+}  // namespace bvhlab
