@@ -65,17 +65,20 @@ inline bool intersectTriangle(const ShearedRayT<Real>& r, const Triangle& tri, R
     const Real bx = b[r.kx] - r.sx * b[r.kz], by = b[r.ky] - r.sy * b[r.kz];
     const Real cx = c[r.kx] - r.sx * c[r.kz], cy = c[r.ky] - r.sy * c[r.kz];
 
-    Real e0 = cx * by - cy * bx;  // edge v1-v2: weight of v0
-    Real e1 = ax * cy - ay * cx;  // edge v2-v0: weight of v1
-    Real e2 = bx * ay - by * ax;  // edge v0-v1: weight of v2
-    if constexpr (std::is_same_v<Real, float>) {
-        // An exact zero may be a rounding artefact on a shared edge: decide it in double.
-        if (e0 == 0.0f || e1 == 0.0f || e2 == 0.0f) {
-            e0 = float(double(cx) * double(by) - double(cy) * double(bx));
-            e1 = float(double(ax) * double(cy) - double(ay) * double(cx));
-            e2 = float(double(bx) * double(ay) - double(by) * double(ax));
-        }
-    }
+    // Edge functions (2D cross products). Watertightness needs a shared edge to give exactly
+    // opposite values in the two triangles that share it, which evaluate it with the two
+    // products' roles exchanged. A compiler that contracts a*b - c*d into fma(a, b, -(c*d))
+    // (GCC does by default for C++ on FMA hardware, e.g. with -march=native) rounds only one
+    // product and breaks that symmetry: rays slip between neighbours, and a triangle whose
+    // vertices coincide gets "hit". So the products are formed in a wider type where both are
+    // rounded alike: double for float (exact: 24 + 24 bits < 53), and long double for double
+    // (x87 on x86-64 has no fused multiply-add; IEEE quad elsewhere holds the exact product).
+    // Then e(a, b) == -e(b, a) exactly and coincident vertices give exactly 0, whatever the
+    // compiler's contraction setting.
+    using Wide = std::conditional_t<std::is_same_v<Real, float>, double, long double>;
+    const Real e0 = Real(Wide(cx) * Wide(by) - Wide(cy) * Wide(bx));  // edge v1-v2: weight of v0
+    const Real e1 = Real(Wide(ax) * Wide(cy) - Wide(ay) * Wide(cx));  // edge v2-v0: weight of v1
+    const Real e2 = Real(Wide(bx) * Wide(ay) - Wide(by) * Wide(ax));  // edge v0-v1: weight of v2
     if ((e0 < 0 || e1 < 0 || e2 < 0) && (e0 > 0 || e1 > 0 || e2 > 0)) return false;
     const Real det = e0 + e1 + e2;
     if (det == Real(0)) return false;

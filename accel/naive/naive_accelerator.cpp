@@ -42,8 +42,8 @@ bool NaiveAccelerator::findNearest(const Ray& ray, Hit& hit, QueryCounters& coun
 
 bool NaiveAccelerator::isOccluded(const Ray& ray, QueryCounters& counters) const {
     ++counters.queries;
+    if (!ray.isValid()) return false;  // like findNearest: a rejected ray does no work
     counters.traversalSteps += 1;
-    if (!ray.isValid()) return false;
     const ShearedRay sheared(ray);
     TriangleHitT<float> h;
     for (uint32_t prim : prims_.valid) {
