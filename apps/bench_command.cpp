@@ -2,18 +2,18 @@
 // median of repeated runs and as a ratio to Embree measured in the same run (the machine is
 // shared and noisy: absolute times drift, ratios hold). A benchmark, not a test.
 #include "accel/registry.h"
+#include "apps/accel_config.h"
 #include "apps/cli_common.h"
 #include "apps/commands.h"
 #include "apps/scene_list.h"
+#include "apps/timing.h"
 #include "framework/provenance.h"
 #include "framework/ray_sets.h"
 #include "framework/renderer.h"
 
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
-#include <tbb/enumerable_thread_specific.h>
 #include <tbb/info.h>
-#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
@@ -24,66 +24,6 @@
 
 namespace bvhlab {
 namespace {
-
-// An accelerator as the bench runs it: a name from the registry plus env overrides,
-// written NAME or NAME:Key=value:Key=value (e.g. embree:Embree::robust=true).
-struct AccelConfig {
-    std::string label;
-    std::string name;
-    std::vector<std::string> overrides;
-};
-
-AccelConfig parseAccelConfig(const std::string& text) {
-    AccelConfig config{text, text.substr(0, text.find(':')), {}};
-    size_t start = text.find(':');
-    while (start != std::string::npos) {
-        const size_t end = text.find(':', text.find('=', start));
-        config.overrides.push_back(text.substr(start + 1, end == std::string::npos ? end : end - start - 1));
-        start = end;
-    }
-    if (config.label == "embree:Embree::robust=true") config.label = "embree-robust";
-    return config;
-}
-
-double median(std::vector<double> values) {
-    std::sort(values.begin(), values.end());
-    const size_t n = values.size();
-    return n == 0 ? 0.0 : n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
-
-struct PassResult {
-    double usPerQuery = 0.0;  // median over passes of wall time / queries
-    QueryCounters counters;   // of one pass
-};
-
-// Answers every ray `passes` times with `threads` threads; the first pass also counts.
-PassResult tracePasses(const Accelerator& accel, const std::vector<Ray>& rays, bool anyHit, int threads,
-                       int passes) {
-    PassResult result;
-    if (rays.empty()) return result;
-    std::vector<double> times;
-    tbb::task_arena arena(threads);
-    for (int pass = 0; pass < passes; ++pass) {
-        tbb::enumerable_thread_specific<QueryCounters> counters;
-        const auto start = std::chrono::steady_clock::now();
-        arena.execute([&] {
-            tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), 4096), [&](const auto& range) {
-                QueryCounters& local = counters.local();
-                Hit hit;
-                for (size_t i = range.begin(); i < range.end(); ++i) {
-                    if (anyHit) accel.isOccluded(rays[i], local);
-                    else accel.findNearest(rays[i], hit, local);
-                }
-            });
-        });
-        times.push_back(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count() /
-                        double(rays.size()));
-        if (pass == 0)
-            for (const QueryCounters& c : counters) result.counters += c;
-    }
-    result.usPerQuery = median(times);
-    return result;
-}
 
 nlohmann::json passJson(const PassResult& r, bool hasCounters) {
     const double q = std::max<double>(1.0, double(r.counters.queries));

@@ -3,12 +3,16 @@
 #include "accel/registry.h"
 #include "framework/error.h"
 #include "framework/procedural.h"
+#include "framework/scene_cache.h"
 #include "framework/scene_loader.h"
 
 #include <fmt/core.h>
 
 #include <chrono>
 #include <filesystem>
+#include <fstream>
+
+#include <unistd.h>
 
 namespace bvhlab {
 
@@ -33,22 +37,37 @@ Env EnvOptions::load(const std::vector<std::string>& extraFiles) const {
     return env;
 }
 
-Scene loadSceneFor(const std::string& file, const Env& env) {
+Scene loadSceneFor(const std::string& file, const Env& env, bool useCache, SceneLoadInfo* info) {
     // A file named on the command line is relative to the working folder, one named in env
     // to Scene::dir (absolute paths stay as they are).
     const std::filesystem::path path =
         !file.empty() ? std::filesystem::path(file)
         : env.getString("Scene::file").empty() ? std::filesystem::path()
                                                 : env.getPath("Scene::dir") / env.getString("Scene::file");
+    const std::filesystem::path cacheDir = useCache ? env.getPath("Scene::cacheDir") : std::filesystem::path();
+    SceneLoadInfo loaded;
     const auto start = std::chrono::steady_clock::now();
-    Scene scene = path.empty() ? makeDefaultScene() : loadScene(path);
-    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    fmt::print(stderr, "scene {}: {} triangles ({} degenerate, not built over) loaded in {:.0f} ms\n", scene.name,
-               scene.triangleCount(), scene.report.degenerateTriangles, ms);
+    Scene scene;
+    if (path.empty()) {
+        scene = makeDefaultScene();
+    } else if (cacheDir.empty()) {
+        scene = loadScene(path);
+    } else {
+        CachedScene cached = loadSceneCached(path, cacheDir);
+        if (!cached.note.empty()) fmt::print(stderr, "scene cache: {}\n", cached.note);
+        scene = std::move(cached.scene);
+        loaded.fromCache = cached.fromCache;
+        loaded.cacheFile = cached.cacheFile;
+    }
+    loaded.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    fmt::print(stderr, "scene {}: {} triangles ({} degenerate, not built over) {} in {:.0f} ms\n", scene.name,
+               scene.triangleCount(), scene.report.degenerateTriangles,
+               loaded.fromCache ? "read from cache " + loaded.cacheFile.string() : std::string("loaded"), loaded.ms);
     if (scene.report.unsupportedSpheres || scene.report.unsupportedCones)
         fmt::print(stderr, "scene {}: not yet supported and not rendered: {} spheres, {} cones/cylinders\n",
                    scene.name, scene.report.unsupportedSpheres, scene.report.unsupportedCones);
     for (const std::string& warning : scene.report.warnings) fmt::print(stderr, "warning: {}\n", warning);
+    if (info) *info = loaded;
     return scene;
 }
 
@@ -58,6 +77,16 @@ BuiltAccelerator buildAccelerator(const Scene& scene, const Env& env) {
     fmt::print(stderr, "{}: built over {} primitives in {:.1f} ms\n", built.accel->name(), built.stats.primitives,
                built.stats.buildMs);
     return built;
+}
+
+void writeFileAtomically(const std::filesystem::path& file, const std::string& text) {
+    const std::filesystem::path temporary = file.string() + fmt::format(".tmp-{}", ::getpid());
+    {
+        std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+        out << text;
+        if (!out) throw InputError(fmt::format("{}: cannot write", temporary.string()));
+    }
+    std::filesystem::rename(temporary, file);
 }
 
 int runGuarded(const std::function<void()>& body) {

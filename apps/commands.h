@@ -9,5 +9,8 @@ void addRenderCommand(CLI::App& app);
 void addRaycastCommand(CLI::App& app);
 void addKeysCommand(CLI::App& app);
 void addBenchCommand(CLI::App& app);
+void addBatchCommand(CLI::App& app);
+void addStressCommand(CLI::App& app);
+void addTradeoffCommand(CLI::App& app);
 
 }  // namespace bvhlab

@@ -7,6 +7,9 @@ int main(int argc, char** argv) {
     bvhlab::addRenderCommand(app);
     bvhlab::addRaycastCommand(app);
     bvhlab::addBenchCommand(app);
+    bvhlab::addBatchCommand(app);
+    bvhlab::addStressCommand(app);
+    bvhlab::addTradeoffCommand(app);
     bvhlab::addKeysCommand(app);
     CLI11_PARSE(app, argc, argv);
     return 0;

@@ -27,7 +27,11 @@ size_t editDistance(const std::string& a, const std::string& b) {
         size_t diagonal = row[0];
         row[0] = i;
         for (size_t j = 1; j <= b.size(); ++j) {
-            const size_t substitute = diagonal + (std::tolower(a[i - 1]) == std::tolower(b[j - 1]) ? 0 : 1);
+            const size_t substitute =
+                diagonal + (std::tolower(static_cast<unsigned char>(a[i - 1])) ==
+                                    std::tolower(static_cast<unsigned char>(b[j - 1]))
+                                ? 0
+                                : 1);
             diagonal = row[j];
             row[j] = std::min({row[j] + 1, row[j - 1] + 1, substitute});
         }
@@ -209,7 +213,9 @@ const Env::Value& Env::value(const std::string& name, EnvType expected) const {
 
 bool Env::getBool(const std::string& key) const { return value(key, EnvType::Bool).text == "true"; }
 int Env::getInt(const std::string& key) const { return *parseNumber<int>(value(key, EnvType::Int).text); }
-float Env::getFloat(const std::string& key) const { return *parseNumber<float>(value(key, EnvType::Float).text); }
+// Validated as a double in the key's range; a value too small for a float (1e-50) becomes 0 or a
+// subnormal here instead of failing to parse as one.
+float Env::getFloat(const std::string& key) const { return float(*parseNumber<double>(value(key, EnvType::Float).text)); }
 
 std::string Env::getString(const std::string& name) const {
     const EnvKey* key = registry_->find(name);

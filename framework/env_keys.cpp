@@ -13,6 +13,7 @@ void registerFrameworkKeys(EnvRegistry& r, const std::vector<std::string>& accel
 
     r.add({"Scene::dir", T::Path, "../shared/scenes", "folder that relative Scene::file names are read from", 0, 0, {}});
     r.add({"Scene::file", T::String, "", "scene file (.obj .ply .off .nff, optionally .gz), relative to Scene::dir; empty = the embedded default scene", 0, 0, {}});
+    r.add({"Scene::cacheDir", T::Path, ".cache/scenes", "binary cache of parsed scenes, keyed by the source file's bytes (bvhlab batch); empty = no cache", 0, 0, {}});
     r.add({"Scene::background", T::Vec3, "", "background colour on a miss; empty = the scene's, else dark blue", 0, 0, {}});
 
     r.add({"Camera::from", T::Vec3, "", "eye position; empty = the scene's camera, else a view framing the scene", 0, 0, {}});
@@ -26,6 +27,8 @@ void registerFrameworkKeys(EnvRegistry& r, const std::vector<std::string>& accel
     r.add({"Lights::intensity", T::Float, "1", "irradiance each env light gives at the scene centre (falls off with distance squared)", 0, 1e30, {}});
 
     r.add({"Render::ambient", T::Float, "0.05", "ambient term so that shadowed surfaces stay visible", 0, 1, {}});
+
+    r.add({"Batch::threads", T::Int, "1", "bvhlab batch: render and Embree build threads, replacing SetRayTracing::threads; 1 = the report's setting, 0 = all hardware threads", 0, 1024, {}});
 
     r.add({"Output::exr", T::Bool, "true", "write PATH.exr (RGB, depth, primitive, normal, N_TR, N_IT)", 0, 0, {}});
     r.add({"Output::png", T::Bool, "true", "write PATH.png (tone-mapped RGB)", 0, 0, {}});

@@ -7,10 +7,12 @@
 #include <OpenEXR/ImfHeader.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfOutputFile.h>
+#include <stb_image.h>
 #include <stb_image_write.h>
 
 #include <algorithm>
 #include <cstdint>
+#include <memory>
 
 namespace bvhlab {
 namespace {
@@ -41,6 +43,20 @@ void writeRgb8(const std::filesystem::path& file, int width, int height, const s
 }
 
 }  // namespace
+
+void writePng(const std::filesystem::path& file, const Rgb8Image& image) {
+    writeRgb8(file, image.width, image.height, image.pixels);
+}
+
+Rgb8Image readPng(const std::filesystem::path& file) {
+    int width = 0, height = 0, channels = 0;
+    std::unique_ptr<stbi_uc, decltype(&stbi_image_free)> data(
+        stbi_load(file.string().c_str(), &width, &height, &channels, 3), stbi_image_free);
+    if (!data) throw InputError(fmt::format("{}: cannot read image: {}", file.string(), stbi_failure_reason()));
+    Rgb8Image image{width, height, {}};
+    image.pixels.assign(data.get(), data.get() + size_t(width) * size_t(height) * 3);
+    return image;
+}
 
 void writeExr(const std::filesystem::path& file, const Framebuffer& fb) {
     Imf::Header header(fb.width, fb.height);

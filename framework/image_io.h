@@ -5,7 +5,9 @@
 #include "framework/framebuffer.h"
 
 #include <filesystem>
+#include <cstdint>
 #include <string>
+#include <vector>
 
 namespace bvhlab {
 
@@ -14,6 +16,15 @@ void writeExr(const std::filesystem::path& file, const Framebuffer& fb);
 
 // Tone-mapped colour: clamped to [0,1], sRGB-encoded.
 void writePng(const std::filesystem::path& file, const Framebuffer& fb);
+
+// An 8-bit RGB image, rows top to bottom, 3 bytes per pixel (what a PNG holds).
+struct Rgb8Image {
+    int width = 0, height = 0;
+    std::vector<uint8_t> pixels;
+};
+void writePng(const std::filesystem::path& file, const Rgb8Image& image);
+// Any PNG (grey, alpha and palette converted to RGB); throws InputError if unreadable.
+Rgb8Image readPng(const std::filesystem::path& file);
 
 // Per-pixel traversal steps through a perceptual colour map, scaled to the 99th percentile
 // so a few expensive pixels do not wash out the rest. Returns that scale.

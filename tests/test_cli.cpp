@@ -1,33 +1,20 @@
 // The bvhlab program end to end: render writes its files, raycast answers a ray file, and
 // broken input gives a one-line error with file and line and a non-zero exit, never a crash.
 #include "framework/ray_file.h"
+#include "tests/cli_run.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <cstdio>
 #include <fstream>
-#include <sys/wait.h>
 
 using namespace bvhlab;
 
 namespace {
 
-struct Result {
-    int exitCode;
-    std::string output;  // stdout and stderr
-};
-
-Result run(const std::string& args) {
-    const std::string command = std::string(BVHLAB_BINARY) + " " + args + " 2>&1";
-    FILE* pipe = popen(command.c_str(), "r");
-    std::string output;
-    char buffer[4096];
-    while (size_t n = fread(buffer, 1, sizeof(buffer), pipe)) output.append(buffer, n);
-    const int status = pclose(pipe);
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), output};
-}
+using test::Result;
+using test::run;
 
 std::filesystem::path tempDir() {
     const auto dir = std::filesystem::temp_directory_path() / "bvhlab_test_cli";

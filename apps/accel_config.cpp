@@ -1,0 +1,27 @@
+#include "apps/accel_config.h"
+
+#include <sstream>
+
+namespace bvhlab {
+
+AccelConfig parseAccelConfig(const std::string& text) {
+    AccelConfig config{text, text.substr(0, text.find(':')), {}};
+    size_t start = text.find(':');
+    while (start != std::string::npos) {
+        const size_t end = text.find(':', text.find('=', start));
+        config.overrides.push_back(text.substr(start + 1, end == std::string::npos ? end : end - start - 1));
+        start = end;
+    }
+    if (config.label == "embree:Embree::robust=true") config.label = "embree-robust";
+    return config;
+}
+
+std::vector<AccelConfig> parseAccelConfigList(const std::string& list) {
+    std::vector<AccelConfig> configs;
+    std::string item;
+    for (std::stringstream in(list); std::getline(in, item, ',');)
+        if (!item.empty()) configs.push_back(parseAccelConfig(item));
+    return configs;
+}
+
+}  // namespace bvhlab

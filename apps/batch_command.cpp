@@ -1,0 +1,330 @@
+// `bvhlab batch`: the report's Table 1 side by side. For each scene x accelerator (a job): load
+// the scene (through the scene cache), build once, render without and with shadows, write the
+// images and DIR/jobs/SCENE__ACCEL.json; then make the tables and the contact sheet from every
+// job file in DIR. `--shard i/n` runs every n-th job; `--merge DIR...` joins shards.
+#include "accel/registry.h"
+#include "apps/batch_table.h"
+#include "apps/cli_common.h"
+#include "apps/commands.h"
+#include "apps/scene_list.h"
+#include "framework/camera.h"
+#include "framework/error.h"
+#include "framework/image_io.h"
+#include "framework/provenance.h"
+#include "framework/renderer.h"
+#include "framework/statistics.h"
+
+#include <fmt/core.h>
+#include <fmt/ranges.h>
+#include <nlohmann/json.hpp>
+#include <tbb/info.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <charconv>
+#include <chrono>
+#include <fstream>
+#include <map>
+#include <random>
+#include <set>
+#include <sstream>
+
+namespace bvhlab {
+namespace {
+
+using nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+struct Shard {
+    int index = 0, count = 1;
+};
+
+// "i/n" with 0 <= i < n, i 0-based as $SLURM_ARRAY_TASK_ID.
+Shard parseShard(const std::string& text) {
+    const size_t slash = text.find('/');
+    Shard s;
+    auto parse = [](std::string_view part, int& value) {
+        const auto [end, ec] = std::from_chars(part.data(), part.data() + part.size(), value);
+        return ec == std::errc() && end == part.data() + part.size() && !part.empty();
+    };
+    const std::string_view view = text;
+    if (slash == std::string::npos || !parse(view.substr(0, slash), s.index) || !parse(view.substr(slash + 1), s.count) ||
+        s.count < 1 || s.index < 0 || s.index >= s.count)
+        throw InputError(fmt::format("--shard {}: expected i/n with n >= 1 and 0 <= i < n (i is 0-based, as "
+                                     "$SLURM_ARRAY_TASK_ID), e.g. --shard 0/10",
+                                     text));
+    return s;
+}
+
+std::vector<std::string> parseAccelList(const std::string& text) {
+    std::vector<std::string> names, known;
+    for (const AcceleratorInfo& info : acceleratorInfos()) known.push_back(info.name);
+    std::string item;
+    for (std::stringstream in(text); std::getline(in, item, ',');) {
+        item.erase(0, item.find_first_not_of(" \t"));
+        item.erase(item.find_last_not_of(" \t") + 1);
+        if (item.empty()) continue;
+        if (std::find(known.begin(), known.end(), item) == known.end())
+            throw InputError(fmt::format("--accel: unknown accelerator '{}' (known: {})", item, fmt::join(known, ", ")));
+        if (std::find(names.begin(), names.end(), item) != names.end())
+            throw InputError(fmt::format("--accel: '{}' is listed twice", item));
+        names.push_back(item);
+    }
+    if (names.empty()) throw InputError("--accel: no accelerator given");
+    return names;
+}
+
+// 12s, 1m12s, 1h05m.
+std::string duration(double seconds) {
+    const long s = std::lround(std::max(seconds, 0.0));
+    if (s < 60) return fmt::format("{}s", s);
+    if (s < 3600) return fmt::format("{}m{:02}s", s / 60, s % 60);
+    return fmt::format("{}h{:02}m", s / 3600, s % 3600 / 60);
+}
+
+// Progress lines on stderr: [job 3/30 12%] conference sahbvh: rendering with shadows (elapsed 1m12s, ETA 8m00s)
+class Progress {
+public:
+    explicit Progress(size_t jobs) : jobs_(jobs) {}
+
+    // `done` jobs finished plus `fraction` of the current one.
+    void step(size_t job, double fraction, const std::string& what) const {
+        const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
+        const double done = (double(job - 1) + fraction) / double(std::max<size_t>(jobs_, 1));
+        const std::string eta = done > 0.0 ? duration(elapsed * (1.0 - done) / done) : "?";
+        fmt::print(stderr, "[job {}/{} {:.0f}%] {} (elapsed {}, ETA {})\n", job, jobs_, 100.0 * done, what,
+                   duration(elapsed), eta);
+    }
+    double elapsedSeconds() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
+
+private:
+    size_t jobs_;
+    Clock::time_point start_ = Clock::now();
+};
+
+// Writes `text` to `file` by way of a temporary file, so a reader never sees half a job.
+void writeAtomically(const std::filesystem::path& file, const std::string& text) {
+    std::random_device random;
+    const std::filesystem::path temporary = file.string() + fmt::format(".tmp-{:08x}", random());
+    {
+        std::ofstream out(temporary);
+        out << text;
+        if (!out) throw InputError(fmt::format("{}: cannot write", temporary.string()));
+    }
+    std::filesystem::rename(temporary, file);
+}
+
+struct SceneEntry {
+    std::string id;  // the env file's stem: a10, conference, ...
+    std::filesystem::path envFile;
+};
+
+struct Options {
+    EnvOptions env;
+    std::vector<std::string> scenes;
+    std::string accels = "tdbvh,sahbvh,embree";
+    std::string out = "out/batch";
+    std::string shard;
+    bool shardGiven = false;
+    std::vector<std::string> merge;
+};
+
+// One job: build once, render without and with shadows, write images and the job file.
+void runJob(const Options& options, const Scene& scene, const SceneLoadInfo& loadInfo, const Env& sceneEnv,
+            const SceneEntry& entry, const std::string& accel, const json& order, const Shard& shard,
+            const Progress& progress, size_t jobNumber) {
+    const std::filesystem::path out = options.out;
+    const std::string name = batchJobName(entry.id, accel);
+    const std::string label = fmt::format("{} {}", entry.id, accel);
+
+    Env env = sceneEnv;
+    env.set("ASDS::type", accel, "bvhlab batch --accel");
+    const int threads = env.getInt("Batch::threads");
+    env.set("SetRayTracing::threads", std::to_string(threads), "Batch::threads");
+
+    progress.step(jobNumber, 0.0, label + ": building");
+    tbb::task_arena arena(threads > 0 ? threads : tbb::info::default_concurrency());
+    BuiltAccelerator built;
+    arena.execute([&] { built = buildAccelerator(scene, env); });
+
+    const Camera camera(resolveCamera(scene, env));
+    const RenderSettings settings = RenderSettings::fromEnv(env, scene, camera.spec());
+    json runs = json::object();
+    for (const bool shadows : {false, true}) {
+        progress.step(jobNumber, shadows ? 0.55 : 0.1, label + (shadows ? ": rendering with shadows" : ": rendering without shadows"));
+        RenderSettings s = settings;
+        s.shadows = shadows;
+        Framebuffer fb(camera.width(), camera.height());
+        const RenderStats stats = render(scene, *built.accel, camera, s, fb);
+
+        // Images: the PNG always (the contact sheet is made from it), EXR and heat map as Output:: says.
+        const std::string base = "images/" + name + (shadows ? "_shadows" : "");
+        json images = {{"png", base + ".png"}};
+        writePng(out / (base + ".png"), fb);
+        if (env.getBool("Output::exr")) writeExr(out / (base + ".exr"), fb), images["exr"] = base + ".exr";
+        if (env.getBool("Output::heatmap"))
+            writeHeatmapPng(out / (base + ".heatmap.png"), fb), images["heatmap"] = base + ".heatmap.png";
+
+        const StatsRow row{scene.name, accel, scene.triangleCount(), scene.report.degenerateTriangles,
+                           built.accel->hasCounters(), built.stats, stats};
+        json run = statsJson(row);
+        run["shadows"] = shadows;
+        run["images"] = images;
+        runs[shadows ? "shadows" : "no_shadows"] = run;
+    }
+
+    progress.step(jobNumber, 0.98, label + ": writing " + (out / "jobs" / (name + ".json")).string());
+    const json job = {{"format", "bvhlab-batch-job-1"},
+                      {"job", name},
+                      {"scene", entry.id},
+                      {"scene_name", scene.name},
+                      {"scene_env", std::filesystem::absolute(entry.envFile).lexically_normal().string()},
+                      {"scene_file", scene.source.string()},
+                      {"scene_from_cache", loadInfo.fromCache},
+                      {"scene_cache_file", loadInfo.cacheFile.string()},
+                      {"scene_load_ms", loadInfo.ms},
+                      {"accel", accel},
+                      {"build_shared", true},  // one build served both renders
+                      {"order", order},
+                      {"shard", fmt::format("{}/{}", shard.index, shard.count)},
+                      {"threads", threads},
+                      {"image", {{"width", camera.width()}, {"height", camera.height()}, {"samples", settings.samples}}},
+                      {"runs", runs},
+                      {"env", env.toJson()},
+                      {"provenance", provenanceJson()}};
+    writeAtomically(out / "jobs" / (name + ".json"), job.dump(2) + "\n");
+}
+
+// Copies, replacing `to` (a copy, not a link: a shard folder rerun later must not change the merge).
+void copyInto(const std::filesystem::path& from, const std::filesystem::path& to) {
+    std::error_code ec;
+    if (std::filesystem::exists(to) && std::filesystem::equivalent(from, to, ec)) return;  // merging into a shard
+    std::filesystem::copy_file(from, to, std::filesystem::copy_options::overwrite_existing);
+}
+
+// Copies the job files and their images of every shard folder into `out`.
+void mergeShards(const std::vector<std::string>& dirs, const std::filesystem::path& out) {
+    std::map<std::string, std::string> seen;  // job -> folder it came from
+    for (const std::filesystem::path dir : dirs) {
+        if (!std::filesystem::is_directory(dir / "jobs"))
+            throw InputError(fmt::format("--merge {}: no jobs/ folder here (not the output of bvhlab batch)", dir.string()));
+        size_t count = 0;
+        for (const json& job : readBatchJobs(dir)) {
+            const std::string name = job.at("job").get<std::string>();
+            if (const auto it = seen.find(name); it != seen.end())
+                fmt::print(stderr, "warning: job {} is in {} and {}; keeping the one from {}\n", name, it->second,
+                           dir.string(), dir.string());
+            seen[name] = dir.string();
+            copyInto(dir / "jobs" / (name + ".json"), out / "jobs" / (name + ".json"));
+            for (const auto& [runName, run] : job.at("runs").items()) {
+                const json images = run.value("images", json::object());  // kept alive for the loop
+                for (const auto& [kind, file] : images.items())
+                    if (std::filesystem::exists(dir / file.get<std::string>()))
+                        copyInto(dir / file.get<std::string>(), out / file.get<std::string>());
+            }
+            ++count;
+        }
+        fmt::print(stderr, "merged {} jobs from {}\n", count, dir.string());
+    }
+}
+
+void runBatch(const Options& options) {
+    const std::filesystem::path out = options.out;
+    auto makeFolders = [&] {
+        std::filesystem::create_directories(out / "jobs");
+        std::filesystem::create_directories(out / "images");
+    };
+
+    if (!options.merge.empty()) {
+        if (options.shardGiven) throw InputError("--merge and --shard do not go together");
+        makeFolders();
+        mergeShards(options.merge, out);
+    } else {
+        const Shard shard = options.shardGiven ? parseShard(options.shard) : Shard{};
+        const std::vector<std::string> accels = parseAccelList(options.accels);
+        std::vector<SceneEntry> scenes;
+        std::vector<Env> sceneEnvs;
+        // Every env file is read up front, so a typo in the last one fails now, not in an hour.
+        for (const std::filesystem::path& file : expandSceneList(options.scenes)) {
+            const std::string id = file.stem().string();
+            if (std::any_of(scenes.begin(), scenes.end(), [&](const SceneEntry& s) { return s.id == id; }))
+                throw InputError(fmt::format("{}: a second scene named '{}' (jobs are named by the env file's stem)",
+                                             file.string(), id));
+            scenes.push_back({id, file});
+            sceneEnvs.push_back(options.env.load({file.string()}));
+            const Env& env = sceneEnvs.back();
+            if (!env.getString("Scene::file").empty()) {
+                const std::filesystem::path scenePath = env.getPath("Scene::dir") / env.getString("Scene::file");
+                if (!std::filesystem::exists(scenePath))
+                    throw InputError(fmt::format("{}: scene file {} does not exist", file.string(), scenePath.string()));
+            }
+        }
+
+        makeFolders();
+        // Jobs in table order; this shard takes every n-th.
+        const size_t totalJobs = scenes.size() * accels.size();
+        std::vector<size_t> mine;
+        for (size_t j = 0; j < totalJobs; ++j)
+            if (j % size_t(shard.count) == size_t(shard.index)) mine.push_back(j);
+        fmt::print(stderr, "batch: {} scenes x {} accelerators = {} jobs{}; render threads (Batch::threads): {}; into {}\n",
+                   scenes.size(), accels.size(), totalJobs,
+                   shard.count > 1 ? fmt::format(", shard {}/{} runs {} of them", shard.index, shard.count, mine.size()) : "",
+                   sceneEnvs.empty() ? 1 : sceneEnvs.front().getInt("Batch::threads"), out.string());
+
+        const Progress progress(mine.size());
+        size_t jobNumber = 0, scenesFromCache = 0, scenesParsed = 0;
+        for (size_t s = 0; s < scenes.size(); ++s) {
+            std::vector<size_t> sceneJobs;
+            for (size_t j : mine)
+                if (j / accels.size() == s) sceneJobs.push_back(j);
+            if (sceneJobs.empty()) continue;
+            progress.step(jobNumber + 1, 0.0, scenes[s].id + ": loading the scene");
+            SceneLoadInfo info;
+            const Scene scene = loadSceneFor("", sceneEnvs[s], true, &info);
+            (info.fromCache ? scenesFromCache : scenesParsed) += 1;
+            for (size_t j : sceneJobs) {
+                const size_t a = j % accels.size();
+                const json order = {{"scene", s}, {"accel", a}, {"job", j}, {"jobs", totalJobs}};
+                runJob(options, scene, info, sceneEnvs[s], scenes[s], accels[a], order, shard, progress, ++jobNumber);
+            }
+        }
+        fmt::print(stderr, "batch: {} jobs in {}; scenes: {} read from the cache, {} parsed{}; {} builds, each "
+                           "serving both renders\n",
+                   mine.size(), duration(progress.elapsedSeconds()), scenesFromCache, scenesParsed,
+                   scenesParsed && !sceneEnvs.empty() && !sceneEnvs.front().getPath("Scene::cacheDir").empty()
+                       ? fmt::format(" (and stored in {})", sceneEnvs.front().getPath("Scene::cacheDir").string())
+                       : "",
+                   mine.size());
+    }
+
+    const BatchTables tables = writeBatchResults(out);
+    for (const std::string& warning : tables.warnings) fmt::print(stderr, "warning: {}\n", warning);
+    fmt::print("{}", tables.markdown);
+    fmt::print(stderr, "wrote {0}/results.{{md,csv,json}}, {0}/contact_sheet.png, {0}/images, {0}/jobs\n", out.string());
+}
+
+}  // namespace
+
+void addBatchCommand(CLI::App& app) {
+    auto options = std::make_shared<Options>();
+    CLI::App* command = app.add_subcommand(
+        "batch", "render every scene with every chosen accelerator, without and with shadows: tables, images, contact sheet");
+    options->env.addTo(*command);
+    command->add_option("--scenes", options->scenes, "scene env files or .list files (default env/scenes.list)");
+    command->add_option("--accel", options->accels, "comma-separated accelerators")
+        ->capture_default_str()
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+    command->add_option("--out", options->out, "output folder: results.{md,csv,json}, contact_sheet.png, images/, jobs/")
+        ->capture_default_str()
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+    CLI::Option* shard = command->add_option("--shard", options->shard,
+                                             "i/n: run every n-th job starting at job i (0-based, as $SLURM_ARRAY_TASK_ID)");
+    command->add_option("--merge", options->merge, "join the jobs of these batch output folders into --out and make its tables");
+    command->callback([options, shard] {
+        options->shardGiven = shard->count() > 0;
+        const int code = runGuarded([&] { runBatch(*options); });
+        if (code != 0) throw CLI::RuntimeError(code);
+    });
+}
+
+}  // namespace bvhlab

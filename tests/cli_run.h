@@ -1,0 +1,27 @@
+// Runs the bvhlab program (BVHLAB_BINARY, set by CMake) with arguments, as the end-to-end tests do.
+#pragma once
+
+#include <cstdio>
+#include <string>
+#include <sys/wait.h>
+
+namespace bvhlab::test {
+
+struct Result {
+    int exitCode;
+    std::string output;  // stdout and stderr
+};
+
+// `bvhlab ARGS 2>&1`: its exit code and everything it printed.
+inline Result run(const std::string& args) {
+    const std::string command = std::string(BVHLAB_BINARY) + " " + args + " 2>&1";
+    FILE* pipe = popen(command.c_str(), "r");
+    if (!pipe) return {-1, "popen failed: " + command};
+    std::string output;
+    char buffer[4096];
+    while (size_t n = fread(buffer, 1, sizeof(buffer), pipe)) output.append(buffer, n);
+    const int status = pclose(pipe);
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), output};
+}
+
+}  // namespace bvhlab::test
