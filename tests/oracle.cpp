@@ -140,15 +140,6 @@ double boundsRadius(const Bounds3& b) {
     return r > 0 ? r : 1.0;
 }
 
-Ray makeRay(const Vec3& org, const Vec3& dir, float tmin = 0.0f, float tmax = kInfinity) {
-    Ray r;
-    r.org = org;
-    r.dir = dir;
-    r.tmin = tmin;
-    r.tmax = tmax;
-    return r;
-}
-
 // Direction scaling: rays need not be unit length; t is in multiples of dir.
 Vec3 scaleDirection(Rng& rng, const D3& dir) {
     const double l = glm::length(dir);
@@ -171,11 +162,11 @@ Ray outsideRay(Rng& rng, const Bounds3& bounds) {
     const double radius = boundsRadius(bounds);
     const Vec3 org = Vec3(center + rng.unitVector() * radius * rng.uniform(1.05, 4.0));
     const Vec3 target = rng.inBox(bounds);
-    return makeRay(org, scaleDirection(rng, D3(target) - D3(org)));
+    return Ray(org, scaleDirection(rng, D3(target) - D3(org)));
 }
 
 Ray insideRay(Rng& rng, const Bounds3& bounds) {
-    return makeRay(rng.inBox(bounds), scaleDirection(rng, rng.unitVector()));
+    return Ray(rng.inBox(bounds), scaleDirection(rng, rng.unitVector()));
 }
 
 // A ray towards `target` from a random direction and distance (t ~ 1 at the target when the
@@ -183,7 +174,7 @@ Ray insideRay(Rng& rng, const Bounds3& bounds) {
 Ray aimedRay(Rng& rng, const Vec3& target, double radius) {
     const double dist = radius * rng.logUniform(1e-3, 10.0);
     const Vec3 org = Vec3(D3(target) + rng.unitVector() * dist);
-    return makeRay(org, scaleDirection(rng, D3(target) - D3(org)));
+    return Ray(org, scaleDirection(rng, D3(target) - D3(org)));
 }
 
 Ray edgeRay(Rng& rng, const PrimitiveSet& prims, double radius) {
@@ -226,7 +217,7 @@ Ray axisRay(Rng& rng, const PrimitiveSet& prims, const Bounds3& bounds) {
     const bool towardsLower = org[axis] > 0.5f * (lo[axis] + hi[axis]);
     const bool negative = rng.chance(0.85) ? towardsLower : !towardsLower;
     dir[axis] = negative ? -scale : scale;
-    return makeRay(org, dir);
+    return Ray(org, dir);
 }
 
 Ray grazingRay(Rng& rng, const PrimitiveSet& prims, double radius) {
@@ -244,7 +235,7 @@ Ray grazingRay(Rng& rng, const PrimitiveSet& prims, double radius) {
     const D3 target = v0 + a * (v1 - v0) + b * (v2 - v0);
     const double size = std::max({glm::length(v1 - v0), glm::length(v2 - v0), 1e-30});
     const double dist = std::min(radius, size) * rng.logUniform(0.1, 10.0);
-    return makeRay(Vec3(target - dir * dist), scaleDirection(rng, dir));
+    return Ray(Vec3(target - dir * dist), scaleDirection(rng, dir));
 }
 
 Ray intervalRay(Rng& rng, const PrimitiveSet& prims, const Bounds3& bounds) {
@@ -261,7 +252,7 @@ Ray intervalRay(Rng& rng, const PrimitiveSet& prims, const Bounds3& bounds) {
         const D3 target = v0 + a * (v1 - v0) + b * (v2 - v0);
         const double size = std::max(glm::length(v1 - v0), glm::length(v2 - v0));
         const double delta = size * rng.logUniform(1e-5, 1.0);
-        Ray r = makeRay(Vec3(target - dir * delta), Vec3(dir));
+        Ray r = Ray(Vec3(target - dir * delta), Vec3(dir));
         const double f = rng.logUniform(1e-6, 1e-2) * (rng.chance(0.5) ? 1 : -1);
         if (rng.chance(0.7)) {
             r.tmax = float(delta * (1 + f));  // ends just past / just before the surface
@@ -540,7 +531,7 @@ std::vector<WatertightProbe> watertightProbes(const Scene& mesh, const std::func
         if (!inCone(d)) return;
         const double dist = convex ? meshSize * rng.logUniform(1e-2, 1e3) : localSize * rng.logUniform(0.05, 1.0);
         const Vec3 org = Vec3(D3(p) + d * dist);
-        Ray ray = makeRay(org, p - org);
+        Ray ray = Ray(org, p - org);
         // Rounding of org and dir moves the ray off p by a few ulps of |org| + |p|; t at the
         // surface then moves by that times tan(incidence) <= 5 over |dir|.
         double scale = 0;

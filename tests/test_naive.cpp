@@ -19,15 +19,6 @@ using test::sceneFromTriangles;
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
-Ray makeRay(const Vec3& org, const Vec3& dir, float tmin = 0.0f, float tmax = kInfinity) {
-    Ray r;
-    r.org = org;
-    r.dir = dir;
-    r.tmin = tmin;
-    r.tmax = tmax;
-    return r;
-}
-
 // Four degenerate triangles (a point, an exact segment, a NaN vertex, an infinite vertex), then
 // the quad (0,0,4)-(2,0,4)-(2,2,4)-(0,2,4) as primitives 4 and 5, then a degenerate one.
 Scene quadBehindDegenerates() {
@@ -55,7 +46,7 @@ TEST(Naive, QuadBehindDegenerateTriangles) {
     QueryCounters counters;
     Hit hit;
     // (1.5, 0.5): below the diagonal (0,0)-(2,2), in triangle 4 = (0,0),(2,0),(2,2).
-    ASSERT_TRUE(naive.findNearest(makeRay({1.5f, 0.5f, 0.0f}, {0, 0, 1}), hit, counters));
+    ASSERT_TRUE(naive.findNearest(Ray({1.5f, 0.5f, 0.0f}, {0, 0, 1}), hit, counters));
     EXPECT_EQ(hit.primitive, 4u);
     EXPECT_FLOAT_EQ(hit.t, 4.0f);
     // (1.5, 0.5) = (1-u-v)(0,0) + u (2,0) + v (2,2): v = 0.25, u = 0.5.
@@ -63,7 +54,7 @@ TEST(Naive, QuadBehindDegenerateTriangles) {
     EXPECT_NEAR(hit.v, 0.25f, 1e-6f);
 
     // (0.5, 1.5): triangle 5 = (0,0),(2,2),(0,2): u = 0.25 (of (2,2)), v = 0.5 (of (0,2)).
-    ASSERT_TRUE(naive.findNearest(makeRay({0.5f, 1.5f, 8.0f}, {0, 0, -2}), hit, counters));
+    ASSERT_TRUE(naive.findNearest(Ray({0.5f, 1.5f, 8.0f}, {0, 0, -2}), hit, counters));
     EXPECT_EQ(hit.primitive, 5u);
     EXPECT_FLOAT_EQ(hit.t, 2.0f);  // t in units of dir
     EXPECT_NEAR(hit.u, 0.25f, 1e-6f);
@@ -71,23 +62,23 @@ TEST(Naive, QuadBehindDegenerateTriangles) {
 
     // Straight through the degenerate ones (the point (1,1,1), the segment at z = 2) onto the
     // diagonal: only 4 or 5 may be reported, at t = 4.
-    ASSERT_TRUE(naive.findNearest(makeRay({1, 1, 0}, {0, 0, 1}), hit, counters));
+    ASSERT_TRUE(naive.findNearest(Ray({1, 1, 0}, {0, 0, 1}), hit, counters));
     EXPECT_TRUE(hit.primitive == 4u || hit.primitive == 5u) << hit.primitive;
     EXPECT_FLOAT_EQ(hit.t, 4.0f);
 
     // A miss leaves `hit` alone.
     const Hit before{-1.0f, 77u, 0.5f, 0.5f};
     hit = before;
-    EXPECT_FALSE(naive.findNearest(makeRay({3, 3, 0}, {0, 0, 1}), hit, counters));
+    EXPECT_FALSE(naive.findNearest(Ray({3, 3, 0}, {0, 0, 1}), hit, counters));
     EXPECT_EQ(hit.t, before.t);
     EXPECT_EQ(hit.primitive, before.primitive);
 
     // Interval: [0, 3.9] misses, [4, 4] hits, tmin just past 4 misses.
-    EXPECT_FALSE(naive.findNearest(makeRay({1.5f, 0.5f, 0}, {0, 0, 1}, 0.0f, 3.9f), hit, counters));
-    EXPECT_TRUE(naive.findNearest(makeRay({1.5f, 0.5f, 0}, {0, 0, 1}, 4.0f, 4.0f), hit, counters));
-    EXPECT_FALSE(naive.findNearest(makeRay({1.5f, 0.5f, 0}, {0, 0, 1}, std::nextafter(4.0f, 5.0f)), hit, counters));
-    EXPECT_TRUE(naive.isOccluded(makeRay({1.5f, 0.5f, 0}, {0, 0, 1}, 4.0f, 4.0f), counters));
-    EXPECT_FALSE(naive.isOccluded(makeRay({1.5f, 0.5f, 0}, {0, 0, 1}, 0.0f, 3.9f), counters));
+    EXPECT_FALSE(naive.findNearest(Ray({1.5f, 0.5f, 0}, {0, 0, 1}, 0.0f, 3.9f), hit, counters));
+    EXPECT_TRUE(naive.findNearest(Ray({1.5f, 0.5f, 0}, {0, 0, 1}, 4.0f, 4.0f), hit, counters));
+    EXPECT_FALSE(naive.findNearest(Ray({1.5f, 0.5f, 0}, {0, 0, 1}, std::nextafter(4.0f, 5.0f)), hit, counters));
+    EXPECT_TRUE(naive.isOccluded(Ray({1.5f, 0.5f, 0}, {0, 0, 1}, 4.0f, 4.0f), counters));
+    EXPECT_FALSE(naive.isOccluded(Ray({1.5f, 0.5f, 0}, {0, 0, 1}, 0.0f, 3.9f), counters));
 }
 
 TEST(Naive, NearestOfSeveralLayersWhateverTheOrder) {
@@ -102,14 +93,14 @@ TEST(Naive, NearestOfSeveralLayersWhateverTheOrder) {
     QueryCounters counters;
     for (const float tmin : {0.0f, 1.5f, 2.0f, 3.25f, 4.5f}) {
         Hit hit;
-        ASSERT_TRUE(naive.findNearest(makeRay({0.3f, -0.2f, 0}, {0, 0, 1}, tmin), hit, counters)) << tmin;
+        ASSERT_TRUE(naive.findNearest(Ray({0.3f, -0.2f, 0}, {0, 0, 1}, tmin), hit, counters)) << tmin;
         const float expected = std::ceil(tmin == 0.0f ? 1.0f : tmin);
         EXPECT_FLOAT_EQ(hit.t, expected) << tmin;
         const size_t quad = size_t(std::find(std::begin(order), std::end(order), expected) - std::begin(order));
         EXPECT_EQ(hit.primitive / 2, quad) << tmin;
     }
     Hit hit;
-    EXPECT_FALSE(naive.findNearest(makeRay({0.3f, -0.2f, 0}, {0, 0, 1}, 5.5f), hit, counters));
+    EXPECT_FALSE(naive.findNearest(Ray({0.3f, -0.2f, 0}, {0, 0, 1}, 5.5f), hit, counters));
 }
 
 TEST(Naive, CountersPerQuery) {
@@ -118,13 +109,13 @@ TEST(Naive, CountersPerQuery) {
     naive.build(scene.primitives());
     QueryCounters counters;
     Hit hit;
-    naive.findNearest(makeRay({1.5f, 0.5f, 0}, {0, 0, 1}), hit, counters);  // hit
+    naive.findNearest(Ray({1.5f, 0.5f, 0}, {0, 0, 1}), hit, counters);  // hit
     EXPECT_EQ(counters.queries, 1u);
     EXPECT_EQ(counters.intersectionTests, 2u);  // valid triangles only
-    naive.findNearest(makeRay({5, 5, 0}, {0, 0, 1}), hit, counters);  // miss
+    naive.findNearest(Ray({5, 5, 0}, {0, 0, 1}), hit, counters);  // miss
     EXPECT_EQ(counters.queries, 2u);
     EXPECT_EQ(counters.intersectionTests, 4u);
-    naive.isOccluded(makeRay({5, 5, 0}, {0, 0, 1}), counters);  // miss: tests everything
+    naive.isOccluded(Ray({5, 5, 0}, {0, 0, 1}), counters);  // miss: tests everything
     EXPECT_EQ(counters.queries, 3u);
     EXPECT_EQ(counters.intersectionTests, 6u);
     EXPECT_EQ(counters.traversalSteps, 3u);  // one "node" per query
@@ -134,10 +125,10 @@ TEST(Naive, InvalidRaysCountAQueryAndNoWork) {
     const Scene scene = quadBehindDegenerates();
     NaiveAccelerator naive;
     naive.build(scene.primitives());
-    Ray nan = makeRay({1.5f, 0.5f, 0}, {0, 0, 1});
+    Ray nan = Ray({1.5f, 0.5f, 0}, {0, 0, 1});
     nan.org.y = kNaN;
-    const Ray empty = makeRay({1.5f, 0.5f, 0}, {0, 0, 1}, 5.0f, 4.0f);
-    const Ray zeroDir = makeRay({1.5f, 0.5f, 0}, {0, 0, 0});
+    const Ray empty = Ray({1.5f, 0.5f, 0}, {0, 0, 1}, 5.0f, 4.0f);
+    const Ray zeroDir = Ray({1.5f, 0.5f, 0}, {0, 0, 0});
     for (const Ray& ray : {nan, empty, zeroDir}) {
         QueryCounters counters;
         Hit hit;
@@ -163,24 +154,24 @@ TEST(Naive, IsOccludedStopsAtTheFirstHit) {
 
     // (0.7, 0.2) lies in the first triangle of each quad: primitive 0 blocks.
     QueryCounters occ;
-    EXPECT_TRUE(naive.isOccluded(makeRay({0.7f, 0.2f, 0}, {0, 0, 1}), occ));
+    EXPECT_TRUE(naive.isOccluded(Ray({0.7f, 0.2f, 0}, {0, 0, 1}), occ));
     EXPECT_EQ(occ.intersectionTests, 1u);
     // (0.2, 0.7) lies in the second: stops after two tests.
     occ = {};
-    EXPECT_TRUE(naive.isOccluded(makeRay({0.2f, 0.7f, 0}, {0, 0, 1}), occ));
+    EXPECT_TRUE(naive.isOccluded(Ray({0.2f, 0.7f, 0}, {0, 0, 1}), occ));
     EXPECT_EQ(occ.intersectionTests, 2u);
     // Only the last quad within the interval [99.5, 200]: the blocker is primitive 198.
     occ = {};
-    EXPECT_TRUE(naive.isOccluded(makeRay({0.7f, 0.2f, 0}, {0, 0, 1}, 99.5f, 200.0f), occ));
+    EXPECT_TRUE(naive.isOccluded(Ray({0.7f, 0.2f, 0}, {0, 0, 1}, 99.5f, 200.0f), occ));
     EXPECT_EQ(occ.intersectionTests, 199u);
     // Not occluded: everything tested.
     occ = {};
-    EXPECT_FALSE(naive.isOccluded(makeRay({1.7f, 0.2f, 0}, {0, 0, 1}), occ));
+    EXPECT_FALSE(naive.isOccluded(Ray({1.7f, 0.2f, 0}, {0, 0, 1}), occ));
     EXPECT_EQ(occ.intersectionTests, 200u);
 
     QueryCounters nearest;
     Hit hit;
-    EXPECT_TRUE(naive.findNearest(makeRay({0.7f, 0.2f, 0}, {0, 0, 1}), hit, nearest));
+    EXPECT_TRUE(naive.findNearest(Ray({0.7f, 0.2f, 0}, {0, 0, 1}), hit, nearest));
     EXPECT_EQ(nearest.intersectionTests, 200u);
     EXPECT_EQ(hit.primitive, 0u);
     EXPECT_FLOAT_EQ(hit.t, 1.0f);
@@ -190,14 +181,14 @@ TEST(Naive, EmptyAndUnbuilt) {
     NaiveAccelerator unbuilt;
     QueryCounters counters;
     Hit hit;
-    EXPECT_FALSE(unbuilt.findNearest(makeRay({0, 0, 0}, {0, 0, 1}), hit, counters));
-    EXPECT_FALSE(unbuilt.isOccluded(makeRay({0, 0, 0}, {0, 0, 1}), counters));
+    EXPECT_FALSE(unbuilt.findNearest(Ray({0, 0, 0}, {0, 0, 1}), hit, counters));
+    EXPECT_FALSE(unbuilt.isOccluded(Ray({0, 0, 0}, {0, 0, 1}), counters));
 
     const Scene empty = sceneFromTriangles({}, "empty");
     NaiveAccelerator naive;
     EXPECT_EQ(naive.build(empty.primitives()).primitives, 0u);
     counters = {};
-    EXPECT_FALSE(naive.findNearest(makeRay({0, 0, 0}, {0, 0, 1}), hit, counters));
+    EXPECT_FALSE(naive.findNearest(Ray({0, 0, 0}, {0, 0, 1}), hit, counters));
     EXPECT_EQ(counters.intersectionTests, 0u);
     EXPECT_EQ(counters.queries, 1u);
 }
@@ -209,10 +200,10 @@ TEST(Naive, RebuildReplacesTheScene) {
     naive.build(a.primitives());
     QueryCounters counters;
     Hit hit;
-    ASSERT_TRUE(naive.findNearest(makeRay({0.2f, 0.2f, 0}, {0, 0, 1}), hit, counters));
+    ASSERT_TRUE(naive.findNearest(Ray({0.2f, 0.2f, 0}, {0, 0, 1}), hit, counters));
     EXPECT_FLOAT_EQ(hit.t, 1.0f);
     naive.build(b.primitives());
-    ASSERT_TRUE(naive.findNearest(makeRay({0.2f, 0.2f, 0}, {0, 0, 1}), hit, counters));
+    ASSERT_TRUE(naive.findNearest(Ray({0.2f, 0.2f, 0}, {0, 0, 1}), hit, counters));
     EXPECT_FLOAT_EQ(hit.t, 2.0f);
     EXPECT_EQ(hit.primitive, 1u);
 }

@@ -16,15 +16,6 @@ namespace {
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
-Ray makeRay(const Vec3& org, const Vec3& dir, float tmin = 0.0f, float tmax = kInfinity) {
-    Ray r;
-    r.org = org;
-    r.dir = dir;
-    r.tmin = tmin;
-    r.tmax = tmax;
-    return r;
-}
-
 template <typename Real>
 bool hits(const Ray& ray, const Triangle& tri, TriangleHitT<Real>* out = nullptr) {
     TriangleHitT<Real> h{};
@@ -60,7 +51,7 @@ const Triangle kTri{{1, 1, 5}, {3, 1, 5}, {1, 5, 5}};
 TEST(Triangle, KnownHitAlongAxis) {
     for (const bool doublePrecision : {false, true}) {
         SCOPED_TRACE(doublePrecision ? "double" : "float");
-        const Ray ray = makeRay({1.5f, 2.0f, 0.0f}, {0, 0, 1});
+        const Ray ray = Ray({1.5f, 2.0f, 0.0f}, {0, 0, 1});
         double t, u, v;
         if (doublePrecision) {
             TriangleHitT<double> h{};
@@ -77,11 +68,11 @@ TEST(Triangle, KnownHitAlongAxis) {
     }
     // Other points: the convention p = (1-u-v) v0 + u v1 + v v2.
     TriangleHitT<float> h{};
-    ASSERT_TRUE(hits<float>(makeRay({2.5f, 1.5f, -1.0f}, {0, 0, 1}), kTri, &h));
+    ASSERT_TRUE(hits<float>(Ray({2.5f, 1.5f, -1.0f}, {0, 0, 1}), kTri, &h));
     EXPECT_NEAR(h.t, 6.0f, 1e-5f);
     EXPECT_NEAR(h.u, 0.75f, 1e-6f);
     EXPECT_NEAR(h.v, 0.125f, 1e-6f);
-    ASSERT_TRUE(hits<float>(makeRay({1.0f, 4.0f, 9.0f}, {0, 0, -1}), kTri, &h));  // from the other side
+    ASSERT_TRUE(hits<float>(Ray({1.0f, 4.0f, 9.0f}, {0, 0, -1}), kTri, &h));  // from the other side
     EXPECT_NEAR(h.t, 4.0f, 1e-5f);
     EXPECT_NEAR(h.u, 0.0f, 1e-6f);
     EXPECT_NEAR(h.v, 0.75f, 1e-6f);
@@ -92,7 +83,7 @@ TEST(Triangle, KnownHitObliqueAndUnnormalisedDirection) {
     const Vec3 p(2, 2, 5);
     for (const float scale : {1.0f, 0.125f, 3.0f}) {
         const Vec3 dir = Vec3(1, 2, 4) * scale;
-        const Ray ray = makeRay(p - 2.0f * dir, dir);
+        const Ray ray = Ray(p - 2.0f * dir, dir);
         TriangleHitT<float> h{};
         ASSERT_TRUE(hits<float>(ray, kTri, &h)) << scale;
         EXPECT_NEAR(h.t, 2.0f, 2e-6f) << scale;
@@ -118,7 +109,7 @@ TEST(Triangle, RandomHitsReturnTheirParameters) {
         if (std::abs(glm::dot(dir, n)) < 0.1) continue;  // and from grazing incidence
         const double t0 = scale * std::exp(U(rng) * 4.0 - 1.0);
         const glm::dvec3 target = pointAt(tri, u, v);
-        const Ray ray = makeRay(Vec3(target - t0 * dir), Vec3(dir));
+        const Ray ray = Ray(Vec3(target - t0 * dir), Vec3(dir));
         TriangleHitT<float> hf{};
         TriangleHitT<double> hd{};
         ASSERT_TRUE(hits<float>(ray, tri, &hf)) << i;
@@ -141,24 +132,24 @@ TEST(Triangle, Misses) {
     // Beside each edge and beyond each vertex, from both sides.
     const Vec3 outside[] = {{2.5f, 0.5f, 0}, {0.5f, 3, 0}, {2.5f, 3.5f, 0}, {3.5f, 0.9f, 0}, {0.9f, 5.5f, 0}, {-1, -1, 0}};
     for (const Vec3& p : outside) {
-        EXPECT_FALSE(hitsF(makeRay(p, {0, 0, 1}), kTri)) << p.x << " " << p.y;
-        EXPECT_FALSE(hitsF(makeRay(p + Vec3(0, 0, 10), {0, 0, -1}), kTri)) << p.x << " " << p.y;
-        EXPECT_FALSE(hitsD(makeRay(p, {0, 0, 1}), kTri));
+        EXPECT_FALSE(hitsF(Ray(p, {0, 0, 1}), kTri)) << p.x << " " << p.y;
+        EXPECT_FALSE(hitsF(Ray(p + Vec3(0, 0, 10), {0, 0, -1}), kTri)) << p.x << " " << p.y;
+        EXPECT_FALSE(hitsD(Ray(p, {0, 0, 1}), kTri));
     }
     // Behind the origin (t = -5) with the default interval, and hit with tmin = -inf.
-    EXPECT_FALSE(hitsF(makeRay({1.5f, 2, 10}, {0, 0, 1}), kTri));
+    EXPECT_FALSE(hitsF(Ray({1.5f, 2, 10}, {0, 0, 1}), kTri));
     TriangleHitT<float> h{};
-    ASSERT_TRUE(hits<float>(makeRay({1.5f, 2, 10}, {0, 0, 1}, -kInfinity, kInfinity), kTri, &h));
+    ASSERT_TRUE(hits<float>(Ray({1.5f, 2, 10}, {0, 0, 1}, -kInfinity, kInfinity), kTri, &h));
     EXPECT_NEAR(h.t, -5.0f, 1e-5f);
     // Pointing away from the plane.
-    EXPECT_FALSE(hitsF(makeRay({1.5f, 2, 0}, {0, 0, -1}), kTri));
+    EXPECT_FALSE(hitsF(Ray({1.5f, 2, 0}, {0, 0, -1}), kTri));
 }
 
 TEST(Triangle, BothWindingsHitWithSwappedWeights) {
     const Triangle reversed{kTri.v0, kTri.v2, kTri.v1};
     for (const Vec3& dir : {Vec3(0, 0, 1), Vec3(0.3f, -0.2f, 1), Vec3(0, 0, -1)}) {
         const Vec3 p(2.0f, 2.0f, 5.0f);  // u = 0.5, v = 0.25 on kTri
-        const Ray ray = makeRay(p - 3.0f * dir, dir);
+        const Ray ray = Ray(p - 3.0f * dir, dir);
         TriangleHitT<float> a{}, b{};
         ASSERT_TRUE(hits<float>(ray, kTri, &a));
         ASSERT_TRUE(hits<float>(ray, reversed, &b));
@@ -179,7 +170,7 @@ TEST(Triangle, ExactEdgeAndVertexPointsAreHits) {
     for (const Triangle& tri : {kTri, Triangle{kTri.v0, kTri.v2, kTri.v1}}) {
         for (const Vec3& p : points)
             for (const Vec3& d : dirs) {
-                const Ray ray = makeRay(p - 4.0f * d, d);
+                const Ray ray = Ray(p - 4.0f * d, d);
                 TriangleHitT<float> h{};
                 EXPECT_TRUE(hits<float>(ray, tri, &h)) << p.x << "," << p.y << " dir " << d.x << "," << d.y << "," << d.z;
                 EXPECT_NEAR(h.t, 4.0f, 1e-5f);
@@ -194,7 +185,7 @@ TEST(Triangle, RaysParallelToThePlaneMiss) {
     for (const Vec3& d : {Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(1, 0.5f, 0), Vec3(-1, 2, 0), Vec3(3, -1, 0)}) {
         for (const float z : {5.0f, 5.25f, 4.0f}) {
             const Vec3 through(1.5f, 2.0f, z);  // (inside the triangle for z = 5)
-            const Ray ray = makeRay(through - 10.0f * d, d, -kInfinity, kInfinity);
+            const Ray ray = Ray(through - 10.0f * d, d, -kInfinity, kInfinity);
             EXPECT_FALSE(hitsF(ray, kTri)) << d.x << "," << d.y << " z=" << z;
             EXPECT_FALSE(hitsD(ray, kTri)) << d.x << "," << d.y << " z=" << z;
         }
@@ -207,15 +198,15 @@ TEST(Triangle, IntervalEndsAreInclusive) {
     for (int i = 0; i < 2000; ++i) {
         const Vec3 p(1.0f + 0.9f * (U(rng) + 1.0f), 1.0f + 0.9f * (U(rng) + 1.0f), 5.0f);  // often inside
         const Vec3 dir(U(rng), U(rng), 1.0f + U(rng) * 0.5f);
-        const Ray base = makeRay(p - 3.0f * dir, dir, -kInfinity, kInfinity);
+        const Ray base = Ray(p - 3.0f * dir, dir, -kInfinity, kInfinity);
         TriangleHitT<float> h{};
         if (!hits<float>(base, kTri, &h)) continue;
         const float t = h.t;  // t does not depend on the interval
-        EXPECT_TRUE(hitsF(makeRay(base.org, dir, t, t), kTri)) << i;                 // [t, t]
-        EXPECT_TRUE(hitsF(makeRay(base.org, dir, t, kInfinity), kTri)) << i;         // tmin == t
-        EXPECT_TRUE(hitsF(makeRay(base.org, dir, 0.0f, t), kTri)) << i;              // tmax == t
-        EXPECT_FALSE(hitsF(makeRay(base.org, dir, std::nextafter(t, kInfinity), kInfinity), kTri)) << i;
-        EXPECT_FALSE(hitsF(makeRay(base.org, dir, 0.0f, std::nextafter(t, -kInfinity)), kTri)) << i;
+        EXPECT_TRUE(hitsF(Ray(base.org, dir, t, t), kTri)) << i;                 // [t, t]
+        EXPECT_TRUE(hitsF(Ray(base.org, dir, t, kInfinity), kTri)) << i;         // tmin == t
+        EXPECT_TRUE(hitsF(Ray(base.org, dir, 0.0f, t), kTri)) << i;              // tmax == t
+        EXPECT_FALSE(hitsF(Ray(base.org, dir, std::nextafter(t, kInfinity), kInfinity), kTri)) << i;
+        EXPECT_FALSE(hitsF(Ray(base.org, dir, 0.0f, std::nextafter(t, -kInfinity)), kTri)) << i;
         TriangleHitT<double> hd{};
         ASSERT_TRUE(hits<double>(base, kTri, &hd));
         const double td = hd.t;
@@ -267,7 +258,7 @@ WatertightCounts shootThroughSharedEdges(bool consistent, uint32_t seed, int pai
             const Vec3 p = a + s * (b - a);
             const double dist = scale * std::exp(U(rng) * 7.0 - 1.0);  // 0.4 .. 400 triangle sizes
             const Vec3 org = Vec3(glm::dvec3(p) + randomUnit(rng) * dist);
-            const Ray ray = makeRay(org, p - org);
+            const Ray ray = Ray(org, p - org);
             const glm::dvec3 dir = glm::normalize(glm::dvec3(ray.dir));
             if (std::abs(glm::dot(dir, n1)) < 0.05 || std::abs(glm::dot(dir, n2)) < 0.05) continue;
             // Seen along the ray, c and d must be on opposite sides of the edge line.
@@ -328,7 +319,7 @@ TEST(Triangle, WatertightAroundASharedVertex) {
             const bool throughVertex = i % 2 == 0;
             const Vec3 p = throughVertex ? apex : apex + float(0.05 + 0.9 * U(rng)) * (rim[i % 6] - apex);
             const Vec3 org = Vec3(glm::dvec3(p) + d * scale * std::exp(U(rng) * 6.0 - 1.0));
-            const Ray ray = makeRay(org, p - org);
+            const Ray ray = Ray(org, p - org);
             bool hit = false;
             for (const Triangle& t : fan) hit = hit || hitsF(ray, t);
             ++rays;
@@ -361,7 +352,7 @@ TEST(Triangle, DegenerateTrianglesAreNeverHit) {
                 // Axis-parallel and diagonal directions keep the shear exact; random ones do not.
                 const Vec3 exactDirs[6] = {{1, 0, 0}, {0, 1, 0}, {0, 0, -1}, {1, 1, 1}, {-1, 1, 1}, {1, -1, -1}};
                 const Vec3 dir = i < 6 ? exactDirs[i] : target - org;
-                const Ray ray = makeRay(i < 6 ? target - 2.0f * dir : org, dir, -kInfinity, kInfinity);
+                const Ray ray = Ray(i < 6 ? target - 2.0f * dir : org, dir, -kInfinity, kInfinity);
                 EXPECT_FALSE(hitsF(ray, tri)) << "triangle #" << (&tri - degenerate) << " ray " << i;
                 EXPECT_FALSE(hitsD(ray, tri)) << "triangle #" << (&tri - degenerate) << " ray " << i;
                 ++tested;
@@ -386,12 +377,12 @@ TEST(Triangle, CollinearTrianglesAreFlaggedDegenerate) {
         EXPECT_TRUE(isDegenerate(tri));
         for (const Vec3& target : {tri.v0, tri.v1, 0.5f * (tri.v0 + tri.v2)}) {
             for (const Vec3& dir : {Vec3(1, 0, 0), Vec3(0, -1, 0), Vec3(0, 0, 1), Vec3(1, 1, 1), Vec3(-1, 1, -1)}) {
-                EXPECT_FALSE(hitsF(makeRay(target - 2.0f * dir, dir, -kInfinity, kInfinity), tri));
-                EXPECT_FALSE(hitsD(makeRay(target - 2.0f * dir, dir, -kInfinity, kInfinity), tri));
+                EXPECT_FALSE(hitsF(Ray(target - 2.0f * dir, dir, -kInfinity, kInfinity), tri));
+                EXPECT_FALSE(hitsD(Ray(target - 2.0f * dir, dir, -kInfinity, kInfinity), tri));
             }
             for (int i = 0; i < 100; ++i) {
                 const Vec3 org = Vec3(glm::dvec3(target) - randomUnit(rng) * 3.0);
-                hitByRandomRays += hitsF(makeRay(org, target - org), tri);
+                hitByRandomRays += hitsF(Ray(org, target - org), tri);
             }
         }
     }
@@ -403,7 +394,7 @@ TEST(Triangle, CollinearTrianglesAreFlaggedDegenerate) {
 }
 
 TEST(Triangle, NaNRaysNeverHit) {
-    const Ray good = makeRay({1.5f, 2.0f, 0.0f}, {0.1f, 0.1f, 1.0f});
+    const Ray good = Ray({1.5f, 2.0f, 0.0f}, {0.1f, 0.1f, 1.0f});
     ASSERT_TRUE(hitsF(good, kTri));
     for (int field = 0; field < 8; ++field) {
         Ray ray = good;
@@ -434,7 +425,7 @@ TEST(Triangle, FloatAndDoubleAgreeOnRandomCases) {
         // Aimed at a point of the plane with weights in [-0.5, 1.5]: about half are hits.
         const glm::dvec3 org = randomUnit(rng) * 6.0;
         const glm::dvec3 aim = A + (U(rng) * 2.0 - 0.5) * (B - A) + (U(rng) * 2.0 - 0.5) * (C - A);
-        const Ray ray = makeRay(Vec3(org), Vec3((aim - org) * std::exp(U(rng) * 4 - 2)));
+        const Ray ray = Ray(Vec3(org), Vec3((aim - org) * std::exp(U(rng) * 4 - 2)));
         const glm::dvec3 o = widen(ray.org), d = widen(ray.dir);
         const double denom = glm::dot(n, d);
         if (std::abs(denom) < 0.1 * glm::length(n) * glm::length(d)) continue;
