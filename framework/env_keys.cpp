@@ -4,7 +4,7 @@ namespace bvhlab {
 
 void registerFrameworkKeys(EnvRegistry& r, const std::vector<std::string>& acceleratorNames) {
     using T = EnvType;
-    r.add({"ASDS::type", T::Choice, "naive", "acceleration structure to build and trace with", 0, 0, acceleratorNames});
+    r.add({"ASDS::type", T::Choice, "sahbvh", "acceleration structure to build and trace with", 0, 0, acceleratorNames});
 
     r.add({"SetRayTracing::cntSamples", T::Int, "1", "samples per pixel; above 1 they are stratified jittered", 1, 65536, {}});
     r.add({"SetRayTracing::depthLimit", T::Int, "1", "path length: 1 = primary rays only, more allows mirror bounces", 1, 64, {}});
