@@ -14,6 +14,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -48,7 +49,13 @@ void readEverything(const bvhlab::Env& env) {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-    static const std::string path = "/dev/shm/bvhlab-fuzz-env-" + std::to_string(getpid()) + ".env";
+    // One scratch file per process, removed at exit.
+    struct Scratch {
+        std::string path = "/dev/shm/bvhlab-fuzz-env-" + std::to_string(getpid()) + ".env";
+        ~Scratch() { std::remove(path.c_str()); }
+    };
+    static const Scratch scratch;
+    const std::string& path = scratch.path;
     const std::string text(reinterpret_cast<const char*>(data), size);
     std::ofstream(path, std::ios::binary | std::ios::trunc) << text;
 
