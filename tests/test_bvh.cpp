@@ -240,6 +240,17 @@ TEST(Bvh, InvariantsOnRandomScenes) {
     }
 }
 
+// BVH::robust=false (Moeller-Trumbore, plain boxes) is not watertight at edges, but away from
+// them it must give the same answers: it is a baseline for timing, not a different ray tracer.
+TEST(Bvh, NonRobustTraversalAgreesAwayFromEdges) {
+    const Soup soup = randomSoup(3000, 5);
+    BvhBuildConfig config;
+    config.robust = false;
+    BvhAccelerator accel(BvhKind::BinnedSah, config);
+    buildAndCheck(accel, soup);
+    expectAgreesWithNaive(accel, soup, 3000, 2.0f, 11);
+}
+
 TEST(Bvh, TinyScenes) {
     for (size_t n : {0, 1, 2, 3}) {
         const Soup soup = randomSoup(n, 7 + uint32_t(n));

@@ -32,11 +32,11 @@ BuildStats BvhAccelerator::build(const PrimitiveSet& prims) {
 }
 
 bool BvhAccelerator::findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const {
-    return bvhFindNearest(bvh_, ray, hit, counters);
+    return bvhFindNearest(bvh_, ray, hit, counters, config_.robust);
 }
 
 bool BvhAccelerator::isOccluded(const Ray& ray, QueryCounters& counters) const {
-    return bvhIsOccluded(bvh_, ray, counters);
+    return bvhIsOccluded(bvh_, ray, counters, config_.robust);
 }
 
 }  // namespace bvhlab

@@ -37,6 +37,8 @@ struct BvhBuildConfig {
     bool allAxes = false;        // binned SAH: bin all three axes and take the best, not the widest
     bool simd = true;            // SSE in the hot loops (prep, binning, partition); false = scalar
     TdSplitBox tdSplit = TdSplitBox::CentroidBox;  // tdbvh: which box's longest axis is halved
+    bool robust = true;  // traversal, not build: watertight triangles and conservative boxes;
+                         // false = Moeller-Trumbore and plain boxes, to measure what robustness costs
 
     uint32_t effectiveLeafCap() const { return uint32_t(std::max(maxLeaf, leafCap)); }
 };

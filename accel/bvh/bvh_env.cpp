@@ -23,13 +23,17 @@ void registerBvhKeys(EnvRegistry& r) {
            {}});
     r.add({"BVH::simd", T::Bool, "true",
            "SSE in the build's hot loops (bounds, centres, binning, partition); false = scalar, same tree", 0, 0, {}});
+    r.add({"BVH::robust", T::Bool, "true",
+           "traversal: watertight triangle test and conservative box test; false = Moeller-Trumbore and plain boxes "
+           "(not watertight), only to measure what robustness costs",
+           0, 0, {}});
     r.add({"BVH::tdbvhSplit", T::Choice, "centroidbox",
            "tdbvh: halve the longest axis of the box of the centres, or of the node's box", 0, 0,
            {"centroidbox", "nodebox"}});
 }
 
 std::vector<std::string> bvhEnvKeys(BvhKind kind) {
-    std::vector<std::string> keys = {"BVH::maxLeaf", "BVH::leafCap", "BVH::cTraversal", "BVH::cIntersect", "BVH::simd"};
+    std::vector<std::string> keys = {"BVH::maxLeaf", "BVH::leafCap", "BVH::cTraversal", "BVH::cIntersect", "BVH::simd", "BVH::robust"};
     switch (kind) {
     case BvhKind::TopDown: keys.push_back("BVH::tdbvhSplit"); break;
     case BvhKind::BinnedSah:
@@ -50,6 +54,7 @@ BvhBuildConfig bvhConfigFromEnv(const Env& env) {
     c.bins = env.getInt("BVH::bins");
     c.allAxes = env.getBool("BVH::allAxes");
     c.simd = env.getBool("BVH::simd");
+    c.robust = env.getBool("BVH::robust");
     c.tdSplit = env.getString("BVH::tdbvhSplit") == "nodebox" ? TdSplitBox::NodeBox : TdSplitBox::CentroidBox;
     return c;
 }

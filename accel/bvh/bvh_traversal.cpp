@@ -1,5 +1,7 @@
 #include "accel/bvh/bvh_traversal.h"
 
+#include "framework/triangle_moller_trumbore.h"
+
 #include <cmath>
 #include <limits>
 
@@ -32,7 +34,9 @@ inline float robustMin(float a, float b) { return a < b ? a : b; }
 
 // Scalar on purpose: an SSE test of both children at once measured 40 % slower here. A step
 // is bound by latency, and the SIMD version's longer chain resolved the branch later.
-template <bool NegativeT>  // true: the interval reaches below t = 0
+// NegativeT: the interval reaches below t = 0. Robust = false drops the far-plane margin
+// (BVH::robust=false, to measure what robustness costs).
+template <bool NegativeT, bool Robust>
 struct RayBoxTest {
     float org[3];
     float inv[3];
@@ -53,7 +57,7 @@ struct RayBoxTest {
     }
 
     float farDistance(const float* b, int a) const {
-        if constexpr (NegativeT) {
+        if constexpr (NegativeT && Robust) {
             const float t = (b[farSlab[a]] - org[a]) * inv[a];
             return t + kFarMargin * std::abs(t);
         } else {
@@ -73,7 +77,26 @@ struct RayBoxTest {
         return entry <= exit;
     }
 
-    static constexpr float kFarMargin = 2.0f * gammaBound(4);
+    static constexpr float kFarMargin = Robust ? 2.0f * gammaBound(4) : 0.0f;
+};
+
+// The leaves' triangle test: the shared watertight one, or Moeller-Trumbore when robustness
+// is switched off (BVH::robust=false).
+template <bool Robust>
+struct LeafTriangleTest {
+    ShearedRay sheared;
+    explicit LeafTriangleTest(const Ray& ray) : sheared(ray) {}
+    bool operator()(const Triangle& tri, float tmin, float tmax, TriangleHitT<float>& h) const {
+        return intersectTriangle(sheared, tri, tmin, tmax, h);
+    }
+};
+template <>
+struct LeafTriangleTest<false> {
+    const Ray& ray;
+    explicit LeafTriangleTest(const Ray& ray) : ray(ray) {}
+    bool operator()(const Triangle& tri, float tmin, float tmax, TriangleHitT<float>& h) const {
+        return intersectTriangleMollerTrumbore(ray, tri, tmin, tmax, h);
+    }
 };
 
 // Starts loading what visiting `child` will read (its children pair, or its first triangles)
@@ -92,10 +115,10 @@ struct StackEntry {
     float entry;  // where the ray enters the node's box: skip it when a hit is closer
 };
 
-template <bool NegativeT>
+template <bool NegativeT, bool Robust>
 bool findNearest(const Bvh& bvh, const Ray& ray, Hit& hit, QueryCounters& counters) {
-    const RayBoxTest<NegativeT> boxTest(ray);
-    const ShearedRay sheared(ray);
+    const RayBoxTest<NegativeT, Robust> boxTest(ray);
+    const LeafTriangleTest<Robust> intersectTriangle(ray);
     const BvhNode* nodes = bvh.nodes.data();
     const Triangle* triangles = bvh.leafTriangles.data();
 
@@ -115,7 +138,7 @@ bool findNearest(const Bvh& bvh, const Ray& ray, Hit& hit, QueryCounters& counte
                 tests += node.count;
                 for (uint32_t i = node.index, end = node.index + node.count; i < end; ++i) {
                     TriangleHitT<float> h;
-                    if (intersectTriangle(sheared, triangles[i], ray.tmin, tmax, h)) {
+                    if (intersectTriangle(triangles[i], ray.tmin, tmax, h)) {
                         tmax = h.t;
                         best = h;
                         found = i;
@@ -159,10 +182,10 @@ bool findNearest(const Bvh& bvh, const Ray& ray, Hit& hit, QueryCounters& counte
     return true;
 }
 
-template <bool NegativeT>
+template <bool NegativeT, bool Robust>
 bool isOccluded(const Bvh& bvh, const Ray& ray, QueryCounters& counters) {
-    const RayBoxTest<NegativeT> boxTest(ray);
-    const ShearedRay sheared(ray);
+    const RayBoxTest<NegativeT, Robust> boxTest(ray);
+    const LeafTriangleTest<Robust> intersectTriangle(ray);
     const BvhNode* nodes = bvh.nodes.data();
     const Triangle* triangles = bvh.leafTriangles.data();
     const float tmax = ray.tmax;
@@ -180,7 +203,7 @@ bool isOccluded(const Bvh& bvh, const Ray& ray, QueryCounters& counters) {
                 for (uint32_t i = node.index, end = node.index + node.count; i < end; ++i) {
                     ++tests;
                     TriangleHitT<float> h;
-                    if (intersectTriangle(sheared, triangles[i], ray.tmin, tmax, h)) {
+                    if (intersectTriangle(triangles[i], ray.tmin, tmax, h)) {
                         occluded = true;
                         break;
                     }
@@ -219,16 +242,24 @@ bool isOccluded(const Bvh& bvh, const Ray& ray, QueryCounters& counters) {
 
 }  // namespace
 
-bool bvhFindNearest(const Bvh& bvh, const Ray& ray, Hit& hit, QueryCounters& counters) {
+bool bvhFindNearest(const Bvh& bvh, const Ray& ray, Hit& hit, QueryCounters& counters, bool robust) {
     ++counters.queries;
     if (bvh.empty() || !ray.isValid()) return false;
-    return ray.tmin < 0.0f ? findNearest<true>(bvh, ray, hit, counters) : findNearest<false>(bvh, ray, hit, counters);
+    if (robust) {
+        return ray.tmin < 0.0f ? findNearest<true, true>(bvh, ray, hit, counters)
+                               : findNearest<false, true>(bvh, ray, hit, counters);
+    }
+    return ray.tmin < 0.0f ? findNearest<true, false>(bvh, ray, hit, counters)
+                           : findNearest<false, false>(bvh, ray, hit, counters);
 }
 
-bool bvhIsOccluded(const Bvh& bvh, const Ray& ray, QueryCounters& counters) {
+bool bvhIsOccluded(const Bvh& bvh, const Ray& ray, QueryCounters& counters, bool robust) {
     ++counters.queries;
     if (bvh.empty() || !ray.isValid()) return false;
-    return ray.tmin < 0.0f ? isOccluded<true>(bvh, ray, counters) : isOccluded<false>(bvh, ray, counters);
+    if (robust) {
+        return ray.tmin < 0.0f ? isOccluded<true, true>(bvh, ray, counters) : isOccluded<false, true>(bvh, ray, counters);
+    }
+    return ray.tmin < 0.0f ? isOccluded<true, false>(bvh, ray, counters) : isOccluded<false, false>(bvh, ray, counters);
 }
 
 }  // namespace bvhlab

@@ -19,9 +19,11 @@ namespace bvhlab {
 // Closest hit in [ray.tmin, ray.tmax]; on a miss returns false and leaves `hit` unchanged.
 // Visits the nearer child first (by the entry distances of the two child boxes) and skips
 // nodes the ray enters behind the current closest hit.
-bool bvhFindNearest(const Bvh& bvh, const Ray& ray, Hit& hit, QueryCounters& counters);
+// robust = false (BVH::robust) swaps the watertight triangle test for Moeller-Trumbore and
+// drops the box test's far-plane margin: only to measure what robustness costs.
+bool bvhFindNearest(const Bvh& bvh, const Ray& ray, Hit& hit, QueryCounters& counters, bool robust);
 
 // Any hit in [ray.tmin, ray.tmax], stopping at the first one found.
-bool bvhIsOccluded(const Bvh& bvh, const Ray& ray, QueryCounters& counters);
+bool bvhIsOccluded(const Bvh& bvh, const Ray& ray, QueryCounters& counters, bool robust);
 
 }  // namespace bvhlab
