@@ -25,59 +25,110 @@
 namespace bvhlab {
 namespace {
 
-nlohmann::json passJson(const PassResult& r, bool hasCounters) {
-    const double q = std::max<double>(1.0, double(r.counters.queries));
-    return {{"t_r_us", r.usPerQuery},
-            {"queries", r.counters.queries},
-            {"n_it", hasCounters ? nlohmann::json(r.counters.intersectionTests / q) : nlohmann::json()},
-            {"n_tr", hasCounters ? nlohmann::json(r.counters.traversalSteps / q) : nlohmann::json()}};
-}
-
-// Builds `config` `builds` times (median time) and traces every ray set `passes` times.
-nlohmann::json measure(const Scene& scene, const RaySets& rays, const Env& sceneEnv, const AccelConfig& config,
-                       int threads, int builds, int passes) {
-    Env env = sceneEnv;
-    for (const std::string& o : config.overrides) env.setOverride(o);
-    env.setOverride(fmt::format("SetRayTracing::threads={}", threads));
-    std::vector<double> buildMs;
+// One structure of the contest, with what the rounds measured.
+struct Contender {
+    AccelConfig config;
+    Env env;  // the scene's, with the config's overrides and the thread count
     std::unique_ptr<Accelerator> accel;
     BuildStats stats;
-    tbb::task_arena arena(threads);
-    for (int b = 0; b < builds; ++b) {
-        accel.reset();  // one structure (and one Embree device) alive at a time
-        accel = createAccelerator(config.name, env);
-        arena.execute([&] { stats = accel->build(scene.primitives()); });
-        buildMs.push_back(stats.buildMs);
-    }
-    const bool counted = accel->hasCounters();
-    auto optional = [](const auto& v) { return v ? nlohmann::json(*v) : nlohmann::json(); };
-    return {{"scene", scene.name},
-            {"accel", config.label},
-            {"threads", threads},
-            {"prims", scene.triangleCount()},
-            {"build_ms", median(buildMs)},
-            {"build_ms_all", buildMs},
-            {"nodes", optional(stats.nodes)},
-            {"leaves", optional(stats.leaves)},
-            {"sah", stats.sah ? nlohmann::json(stats.sah->cost) : nlohmann::json()},
-            {"bytes", optional(stats.bytes)},
-            {"primary", passJson(tracePasses(*accel, rays.primary, false, threads, passes), counted)},
-            {"shadow", passJson(tracePasses(*accel, rays.shadow, true, threads, passes), counted)},
-            {"incoherent", passJson(tracePasses(*accel, rays.incoherent, true, threads, passes), counted)}};
+    std::vector<double> buildMs;                 // one per round
+    std::vector<std::vector<double>> usPerQuery; // per ray set: one per round
+    std::vector<QueryCounters> counters;         // per ray set: of the first round
+};
+
+struct NamedRaySet {
+    const char* name;
+    const std::vector<Ray>* rays;
+    bool anyHit;
+};
+
+// Median over rounds of the ratio of two series measured round by round.
+double pairedRatio(const std::vector<double>& values, const std::vector<double>& reference) {
+    std::vector<double> ratios;
+    for (size_t i = 0; i < values.size(); ++i)
+        if (reference[i] > 0) ratios.push_back(values[i] / reference[i]);
+    return median(ratios);
 }
 
-// ratio_to_embree and ratio_to_embree-robust: build time and T_R divided by Embree's, same run.
-void addRatios(std::map<std::string, nlohmann::json>& rows) {
-    for (auto& [label, row] : rows)
-        for (const char* ref : {"embree", "embree-robust"}) {
-            const nlohmann::json& r = rows.at(ref);
-            nlohmann::json ratios = {{"build", row["build_ms"].get<double>() / r["build_ms"].get<double>()}};
-            for (const char* kind : {"primary", "shadow", "incoherent"}) {
-                const double reference = r[kind]["t_r_us"].get<double>();
-                ratios[kind] = reference > 0 ? nlohmann::json(row[kind]["t_r_us"].get<double>() / reference) : nlohmann::json();
-            }
-            row[std::string("ratio_to_") + ref] = ratios;
+// Every structure of one scene at one thread count, measured in rounds: a round builds each
+// structure once, then traces each ray set once with each structure, always in the same order.
+// A slowdown of the shared machine thus hits all structures of a round alike, and the medians
+// of the per-round ratios to Embree hold where absolute times drift by tens of percent.
+std::vector<nlohmann::json> measureRounds(const Scene& scene, const RaySets& rays, const Env& sceneEnv,
+                                          const std::vector<AccelConfig>& configs, int threads, int builds,
+                                          int passes) {
+    const NamedRaySet raySets[] = {{"primary", &rays.primary, false},
+                                   {"shadow", &rays.shadow, true},
+                                   {"incoherent", &rays.incoherent, true}};
+    std::vector<Contender> contenders(configs.size());
+    for (size_t c = 0; c < configs.size(); ++c) {
+        Contender& k = contenders[c];
+        k.config = configs[c];
+        k.env = sceneEnv;
+        for (const std::string& o : k.config.overrides) k.env.setOverride(o);
+        k.env.setOverride(fmt::format("SetRayTracing::threads={}", threads));
+        k.usPerQuery.resize(std::size(raySets));
+        k.counters.resize(std::size(raySets));
+    }
+    tbb::task_arena arena(threads);
+    for (int round = 0; round < builds; ++round) {
+        for (Contender& k : contenders) {
+            k.accel.reset();  // the new structure replaces the old one, not beside it
+            k.accel = createAccelerator(k.config.name, k.env);
+            arena.execute([&] { k.stats = k.accel->build(scene.primitives()); });
+            k.buildMs.push_back(k.stats.buildMs);
         }
+    }
+    for (size_t set = 0; set < std::size(raySets); ++set) {
+        for (int round = 0; round < passes; ++round) {
+            for (Contender& k : contenders) {
+                const PassResult r = tracePasses(*k.accel, *raySets[set].rays, raySets[set].anyHit, threads, 1);
+                k.usPerQuery[set].push_back(r.usPerQuery);
+                if (round == 0) k.counters[set] = r.counters;
+            }
+        }
+    }
+
+    auto find = [&](const char* label) -> const Contender& {
+        return *std::find_if(contenders.begin(), contenders.end(), [&](const Contender& k) { return k.config.label == label; });
+    };
+    auto optional = [](const auto& v) { return v ? nlohmann::json(*v) : nlohmann::json(); };
+    std::vector<nlohmann::json> rows;
+    for (const Contender& k : contenders) {
+        const bool counted = k.accel->hasCounters();
+        nlohmann::json row = {{"scene", scene.name},
+                              {"accel", k.config.label},
+                              {"threads", threads},
+                              {"prims", scene.triangleCount()},
+                              {"build_ms", median(k.buildMs)},
+                              {"build_ms_all", k.buildMs},
+                              {"nodes", optional(k.stats.nodes)},
+                              {"leaves", optional(k.stats.leaves)},
+                              {"sah", k.stats.sah ? nlohmann::json(k.stats.sah->cost) : nlohmann::json()},
+                              {"bytes", optional(k.stats.bytes)}};
+        for (size_t set = 0; set < std::size(raySets); ++set) {
+            const double q = std::max<double>(1.0, double(k.counters[set].queries));
+            row[raySets[set].name] = {
+                {"t_r_us", median(k.usPerQuery[set])},
+                {"t_r_us_all", k.usPerQuery[set]},
+                {"queries", k.counters[set].queries},
+                {"n_it", counted ? nlohmann::json(double(k.counters[set].intersectionTests) / q) : nlohmann::json()},
+                {"n_tr", counted ? nlohmann::json(double(k.counters[set].traversalSteps) / q) : nlohmann::json()}};
+        }
+        // ratio_to_embree and ratio_to_embree-robust: medians of the per-round ratios.
+        for (const char* label : {"embree", "embree-robust"}) {
+            const Contender& ref = find(label);
+            nlohmann::json ratios = {{"build", pairedRatio(k.buildMs, ref.buildMs)}};
+            for (size_t set = 0; set < std::size(raySets); ++set) {
+                ratios[raySets[set].name] = raySets[set].rays->empty()
+                                                ? nlohmann::json()
+                                                : nlohmann::json(pairedRatio(k.usPerQuery[set], ref.usPerQuery[set]));
+            }
+            row[std::string("ratio_to_") + label] = ratios;
+        }
+        rows.push_back(std::move(row));
+    }
+    return rows;
 }
 
 std::string numberOrNa(const nlohmann::json& v, const char* format) {
@@ -86,18 +137,20 @@ std::string numberOrNa(const nlohmann::json& v, const char* format) {
 
 // One line per scene x threads x structure, then the geometric means of the ratios.
 std::string benchTable(const nlohmann::json& results) {
-    std::string out = fmt::format("{:<16} {:>3} {:<14} {:>9} {:>6} {:>8} {:>6} {:>6} {:>8} {:>6} {:>6} {:>8} {:>6} {:>6} "
+    size_t accelWidth = 14;
+    for (const nlohmann::json& row : results["rows"]) accelWidth = std::max(accelWidth, row["accel"].get<std::string>().size());
+    std::string out = fmt::format("{:<16} {:>3} {:<{}} {:>9} {:>6} {:>8} {:>6} {:>6} {:>8} {:>6} {:>6} {:>8} {:>6} {:>6} "
                                   "{:>6} {:>6} {:>8} {:>7}\n",
-                                  "scene", "thr", "accel", "T_B ms", "xE", "prim us", "xE", "xER", "shad us", "xE",
+                                  "scene", "thr", "accel", accelWidth, "T_B ms", "xE", "prim us", "xE", "xER", "shad us", "xE",
                                   "xER", "incoh us", "xE", "xER", "N_IT", "N_TR", "SAH", "MB");
     std::map<std::string, std::vector<nlohmann::json>> byConfig;
     for (const nlohmann::json& row : results["rows"]) {
         const nlohmann::json& e = row["ratio_to_embree"];
         const nlohmann::json& er = row["ratio_to_embree-robust"];
-        out += fmt::format("{:<16} {:>3} {:<14} {:>9.1f} {:>6} {:>8.3f} {:>6} {:>6} {:>8.3f} {:>6} {:>6} "
+        out += fmt::format("{:<16} {:>3} {:<{}} {:>9.1f} {:>6} {:>8.3f} {:>6} {:>6} {:>8.3f} {:>6} {:>6} "
                            "{:>8.3f} {:>6} {:>6} {:>6} {:>6} {:>8} {:>7}\n",
                            row["scene"].get<std::string>(), row["threads"].get<int>(), row["accel"].get<std::string>(),
-                           row["build_ms"].get<double>(), numberOrNa(e["build"], "{:.2f}"),
+                           accelWidth, row["build_ms"].get<double>(), numberOrNa(e["build"], "{:.2f}"),
                            row["primary"]["t_r_us"].get<double>(), numberOrNa(e["primary"], "{:.2f}"),
                            numberOrNa(er["primary"], "{:.2f}"), row["shadow"]["t_r_us"].get<double>(),
                            numberOrNa(e["shadow"], "{:.2f}"), numberOrNa(er["shadow"], "{:.2f}"),
@@ -109,7 +162,7 @@ std::string benchTable(const nlohmann::json& results) {
     }
     out += "\ngeometric means over scenes of the ratios to embree (embree-robust):\n";
     for (const auto& [config, rows] : byConfig) {
-        out += fmt::format("  {:<28}", config);
+        out += fmt::format("  {:<{}}", config, accelWidth + 14);
         for (const char* kind : {"build", "primary", "shadow", "incoherent"}) {
             double logE = 0, logER = 0;
             int n = 0;
@@ -181,16 +234,14 @@ void addBenchCommand(CLI::App& app) {
                            scene.name, rays.primary.size(), rays.shadow.size(), rays.incoherent.size());
 
                 for (int threads : threadCounts) {
-                    std::map<std::string, nlohmann::json> rows;
-                    for (const AccelConfig& config : configs) {
-                        nlohmann::json row = measure(scene, rays, env, config, threads, options->builds, options->passes);
-                        fmt::print(stderr, "  {} threads={} {}: build {:.1f} ms, primary {:.3f} us/query\n", scene.name,
-                                   threads, config.label, row["build_ms"].get<double>(),
-                                   row["primary"]["t_r_us"].get<double>());
-                        rows[config.label] = std::move(row);
+                    for (nlohmann::json& row : measureRounds(scene, rays, env, configs, threads, options->builds,
+                                                             options->passes)) {
+                        fmt::print(stderr, "  {} threads={} {}: build {:.1f} ms, primary {:.3f} us/query ({:.2f}x embree)\n",
+                                   scene.name, threads, row["accel"].get<std::string>(), row["build_ms"].get<double>(),
+                                   row["primary"]["t_r_us"].get<double>(),
+                                   row["ratio_to_embree"]["primary"].is_null() ? 0.0 : row["ratio_to_embree"]["primary"].get<double>());
+                        results["rows"].push_back(std::move(row));
                     }
-                    addRatios(rows);
-                    for (const AccelConfig& config : configs) results["rows"].push_back(rows[config.label]);
                 }
             }
             const std::filesystem::path out = options->out;

@@ -4,38 +4,23 @@
 #pragma once
 
 #include "accel/bvh/bvh_node.h"
+#include "accel/bvh/traversal_allocator.h"
 #include "framework/accelerator.h"
 
-#include <cstddef>
-#include <new>
 #include <vector>
 
 namespace bvhlab {
-
-// Allocates on 64-byte boundaries, so that a pair of sibling nodes fills one cache line.
-template <typename T>
-struct CacheLineAllocator {
-    using value_type = T;
-    static constexpr std::align_val_t kAlignment{64};
-    CacheLineAllocator() = default;
-    template <typename U>
-    CacheLineAllocator(const CacheLineAllocator<U>&) {}
-    T* allocate(size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), kAlignment)); }
-    void deallocate(T* p, size_t) { ::operator delete(p, kAlignment); }
-    template <typename U>
-    bool operator==(const CacheLineAllocator<U>&) const { return true; }
-};
 
 struct Bvh {
     // Root at 0, then an unused slot, then sibling pairs from index 2 on: every pair starts
     // at an even index, i.e. on a cache line of its own. So nodes.size() is one more than the
     // node count (0 when there is nothing to build over). Depth-first order, left subtree first.
-    std::vector<BvhNode, CacheLineAllocator<BvhNode>> nodes;
+    std::vector<BvhNode, TraversalAllocator<BvhNode>> nodes;
     // Leaf l holds primIndices[l.index .. l.index + l.count): the primitive index of each
     // triangle, reported in Hit::primitive.
     std::vector<uint32_t> primIndices;
     // The same triangles copied in leaf order, so that a leaf reads contiguous memory.
-    std::vector<Triangle> leafTriangles;
+    std::vector<Triangle, TraversalAllocator<Triangle>> leafTriangles;
 
     bool empty() const { return nodes.empty(); }
     size_t bytes() const {

@@ -65,10 +65,10 @@ std::optional<Split> TopDownBuilder::chooseSplit(const BuildRange& range, int de
     return objectMedianSplit(range, range.centroidBounds.largestAxis());
 }
 
-std::vector<BvhNode, CacheLineAllocator<BvhNode>> TopDownBuilder::build(std::span<PrimRef> refs,
+std::vector<BvhNode, TraversalAllocator<BvhNode>> TopDownBuilder::build(std::span<PrimRef> refs,
                                                                         const BuildRange& root) {
     refs_ = refs;
-    std::vector<BvhNode, CacheLineAllocator<BvhNode>> nodes;
+    std::vector<BvhNode, TraversalAllocator<BvhNode>> nodes;
     if (refs.empty()) return nodes;
     // The root, the padding slot that aligns the sibling pairs, and at most N - 1 pairs.
     nodes.reserve(2 * refs.size());

@@ -63,7 +63,7 @@ public:
 
     // Builds over `refs`, reordering them: leaves index into the reordered array. `root`
     // spans all of refs with their boxes. Depth stays below kBvhMaxDepth.
-    std::vector<BvhNode, CacheLineAllocator<BvhNode>> build(std::span<PrimRef> refs, const BuildRange& root);
+    std::vector<BvhNode, TraversalAllocator<BvhNode>> build(std::span<PrimRef> refs, const BuildRange& root);
 
 protected:
     // The hook: partition `range` in place and return the halves (both non-empty), or nullopt
