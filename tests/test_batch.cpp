@@ -2,6 +2,7 @@
 // are written; a second run reads the scenes from the cache; two shards merged give the table
 // of one run (timings aside); a corrupt cache entry is ignored; bad --shard values are errors.
 #include "tests/cli_run.h"
+#include "tests/scratch_dir.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -21,7 +22,7 @@ namespace fs = std::filesystem;
 
 // A fresh folder holding two small scenes (OBJ + env) and a list of them.
 fs::path makeScenes(const std::string& name) {
-    const fs::path dir = fs::temp_directory_path() / ("bvhlab_test_batch_" + name);
+    const fs::path dir = test::scratchDir("batch") / name;
     fs::remove_all(dir);
     fs::create_directories(dir);
     // A ground quad and a tetrahedron over it; the second scene adds a box-like wedge.

@@ -2,6 +2,7 @@
 // broken input gives a one-line error with file and line and a non-zero exit, never a crash.
 #include "framework/ray_file.h"
 #include "tests/cli_run.h"
+#include "tests/scratch_dir.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -17,9 +18,7 @@ using test::Result;
 using test::run;
 
 std::filesystem::path tempDir() {
-    const auto dir = std::filesystem::temp_directory_path() / "bvhlab_test_cli";
-    std::filesystem::create_directories(dir);
-    return dir;
+    return test::scratchDir("cli");
 }
 
 }  // namespace
@@ -96,4 +95,31 @@ TEST(Cli, RaycastAnswersRayFileWithNaive) {
     EXPECT_EQ(hits[0].t, 0.0f);
     EXPECT_EQ(hits[0].primitive, 0u);
     EXPECT_EQ(hits[1].primitive, kInvalidPrimitive);
+}
+
+// `bvhlab bench`, tiny: a row per structure with every round kept; Embree's counters are
+// unavailable (null), not zero; a paired ratio of a series to itself is exactly 1.
+TEST(Cli, BenchMeasuresInRoundsWithPairedRatios) {
+    const auto dir = tempDir();
+    std::ofstream(dir / "tiny.env") << "Camera::width 24\nCamera::height 16\n";
+    const auto out = dir / "bench.json";
+    const Result r = run("bench --scenes " + (dir / "tiny.env").string() +
+                         " --accel sahbvh,sahbvh:BVH::robust=false --threads 1 --builds 2 --passes 3 --out " + out.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("geometric means"), std::string::npos) << r.output;
+    std::ifstream in(out);
+    const nlohmann::json j = nlohmann::json::parse(in);
+    std::vector<std::string> labels;
+    for (const nlohmann::json& row : j["rows"]) {
+        const std::string accel = row["accel"];
+        labels.push_back(accel);
+        EXPECT_EQ(row["build_ms_all"].size(), 2u) << accel;
+        EXPECT_EQ(row["primary"]["t_r_us_all"].size(), 3u) << accel;
+        EXPECT_EQ(row["primary"]["queries"], 24 * 16) << accel;
+        EXPECT_EQ(row["primary"]["n_it"].is_null(), accel.starts_with("embree")) << accel;
+        if (accel == "embree") {
+            EXPECT_EQ(row["ratio_to_embree"]["primary"], 1.0);
+        }
+    }
+    EXPECT_EQ(labels, (std::vector<std::string>{"sahbvh", "sahbvh:BVH::robust=false", "embree", "embree-robust"}));
 }

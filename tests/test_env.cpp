@@ -1,6 +1,7 @@
 // The env registry and parser: good files, layering, and every kind of bad line.
 #include "framework/env.h"
 #include "framework/error.h"
+#include "tests/scratch_dir.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -25,8 +26,7 @@ EnvRegistry testRegistry() {
 }
 
 std::filesystem::path writeFile(const std::string& name, const std::string& text) {
-    const auto dir = std::filesystem::temp_directory_path() / "bvhlab_test_env";
-    std::filesystem::create_directories(dir);
+    const auto dir = test::scratchDir("env");
     const auto path = dir / name;
     std::ofstream(path) << text;
     return path;
@@ -72,7 +72,7 @@ TEST(Env, ParsesFileWithCommentsAndBlankLines) {
     EXPECT_EQ(env.getVec3List("Set::points")[1], Vec3(-4, 0.5f, 6));
     EXPECT_TRUE(env.isExplicit("Set::count"));
     // Relative paths resolve against the env file's folder.
-    EXPECT_EQ(env.getPath("Set::file"), std::filesystem::temp_directory_path() / "bvhlab_test_env" / "sub" / "x.obj");
+    EXPECT_EQ(env.getPath("Set::file"), test::scratchDir("env") / "sub" / "x.obj");
 }
 
 TEST(Env, LaterFilesAndOverridesWin) {

@@ -8,13 +8,13 @@
 #include "framework/error.h"
 #include "framework/renderer.h"
 #include "framework/scene_loader.h"
+#include "tests/scratch_dir.h"
 
 #include <gtest/gtest.h>
 
 #include <atomic>
 #include <filesystem>
 #include <fstream>
-#include <unistd.h>
 
 namespace bvhlab {
 namespace {
@@ -23,7 +23,7 @@ namespace fs = std::filesystem;
 
 fs::path writeTemp(const std::string& name, std::string_view bytes) {
     static std::atomic<int> counter{0};
-    const fs::path dir = fs::temp_directory_path() / fmt::format("bvhlab_fuzz_regressions_{}_{}", getpid(), counter++);
+    const fs::path dir = test::scratchDir("fuzz_regressions") / std::to_string(counter++);
     fs::create_directories(dir);
     const fs::path file = dir / name;
     std::ofstream(file, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));

@@ -1,6 +1,7 @@
 // The BVHRAYS1 / BVHHITS1 file round trip and malformed files.
 #include "framework/error.h"
 #include "framework/ray_file.h"
+#include "tests/scratch_dir.h"
 
 #include <gtest/gtest.h>
 
@@ -10,9 +11,7 @@ using namespace bvhlab;
 
 namespace {
 std::filesystem::path tempPath(const std::string& name) {
-    const auto dir = std::filesystem::temp_directory_path() / "bvhlab_test_rayfile";
-    std::filesystem::create_directories(dir);
-    return dir / name;
+    return test::scratchDir("rayfile") / name;
 }
 }  // namespace
 

@@ -2,6 +2,7 @@
 // source's bytes, and damaged or foreign entries are refused with a reason, never trusted.
 #include "framework/procedural.h"
 #include "framework/scene_cache.h"
+#include "tests/scratch_dir.h"
 
 #include <gtest/gtest.h>
 
@@ -13,9 +14,7 @@ namespace fs = std::filesystem;
 namespace {
 
 fs::path tempDir() {
-    const fs::path dir = fs::temp_directory_path() / "bvhlab_test_scene_cache";
-    fs::create_directories(dir);
-    return dir;
+    return test::scratchDir("scene_cache");
 }
 
 Scene richScene() {

@@ -21,6 +21,7 @@
 #include "framework/watertight_probe.h"
 #include "tests/cli_run.h"
 #include "tests/oracle.h"
+#include "tests/scratch_dir.h"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -614,7 +615,7 @@ TEST_P(Stress, VeryShortAndVeryLongRays) {
 // --- `bvhlab stress` end to end, tiny -------------------------------------------------------------
 
 TEST(StressCommand, WritesTablesAndJson) {
-    const auto out = std::filesystem::temp_directory_path() / "bvhlab_test_stress" / "stress.json";
+    const auto out = test::scratchDir("stress") / "stress.json";
     const test::Result r = test::run("stress --rays 2000 --scenes cube --parts watertight,acne --acne-pixels 16 "
                                      "--accel naive,sahbvh,embree:Embree::robust=true --threads 1 --out " + out.string());
     ASSERT_EQ(r.exitCode, 0) << r.output;

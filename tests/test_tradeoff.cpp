@@ -6,6 +6,7 @@
 // measured again, and so is everything when the settings change or with --fresh.
 #include "tests/cli_run.h"
 #include "tests/oracle.h"
+#include "tests/scratch_dir.h"
 
 #include <fmt/core.h>
 #include <gtest/gtest.h>
@@ -32,7 +33,7 @@ void writeObj(const Scene& scene, const fs::path& file) {
 
 // A fresh folder with soup.obj/.env and terrain.obj/.env (the camera frames each scene).
 fs::path makeScenes() {
-    const fs::path dir = fs::temp_directory_path() / "bvhlab_test_tradeoff";
+    const fs::path dir = test::scratchDir("tradeoff");
     fs::remove_all(dir);
     fs::create_directories(dir);
     writeObj(test::makeSoupScene(1500, 7, 0.2f, 3.0f, 20.0f), dir / "soup.obj");
@@ -144,7 +145,7 @@ TEST(Tradeoff, QuickRunWritesRowsAndResumes) {
 }
 
 TEST(Tradeoff, BadBinsAreAnError) {
-    const Result r = run("tradeoff --quick --bins 4,1 --out " + (fs::temp_directory_path() / "bvhlab_test_tradeoff_bad").string());
+    const Result r = run("tradeoff --quick --bins 4,1 --out " + (test::scratchDir("tradeoff_bad")).string());
     EXPECT_EQ(r.exitCode, 1) << r.output;
     EXPECT_TRUE(contains(r.output, "--bins")) << r.output;
 }
