@@ -1,5 +1,6 @@
 #include "framework/renderer.h"
 
+#include "framework/pixel_sampler.h"
 #include "framework/ray_offset.h"
 
 #include <tbb/enumerable_thread_specific.h>
@@ -42,30 +43,6 @@ struct ThreadState {
     std::vector<ShadowQuery> shadows;
     RenderStats stats;
 };
-
-// Hash-based random numbers: a sample's jitter depends only on pixel and sample index,
-// so images do not change with the thread count.
-float hashToUnit(uint32_t x) {
-    x ^= x >> 16;
-    x *= 0x7feb352dU;
-    x ^= x >> 15;
-    x *= 0x846ca68bU;
-    x ^= x >> 16;
-    return float(x >> 8) * (1.0f / 16777216.0f);
-}
-
-// Sample `s` of `count` in a pixel: stratified over an nx * ny grid of cells, jittered in its
-// cell, when count fills such a grid exactly (1, 2, 4, 6, 9, 12, 16, ...); otherwise uniformly
-// jittered over the pixel, since a partly filled grid would leave part of the pixel unsampled.
-glm::vec2 sampleOffset(uint32_t pixel, int s, int count) {
-    if (count == 1) return {0.5f, 0.5f};
-    const uint32_t seed = pixel * 9781u + uint32_t(s) * 6271u;
-    const float jx = hashToUnit(seed * 2u + 1u), jy = hashToUnit(seed * 2u + 2u);
-    const int nx = int(std::ceil(std::sqrt(float(count))));
-    const int ny = (count + nx - 1) / nx;
-    if (nx * ny != count) return {jx, jy};
-    return {(float(s % nx) + jx) / float(nx), (float(s / nx) + jy) / float(ny)};
-}
 
 class TileRenderer {
 public:
