@@ -492,6 +492,32 @@ TEST(Bvh, FlatBoxesBehindTheOrigin) {
     }
 }
 
+// An axis-parallel ray beside a box has a far distance of -inf on that axis. The interval
+// reaching below 0 must cull such boxes as the ordinary one does: with nothing behind the
+// origin, tmin = -0.5 visits exactly the nodes that tmin = 0 visits.
+TEST(Bvh, NegativeTminCullsAxisParallelRaysLikeTminZero) {
+    const Soup soup = randomSoup(3000, 29);  // in [-1, 11]^3
+    std::mt19937 rng(31);
+    std::uniform_real_distribution<float> across(0.0f, 10.0f);
+    BvhAccelerator accel(BvhKind::BinnedSah, defaultConfig());
+    accel.build(soup.prims());
+    for (int i = 0; i < 300; ++i) {
+        const int axis = i % 3;
+        Ray ray;
+        ray.org = {across(rng), across(rng), across(rng)};
+        ray.org[axis] = -2.0f;  // every triangle lies ahead, beyond t = 1
+        ray.dir = Vec3(0.0f);
+        ray.dir[axis] = 1.0f;
+        QueryCounters fromZero, fromBelow;
+        Hit a, b;
+        const bool hitA = accel.findNearest(ray, a, fromZero);
+        ray.tmin = -0.5f;
+        const bool hitB = accel.findNearest(ray, b, fromBelow);
+        ASSERT_EQ(hitA, hitB) << "ray " << i;
+        EXPECT_EQ(fromZero.traversalSteps, fromBelow.traversalSteps) << "ray " << i;
+    }
+}
+
 TEST(Bvh, InvalidRaysMissAndCountAQuery) {
     const Soup soup = randomSoup(100, 31);
     BvhAccelerator accel(BvhKind::BinnedSah, defaultConfig());

@@ -20,7 +20,7 @@ constexpr float gammaBound(int n) {
 // magnitude, which covers four roundings: the subtraction, the product, 1/dir and the scaling.
 // pbrt scales by 1 + 2*gamma, right only for far >= 0; that is all a ray with tmin >= 0 needs
 // (a box with far < 0 lies behind it either way), and it is folded into a premultiplied
-// 1/dir. Rays whose interval reaches below 0 take the sign-aware form, far + 2*gamma*|far|.
+// 1/dir. Rays whose interval reaches below 0 take the sign-aware form, far * (1 -+ 2*gamma).
 //
 // Axis-parallel rays: 1/0 gives +-inf; when the origin lies exactly on a slab plane, 0 * inf is
 // NaN. robustMax/robustMin return their second argument when the first is NaN, so a NaN slab
@@ -58,8 +58,10 @@ struct RayBoxTest {
 
     float farDistance(const float* b, int a) const {
         if constexpr (NegativeT && Robust) {
+            // Scaled, not t + margin*|t|: an axis-parallel ray beside the slab gives t = -inf,
+            // and -inf + inf would be a NaN that robustMin drops (the box would not be culled).
             const float t = (b[farSlab[a]] - org[a]) * inv[a];
-            return t + kFarMargin * std::abs(t);
+            return t * (t >= 0.0f ? 1.0f + kFarMargin : 1.0f - kFarMargin);
         } else {
             return (b[farSlab[a]] - org[a]) * invFar[a];
         }
