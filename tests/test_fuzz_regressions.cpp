@@ -8,6 +8,7 @@
 #include "framework/error.h"
 #include "framework/renderer.h"
 #include "framework/scene_loader.h"
+#include "tests/fuzz/read_every_env_key.h"
 #include "tests/scratch_dir.h"
 
 #include <gtest/gtest.h>
@@ -30,26 +31,6 @@ fs::path writeTemp(const std::string& name, std::string_view bytes) {
     return file;
 }
 
-// What fuzz_env does with an input: load it as a file and read every key back.
-void readEveryKey(const Env& env) {
-    for (const auto& [name, key] : env.registry().keys()) {
-        switch (key.type) {
-        case EnvType::Bool: (void)env.getBool(name); break;
-        case EnvType::Int: (void)env.getInt(name); break;
-        case EnvType::Float: (void)env.getFloat(name); break;
-        case EnvType::String:
-        case EnvType::Choice: (void)env.getString(name); break;
-        case EnvType::Path: (void)env.getPath(name); break;
-        case EnvType::Vec3: (void)env.getVec3(name); break;
-        case EnvType::Vec3List: (void)env.getVec3List(name); break;
-        }
-    }
-    (void)bvhConfigFromEnv(env);
-    Scene empty;
-    empty.finalize();
-    (void)RenderSettings::fromEnv(env, empty, resolveCamera(empty, env));
-}
-
 // Finding (fuzz_env, with _GLIBCXX_ASSERTIONS): a float key set to a number below the smallest
 // float passed validation (done in double) but did not parse as a float in Env::getFloat, which
 // then dereferenced an empty std::optional (undefined behaviour; an assertion failure in the
@@ -61,12 +42,12 @@ TEST(FuzzRegressions, EnvFloatBelowTheSmallestFloat) {
     EXPECT_EQ(env.getFloat("Render::ambient"), 0.0f);
     EXPECT_GT(env.getFloat("Lights::intensity"), 0.0f);  // a subnormal float
     EXPECT_LT(env.getFloat("Lights::intensity"), 1e-37f);
-    readEveryKey(env);
+    readEveryEnvKey(env);
 
     Env overridden;
     overridden.setOverride("BVH::cTraversal=1e-300");
     EXPECT_EQ(overridden.getFloat("BVH::cTraversal"), 0.0f);
-    readEveryKey(overridden);
+    readEveryEnvKey(overridden);
 }
 
 // Not found by the fuzzer (glibc's tolower tolerates it) but next to the finding above: the
