@@ -17,6 +17,13 @@ void padMaterialIds(Scene& scene) { scene.materialIds.resize(scene.indices.size(
 
 }  // namespace
 
+void addLooseTriangle(Scene& scene, const Vec3& a, const Vec3& b, const Vec3& c) {
+    const uint32_t base = uint32_t(scene.positions.size());
+    scene.positions.insert(scene.positions.end(), {a, b, c});
+    scene.indices.emplace_back(base, base + 1, base + 2);
+    if (!scene.materialIds.empty()) scene.materialIds.push_back(0);
+}
+
 void addQuad(Scene& scene, const Vec3& corner, const Vec3& edge1, const Vec3& edge2, uint32_t material) {
     padMaterialIds(scene);
     const uint32_t base = uint32_t(scene.positions.size());

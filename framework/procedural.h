@@ -5,6 +5,9 @@
 
 namespace bvhlab {
 
+// A triangle with three vertices of its own (shared with no other triangle), material 0.
+void addLooseTriangle(Scene& scene, const Vec3& a, const Vec3& b, const Vec3& c);
+
 // Each appends a closed (or, for the quad, flat) mesh with outward-facing triangles and the
 // given material to the scene; call scene.finalize() when done.
 void addQuad(Scene& scene, const Vec3& corner, const Vec3& edge1, const Vec3& edge2, uint32_t material);

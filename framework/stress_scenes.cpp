@@ -19,16 +19,6 @@ void addIndexedTriangle(Scene& scene, uint32_t a, uint32_t b, uint32_t c, uint32
     }
 }
 
-uint32_t addPosition(Scene& scene, const Vec3& p) {
-    scene.positions.push_back(p);
-    return uint32_t(scene.positions.size() - 1);
-}
-
-void addLooseTriangle(Scene& scene, const Vec3& a, const Vec3& b, const Vec3& c) {
-    const uint32_t i = addPosition(scene, a), j = addPosition(scene, b), k = addPosition(scene, c);
-    scene.indices.emplace_back(i, j, k);
-}
-
 }  // namespace
 
 void addSubdividedBox(Scene& scene, const Vec3& lower, const Vec3& upper, int n, uint32_t material) {

@@ -313,17 +313,11 @@ Ray invalidRay(Rng& rng, const Bounds3& bounds) {
     return r;
 }
 
-void addTriangleToScene(Scene& scene, const Vec3& a, const Vec3& b, const Vec3& c) {
-    const uint32_t base = uint32_t(scene.positions.size());
-    scene.positions.insert(scene.positions.end(), {a, b, c});
-    scene.indices.emplace_back(base, base + 1, base + 2);
-}
-
 // A random triangle of about `size` around `center`, with vertices summing to 3*center
 // (exactly in double; the float centroid is then within rounding of `center`).
 void addTriangleAround(Scene& scene, Rng& rng, const D3& center, double size) {
     const D3 a = rng.unitVector() * size, b = rng.unitVector() * size;
-    addTriangleToScene(scene, Vec3(center + a), Vec3(center + b), Vec3(center - a - b));
+    addLooseTriangle(scene, Vec3(center + a), Vec3(center + b), Vec3(center - a - b));
 }
 
 }  // namespace
@@ -567,7 +561,7 @@ std::vector<WatertightProbe> watertightProbes(const Scene& mesh, const std::func
 Scene sceneFromTriangles(const std::vector<Triangle>& triangles, const std::string& name) {
     Scene scene;
     scene.name = name;
-    for (const Triangle& t : triangles) addTriangleToScene(scene, t.v0, t.v1, t.v2);
+    for (const Triangle& t : triangles) addLooseTriangle(scene, t.v0, t.v1, t.v2);
     scene.finalize();
     return scene;
 }
@@ -580,7 +574,7 @@ Scene makeSoupScene(size_t count, uint32_t seed, float minSize, float maxSize, f
     for (size_t i = 0; i < count; ++i) {
         const D3 c(rng.inBox(box));
         const double size = rng.logUniform(minSize, maxSize);
-        addTriangleToScene(scene, Vec3(c + rng.unitVector() * size), Vec3(c + rng.unitVector() * size),
+        addLooseTriangle(scene, Vec3(c + rng.unitVector() * size), Vec3(c + rng.unitVector() * size),
                            Vec3(c + rng.unitVector() * size));
     }
     scene.finalize();
@@ -632,13 +626,13 @@ Scene makeCoincidentScene(uint32_t seed) {
         const double size = rng.logUniform(0.05, 2.0);
         const Vec3 a = Vec3(c + rng.unitVector() * size), b = Vec3(c + rng.unitVector() * size),
                    d = Vec3(c + rng.unitVector() * size);
-        addTriangleToScene(scene, a, b, d);
-        addTriangleToScene(scene, a, b, d);  // identical
-        addTriangleToScene(scene, a, d, b);  // reversed winding
-        addTriangleToScene(scene, b, d, a);  // rotated vertex order
+        addLooseTriangle(scene, a, b, d);
+        addLooseTriangle(scene, a, b, d);  // identical
+        addLooseTriangle(scene, a, d, b);  // reversed winding
+        addLooseTriangle(scene, b, d, a);  // rotated vertex order
         // Coplanar, overlapping: the same triangle slid within its plane.
         const Vec3 shift = 0.3f * (b - a);
-        addTriangleToScene(scene, a + shift, b + shift, d + shift);
+        addLooseTriangle(scene, a + shift, b + shift, d + shift);
     }
     scene.finalize();
     return scene;
@@ -679,7 +673,7 @@ Scene makeTinyScene(int triangles, uint32_t seed) {
     Scene scene;
     scene.name = fmt::format("tiny{}", triangles);
     const Bounds3 box(Vec3(-1.0f), Vec3(1.0f));
-    for (int i = 0; i < triangles; ++i) addTriangleToScene(scene, rng.inBox(box), rng.inBox(box), rng.inBox(box));
+    for (int i = 0; i < triangles; ++i) addLooseTriangle(scene, rng.inBox(box), rng.inBox(box), rng.inBox(box));
     scene.finalize();
     return scene;
 }
@@ -696,19 +690,19 @@ Scene makeDegenerateMixScene(size_t count, uint32_t seed) {
         if (!rng.chance(0.25)) {
             const D3 c(rng.inBox(box));
             const double size = rng.logUniform(1e-2, 5.0);
-            addTriangleToScene(scene, Vec3(c + rng.unitVector() * size), Vec3(c + rng.unitVector() * size),
+            addLooseTriangle(scene, Vec3(c + rng.unitVector() * size), Vec3(c + rng.unitVector() * size),
                                Vec3(c + rng.unitVector() * size));
             continue;
         }
         const Vec3 p = grid(), q = grid();
         const Vec3 d = Vec3(float(int(rng.index(5)) - 2), float(int(rng.index(5)) - 2), float(int(rng.index(5)) - 2)) * 0.25f;
         switch (rng.index(6)) {
-        case 0: addTriangleToScene(scene, p, p, p); break;                  // a point
-        case 1: addTriangleToScene(scene, p, p + d, p + 2.0f * d); break;  // an exact segment
-        case 2: addTriangleToScene(scene, p, q, p); break;                  // a repeated vertex
-        case 3: addTriangleToScene(scene, p, q, Vec3(q.x, kNaNf, q.z)); break;
-        case 4: addTriangleToScene(scene, Vec3(inf, p.y, p.z), p, q); break;
-        default: addTriangleToScene(scene, p, Vec3(kNaNf), q); break;
+        case 0: addLooseTriangle(scene, p, p, p); break;                  // a point
+        case 1: addLooseTriangle(scene, p, p + d, p + 2.0f * d); break;  // an exact segment
+        case 2: addLooseTriangle(scene, p, q, p); break;                  // a repeated vertex
+        case 3: addLooseTriangle(scene, p, q, Vec3(q.x, kNaNf, q.z)); break;
+        case 4: addLooseTriangle(scene, Vec3(inf, p.y, p.z), p, q); break;
+        default: addLooseTriangle(scene, p, Vec3(kNaNf), q); break;
         }
     }
     scene.finalize();
