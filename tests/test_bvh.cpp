@@ -5,6 +5,7 @@
 // every registered accelerator, in the cross-accelerator suite.
 #include "accel/bvh/bvh_accelerator.h"
 #include "accel/bvh/bvh_env.h"
+#include "accel/bvh/wide_bvh.h"
 #include "accel/naive/naive_accelerator.h"
 #include "accel/registry.h"
 
@@ -666,7 +667,7 @@ TEST(Bvh, CountersCountVisitsAndTests) {
 
 TEST(Bvh, RegisteredWithTheirEnvKeys) {
     const EnvRegistry& registry = envRegistry();
-    for (const char* name : {"tdbvh", "sahbvh", "sweepbvh"}) {
+    for (const char* name : {"tdbvh", "sahbvh", "sahbvh4", "sweepbvh"}) {
         const auto& infos = acceleratorInfos();
         const auto it = std::find_if(infos.begin(), infos.end(), [&](const AcceleratorInfo& i) { return i.name == name; });
         ASSERT_NE(it, infos.end()) << name;
@@ -683,6 +684,56 @@ TEST(Bvh, RegisteredWithTheirEnvKeys) {
     const auto accel = createAccelerator("sahbvh", env);
     EXPECT_EQ(accel->name(), "sahbvh");
     EXPECT_TRUE(accel->hasCounters());
+}
+
+// The 4-wide collapse keeps the binary tree's leaves: every leaf appears in exactly one lane
+// with its box, inner lanes point at wide nodes, unused lanes are empty boxes, and no wide
+// node has fewer than two children (or one: a root that is a single leaf).
+TEST(WideBvh, CollapseKeepsEveryLeafOnce) {
+    for (size_t n : {size_t(1), size_t(2), size_t(7), size_t(3000)}) {  // 1 and 2: the root is a leaf
+        SCOPED_TRACE(n);
+        const Soup soup = randomSoup(n, 41 + uint32_t(n));
+        Bvh binary = buildBvh(BvhKind::BinnedSah, defaultConfig(), soup.prims());
+        std::multiset<std::pair<uint32_t, uint32_t>> binaryLeaves;  // (first triangle, count)
+        for (size_t i = 0; i < binary.nodes.size(); ++i) {
+            if (i != 1 && binary.nodes[i].isLeaf()) binaryLeaves.insert({binary.nodes[i].index, binary.nodes[i].count});
+        }
+        const std::vector<uint32_t> primIndices = binary.primIndices;
+        const WideBvh wide = collapseToWide(std::move(binary));
+        EXPECT_EQ(wide.primIndices, primIndices);
+        ASSERT_EQ(wide.leafTriangles.size(), n);
+
+        std::multiset<std::pair<uint32_t, uint32_t>> wideLeaves;
+        std::vector<int> parents(wide.nodes.size(), 0);
+        for (const WideNode& node : wide.nodes) {
+            int used = 0;
+            for (int i = 0; i < WideNode::kWidth; ++i) {
+                const bool empty = node.lower[0][i] > node.upper[0][i];
+                if (empty) {
+                    EXPECT_EQ(node.count[i], 0u);
+                    continue;
+                }
+                ++used;
+                if (node.count[i] != 0) {
+                    wideLeaves.insert({node.child[i], node.count[i]});
+                    for (uint32_t t = node.child[i]; t < node.child[i] + node.count[i]; ++t) {
+                        const Bounds3 box = wide.leafTriangles[t].bounds();
+                        for (int a = 0; a < 3; ++a) {
+                            EXPECT_LE(node.lower[a][i], box.lower[a]);
+                            EXPECT_GE(node.upper[a][i], box.upper[a]);
+                        }
+                    }
+                } else {
+                    ASSERT_LT(node.child[i], wide.nodes.size());
+                    ++parents[node.child[i]];
+                }
+            }
+            EXPECT_GE(used, binaryLeaves.size() == 1 ? 1 : 2);
+        }
+        EXPECT_EQ(wideLeaves, binaryLeaves);
+        EXPECT_EQ(parents[0], 0);
+        for (size_t i = 1; i < parents.size(); ++i) EXPECT_EQ(parents[i], 1) << "wide node " << i;
+    }
 }
 
 }  // namespace

@@ -1,18 +1,11 @@
 #include "accel/bvh/bvh_traversal.h"
 
-#include "framework/triangle_moller_trumbore.h"
+#include "accel/bvh/traversal_common.h"
 
 #include <cmath>
-#include <limits>
 
 namespace bvhlab {
 namespace {
-
-// pbrt's gamma(n) = n*u/(1 - n*u), u = 2^-24: the bound on the relative error of n roundings.
-constexpr float gammaBound(int n) {
-    constexpr float u = std::numeric_limits<float>::epsilon() * 0.5f;
-    return n * u / (1.0f - n * u);
-}
 
 // Robust slab test (Ize 2013, as in pbrt-v4): rounding in (bound - org) * invDir must never
 // turn a grazing hit into a miss (a flat box, e.g. around an axis-aligned triangle, has equal
@@ -79,26 +72,7 @@ struct RayBoxTest {
         return entry <= exit;
     }
 
-    static constexpr float kFarMargin = Robust ? 2.0f * gammaBound(4) : 0.0f;
-};
-
-// The leaves' triangle test: the shared watertight one, or Moeller-Trumbore when robustness
-// is switched off (BVH::robust=false).
-template <bool Robust>
-struct LeafTriangleTest {
-    ShearedRay sheared;
-    explicit LeafTriangleTest(const Ray& ray) : sheared(ray) {}
-    bool operator()(const Triangle& tri, float tmin, float tmax, TriangleHitT<float>& h) const {
-        return intersectTriangle(sheared, tri, tmin, tmax, h);
-    }
-};
-template <>
-struct LeafTriangleTest<false> {
-    const Ray& ray;
-    explicit LeafTriangleTest(const Ray& ray) : ray(ray) {}
-    bool operator()(const Triangle& tri, float tmin, float tmax, TriangleHitT<float>& h) const {
-        return intersectTriangleMollerTrumbore(ray, tri, tmin, tmax, h);
-    }
+    static constexpr float kFarMargin = bvhlab::kFarMargin<Robust>;
 };
 
 // Starts loading what visiting `child` will read (its children pair, or its first triangles)
@@ -245,23 +219,13 @@ bool isOccluded(const Bvh& bvh, const Ray& ray, QueryCounters& counters) {
 }  // namespace
 
 bool bvhFindNearest(const Bvh& bvh, const Ray& ray, Hit& hit, QueryCounters& counters, bool robust) {
-    ++counters.queries;
-    if (bvh.empty() || !ray.isValid()) return false;
-    if (robust) {
-        return ray.tmin < 0.0f ? findNearest<true, true>(bvh, ray, hit, counters)
-                               : findNearest<false, true>(bvh, ray, hit, counters);
-    }
-    return ray.tmin < 0.0f ? findNearest<true, false>(bvh, ray, hit, counters)
-                           : findNearest<false, false>(bvh, ray, hit, counters);
+    return runQuery(bvh, ray, robust, counters,
+                    [&](auto negT, auto robT) { return findNearest<negT(), robT()>(bvh, ray, hit, counters); });
 }
 
 bool bvhIsOccluded(const Bvh& bvh, const Ray& ray, QueryCounters& counters, bool robust) {
-    ++counters.queries;
-    if (bvh.empty() || !ray.isValid()) return false;
-    if (robust) {
-        return ray.tmin < 0.0f ? isOccluded<true, true>(bvh, ray, counters) : isOccluded<false, true>(bvh, ray, counters);
-    }
-    return ray.tmin < 0.0f ? isOccluded<true, false>(bvh, ray, counters) : isOccluded<false, false>(bvh, ray, counters);
+    return runQuery(bvh, ray, robust, counters,
+                    [&](auto negT, auto robT) { return isOccluded<negT(), robT()>(bvh, ray, counters); });
 }
 
 }  // namespace bvhlab
