@@ -42,7 +42,7 @@ RaySets makeRaySets(const Scene& scene, const Camera& camera, const std::vector<
         const Vec3 p = (1.0f - hits[i].u - hits[i].v) * tri.v0 + hits[i].u * tri.v1 + hits[i].v * tri.v2;
         Vec3 n = glm::normalize(tri.geometricNormal());
         if (glm::dot(n, sets.primary[i].dir) > 0.0f) n = -n;
-        const Vec3 origin = offsetRayOrigin(p, n);
+        const Vec3 origin = offsetRayOrigin(p, n, tri);
         for (const PointLight& light : lights)
             if (glm::dot(n, light.position - p) > 0.0f)
                 sets.shadow.push_back({origin, light.position - origin, 0.0f, 1.0f - 1e-5f});

@@ -121,7 +121,7 @@ private:
         const Material& material = scene_.materials[scene_.materialOf(hit.primitive)];
         const Vec3 diffuse = path.throughput * material.diffuse * (1.0f - material.mirror);
         fb_.color[path.pixel] += diffuse * settings_.ambient;
-        const Vec3 origin = offsetRayOrigin(p, ng);
+        const Vec3 origin = offsetRayOrigin(p, ng, scene_.triangles[hit.primitive]);
         for (const ShadingLight& light : lights_) {
             const Vec3 toLight = light.position - p;
             const float distance2 = glm::dot(toLight, toLight);

@@ -164,6 +164,25 @@ Scene makeDistantPlaneScene(double distance, bool tilted, int cells, double size
     return scene;
 }
 
+Scene makeGroundPlaneScene(double distance, double size, double elevationDegrees) {
+    Scene scene;
+    scene.name = fmt::format("ground({:g},{:g},{:g}deg)", distance, size, elevationDegrees);
+    const DVec3 centre = distance * glm::normalize(DVec3(1.0, 0.7, 0.0));
+    const double h = 0.5 * size;
+    addQuad(scene, Vec3(centre + DVec3(-h, -h, 0.0)), Vec3(float(size), 0.0f, 0.0f), Vec3(0.0f, float(size), 0.0f), 0);
+    CameraSpec camera;
+    camera.from = Vec3(centre + DVec3(0.05 * size, 0.0, 0.6 * size));
+    camera.at = Vec3(centre);
+    camera.up = Vec3(0.0f, 1.0f, 0.0f);
+    camera.fovyDegrees = 50.0f;
+    camera.width = camera.height = 64;
+    scene.camera = camera;
+    const double e = glm::radians(elevationDegrees);
+    scene.lights = {{Vec3(centre + 10.0 * size * DVec3(std::cos(e) * 0.6, std::cos(e) * 0.8, std::sin(e))), Vec3(1.0f)}};
+    scene.finalize();
+    return scene;
+}
+
 Scene makeIdenticalTrianglesScene(size_t n) {
     Scene scene;
     scene.name = fmt::format("identical{}", n);

@@ -37,6 +37,12 @@ std::vector<Ray> raysTowardTriangles(const Scene& scene, size_t count, uint64_t 
 // axis-aligned; true: a generic orientation. Finalized.
 Scene makeDistantPlaneScene(double distance, bool tilted, int cells = 32, double size = 200.0);
 
+// munich's ground: the plane z = 0 exactly (so a ray origin offset along its normal moves by
+// the magnitude of z, which is 0), `size` across, centred `distance` from the origin in x and
+// y, made of two triangles, seen from above and lit from `elevationDegrees` above the horizon.
+// Finalized.
+Scene makeGroundPlaneScene(double distance, double size, double elevationDegrees);
+
 // Builders' edge cases (not closed): n copies of one triangle; n small triangles whose
 // centres lie on one line; one huge triangle among n tiny ones.
 Scene makeIdenticalTrianglesScene(size_t n);

@@ -35,6 +35,7 @@
 #include <map>
 #include <memory>
 #include <ostream>
+#include <tuple>
 
 namespace bvhlab {
 namespace {
@@ -303,6 +304,21 @@ TEST_P(Stress, NoShadowAcneOnAPlaneFarFromTheOrigin) {
     }
 }
 
+// munich's case: the ground z = 0, lit from low, each pixel's shadow ray leaving a triangle
+// whose vertices are far larger in x and y than the offset in z: a ground 800 from the origin,
+// and one 2e4 across around it.
+TEST_P(Stress, NoShadowAcneOnAGroundFarFromTheOrigin) {
+    for (const auto& [distance, size, elevation] : {std::tuple{800.0, 600.0, 5.0}, std::tuple{800.0, 600.0, 20.0},
+                                                    std::tuple{0.0, 2e4, 5.0}, std::tuple{0.0, 2e4, 20.0}}) {
+        const Scene scene = makeGroundPlaneScene(distance, size, elevation);
+        SCOPED_TRACE(scene.name);
+        const auto accel = build(scene);
+        const AcneCheck c = checkShadowAcne(scene, *accel, 64, 1);
+        EXPECT_EQ(c.onPlane, c.pixels) << "the camera must see only the plane";
+        expectZero("self-shadowed pixels on " + scene.name, c.selfShadowed, c.onPlane);
+    }
+}
+
 // --- builders at the edge ---------------------------------------------------------------------
 
 struct EdgeCase {
@@ -424,7 +440,7 @@ TEST_P(Stress, RaysStartingOnASurface) {
         QueryCounters counters;
         for (const SurfacePoint& s : points) {
             // Leaving a convex solid from its surface (origin offset outward): nothing to hit.
-            const Ray out{offsetRayOrigin(s.p, s.outward), directionAlong(rng, s.outward), 0.0f, kInfinity};
+            const Ray out{offsetRayOrigin(s.p, s.outward, c.scene.triangles[s.prim]), directionAlong(rng, s.outward), 0.0f, kInfinity};
             Hit h;
             if (accel->findNearest(out, h, counters)) {
                 ++selfHitsLeaving;
@@ -432,7 +448,7 @@ TEST_P(Stress, RaysStartingOnASurface) {
             }
             if (accel->isOccluded(out, counters)) ++occludedLeaving;
             // Entering it (origin offset inward): the far side, never the start.
-            const Ray in{offsetRayOrigin(s.p, -s.outward), directionAlong(rng, -s.outward), 0.0f, kInfinity};
+            const Ray in{offsetRayOrigin(s.p, -s.outward, c.scene.triangles[s.prim]), directionAlong(rng, -s.outward), 0.0f, kInfinity};
             Hit h2;
             if (!accel->findNearest(in, h2, counters)) {
                 ++missesEntering;
