@@ -67,24 +67,21 @@ inline bool intersectTriangle(const ShearedRayT<Real>& r, const Triangle& tri, R
 
     // Edge functions (2D cross products). Watertightness needs a shared edge to give exactly
     // opposite values in the two triangles that share it, which evaluate it with the two
-    // products' roles exchanged, so both products must be rounded alike. A compiler that
-    // contracts a*b - c*d into fma(a, b, -(c*d)) rounds only one of them (GCC does by default
-    // for C++ on FMA hardware, e.g. with -march=native): rays then slip between neighbours.
-    // The build therefore turns contraction off (-ffp-contract=off in CMakeLists.txt; the
-    // watertightness tests fail without it). Then e(a, b) == -e(b, a) exactly and coincident
-    // vertices give exactly 0.
-    Real e0 = cx * by - cy * bx;  // edge v1-v2: weight of v0
-    Real e1 = ax * cy - ay * cx;  // edge v2-v0: weight of v1
-    Real e2 = bx * ay - by * ax;  // edge v0-v1: weight of v2
-    // A zero may be rounding's: the ray passes through the edge or vertex only within the
-    // precision. Woop et al. recompute such cases in a wider type, where the products are
-    // exact (24 + 24 bits < 53 for float; x87 long double or IEEE quad for double).
-    if (e0 == Real(0) || e1 == Real(0) || e2 == Real(0)) [[unlikely]] {
-        using Wide = std::conditional_t<std::is_same_v<Real, float>, double, long double>;
-        e0 = Real(Wide(cx) * Wide(by) - Wide(cy) * Wide(bx));
-        e1 = Real(Wide(ax) * Wide(cy) - Wide(ay) * Wide(cx));
-        e2 = Real(Wide(bx) * Wide(ay) - Wide(by) * Wide(ax));
-    }
+    // products' roles exchanged. A compiler that contracts a*b - c*d into fma(a, b, -(c*d))
+    // (GCC does by default for C++ on FMA hardware, e.g. with -march=native) rounds only one
+    // product and breaks that symmetry: rays slip between neighbours, and a triangle whose
+    // vertices coincide gets "hit". So the products are formed in a wider type where both are
+    // rounded alike: double for float (exact: 24 + 24 bits < 53), and long double for double
+    // (x87 on x86-64 has no fused multiply-add; IEEE quad elsewhere holds the exact product).
+    // Then e(a, b) == -e(b, a) exactly and coincident vertices give exactly 0, whatever the
+    // compiler's contraction setting. (Edge functions in float with a double recomputation only
+    // where one is exactly 0, as Woop et al. do, were tried: cheaper, but they leaked 1 in 1e6
+    // edge probes on a10. The orientation of a point against an edge must be decided exactly
+    // for every edge of a vertex's fan to agree; float rounding can make all of them disagree.)
+    using Wide = std::conditional_t<std::is_same_v<Real, float>, double, long double>;
+    const Real e0 = Real(Wide(cx) * Wide(by) - Wide(cy) * Wide(bx));  // edge v1-v2: weight of v0
+    const Real e1 = Real(Wide(ax) * Wide(cy) - Wide(ay) * Wide(cx));  // edge v2-v0: weight of v1
+    const Real e2 = Real(Wide(bx) * Wide(ay) - Wide(by) * Wide(ax));  // edge v0-v1: weight of v2
     if ((e0 < 0 || e1 < 0 || e2 < 0) && (e0 > 0 || e1 > 0 || e2 > 0)) return false;
     const Real det = e0 + e1 + e2;
     if (det == Real(0)) return false;

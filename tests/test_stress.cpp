@@ -653,7 +653,7 @@ TEST(StressCommand, WritesTablesAndJson) {
     }
     EXPECT_EQ(rows, 5u);  // cube4: naive, sahbvh, embree-robust; cube64: sahbvh, embree-robust
     EXPECT_TRUE(j["failures"].empty());
-    EXPECT_EQ(j["acne"].size(), 4u * 3u);
+    EXPECT_EQ(j["acne"].size(), 6u * 3u);  // 4 planes and 2 grounds, 3 accelerators
 
     const test::Result bad = test::run("stress --accel nosuch --out " + out.string());
     EXPECT_EQ(bad.exitCode, 1) << bad.output;
