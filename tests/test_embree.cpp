@@ -11,6 +11,7 @@
 #include <tbb/global_control.h>
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <random>
 #include <thread>
@@ -157,15 +158,16 @@ TEST(Embree, IntervalEnds) {
         EXPECT_TRUE(accel.isOccluded(rayAlongZ(0.25f, 0.25f, 2.0f - eps, 2.0f + eps), counters));
         EXPECT_FALSE(accel.isOccluded(rayAlongZ(0.25f, 0.25f, 2.0f + eps, 5.0f - eps), counters));
 
-        // Exact ends (axis-aligned, so Embree's t is exact). The hit at tfar counts in both
-        // modes. The one at tnear counts only with ROBUST (Pluecker test: tnear <= t), not by
-        // default (Moeller test: tnear < t) -- where our closed interval would report it.
-        // Recorded so that a change in Embree shows up here.
-        Hit atEnd;
-        EXPECT_TRUE(accel.findNearest(rayAlongZ(0.25f, 0.25f, 0.0f, 2.0f), atEnd, counters));
-        Hit atStart;
-        EXPECT_EQ(accel.findNearest(rayAlongZ(0.25f, 0.25f, 2.0f, 3.0f), atStart, counters), robust);
-        EXPECT_EQ(accel.isOccluded(rayAlongZ(0.25f, 0.25f, 2.0f, 2.0f), counters), robust);  // [2, 2]
+        // Exactly at either end Embree promises nothing, and its answers there differ between
+        // its AVX2 and AVX-512 kernels (docs/accuracy.md, "Embree at the ends of the interval").
+        // Recorded in the test's output, never asserted.
+        Hit atEnd, atStart;
+        const bool hitAtTfar = accel.findNearest(rayAlongZ(0.25f, 0.25f, 0.0f, 2.0f), atEnd, counters);
+        const bool hitAtTnear = accel.findNearest(rayAlongZ(0.25f, 0.25f, 2.0f, 3.0f), atStart, counters);
+        const bool occludedAtPoint = accel.isOccluded(rayAlongZ(0.25f, 0.25f, 2.0f, 2.0f), counters);
+        std::printf("embree %s: hit exactly at tfar %s, at tnear %s, occluded on [t, t] %s\n",
+                    robust ? "robust" : "default", hitAtTfar ? "yes" : "no", hitAtTnear ? "yes" : "no",
+                    occludedAtPoint ? "yes" : "no");
     }
 }
 
@@ -219,11 +221,10 @@ TEST(Embree, NegativeTminKeepsHitsAheadExact) {
         EXPECT_EQ(hit.primitive, 1u);
         EXPECT_EQ(hit.t, reference.t);  // bit for bit
         EXPECT_EQ(hit.u, reference.u);
+        // Ending an ulp short of the hit misses it; ending exactly at it is unspecified (IntervalEnds).
         Ray shorter = ray;
         shorter.tmax = std::nextafter(reference.t, 0.0f);
         EXPECT_FALSE(accel.isOccluded(shorter, counters));
-        shorter.tmax = reference.t;
-        EXPECT_TRUE(accel.isOccluded(shorter, counters));
     }
 }
 

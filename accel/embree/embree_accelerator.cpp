@@ -263,12 +263,11 @@ BuildStats EmbreeAccelerator::build(const PrimitiveSet& prims) {
 }
 
 // Interval semantics. Ours is the closed [tmin, tmax]. Embree's documentation promises
-// nothing for hits exactly at or very close to tnear or tfar. In 3.13.5 the default triangle
-// test (Moeller-Trumbore, on unnormalised values) accepts tnear < t <= tfar, so a hit at
-// exactly t == tmin, which we report, Embree misses; with RTC_SCENE_FLAG_ROBUST the Pluecker
-// test accepts tnear <= t <= tfar like ours (and widens the edge tests by an ulp). We pass the
-// interval unchanged rather than nudge tnear: an ulp would not make the default comparison
-// exact either. Negative tmin: see segmentsOf above.
+// nothing for hits exactly at or very close to tnear or tfar, and 3.13.5 answers differently
+// there with its AVX2 and AVX-512 kernels (docs/accuracy.md, "Embree at the ends of the
+// interval"): a hit at exactly t == tmin, which we report, Embree may miss. We pass the
+// interval unchanged rather than nudge tnear: an ulp would not make its comparison exact
+// either. Negative tmin: see segmentsOf above.
 bool EmbreeAccelerator::findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const {
     ++counters.queries;
     if (!ray.isValid() || !scene_) return false;
