@@ -6,7 +6,8 @@ cd "$(dirname "$0")"
 
 packages=(g++ cmake ninja-build pkg-config git
           libembree-dev libopenexr-dev libglm-dev libgtest-dev libtbb-dev libtinyobjloader-dev
-          libstb-dev zlib1g-dev libcli11-dev nlohmann-json3-dev libfmt-dev)
+          libstb-dev zlib1g-dev libcli11-dev nlohmann-json3-dev libfmt-dev
+          python3-matplotlib)  # docs/plots/plot_tradeoff.py, with /usr/bin/python3
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -1,5 +1,7 @@
 #include "apps/accel_config.h"
 
+#include "apps/cli_common.h"
+
 #include <sstream>
 
 namespace bvhlab {
@@ -18,9 +20,7 @@ AccelConfig parseAccelConfig(const std::string& text) {
 
 std::vector<AccelConfig> parseAccelConfigList(const std::string& list) {
     std::vector<AccelConfig> configs;
-    std::string item;
-    for (std::stringstream in(list); std::getline(in, item, ',');)
-        if (!item.empty()) configs.push_back(parseAccelConfig(item));
+    for (const std::string& item : splitCommaList(list)) configs.push_back(parseAccelConfig(item));
     return configs;
 }
 

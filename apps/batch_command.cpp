@@ -139,8 +139,9 @@ void runJob(const Options& options, const Scene& scene, const SceneLoadInfo& loa
 
     Env env = sceneEnv;
     env.set("ASDS::type", accel, "bvhlab batch --accel");
-    const int threads = env.getInt("Batch::threads");
-    env.set("SetRayTracing::threads", std::to_string(threads), "Batch::threads");
+    // --threads, else Batch::threads (the report's single render thread by default).
+    const int threads = options.env.threads >= 0 ? options.env.threads : env.getInt("Batch::threads");
+    env.set("SetRayTracing::threads", std::to_string(threads), options.env.threads >= 0 ? "--threads" : "Batch::threads");
 
     progress.step(jobNumber, 0.0, label + ": building");
     tbb::task_arena arena(threads > 0 ? threads : tbb::info::default_concurrency());
@@ -245,13 +246,10 @@ void runBatch(const Options& options) {
         std::vector<SceneEntry> scenes;
         std::vector<Env> sceneEnvs;
         // Every env file is read up front, so a typo in the last one fails now, not in an hour.
-        for (const std::filesystem::path& file : expandSceneList(options.scenes)) {
-            const std::string id = file.stem().string();
-            if (std::any_of(scenes.begin(), scenes.end(), [&](const SceneEntry& s) { return s.id == id; }))
-                throw InputError(fmt::format("{}: a second scene named '{}' (jobs are named by the env file's stem)",
-                                             file.string(), id));
-            scenes.push_back({id, file});
-            sceneEnvs.push_back(options.env.load({file.string()}));
+        for (const SceneArgument& scene : expandSceneList(options.scenes, options.env)) {
+            const std::filesystem::path file = scene.envFile.empty() ? scene.sceneFile : scene.envFile;
+            scenes.push_back({scene.id, file});
+            sceneEnvs.push_back(scene.load(options.env));
             const Env& env = sceneEnvs.back();
             if (!env.getString("Scene::file").empty()) {
                 const std::filesystem::path scenePath = env.getPath("Scene::dir") / env.getString("Scene::file");
@@ -310,7 +308,8 @@ void addBatchCommand(CLI::App& app) {
     CLI::App* command = app.add_subcommand(
         "batch", "render every scene with every chosen accelerator, without and with shadows: tables, images, contact sheet");
     options->env.addTo(*command);
-    command->add_option("--scenes", options->scenes, "scene env files or .list files (default env/scenes.list)");
+    options->env.addThreadsTo(*command);
+    command->add_option("--scenes", options->scenes, "scene env files, .list files or scene files (default env/scenes.list)");
     command->add_option("--accel", options->accels, "comma-separated accelerators")
         ->capture_default_str()
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);

@@ -7,6 +7,7 @@
 #include "apps/commands.h"
 #include "apps/scene_list.h"
 #include "apps/timing.h"
+#include "framework/error.h"
 #include "framework/provenance.h"
 #include "framework/ray_sets.h"
 #include "framework/renderer.h"
@@ -17,6 +18,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <charconv>
 #include <chrono>
 #include <fstream>
 #include <map>
@@ -193,35 +195,39 @@ void addBenchCommand(CLI::App& app) {
     auto options = std::make_shared<Options>();
     CLI::App* command = app.add_subcommand("bench", "time builds and queries against Embree (medians, ratios)");
     options->env.addTo(*command);
-    command->add_option("--scenes", options->scenes, "scene env files or .list files (default env/scenes.list)");
+    command->add_option("--scenes", options->scenes, "scene env files, .list files or scene files (default env/scenes.list)");
     command->add_option("--accel", options->accels, "comma-separated NAME or NAME:Key=value:... (embree is always added)")
         ->capture_default_str();
-    command->add_option("--threads", options->threads, "comma-separated thread counts; 0 = all hardware threads")
+    command->add_option("--threads", options->threads, "threads N (0 = all hardware threads), or a comma-separated list of them to measure each")
         ->capture_default_str();
     command->add_option("--builds", options->builds, "builds per structure (median)")->capture_default_str()->check(CLI::Range(1, 1000));
     command->add_option("--passes", options->passes, "passes over each ray set (median)")->capture_default_str()->check(CLI::Range(1, 1000));
     command->add_option("--out", options->out, "JSON results")->capture_default_str();
     command->callback([options] {
         const int code = runGuarded([&] {
-            std::vector<AccelConfig> configs;
-            std::string item;
-            for (std::stringstream in(options->accels); std::getline(in, item, ',');) configs.push_back(parseAccelConfig(item));
+            std::vector<AccelConfig> configs = parseAccelConfigList(options->accels);
             for (const char* reference : {"embree", "embree:Embree::robust=true"})
                 if (std::none_of(configs.begin(), configs.end(), [&](const AccelConfig& c) { return c.label == parseAccelConfig(reference).label; }))
                     configs.push_back(parseAccelConfig(reference));
             std::vector<int> threadCounts;
-            for (std::stringstream in(options->threads); std::getline(in, item, ',');) {
-                const int t = std::stoi(item);
+            for (const std::string& item : splitCommaList(options->threads)) {
+                int t = -1;
+                const auto [end, ec] = std::from_chars(item.data(), item.data() + item.size(), t);
+                if (ec != std::errc() || end != item.data() + item.size() || t < 0 || t > 1024)
+                    throw InputError(fmt::format("--threads {}: '{}' is not a thread count 0..1024 (0 = all)",
+                                                 options->threads, item));
                 threadCounts.push_back(t > 0 ? t : tbb::info::default_concurrency());
             }
+            if (threadCounts.empty()) throw InputError("--threads: no thread count given");
 
             nlohmann::json results = {{"provenance", provenanceJson()},
                                       {"builds", options->builds},
                                       {"passes", options->passes},
                                       {"rows", nlohmann::json::array()}};
-            const std::vector<std::filesystem::path> sceneEnvs = expandSceneList(options->scenes);
-            for (size_t s = 0; s < sceneEnvs.size(); ++s) {
-                const Env env = options->env.load({sceneEnvs[s].string()});
+            const std::vector<SceneArgument> scenes = expandSceneList(options->scenes, options->env);
+            const std::filesystem::path out = prepareOutputFile(options->out);
+            for (size_t s = 0; s < scenes.size(); ++s) {
+                const Env env = scenes[s].load(options->env);
                 const Scene scene = loadSceneFor("", env);
                 const Camera camera(resolveCamera(scene, env));
                 const RenderSettings settings = RenderSettings::fromEnv(env, scene, camera.spec());
@@ -230,7 +236,7 @@ void addBenchCommand(CLI::App& app) {
                     reference->build(scene.primitives());
                     return makeRaySets(scene, camera, settings.lights, *reference);
                 }();
-                fmt::print(stderr, "[{}/{}] {}: {} primary, {} shadow, {} incoherent rays\n", s + 1, sceneEnvs.size(),
+                fmt::print(stderr, "[{}/{}] {}: {} primary, {} shadow, {} incoherent rays\n", s + 1, scenes.size(),
                            scene.name, rays.primary.size(), rays.shadow.size(), rays.incoherent.size());
 
                 for (int threads : threadCounts) {
@@ -244,8 +250,6 @@ void addBenchCommand(CLI::App& app) {
                     }
                 }
             }
-            const std::filesystem::path out = options->out;
-            if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path());
             std::ofstream(out) << results.dump(2) << "\n";
             fmt::print("{}", benchTable(results));
             fmt::print(stderr, "wrote {}\n", out.string());

@@ -2,8 +2,12 @@
 // the chosen accelerator with a report on stderr.
 #pragma once
 
+#include "apps/progress.h"
 #include "framework/accelerator.h"
+#include "framework/camera.h"
 #include "framework/env.h"
+#include "framework/framebuffer.h"
+#include "framework/renderer.h"
 #include "framework/scene.h"
 
 #include <CLI/CLI.hpp>
@@ -15,16 +19,40 @@
 
 namespace bvhlab {
 
+// A file of the repository (env/global.env, env/scenes/...): in the working folder when bvhlab
+// runs from the repository root, else in the source tree it was built from.
+std::filesystem::path repositoryFile(const std::filesystem::path& relative);
+
+// Every subcommand's configuration options. The layers, later ones winning: env/global.env
+// (unless --no-global-env), a scene's env file (camera, lights), the --env files, --threads,
+// then the -D overrides.
 struct EnvOptions {
     std::vector<std::string> envFiles;
     std::vector<std::string> overrides;
+    bool noGlobalEnv = false;
+    int threads = -1;  // --threads; -1: not given
 
-    // Adds --env (repeatable, later files win) and -DSection::key=value (repeatable, wins over files).
+    // Adds --env, -D and --no-global-env.
     void addTo(CLI::App& command);
-    // Loads env/global.env (or the --env files), then `extraFiles` (e.g. a scene's env file),
-    // then applies the -D overrides.
-    Env load(const std::vector<std::string>& extraFiles = {}) const;
+    // Adds --threads N (0 = all hardware threads), setting SetRayTracing::threads.
+    void addThreadsTo(CLI::App& command);
+    Env load(const std::filesystem::path& sceneEnvFile = {}) const;
+    // The env files load() reads, in order.
+    std::vector<std::string> files(const std::filesystem::path& sceneEnvFile = {}) const;
 };
+
+// The env file under env/scenes/ whose Scene::file is `sceneFile` (the same file on disk), or
+// empty: so a scene named by its file is seen from its own camera with its own lights.
+std::filesystem::path sceneEnvFor(const std::filesystem::path& sceneFile, const EnvOptions& options);
+
+// What `--scene X [--scene-env F]` names. X is a scene file, or NAME for env/scenes/NAME.env.
+struct SceneChoice {
+    std::filesystem::path sceneFile;  // empty: the env's Scene::file
+    std::filesystem::path envFile;    // the scene's env file; empty: none
+    // The layered env, with Scene::file set to the file actually read.
+    Env load(const EnvOptions& options) const;
+};
+SceneChoice chooseScene(const std::string& scene, const std::string& sceneEnv, const EnvOptions& options);
 
 // How loadSceneFor got its scene.
 struct SceneLoadInfo {
@@ -44,6 +72,20 @@ struct BuiltAccelerator {
     BuildStats stats;
 };
 BuiltAccelerator buildAccelerator(const Scene& scene, const Env& env);
+
+// Renders with a progress line on `progress`: phase `label`, tiles done, rays per second.
+RenderStats renderWithProgress(const Scene& scene, const Accelerator& accel, const Camera& camera,
+                               const RenderSettings& settings, Framebuffer& fb, Progress& progress,
+                               const std::string& label);
+
+// An output path given to `option`, checked the same way by every subcommand: not empty, not a
+// folder (for a file, or a path without extension); its folder is created. Throws InputError.
+std::filesystem::path prepareOutputFile(const std::string& path, const std::string& option = "--out");
+// An output folder given to `option`: not empty; created.
+std::filesystem::path prepareOutputFolder(const std::string& path, const std::string& option = "--out");
+
+// "a, b,,c" -> {"a", "b", "c"}: every option's comma-separated list.
+std::vector<std::string> splitCommaList(const std::string& text);
 
 // Writes `text` to `file` by way of a temporary file beside it, so a reader (or a run resumed
 // after an interruption) never sees half a file.

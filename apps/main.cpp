@@ -1,8 +1,16 @@
 // bvhlab: build, trace and measure bounding volume hierarchies.
 #include "apps/commands.h"
+#include "apps/progress.h"
+#include "apps/run_record.h"
+#include "framework/provenance.h"
 
 int main(int argc, char** argv) {
+    bvhlab::recordRun(argc, argv);
     CLI::App app("bvhlab: a research ray tracer for building, measuring and comparing BVHs");
+    app.set_version_flag("--version", std::string("bvhlab " BVHLAB_VERSION " (commit ") + bvhlab::gitCommit() + ")");
+    // --quiet before or after the subcommand silences progress lines (results and errors stay).
+    app.fallthrough();
+    app.add_flag_callback("--quiet", [] { bvhlab::Progress::setQuiet(true); }, "no progress lines on stderr");
     app.require_subcommand(1);
     bvhlab::addRenderCommand(app);
     bvhlab::addRaycastCommand(app);

@@ -22,32 +22,43 @@ void addRaycastCommand(CLI::App& app) {
     auto options = std::make_shared<Options>();
     CLI::App* command = app.add_subcommand("raycast", "answer every ray of a BVHRAYS1 file, write a BVHHITS1 file");
     options->env.addTo(*command);
-    command->add_option("--scene", options->scene, "scene file (default: Scene::file, else the embedded scene)");
+    options->env.addThreadsTo(*command);
+    command->add_option("--scene", options->scene,
+                        "scene file, or NAME for env/scenes/NAME.env (default: Scene::file, else the embedded scene)");
     command->add_option("--rays", options->rays, "input rays (BVHRAYS1)")->required();
     command->add_option("--out", options->out, "output hits (BVHHITS1)")->required();
     command->add_flag("--any", options->any, "any-hit queries (isOccluded) instead of closest hit");
     command->callback([options] {
         const int code = runGuarded([&] {
-            const Env env = options->env.load();
-            const Scene scene = loadSceneFor(options->scene, env);
+            const SceneChoice choice = chooseScene(options->scene, "", options->env);
+            const Env env = choice.load(options->env);
+            const std::filesystem::path out = prepareOutputFile(options->out);
+            Progress progress;
+            progress.phase("loading the scene");
+            const Scene scene = loadSceneFor("", env);
+            progress.phase(fmt::format("building {}", env.getString("ASDS::type")));
             const BuiltAccelerator built = buildAccelerator(scene, env);
             const std::vector<Ray> rays = readRayFile(options->rays);
+            constexpr size_t kRaysPerStep = 1024;
+            progress.phase(fmt::format("tracing {} rays", rays.size()), (rays.size() + kRaysPerStep - 1) / kRaysPerStep);
             std::vector<Hit> hits(rays.size());
             const int threads = env.getInt("SetRayTracing::threads");
             tbb::enumerable_thread_specific<QueryCounters> perThread;
 
             const auto start = std::chrono::steady_clock::now();
             tbb::task_arena(threads > 0 ? threads : tbb::info::default_concurrency()).execute([&] {
-                tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), 1024), [&](const auto& range) {
+                tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), kRaysPerStep), [&](const auto& range) {
                     QueryCounters& counters = perThread.local();
                     for (size_t i = range.begin(); i < range.end(); ++i) {
                         if (!options->any) built.accel->findNearest(rays[i], hits[i], counters);
                         else if (built.accel->isOccluded(rays[i], counters)) hits[i] = {0.0f, 0, 0.0f, 0.0f};
                     }
+                    progress.advance((range.size() + kRaysPerStep - 1) / kRaysPerStep, range.size());
                 });
             });
             const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            writeHitFile(options->out, hits);
+            progress.finish();
+            writeHitFile(out, hits);
 
             QueryCounters total;
             for (const QueryCounters& c : perThread) total += c;

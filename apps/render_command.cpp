@@ -2,6 +2,7 @@
 #include "apps/commands.h"
 
 #include "apps/cli_common.h"
+#include "apps/run_record.h"
 #include "framework/camera.h"
 #include "framework/image_io.h"
 #include "framework/provenance.h"
@@ -17,27 +18,38 @@ namespace bvhlab {
 void addRenderCommand(CLI::App& app) {
     struct Options {
         EnvOptions env;
-        std::string scene;
-        std::string out = "render";
+        std::string scene, sceneEnv;
+        std::string out = "out/render";
     };
     auto options = std::make_shared<Options>();
     CLI::App* command = app.add_subcommand("render", "render a scene and print its statistics row");
     options->env.addTo(*command);
-    command->add_option("--scene", options->scene, "scene file (default: Scene::file, else the embedded scene)");
+    options->env.addThreadsTo(*command);
+    command->add_option("--scene", options->scene,
+                        "scene file, or NAME for env/scenes/NAME.env (default: Scene::file, else the embedded scene); "
+                        "a file that an env/scenes/ file names is seen with that file's camera and lights");
+    command->add_option("--scene-env", options->sceneEnv, "the scene's env file (camera, lights), layered on env/global.env");
     command->add_option("--out", options->out, "output path without extension: writes PATH.exr, PATH.png, PATH.json")
         ->capture_default_str();
     command->callback([options] {
         const int code = runGuarded([&] {
-            const Env env = options->env.load();
-            const Scene scene = loadSceneFor(options->scene, env);
+            const SceneChoice choice = chooseScene(options->scene, options->sceneEnv, options->env);
+            const Env env = choice.load(options->env);
+            const std::filesystem::path out = prepareOutputFile(options->out);
+            if (!choice.envFile.empty()) fmt::print(stderr, "scene env: {}\n", choice.envFile.string());
+
+            Progress progress;
+            progress.phase("loading the scene");
+            const Scene scene = loadSceneFor("", env);
+            progress.phase(fmt::format("building {}", env.getString("ASDS::type")));
             const BuiltAccelerator built = buildAccelerator(scene, env);
+            progress.finish();
             const Camera camera(resolveCamera(scene, env));
             const RenderSettings settings = RenderSettings::fromEnv(env, scene, camera.spec());
             Framebuffer fb(camera.width(), camera.height());
-            const RenderStats stats = render(scene, *built.accel, camera, settings, fb);
+            const RenderStats stats = renderWithProgress(scene, *built.accel, camera, settings, fb, progress,
+                                                         fmt::format("rendering {}x{}", fb.width, fb.height));
 
-            const std::filesystem::path out = options->out;
-            if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path());
             if (env.getBool("Output::exr")) writeExr(out.string() + ".exr", fb);
             if (env.getBool("Output::png")) writePng(out.string() + ".png", fb);
             if (env.getBool("Output::heatmap")) {
@@ -48,6 +60,9 @@ void addRenderCommand(CLI::App& app) {
                                scene.report.degenerateTriangles, built.accel->hasCounters(), built.stats, stats};
             nlohmann::json json = statsJson(row);
             json["image"] = {{"width", fb.width}, {"height", fb.height}, {"samples", settings.samples}};
+            json["scene_file"] = sceneFileJson(scene);
+            json["run"] = runJson();
+            json["env_files"] = options->env.files(choice.envFile);
             json["env"] = env.toJson();
             json["provenance"] = provenanceJson();
             std::ofstream(out.string() + ".json") << json.dump(2) << "\n";

@@ -2,17 +2,27 @@
 
 #include "framework/error.h"
 
+#include <fmt/core.h>
+
+#include <algorithm>
 #include <fstream>
 
 namespace bvhlab {
 
-std::vector<std::filesystem::path> expandSceneList(const std::vector<std::string>& arguments) {
-    std::vector<std::string> items = arguments;
-    if (items.empty()) items.push_back((std::filesystem::path(BVHLAB_SOURCE_DIR) / "env/scenes.list").string());
-    std::vector<std::filesystem::path> envFiles;
+Env SceneArgument::load(const EnvOptions& options) const { return SceneChoice{sceneFile, envFile}.load(options); }
+
+std::vector<SceneArgument> expandSceneList(const std::vector<std::string>& arguments, const EnvOptions& options) {
+    std::vector<std::string> items;
+    for (const std::string& argument : arguments)
+        for (const std::string& item : splitCommaList(argument)) items.push_back(item);
+    if (items.empty()) items.push_back(repositoryFile("env/scenes.list").string());
+
+    std::vector<std::filesystem::path> files;  // env and scene files, lists expanded
     for (const std::filesystem::path item : items) {
         if (item.extension() != ".list") {
-            envFiles.push_back(item);
+            if (!std::filesystem::is_regular_file(item))
+                throw InputError(fmt::format("--scenes {}: no such file", item.string()));
+            files.push_back(item);
             continue;
         }
         std::ifstream in(item);
@@ -25,10 +35,30 @@ std::vector<std::filesystem::path> expandSceneList(const std::vector<std::string
             if (line.empty()) continue;
             const std::filesystem::path file = item.parent_path() / line;
             if (!std::filesystem::exists(file)) throw inputError(item, lineNo, "no such env file: " + file.string());
-            envFiles.push_back(file);
+            files.push_back(file);
         }
     }
-    return envFiles;
+
+    std::vector<SceneArgument> scenes;
+    for (const std::filesystem::path& file : files) {
+        SceneArgument scene;
+        if (file.extension() == ".env") {
+            scene.envFile = file;
+        } else {
+            scene.sceneFile = file;
+            scene.envFile = sceneEnvFor(file, options);
+        }
+        // munich.ply.gz and munich.ply are both "munich"; an env file is named as it is.
+        std::filesystem::path stem = file.filename();
+        while (stem.has_extension()) stem = stem.stem();
+        scene.id = file.extension() == ".env" ? file.stem().string() : stem.string();
+        if (std::any_of(scenes.begin(), scenes.end(), [&](const SceneArgument& s) { return s.id == scene.id; }))
+            throw InputError(fmt::format("--scenes: two scenes are named '{}' ({}): jobs and rows are named by the "
+                                         "file's stem",
+                                         scene.id, file.string()));
+        scenes.push_back(scene);
+    }
+    return scenes;
 }
 
 }  // namespace bvhlab

@@ -16,6 +16,7 @@
 #include "apps/accel_config.h"
 #include "apps/cli_common.h"
 #include "apps/commands.h"
+#include "apps/scene_list.h"
 #include "framework/camera.h"
 #include "framework/error.h"
 #include "framework/provenance.h"
@@ -61,14 +62,6 @@ struct StressOptions {
 
 bool isExternal(const AccelConfig& config) { return config.name == "embree"; }
 
-std::vector<std::string> splitComma(const std::string& text) {
-    std::vector<std::string> items;
-    std::string item;
-    for (std::stringstream in(text); std::getline(in, item, ',');)
-        if (!item.empty()) items.push_back(item);
-    return items;
-}
-
 class StressRun {
 public:
     StressRun(const StressOptions& options, const Env& env)
@@ -89,7 +82,7 @@ public:
     }
 
     void run() {
-        const std::vector<std::string> parts = splitComma(options_.parts);
+        const std::vector<std::string> parts = splitCommaList(options_.parts);
         auto wanted = [&](const char* part) { return std::find(parts.begin(), parts.end(), part) != parts.end(); };
         for (const std::string& p : parts)
             if (p != "watertight" && p != "sweep" && p != "acne" && p != "builders")
@@ -133,7 +126,7 @@ private:
     // The meshes --scenes names: generated families (small and large variants), or files.
     std::vector<std::function<std::optional<Scene>()>> meshes() const {
         std::vector<std::function<std::optional<Scene>()>> list;
-        for (const std::string& name : splitComma(options_.scenes)) {
+        for (const std::string& name : splitCommaList(options_.scenes)) {
             if (name == "icosphere") {
                 list.push_back([] { return makeIcosphereMesh(2); });
                 list.push_back([] { return makeIcosphereMesh(6); });
@@ -143,6 +136,12 @@ private:
             } else if (name == "torus") {
                 list.push_back([] { return makeTorusMesh(24, 12); });
                 list.push_back([] { return makeTorusMesh(384, 96); });
+            } else if (name.ends_with(".env") || name.ends_with(".list")) {
+                for (const SceneArgument& scene : expandSceneList({name}, options_.env)) {
+                    const Env env = scene.load(options_.env);
+                    const std::filesystem::path path = env.getPath("Scene::dir") / env.getString("Scene::file");
+                    list.push_back([path]() -> std::optional<Scene> { return loadScene(path); });
+                }
             } else {
                 const std::filesystem::path given(name);
                 const std::filesystem::path path = given.is_absolute() || std::filesystem::exists(given)
@@ -449,8 +448,8 @@ void addStressCommand(CLI::App& app) {
     command->add_option("--rays", options->rays, "watertightness probes per mesh")->capture_default_str();
     command->add_option("--accel", options->accels, "comma-separated NAME or NAME:Key=value:...")->capture_default_str();
     command->add_option("--scenes", options->scenes,
-                        "comma-separated meshes: icosphere, cube, torus (generated, small and large), or scene files "
-                        "(relative to Scene::dir unless they exist as given)")
+                        "comma-separated meshes: icosphere, cube, torus (generated, small and large), scene files "
+                        "(relative to Scene::dir unless they exist as given), scene env files or .list files")
         ->capture_default_str();
     command->add_option("--parts", options->parts, "comma-separated parts to run")->capture_default_str();
     command->add_option("--sweep-rays", options->sweepRays, "probes per scale/offset of the sweep")->capture_default_str();
@@ -462,7 +461,8 @@ void addStressCommand(CLI::App& app) {
         ->capture_default_str()
         ->check(CLI::Range(1, 4096));
     command->add_option("--threads", options->threads, "threads for tracing and Embree; 0 = all hardware threads")
-        ->capture_default_str();
+        ->capture_default_str()
+        ->check(CLI::Range(0, 1024));
     command->add_option("--seed", options->seed, "seed of every generated ray and scene")->capture_default_str();
     command->add_option("--out", options->out, "JSON results")->capture_default_str();
     command->callback([options] {
@@ -473,8 +473,7 @@ void addStressCommand(CLI::App& app) {
             run.run();
             nlohmann::json results = run.results();
             results["seconds"] = secondsSince(start);
-            const std::filesystem::path out = options->out;
-            if (out.has_parent_path()) std::filesystem::create_directories(out.parent_path());
+            const std::filesystem::path out = prepareOutputFile(options->out);
             std::ofstream(out) << results.dump(2) << "\n";
             for (const auto& f : results["failures"]) fmt::print("FAIL {}\n", f.get<std::string>());
             fmt::print("{}\n", run.failed() ? fmt::format("stress: {} failures", results["failures"].size())

@@ -9,6 +9,7 @@
 #include "framework/error.h"
 
 #include <fmt/core.h>
+#include <tbb/info.h>
 
 #include <chrono>
 #include <fstream>
@@ -59,10 +60,6 @@ bool storedMatches(const std::filesystem::path& file, const json& fingerprint) {
     }
 }
 
-std::string duration(double seconds) {
-    const long s = std::lround(std::max(seconds, 0.0));
-    return s < 60 ? fmt::format("{}s", s) : fmt::format("{}m{:02}s", s / 60, s % 60);
-}
 
 }  // namespace
 
@@ -82,7 +79,7 @@ void addTradeoffCommand(CLI::App& app) {
     options->env.addTo(*command);
     TradeoffSettings& s = options->settings;
     command->add_option("--scenes", options->scenes,
-                        "scene env files or .list files (default env/scenes.list; --quick: munich and sibenik)");
+                        "scene env files, .list files or scene files (default env/scenes.list; --quick: munich and sibenik)");
     command->add_option("--out", options->out, "folder of the results: DIR/<scene>/<config>.json, tradeoff.csv, "
                                                "image_error.csv, tradeoff.md")
         ->capture_default_str();
@@ -102,8 +99,8 @@ void addTradeoffCommand(CLI::App& app) {
         ->capture_default_str()->check(CLI::Range(1, 65536));
     command->add_option("--builds", s.builds, "builds per configuration (median)")->capture_default_str()->check(CLI::Range(1, 100));
     command->add_option("--passes", s.passes, "passes over each ray set (median)")->capture_default_str()->check(CLI::Range(1, 100));
-    command->add_option("--threads", s.threads, "threads of every timed build, trace and render")
-        ->capture_default_str()->check(CLI::Range(1, 1024));
+    command->add_option("--threads", s.threads, "threads of every timed build, trace and render; 0 = all hardware threads")
+        ->capture_default_str()->check(CLI::Range(0, 1024));
 
     command->callback([options, command] {
         const int code = runGuarded([&] {
@@ -124,24 +121,22 @@ void addTradeoffCommand(CLI::App& app) {
                 settings.quick = true;
             }
             settings.bins = parseBins(bins);
+            if (settings.threads == 0) settings.threads = tbb::info::default_concurrency();
             std::vector<std::string> sceneArgs = options->scenes;
             if (sceneArgs.empty() && options->quick)
                 for (const char* id : {"munich", "sibenik"})
-                    sceneArgs.push_back((std::filesystem::path(BVHLAB_SOURCE_DIR) / "env/scenes" / (std::string(id) + ".env")).string());
-            const std::vector<std::filesystem::path> sceneEnvs = expandSceneList(sceneArgs);
+                    sceneArgs.push_back(repositoryFile(std::filesystem::path("env/scenes") / (std::string(id) + ".env")).string());
+            const std::vector<SceneArgument> scenes = expandSceneList(sceneArgs, options->env);
             const std::vector<AccelConfig> configs = tradeoffConfigs(settings);
-            const std::filesystem::path dir = options->out;
-            std::filesystem::create_directories(dir);
+            const std::filesystem::path dir = prepareOutputFolder(options->out);
 
             std::vector<std::string> ids;
             size_t kept = 0, measured = 0;
-            const size_t total = sceneEnvs.size() * configs.size();
-            for (size_t i = 0; i < sceneEnvs.size(); ++i) {
-                const std::string id = sceneEnvs[i].stem().string();
-                if (std::find(ids.begin(), ids.end(), id) != ids.end())
-                    throw InputError(fmt::format("--scenes: two scenes are named '{}'", id));
+            const size_t total = scenes.size() * configs.size();
+            for (size_t i = 0; i < scenes.size(); ++i) {
+                const std::string& id = scenes[i].id;
                 ids.push_back(id);
-                const Env sceneEnv = options->env.load({sceneEnvs[i].string()});
+                const Env sceneEnv = scenes[i].load(options->env);
                 const json fingerprint = fingerprintOf(settings, tradeoffSceneEnv(sceneEnv, settings, settings.raySize, settings.raySize));
                 const std::filesystem::path sceneDir = dir / id;
                 std::vector<AccelConfig> pending;
@@ -150,7 +145,7 @@ void addTradeoffCommand(CLI::App& app) {
                     if (options->resume && std::filesystem::exists(file) && storedMatches(file, fingerprint)) ++kept;
                     else pending.push_back(config);
                 }
-                fmt::print(stderr, "[scene {}/{}] {}: {} of {} configurations to measure\n", i + 1, sceneEnvs.size(), id,
+                fmt::print(stderr, "[scene {}/{}] {}: {} of {} configurations to measure\n", i + 1, scenes.size(), id,
                            pending.size(), configs.size());
                 if (pending.empty()) continue;  // not even loaded
 
@@ -177,13 +172,13 @@ void addTradeoffCommand(CLI::App& app) {
                                settings.maxSpp, result["series"].back()["time_to_image_cpu_ms"].get<double>(),
                                result["series"].back()["time_to_image_ms"].get<double>(),
                                result["primary"]["mismatches"].get<size_t>(), result["shadow"]["mismatches"].get<size_t>(),
-                               duration(elapsed), left, duration(elapsed / double(measured) * double(left)));
+                               Progress::formatDuration(elapsed), left, Progress::formatDuration(elapsed / double(measured) * double(left)));
                 }
             }
             const std::string md = writeTradeoffReport(dir, ids, configs, settings);
             fmt::print("{}", md);
             fmt::print(stderr, "tradeoff: {} configurations measured, {} kept from an earlier run, in {}; wrote {}\n",
-                       measured, kept, duration(std::chrono::duration<double>(Clock::now() - start).count()),
+                       measured, kept, Progress::formatDuration(std::chrono::duration<double>(Clock::now() - start).count()),
                        (dir / "tradeoff.csv").string());
         });
         if (code != 0) throw CLI::RuntimeError(code);

@@ -17,7 +17,11 @@ struct Framebuffer {
     std::vector<float> traversalSteps;  // N_TR of every query of the pixel, all samples
     std::vector<float> intersectionTests;  // N_IT likewise
 
+    // Throws InputError, with the size it needs, when it would not fit in the memory available
+    // (framework/available_memory.h) with room to write its images.
     Framebuffer(int w, int h);
+    // What a w x h framebuffer allocates.
+    static size_t bytesFor(int w, int h);
     size_t index(int x, int y) const { return size_t(y) * size_t(width) + size_t(x); }
 };
 

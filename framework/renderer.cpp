@@ -199,8 +199,12 @@ RenderSettings RenderSettings::fromEnv(const Env& env, const Scene& scene, const
     return s;
 }
 
+size_t tileCount(int width, int height) {
+    return size_t((width + kTileSize - 1) / kTileSize) * size_t((height + kTileSize - 1) / kTileSize);
+}
+
 RenderStats render(const Scene& scene, const Accelerator& accel, const Camera& camera,
-                   const RenderSettings& settings, Framebuffer& fb) {
+                   const RenderSettings& settings, Framebuffer& fb, const TileDone& onTile) {
     std::vector<ShadingLight> lights;
     const Vec3 center = scene.bounds.isEmpty() ? Vec3(0.0f) : scene.bounds.center();
     for (const PointLight& light : settings.lights) {
@@ -218,8 +222,11 @@ RenderStats render(const Scene& scene, const Accelerator& accel, const Camera& c
     arena.execute([&] {
         tbb::parallel_for(tbb::blocked_range<int>(0, tilesX * tilesY, 1), [&](const tbb::blocked_range<int>& range) {
             ThreadState& ts = states.local();
-            for (int tile = range.begin(); tile < range.end(); ++tile)
+            for (int tile = range.begin(); tile < range.end(); ++tile) {
+                const uint64_t before = ts.stats.primary.counters.queries + ts.stats.shadow.counters.queries;
                 renderer.renderTile(tile % tilesX * kTileSize, tile / tilesX * kTileSize, ts);
+                if (onTile) onTile(ts.stats.primary.counters.queries + ts.stats.shadow.counters.queries - before);
+            }
         });
     });
 

@@ -7,6 +7,8 @@
 #include "framework/env.h"
 #include "framework/framebuffer.h"
 
+#include <functional>
+
 namespace bvhlab {
 
 struct RenderSettings {
@@ -42,7 +44,14 @@ struct RenderStats {
     int threads = 0;
 };
 
+// Called from a render thread after each tile with the rays (queries) the tile traced; the
+// callers draw progress lines with it.
+using TileDone = std::function<void(uint64_t rays)>;
+
+// The number of tiles a render of `width` x `height` pixels calls TileDone for.
+size_t tileCount(int width, int height);
+
 RenderStats render(const Scene& scene, const Accelerator& accel, const Camera& camera,
-                   const RenderSettings& settings, Framebuffer& framebuffer);
+                   const RenderSettings& settings, Framebuffer& framebuffer, const TileDone& onTile = {});
 
 }  // namespace bvhlab

@@ -12,10 +12,15 @@ std::string orNa(const std::optional<T>& value, const char* format) {
 
 double perQuery(uint64_t total, uint64_t queries) { return queries ? double(total) / double(queries) : 0.0; }
 
+// Per-query figures are null where nothing was traced (e.g. shadows off) or nothing counted.
 nlohmann::json queryJson(const QueryStats& q, bool hasCounters) {
-    nlohmann::json j = {{"queries", q.counters.queries}, {"t_r_us", q.usPerQuery()}};
-    j["n_it"] = hasCounters ? nlohmann::json(perQuery(q.counters.intersectionTests, q.counters.queries)) : nlohmann::json();
-    j["n_tr"] = hasCounters ? nlohmann::json(perQuery(q.counters.traversalSteps, q.counters.queries)) : nlohmann::json();
+    const bool traced = q.counters.queries > 0;
+    nlohmann::json j = {{"queries", q.counters.queries}};
+    j["t_r_us"] = traced ? nlohmann::json(q.usPerQuery()) : nlohmann::json();
+    j["n_it"] = traced && hasCounters ? nlohmann::json(perQuery(q.counters.intersectionTests, q.counters.queries))
+                                      : nlohmann::json();
+    j["n_tr"] = traced && hasCounters ? nlohmann::json(perQuery(q.counters.traversalSteps, q.counters.queries))
+                                      : nlohmann::json();
     return j;
 }
 
@@ -32,18 +37,22 @@ std::string formatStatsTable(const StatsRow& row) {
                                   "scene", "accel", "#Prims", "#Leaves", "#Nodes", "SAH", "T_B ms", "T_R us",
                                   "N_IT", "N_TR", "N_Q", "render ms");
     auto line = [&](const char* label, const QueryStats& q, bool first) {
-        const std::string nit = row.hasCounters ? fmt::format("{:.2f}", perQuery(q.counters.intersectionTests, q.counters.queries)) : "n/a";
-        const std::string ntr = row.hasCounters ? fmt::format("{:.2f}", perQuery(q.counters.traversalSteps, q.counters.queries)) : "n/a";
-        out += fmt::format("{:<14} {:<9} {:>9} {:>9} {:>9} {:>10} {:>9} {:>9.3f} {:>8} {:>8} {:>10} {:>10}\n",
+        const bool traced = q.counters.queries > 0, counted = traced && row.hasCounters;
+        const std::string nit = counted ? fmt::format("{:.2f}", perQuery(q.counters.intersectionTests, q.counters.queries)) : "n/a";
+        const std::string ntr = counted ? fmt::format("{:.2f}", perQuery(q.counters.traversalSteps, q.counters.queries)) : "n/a";
+        const std::string tr = traced ? fmt::format("{:.3f}", q.usPerQuery()) : "n/a";
+        out += fmt::format("{:<14} {:<9} {:>9} {:>9} {:>9} {:>10} {:>9} {:>9} {:>8} {:>8} {:>10} {:>10}\n",
                            first ? row.scene : label, first ? row.accel : "",
                            first ? fmt::format("{}", row.prims) : "", first ? orNa(b.leaves, "{}") : "",
                            first ? orNa(b.nodes, "{}") : "",
                            first ? (b.sah ? fmt::format("{:.3f}", b.sah->cost) : "n/a") : "",
-                           first ? fmt::format("{:.1f}", b.buildMs) : "", q.usPerQuery(), nit, ntr,
+                           first ? fmt::format("{:.1f}", b.buildMs) : "", tr, nit, ntr,
                            q.counters.queries, first ? fmt::format("{:.1f}", row.render.renderMs) : "");
     };
+    // The first line is the closest-hit queries (camera rays and mirror bounces), the second
+    // the shadow rays alone (any-hit queries toward the lights), as the report's rows.
     line("primary", row.render.primary, true);
-    line("  + shadow", row.render.shadow, false);
+    line("  shadow rays", row.render.shadow, false);
     out += fmt::format("degenerate triangles skipped: {}; shadow rays skipped: {} (shadows off), {} (light behind "
                        "surface); bounces cut by depthLimit: {}; threads: {}",
                        row.degenerate, row.render.shadowRaysSkippedDisabled, row.render.shadowRaysSkippedBackfacing,

@@ -12,10 +12,9 @@ struct Result {
     std::string output;  // stdout and stderr
 };
 
-// `bvhlab ARGS 2>&1`: its exit code and everything it printed.
-inline Result run(const std::string& args) {
-    const std::string command = std::string(BVHLAB_BINARY) + " " + args + " 2>&1";
-    FILE* pipe = popen(command.c_str(), "r");
+// `sh -c COMMAND 2>&1`: its exit code and everything it printed.
+inline Result runShell(const std::string& command) {
+    FILE* pipe = popen(("(" + command + ") 2>&1").c_str(), "r");
     if (!pipe) return {-1, "popen failed: " + command};
     std::string output;
     char buffer[4096];
@@ -23,5 +22,8 @@ inline Result run(const std::string& args) {
     const int status = pclose(pipe);
     return {WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status), output};
 }
+
+// `bvhlab ARGS 2>&1`: its exit code and everything it printed.
+inline Result run(const std::string& args) { return runShell(std::string(BVHLAB_BINARY) + " " + args); }
 
 }  // namespace bvhlab::test

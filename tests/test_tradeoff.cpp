@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -148,4 +149,24 @@ TEST(Tradeoff, BadBinsAreAnError) {
     const Result r = run("tradeoff --quick --bins 4,1 --out " + (test::scratchDir("tradeoff_bad")).string());
     EXPECT_EQ(r.exitCode, 1) << r.output;
     EXPECT_TRUE(contains(r.output, "--bins")) << r.output;
+}
+
+// The plot script draws from a tradeoff folder into its plots/ subfolder, which it creates, and
+// leaves the plots committed in docs/plots alone. Skipped where Debian's matplotlib is missing
+// (setup.sh installs it).
+TEST(TradeoffPlots, ScriptWritesIntoTheDataFolderNotDocs) {
+    if (std::system("/usr/bin/python3 -c 'import matplotlib' 2>/dev/null") != 0)
+        GTEST_SKIP() << "no python3-matplotlib for /usr/bin/python3";
+    const fs::path docs = fs::path(BVHLAB_SOURCE_DIR) / "docs" / "plots";
+    const fs::path data = test::scratchDir("tradeoff_plots") / "data";
+    fs::create_directories(data);
+    for (const char* csv : {"tradeoff.csv", "image_error.csv"})
+        fs::copy_file(docs / csv, data / csv, fs::copy_options::overwrite_existing);
+    const auto committed = fs::last_write_time(docs / "tradeoff_build_vs_gap.png");
+    const std::string command = "/usr/bin/python3 " + (docs / "plot_tradeoff.py").string() + " --data " +
+                                data.string() + " > /dev/null 2>&1";
+    ASSERT_EQ(std::system(command.c_str()), 0) << command;
+    for (const char* png : {"tradeoff_build_vs_gap.png", "tradeoff_time_to_image.png", "tradeoff_error_vs_time.png"})
+        EXPECT_GT(fs::file_size(data / "plots" / png), 1000u) << png;
+    EXPECT_EQ(fs::last_write_time(docs / "tradeoff_build_vs_gap.png"), committed);
 }

@@ -1,10 +1,11 @@
 #!/usr/bin/python3
 """Plots of `bvhlab tradeoff` (docs/accuracy.md, "Run time against error"), drawn from its CSV files.
 
-    /usr/bin/python3 docs/plots/plot_tradeoff.py [--data out/tradeoff] [--out docs/plots] [--scenes sibenik,mount]
+    /usr/bin/python3 docs/plots/plot_tradeoff.py [--data out/tradeoff] [--out DATA/plots] [--scenes sibenik,mount]
 
-Debian's python3-matplotlib (apt-get install -y python3-matplotlib); /usr/bin/python3 because a
-python3 earlier on PATH may not see it. Writes tradeoff_build_vs_gap.png, tradeoff_time_to_image.png
+Debian's python3-matplotlib (setup.sh installs it); /usr/bin/python3 because a python3 earlier on
+PATH may not see it. The PNGs go to DATA/plots unless --out names another folder (created if
+missing); `--out docs/plots` refreshes the plots committed with the docs. Writes tradeoff_build_vs_gap.png, tradeoff_time_to_image.png
 and tradeoff_error_vs_time.png, and prints the numbers the reading in docs/accuracy.md quotes:
 the gap and relative build time per configuration, the Pareto front of build time against SAH
 cost, and the ray budgets at which a slower build pays off.
@@ -56,12 +57,15 @@ def style(config):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--data", default="out/tradeoff", help="folder with tradeoff.csv and image_error.csv")
-    parser.add_argument("--out", default=os.path.dirname(os.path.abspath(__file__)), help="folder for the PNG files")
+    parser.add_argument("--out", help="folder for the PNG files (default: DATA/plots; created if missing)")
     parser.add_argument("--scenes", default="sibenik,mount", help="scenes of the error-against-time plot")
     parser.add_argument("--clock", choices=("cpu", "wall"), default="cpu",
                         help="process CPU time (default: what a loaded, shared machine cannot take away) or wall time")
     args = parser.parse_args()
     cpu = args.clock == "cpu"
+    if args.out is None:
+        args.out = os.path.join(args.data, "plots")
+    os.makedirs(args.out, exist_ok=True)
 
     def col(name):
         """The column of `name` (a wall-time column) for the chosen clock."""
