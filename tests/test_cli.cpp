@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <utility>
 
 using namespace bvhlab;
 
@@ -67,6 +68,25 @@ TEST(Cli, BrokenSceneIsOneLineErrorWithFileAndLine) {
     EXPECT_EQ(r.exitCode, 1);
     EXPECT_NE(r.output.find("broken.obj"), std::string::npos) << r.output;
     EXPECT_EQ(r.output.find("Segmentation"), std::string::npos) << r.output;
+}
+
+TEST(Cli, SceneWithNothingToRenderIsAnErrorNamingTheFile) {
+    // Files that once rendered as an empty image with exit 0.
+    const std::pair<const char*, std::string> files[] = {
+        {"empty.obj", ""},
+        {"flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n"},
+        {"binary.obj", std::string("\x7f" "ELF\x02\x01\x01\0\0\0", 10)},
+        {"notes.obj", "Not a scene, just notes.\n"},
+        {"munich.obj", "ply\nformat binary_little_endian 1.0\nelement vertex 0\nend_header\n"},
+        {"spheres.nff", "s 0 0 0 1\n"},
+    };
+    for (const auto& [name, bytes] : files) {
+        const auto scene = tempDir() / name;
+        std::ofstream(scene, std::ios::binary) << bytes;
+        const Result r = run("render -DASDS::type=naive --scene " + scene.string() + " --out " + (tempDir() / "x").string());
+        EXPECT_EQ(r.exitCode, 1) << name << ": " << r.output;
+        EXPECT_NE(r.output.find("error: " + scene.string() + ": "), std::string::npos) << r.output;
+    }
 }
 
 TEST(Cli, RaycastAnswersRayFileWithNaive) {
