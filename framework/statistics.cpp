@@ -44,9 +44,11 @@ std::string formatStatsTable(const StatsRow& row) {
     };
     line("primary", row.render.primary, true);
     line("  + shadow", row.render.shadow, false);
-    out += fmt::format("degenerate triangles skipped: {}; shadow rays skipped: {} (shadows off), {} (light behind "
-                       "surface); bounces cut by depthLimit: {}; threads: {}",
-                       row.degenerate, row.render.shadowRaysSkippedDisabled, row.render.shadowRaysSkippedBackfacing,
+    out += fmt::format("degenerate triangles skipped: {}; not supported, skipped: {} spheres, {} cones/cylinders; "
+                       "shadow rays skipped: {} (shadows off), {} (light behind surface); bounces cut by depthLimit: "
+                       "{}; threads: {}",
+                       row.load.degenerateTriangles, row.load.unsupportedSpheres, row.load.unsupportedCones,
+                       row.render.shadowRaysSkippedDisabled, row.render.shadowRaysSkippedBackfacing,
                        row.render.bouncesSkipped, row.render.threads);
     if (b.sah) out += fmt::format("; SAH with C_trav={} C_isect={}", b.sah->cTraversal, b.sah->cIntersect);
     return out;
@@ -58,7 +60,9 @@ nlohmann::json statsJson(const StatsRow& row) {
         {"scene", row.scene},
         {"accel", row.accel},
         {"prims", row.prims},
-        {"degenerate", row.degenerate},
+        {"degenerate", row.load.degenerateTriangles},
+        {"unsupported_spheres", row.load.unsupportedSpheres},
+        {"unsupported_cones", row.load.unsupportedCones},
         {"nodes", optionalJson(b.nodes)},
         {"leaves", optionalJson(b.leaves)},
         {"avg_leaf_prims", optionalJson(b.avgLeafPrimitives)},

@@ -89,6 +89,24 @@ TEST(Cli, SceneWithNothingToRenderIsAnErrorNamingTheFile) {
     }
 }
 
+TEST(Cli, SkippedSpheresAndConesAreCountedInTheRowAndJson) {
+    // balls.nff in small: a ground quad, three spheres and a cone.
+    const auto scene = tempDir() / "balls.nff";
+    std::ofstream(scene) << "p 4\n-1 -1 0\n1 -1 0\n1 1 0\n-1 1 0\n"
+                            "s 0 0 1 0.5\ns 0 0 2 0.5\ns 0 0 3 0.5\nc 0 0 0 0.2 0 0 1 0.1\n";
+    const auto out = tempDir() / "balls";
+    const Result r = run("render -DASDS::type=naive -DCamera::width=16 -DCamera::height=16 --scene " + scene.string() +
+                         " --out " + out.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("not supported, skipped: 3 spheres, 1 cones/cylinders"), std::string::npos) << r.output;
+    std::ifstream in(out.string() + ".json");
+    const nlohmann::json j = nlohmann::json::parse(in);
+    EXPECT_EQ(j["prims"], 2);
+    EXPECT_EQ(j["degenerate"], 0);
+    EXPECT_EQ(j["unsupported_spheres"], 3);
+    EXPECT_EQ(j["unsupported_cones"], 1);
+}
+
 TEST(Cli, RaycastAnswersRayFileWithNaive) {
     const auto scene = tempDir() / "quad.obj";
     std::ofstream(scene) << "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n";
