@@ -99,8 +99,9 @@ void requireSomethingToRender(const Scene& scene) {
     const LoadReport& r = scene.report;
     std::string why;
     if (scene.triangleCount() > 0) {
-        why = fmt::format("all {} triangles are degenerate (zero area, NaN or infinite vertices, or a normal that "
-                          "cannot be normalised)", scene.triangleCount());
+        why = fmt::format("{} degenerate (zero area, NaN or infinite vertices, or a normal that cannot be "
+                          "normalised)", scene.triangleCount() == 1 ? "its one triangle is"
+                                         : fmt::format("all {} triangles are", scene.triangleCount()));
     } else if (scene.positions.empty()) {
         why = "no primitives";
     } else {
