@@ -166,7 +166,7 @@ void runJob(const Options& options, const Scene& scene, const SceneLoadInfo& loa
         if (env.getBool("Output::heatmap"))
             writeHeatmapPng(out / (base + ".heatmap.png"), fb), images["heatmap"] = base + ".heatmap.png";
 
-        const StatsRow row{scene.name, accel, scene.triangleCount(), scene.report.degenerateTriangles,
+        const StatsRow row{scene.name, accel, scene.triangleCount(), scene.report,
                            built.accel->hasCounters(), built.stats, stats};
         json run = statsJson(row);
         run["shadows"] = shadows;

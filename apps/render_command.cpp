@@ -57,7 +57,7 @@ void addRenderCommand(CLI::App& app) {
                 fmt::print(stderr, "heat map: traversal steps per pixel, full scale {:.0f}\n", scale);
             }
             const StatsRow row{scene.name, std::string(built.accel->name()), scene.triangleCount(),
-                               scene.report.degenerateTriangles, built.accel->hasCounters(), built.stats, stats};
+                               scene.report, built.accel->hasCounters(), built.stats, stats};
             nlohmann::json json = statsJson(row);
             json["image"] = {{"width", fb.width}, {"height", fb.height}, {"samples", settings.samples}};
             json["scene_file"] = sceneFileJson(scene);

@@ -21,6 +21,7 @@ constexpr size_t kMaxPolygonCorners = 255;
 struct ObjScan {
     std::vector<Vec3> positions;
     std::vector<size_t> faceLines;  // line of each face, in file order
+    std::string_view firstOther;    // the first line that is not blank, a comment, a v or an f
 };
 
 // Our pass over the text. Lines and statements are recognised exactly as tinyobj does,
@@ -36,7 +37,10 @@ ObjScan scanObj(const std::filesystem::path& file, std::string_view text) {
         pos = end + (text.substr(end, 2) == "\r\n" ? 2 : 1);
 
         line.remove_prefix(std::min(line.find_first_not_of(" \t"), line.size()));
-        if (line.size() < 2 || (line[1] != ' ' && line[1] != '\t')) continue;
+        if (line.size() < 2 || (line[1] != ' ' && line[1] != '\t') || (line[0] != 'v' && line[0] != 'f')) {
+            if (scan.firstOther.empty() && !line.empty() && line[0] != '#') scan.firstOther = line;
+            continue;
+        }
         TextParser statement(file, line.substr(2), false, lineNumber);
         if (line[0] == 'v') {
             // Further values (w, vertex colours) are not ours to check.
@@ -70,6 +74,11 @@ InputError tinyobjError(const std::filesystem::path& file, std::string message) 
 
 Scene readObj(const std::filesystem::path& file, const std::string& bytes) {
     ObjScan scan = scanObj(file, bytes);
+    // tinyobj ignores lines it does not know, so any text would load as an empty scene.
+    if (scan.positions.empty() && scan.faceLines.empty() && !scan.firstOther.empty()) {
+        throw inputError(file, 0, fmt::format("not an OBJ file: text with no vertex or face statements (v, f); it "
+                                              "starts {}", quoted(scan.firstOther)));
+    }
 
     tinyobj::attrib_t attrib;
     std::vector<tinyobj::shape_t> shapes;

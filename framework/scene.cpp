@@ -1,11 +1,16 @@
 #include "framework/scene.h"
 
+#include <cmath>
+
 namespace bvhlab {
 
 bool isDegenerate(const Triangle& tri) {
     if (!isFinite(tri.v0) || !isFinite(tri.v1) || !isFinite(tri.v2)) return true;
-    const Vec3 n = tri.geometricNormal();
-    return (n.x == 0.0f && n.y == 0.0f && n.z == 0.0f) || !isFinite(n);
+    // The renderer shades and offsets rays with this very normal. A finite cross product can
+    // still fail to normalise: legs of 1e-20 give a denormal 1e-40 whose square is 0 (NaN);
+    // legs beyond about 4e9, a square that overflows (a zero normal).
+    const Vec3 n = glm::normalize(tri.geometricNormal());
+    return !isFinite(n) || std::abs(glm::length(n) - 1.0f) > 1e-3f;
 }
 
 void Scene::finalize() {

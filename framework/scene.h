@@ -35,7 +35,7 @@ struct CameraSpec {
 
 // What a reader met and did not turn into triangles, reported after loading.
 struct LoadReport {
-    size_t degenerateTriangles = 0;  // zero area, NaN or infinite vertices: kept, never built over
+    size_t degenerateTriangles = 0;  // see isDegenerate: kept, never built over
     size_t unsupportedSpheres = 0;   // NFF `s`
     size_t unsupportedCones = 0;     // NFF `c`
     std::vector<std::string> warnings;
@@ -77,6 +77,8 @@ struct Scene {
     size_t triangleCount() const { return indices.size(); }
 };
 
+// Zero area, a NaN or infinite vertex, or a normal that cannot be normalised in float (its
+// squared length under- or overflows): no hit on it could be shaded or offset.
 bool isDegenerate(const Triangle& tri);
 
 }  // namespace bvhlab

@@ -274,6 +274,7 @@ CachedScene loadSceneCached(const std::filesystem::path& source, const std::file
     std::string why;
     if (std::filesystem::exists(result.cacheFile)) {
         if (std::optional<Scene> cached = readSceneCache(result.cacheFile, key, source, &why)) {
+            requireSomethingToRender(*cached);  // what loadScene refuses, an entry must not let through
             result.scene = std::move(*cached);
             result.fromCache = true;
             return result;

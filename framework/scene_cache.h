@@ -17,7 +17,7 @@ namespace bvhlab {
 
 // Bump when the cache layout changes or when a reader's output for the same bytes changes
 // (old entries then miss and are rewritten).
-constexpr uint32_t kSceneCacheVersion = 1;
+constexpr uint32_t kSceneCacheVersion = 2;
 
 // What identifies a source file's content: its size and checksums of its raw bytes.
 struct SceneCacheKey {
@@ -49,7 +49,8 @@ struct CachedScene {
 };
 
 // The scene of `source` from the cache in `cacheDir` if a valid entry exists, else parsed by
-// loadScene and then stored (a failure to store is a note, not an error).
+// loadScene and then stored (a failure to store is a note, not an error). Throws what loadScene
+// throws, and the same "nothing to render" error for an entry with nothing to render.
 CachedScene loadSceneCached(const std::filesystem::path& source, const std::filesystem::path& cacheDir);
 
 }  // namespace bvhlab

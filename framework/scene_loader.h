@@ -8,6 +8,11 @@ namespace bvhlab {
 
 Scene loadScene(const std::filesystem::path& file);
 
+// Throws InputError naming the file when a loaded, finalized scene has nothing to render (no
+// primitives, all degenerate, or all of a kind we do not render). loadScene calls it; so does
+// the scene cache on a hit. Scenes built in code may be empty on purpose and are not checked.
+void requireSomethingToRender(const Scene& scene);
+
 // The readers loadScene dispatches to; each takes the file's (decompressed) bytes.
 Scene readObj(const std::filesystem::path& file, const std::string& bytes);
 Scene readPly(const std::filesystem::path& file, const std::string& bytes);

@@ -53,9 +53,11 @@ std::string formatStatsTable(const StatsRow& row) {
     // the shadow rays alone (any-hit queries toward the lights), as the report's rows.
     line("primary", row.render.primary, true);
     line("  shadow rays", row.render.shadow, false);
-    out += fmt::format("degenerate triangles skipped: {}; shadow rays skipped: {} (shadows off), {} (light behind "
-                       "surface); bounces cut by depthLimit: {}; threads: {}",
-                       row.degenerate, row.render.shadowRaysSkippedDisabled, row.render.shadowRaysSkippedBackfacing,
+    out += fmt::format("degenerate triangles skipped: {}; not supported, skipped: {} spheres, {} cones/cylinders; "
+                       "shadow rays skipped: {} (shadows off), {} (light behind surface); bounces cut by depthLimit: "
+                       "{}; threads: {}",
+                       row.load.degenerateTriangles, row.load.unsupportedSpheres, row.load.unsupportedCones,
+                       row.render.shadowRaysSkippedDisabled, row.render.shadowRaysSkippedBackfacing,
                        row.render.bouncesSkipped, row.render.threads);
     if (b.sah) out += fmt::format("; SAH with C_trav={} C_isect={}", b.sah->cTraversal, b.sah->cIntersect);
     return out;
@@ -67,7 +69,9 @@ nlohmann::json statsJson(const StatsRow& row) {
         {"scene", row.scene},
         {"accel", row.accel},
         {"prims", row.prims},
-        {"degenerate", row.degenerate},
+        {"degenerate", row.load.degenerateTriangles},
+        {"unsupported_spheres", row.load.unsupportedSpheres},
+        {"unsupported_cones", row.load.unsupportedCones},
         {"nodes", optionalJson(b.nodes)},
         {"leaves", optionalJson(b.leaves)},
         {"avg_leaf_prims", optionalJson(b.avgLeafPrimitives)},

@@ -4,6 +4,7 @@
 
 #include "framework/accelerator.h"
 #include "framework/renderer.h"
+#include "framework/scene.h"
 
 #include <nlohmann/json.hpp>
 
@@ -15,7 +16,7 @@ struct StatsRow {
     std::string scene;
     std::string accel;
     size_t prims = 0;            // triangles in the scene, degenerate ones included
-    size_t degenerate = 0;       // of those, never handed to the builder
+    LoadReport load;             // what loading skipped: degenerate triangles, spheres, cones
     bool hasCounters = true;     // false: N_IT and N_TR unavailable
     BuildStats build;
     RenderStats render;
@@ -24,8 +25,9 @@ struct StatsRow {
 // The table printed after a render (two lines: primary, shadow).
 std::string formatStatsTable(const StatsRow& row);
 
-// JSON with keys scene, accel, prims, nodes, leaves, sah, build_ms, render_ms, threads and
-// objects primary/shadow {queries, n_it, n_tr, t_r_us}; unavailable values are null.
+// JSON with keys scene, accel, prims, degenerate, unsupported_spheres, unsupported_cones,
+// nodes, leaves, sah, build_ms, render_ms, threads and objects primary/shadow {queries, n_it,
+// n_tr, t_r_us}; unavailable values are null.
 nlohmann::json statsJson(const StatsRow& row);
 
 }  // namespace bvhlab

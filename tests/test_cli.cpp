@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <utility>
 
 using namespace bvhlab;
 
@@ -67,6 +68,43 @@ TEST(Cli, BrokenSceneIsOneLineErrorWithFileAndLine) {
     EXPECT_EQ(r.exitCode, 1);
     EXPECT_NE(r.output.find("broken.obj"), std::string::npos) << r.output;
     EXPECT_EQ(r.output.find("Segmentation"), std::string::npos) << r.output;
+}
+
+TEST(Cli, SceneWithNothingToRenderIsAnErrorNamingTheFile) {
+    // Files that once rendered as an empty image with exit 0.
+    const std::pair<const char*, std::string> files[] = {
+        {"empty.obj", ""},
+        {"flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n"},
+        {"binary.obj", std::string("\x7f" "ELF\x02\x01\x01\0\0\0", 10)},
+        {"notes.obj", "Not a scene, just notes.\n"},
+        {"munich.obj", "ply\nformat binary_little_endian 1.0\nelement vertex 0\nend_header\n"},
+        {"spheres.nff", "s 0 0 0 1\n"},
+    };
+    for (const auto& [name, bytes] : files) {
+        const auto scene = tempDir() / name;
+        std::ofstream(scene, std::ios::binary) << bytes;
+        const Result r = run("render -DASDS::type=naive --scene " + scene.string() + " --out " + (tempDir() / "x").string());
+        EXPECT_EQ(r.exitCode, 1) << name << ": " << r.output;
+        EXPECT_NE(r.output.find("error: " + scene.string() + ": "), std::string::npos) << r.output;
+    }
+}
+
+TEST(Cli, SkippedSpheresAndConesAreCountedInTheRowAndJson) {
+    // balls.nff in small: a ground quad, three spheres and a cone.
+    const auto scene = tempDir() / "balls.nff";
+    std::ofstream(scene) << "p 4\n-1 -1 0\n1 -1 0\n1 1 0\n-1 1 0\n"
+                            "s 0 0 1 0.5\ns 0 0 2 0.5\ns 0 0 3 0.5\nc 0 0 0 0.2 0 0 1 0.1\n";
+    const auto out = tempDir() / "balls";
+    const Result r = run("render -DASDS::type=naive -DCamera::width=16 -DCamera::height=16 --scene " + scene.string() +
+                         " --out " + out.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("not supported, skipped: 3 spheres, 1 cones/cylinders"), std::string::npos) << r.output;
+    std::ifstream in(out.string() + ".json");
+    const nlohmann::json j = nlohmann::json::parse(in);
+    EXPECT_EQ(j["prims"], 2);
+    EXPECT_EQ(j["degenerate"], 0);
+    EXPECT_EQ(j["unsupported_spheres"], 3);
+    EXPECT_EQ(j["unsupported_cones"], 1);
 }
 
 TEST(Cli, RaycastAnswersRayFileWithNaive) {

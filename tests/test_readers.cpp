@@ -1,6 +1,7 @@
 // The scene readers on tiny files written here: triangles and their order, degenerate
 // triangles kept in place, normals, materials, NFF's camera and lights, gzip, and errors
-// that name file and line. The fuzz tests feed truncated and corrupted files.
+// that name file and line, files with nothing to render refused. The fuzz tests feed truncated
+// and corrupted files.
 #include "framework/error.h"
 #include "framework/scene_loader.h"
 
@@ -14,6 +15,7 @@
 #include <fstream>
 #include <functional>
 #include <initializer_list>
+#include <random>
 #include <unistd.h>
 
 namespace bvhlab {
@@ -37,6 +39,14 @@ public:
     fs::path write(const std::string& name, std::string_view bytes) const {
         const fs::path file = path_ / name;
         std::ofstream(file, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
+        return file;
+    }
+    fs::path writeGzipped(const std::string& name, std::string_view bytes) const {
+        const fs::path file = path_ / name;
+        gzFile gz = gzopen(file.c_str(), "wb");
+        EXPECT_NE(gz, nullptr);
+        EXPECT_EQ(gzwrite(gz, bytes.data(), unsigned(bytes.size())), int(bytes.size()));
+        EXPECT_EQ(gzclose(gz), Z_OK);
         return file;
     }
     fs::path path() const { return path_; }
@@ -140,11 +150,7 @@ TEST(ObjReader, MissingMtlIsAWarning) {
 TEST(ObjReader, GzipRoundTrip) {
     const std::string text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 4 3\n";
     TempDir dir;
-    const fs::path file = dir.path() / "packed.OBJ.gz";  // the extension is case-insensitive
-    gzFile gz = gzopen(file.c_str(), "wb");
-    ASSERT_NE(gz, nullptr);
-    ASSERT_EQ(gzwrite(gz, text.data(), unsigned(text.size())), int(text.size()));
-    ASSERT_EQ(gzclose(gz), Z_OK);
+    const fs::path file = dir.writeGzipped("packed.OBJ.gz", text);  // the extension is case-insensitive
 
     EXPECT_EQ(readFileBytes(file), text);
     const Scene scene = loadScene(file);
@@ -467,12 +473,7 @@ TEST(ReaderFiles, EmptyFileIsEmptyBytes) {
 
 TEST(ReaderFiles, CorruptGzip) {
     TempDir dir;
-    const fs::path file = dir.path() / "broken.off.gz";
-    const std::string text = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
-    gzFile gz = gzopen(file.c_str(), "wb");
-    ASSERT_NE(gz, nullptr);
-    gzwrite(gz, text.data(), unsigned(text.size()));
-    gzclose(gz);
+    const fs::path file = dir.writeGzipped("broken.off.gz", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
     EXPECT_EQ(loadScene(file).triangleCount(), 1u);
     std::ifstream in(file, std::ios::binary);
     const std::string packed{std::istreambuf_iterator<char>(in), {}};
@@ -481,6 +482,67 @@ TEST(ReaderFiles, CorruptGzip) {
     std::string flipped = packed;
     flipped[12] = char(~flipped[12]);
     expectInputError([&] { loadScene(dir.write("flipped.off.gz", flipped)); }, {"flipped.off.gz"});
+}
+
+// ---------------------------------------------------------------------------------------------
+// Files that are not scenes, or scenes with nothing to render: an error naming the file and
+// why, never an empty image.
+
+std::string randomBytes(size_t n) {
+    std::mt19937 rng(9);
+    std::string bytes(n, '\0');
+    for (char& c : bytes) c = char(rng());
+    return bytes;
+}
+
+TEST(SceneErrors, EmptyObj) {
+    expectLoadError("empty.obj", "", {"empty.obj:", "nothing to render", "no primitives"});
+    expectLoadError("points.obj", "# only vertices\nv 0 0 0\nv 1 0 0\n", {"points.obj:", "2 vertices but no faces"});
+}
+
+TEST(SceneErrors, AllDegenerateObj) {
+    expectLoadError("flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\nf 1 1 2\n",
+                    {"flat.obj:", "nothing to render", "all 2 triangles are degenerate"});
+}
+
+TEST(SceneErrors, AllNanObj) {
+    expectLoadError("nan.obj", "v nan 0 0\nv 1 0 0\nv 0 inf 0\nv 0 1 0\nf 1 2 4\nf 2 3 4\n",
+                    {"nan.obj:", "nothing to render", "all 2 triangles are degenerate"});
+}
+
+TEST(SceneErrors, RandomBytesObj) {
+    expectLoadError("random.obj", randomBytes(4096), {"random.obj:", "binary data, not a text .obj file"});
+}
+
+TEST(SceneErrors, RandomBytesObjGz) {
+    // Not gzip at all (zlib passes such files through), and gzip holding garbage.
+    expectLoadError("random.obj.gz", randomBytes(4096), {"random.obj.gz:", "binary data"});
+    TempDir dir;
+    const fs::path packed = dir.writeGzipped("packed.obj.gz", randomBytes(4096));
+    expectInputError([&] { loadScene(packed); }, {"packed.obj.gz:", "binary data"});
+}
+
+TEST(SceneErrors, TextThatIsNoObj) {
+    expectLoadError("README.obj", "# bvhlab\n\nA research ray tracer.\n\n## Building\n\n    cmake -S . -B build\n",
+                    {"README.obj:", "not an OBJ file", "no vertex or face statements", "'A research ray tracer.'"});
+}
+
+TEST(SceneErrors, PlyNamedObj) {
+    for (PlyEncoding encoding : {PlyEncoding::Ascii, PlyEncoding::LittleEndian}) {
+        expectLoadError("mesh.obj", testPly(encoding), {"mesh.obj:", "a PLY file", "name it .ply"});
+    }
+}
+
+TEST(SceneErrors, NffWithOnlySpheresAndCones) {
+    expectLoadError("spheres.nff", "s 0 0 0 1\ns 2 0 0 0.5\nc 0 0 0 1 0 0 1 0.5\n",
+                    {"spheres.nff:", "nothing to render", "2 spheres and 1 cones/cylinders skipped (not supported",
+                     "no polygons"});
+}
+
+TEST(SceneErrors, NffWithAPolygonAndSpheresLoads) {
+    const Scene scene = loadText("balls.nff", "p 4\n-1 -1 0\n1 -1 0\n1 1 0\n-1 1 0\ns 0 0 1 0.5\ns 0 0 2 0.5\n");
+    EXPECT_EQ(scene.validPrimitives.size(), 2u);
+    EXPECT_EQ(scene.report.unsupportedSpheres, 2u);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -144,6 +144,27 @@ TEST(Render, ImageDoesNotDependOnThreadCount) {
 // Every sample lies in its pixel; counts that fill a grid put one sample in each cell; other
 // counts are jittered over the whole pixel: over many pixels the mean offset is the centre
 // (a half-filled grid would pull it towards the filled rows: the bias this guards against).
+TEST(Render, TriangleWhoseNormalCannotBeNormalisedIsSkipped) {
+    // A sliver of height 1e-40 (its cross product is a denormal whose square is 0), hit dead on
+    // by the one pixel's ray: exactly (0, 0, -1) through the sliver's inside. Shading it would
+    // normalise a NaN normal and cast NaN to int when offsetting the shadow ray.
+    Scene scene;
+    scene.positions = {{0, 0, 0}, {1, 0, 0}, {0.5f, 1e-40f, 0}};
+    scene.indices = {{0, 1, 2}};
+    scene.finalize();
+    EXPECT_EQ(scene.report.degenerateTriangles, 1u);
+
+    NaiveAccelerator accel;
+    accel.build(scene.primitives());
+    RenderSettings settings;
+    settings.lights = {{Vec3(0.5f, 0, 5), Vec3(1.0f)}};
+    Framebuffer fb(1, 1);
+    render(scene, accel, Camera(CameraSpec{Vec3(0.5f, 5e-41f, 1), Vec3(0.5f, 5e-41f, 0), Vec3(0, 1, 0), 45.0f, 1, 1}),
+           settings, fb);
+    EXPECT_EQ(fb.primitive[0], kInvalidPrimitive);
+    EXPECT_TRUE(isFinite(fb.color[0])) << fb.color[0].x;
+}
+
 TEST(PixelSampler, StratifiedWhereAGridFillsUnbiasedElsewhere) {
     for (int count : {1, 2, 3, 4, 5, 6, 8, 9, 12, 16, 32, 64}) {
         SCOPED_TRACE(count);

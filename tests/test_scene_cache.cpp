@@ -1,5 +1,6 @@
 // The binary scene cache: a scene survives the round trip field by field, the key follows the
 // source's bytes, and damaged or foreign entries are refused with a reason, never trusted.
+#include "framework/error.h"
 #include "framework/procedural.h"
 #include "framework/scene_cache.h"
 #include "tests/scratch_dir.h"
@@ -146,4 +147,24 @@ TEST(SceneCache, DamagedOrForeignEntriesAreRefused) {
     EXPECT_TRUE(third.fromCache);
     EXPECT_EQ(third.scene.triangleCount(), 1u);
     EXPECT_EQ(third.scene.name, "tri");
+}
+
+TEST(SceneCache, AnEntryWithNothingToRenderIsRefusedAsTheFileWouldBe) {
+    // An entry for these bytes that holds no triangles (written by hand, or before loadScene
+    // refused such scenes) must not give the empty scene that loading the file refuses.
+    const fs::path source = tempDir() / "hollow.obj";
+    std::ofstream(source) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    const SceneCacheKey key = sceneCacheKey(source);
+    const fs::path cacheDir = tempDir() / "hollow_cache";
+    fs::create_directories(cacheDir);
+    Scene empty;
+    empty.name = "hollow";
+    empty.finalize();
+    writeSceneCache(cacheDir / key.cacheFileName(), key, empty);
+    try {
+        loadSceneCached(source, cacheDir);
+        ADD_FAILURE() << "no InputError thrown";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("hollow.obj: nothing to render"), std::string::npos) << e.what();
+    }
 }

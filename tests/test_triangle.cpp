@@ -393,6 +393,23 @@ TEST(Triangle, CollinearTrianglesAreFlaggedDegenerate) {
     EXPECT_FALSE(isDegenerate({p, q, mid + Vec3(0, 0, 1e-3f)}));
 }
 
+TEST(Triangle, NormalsThatCannotBeNormalisedAreDegenerate) {
+    // Finite, non-zero cross products whose squared length leaves float's range: the
+    // renderer's glm::normalize would give a NaN normal (and ray_offset.h an int cast of NaN)
+    // or a zero one.
+    const Triangle tiny{{0, 0, 0}, {1e-20f, 0, 0}, {0, 1e-20f, 0}};        // cross 1e-40, squared 0
+    const Triangle sliver{{0, 0, 0}, {1, 0, 0}, {0.5f, 1e-40f, 0}};         // a denormal height
+    const Triangle huge{{0, 0, 0}, {1e19f, 0, 0}, {5e18f, 1e19f, 0}};       // cross 1e38, squared inf
+    for (const Triangle& tri : {tiny, sliver, huge}) {
+        ASSERT_TRUE(isFinite(tri.geometricNormal()));
+        ASSERT_NE(tri.geometricNormal(), Vec3(0.0f));
+        EXPECT_TRUE(isDegenerate(tri)) << glm::normalize(tri.geometricNormal()).z;
+    }
+    // Small and large triangles whose normal does normalise stay.
+    EXPECT_FALSE(isDegenerate({{0, 0, 0}, {1e-9f, 0, 0}, {0, 1e-9f, 0}}));
+    EXPECT_FALSE(isDegenerate({{0, 0, 0}, {1e9f, 0, 0}, {0, 1e9f, 0}}));
+}
+
 TEST(Triangle, NaNRaysNeverHit) {
     const Ray good = Ray({1.5f, 2.0f, 0.0f}, {0.1f, 0.1f, 1.0f});
     ASSERT_TRUE(hitsF(good, kTri));
