@@ -9,6 +9,7 @@
 #include "apps/scene_list.h"
 #include "framework/camera.h"
 #include "framework/error.h"
+#include "framework/heatmap.h"
 #include "framework/image_io.h"
 #include "framework/provenance.h"
 #include "framework/renderer.h"
@@ -129,10 +130,18 @@ struct Options {
     std::vector<std::string> merge;
 };
 
+// A job's framebuffer step counts, kept until the scene's heat maps are drawn at one scale.
+struct FinishedJob {
+    nlohmann::json job;
+    bool hasCounters = false;
+    int width = 0, height = 0;
+    std::vector<float> steps[2];  // traversal steps without and with shadows
+};
+
 // One job: build once, render without and with shadows, write images and the job file.
-void runJob(const Options& options, const Scene& scene, const SceneLoadInfo& loadInfo, const Env& sceneEnv,
-            const SceneEntry& entry, const std::string& accel, const json& order, const Shard& shard,
-            const Progress& progress, size_t jobNumber) {
+FinishedJob runJob(const Options& options, const Scene& scene, const SceneLoadInfo& loadInfo, const Env& sceneEnv,
+                   const SceneEntry& entry, const std::string& accel, const json& order, const Shard& shard,
+                   const Progress& progress, size_t jobNumber) {
     const std::filesystem::path out = options.out;
     const std::string name = batchJobName(entry.id, accel);
     const std::string label = fmt::format("{} {}", entry.id, accel);
@@ -149,6 +158,7 @@ void runJob(const Options& options, const Scene& scene, const SceneLoadInfo& loa
 
     const Camera camera(resolveCamera(scene, env));
     const RenderSettings settings = RenderSettings::fromEnv(env, scene, camera.spec());
+    FinishedJob finished{json(), built.accel->hasCounters(), camera.width(), camera.height(), {}};
     json runs = json::object();
     for (const bool shadows : {false, true}) {
         progress.step(jobNumber, shadows ? 0.55 : 0.1, label + (shadows ? ": rendering with shadows" : ": rendering without shadows"));
@@ -157,13 +167,13 @@ void runJob(const Options& options, const Scene& scene, const SceneLoadInfo& loa
         Framebuffer fb(camera.width(), camera.height());
         const RenderStats stats = render(scene, *built.accel, camera, s, fb);
 
-        // Images: the PNG always (the contact sheet is made from it), EXR and heat map as Output:: says.
+        // Images: the PNG always (the contact sheet is made from it), EXR as Output:: says; the heat
+        // map after the scene's last job (writeSceneHeatmaps).
         const std::string base = "images/" + name + (shadows ? "_shadows" : "");
         json images = {{"png", base + ".png"}};
         writePng(out / (base + ".png"), fb);
         if (env.getBool("Output::exr")) writeExr(out / (base + ".exr"), fb), images["exr"] = base + ".exr";
-        if (env.getBool("Output::heatmap"))
-            writeHeatmapPng(out / (base + ".heatmap.png"), fb), images["heatmap"] = base + ".heatmap.png";
+        if (env.getBool("Output::heatmap")) finished.steps[shadows] = std::move(fb.traversalSteps);
 
         const StatsRow row{scene.name, accel, scene.triangleCount(), scene.report.degenerateTriangles,
                            built.accel->hasCounters(), built.stats, stats};
@@ -174,25 +184,59 @@ void runJob(const Options& options, const Scene& scene, const SceneLoadInfo& loa
     }
 
     progress.step(jobNumber, 0.98, label + ": writing " + (out / "jobs" / (name + ".json")).string());
-    const json job = {{"format", "bvhlab-batch-job-1"},
-                      {"job", name},
-                      {"scene", entry.id},
-                      {"scene_name", scene.name},
-                      {"scene_env", std::filesystem::absolute(entry.envFile).lexically_normal().string()},
-                      {"scene_file", scene.source.string()},
-                      {"scene_from_cache", loadInfo.fromCache},
-                      {"scene_cache_file", loadInfo.cacheFile.string()},
-                      {"scene_load_ms", loadInfo.ms},
-                      {"accel", accel},
-                      {"build_shared", true},  // one build served both renders
-                      {"order", order},
-                      {"shard", fmt::format("{}/{}", shard.index, shard.count)},
-                      {"threads", threads},
-                      {"image", {{"width", camera.width()}, {"height", camera.height()}, {"samples", settings.samples}}},
-                      {"runs", runs},
-                      {"env", env.toJson()},
-                      {"provenance", provenanceJson()}};
+    json job = {{"format", "bvhlab-batch-job-1"},
+                {"job", name},
+                {"scene", entry.id},
+                {"scene_name", scene.name},
+                {"scene_env", std::filesystem::absolute(entry.envFile).lexically_normal().string()},
+                {"scene_file", scene.source.string()},
+                {"scene_from_cache", loadInfo.fromCache},
+                {"scene_cache_file", loadInfo.cacheFile.string()},
+                {"scene_load_ms", loadInfo.ms},
+                {"accel", accel},
+                {"build_shared", true},  // one build served both renders
+                {"order", order},
+                {"shard", fmt::format("{}/{}", shard.index, shard.count)},
+                {"threads", threads},
+                {"image", {{"width", camera.width()}, {"height", camera.height()}, {"samples", settings.samples}}},
+                {"runs", runs},
+                {"env", env.toJson()},
+                {"provenance", provenanceJson()}};
     writeAtomically(out / "jobs" / (name + ".json"), job.dump(2) + "\n");
+    finished.job = std::move(job);
+    return finished;
+}
+
+// The scene's heat maps at one full scale, so that colours compare across its accelerators:
+// Output::heatmapScale when set, else the largest 99th percentile of its renders in this run
+// (every accelerator with counters, without and with shadows). A structure without counters gets
+// none. Then the job files are written again with the heat maps' records.
+void writeSceneHeatmaps(const std::filesystem::path& out, const std::string& sceneId, std::vector<FinishedJob>& jobs,
+                        float fixedScale) {
+    float largest = 1.0f;
+    std::vector<std::string> counted, uncounted;
+    for (const FinishedJob& f : jobs) {
+        (f.hasCounters ? counted : uncounted).push_back(f.job.at("accel").get<std::string>());
+        if (f.hasCounters)
+            for (const std::vector<float>& steps : f.steps) largest = std::max(largest, heatmapPercentile99(steps));
+    }
+    const HeatmapScale scale = chooseHeatmapScale(
+        fixedScale, largest,
+        fmt::format("largest 99th percentile of the scene's renders in this run: {}", fmt::join(counted, ", ")));
+    for (FinishedJob& f : jobs) {
+        const std::string name = f.job.at("job").get<std::string>(), accel = f.job.at("accel").get<std::string>();
+        for (const bool shadows : {false, true}) {
+            json& run = f.job["runs"][shadows ? "shadows" : "no_shadows"];
+            const std::string file = "images/" + name + (shadows ? "_shadows" : "") + ".heatmap.png";
+            run["heatmap"] = writeHeatmap(out / file, file, f.steps[shadows], f.width, f.height, f.hasCounters, accel, scale);
+            if (f.hasCounters) run["images"]["heatmap"] = file;
+        }
+        writeAtomically(out / "jobs" / (name + ".json"), f.job.dump(2) + "\n");
+    }
+    if (!counted.empty())
+        fmt::print(stderr, "heat maps of {}: full scale {} traversal steps ({})\n", sceneId, scale.steps, scale.from);
+    for (const std::string& accel : uncounted)
+        fmt::print(stderr, "heat maps of {}: none for {}: it counts no traversal steps\n", sceneId, accel);
 }
 
 // Copies, replacing `to` (a copy, not a link: a shard folder rerun later must not change the merge).
@@ -282,11 +326,15 @@ void runBatch(const Options& options) {
             SceneLoadInfo info;
             const Scene scene = loadSceneFor("", sceneEnvs[s], true, &info);
             (info.fromCache ? scenesFromCache : scenesParsed) += 1;
+            std::vector<FinishedJob> finished;
             for (size_t j : sceneJobs) {
                 const size_t a = j % accels.size();
                 const json order = {{"scene", s}, {"accel", a}, {"job", j}, {"jobs", totalJobs}};
-                runJob(options, scene, info, sceneEnvs[s], scenes[s], accels[a], order, shard, progress, ++jobNumber);
+                finished.push_back(
+                    runJob(options, scene, info, sceneEnvs[s], scenes[s], accels[a], order, shard, progress, ++jobNumber));
             }
+            if (sceneEnvs[s].getBool("Output::heatmap"))
+                writeSceneHeatmaps(out, scenes[s].id, finished, sceneEnvs[s].getFloat("Output::heatmapScale"));
         }
         fmt::print(stderr, "batch: {} jobs in {}; scenes: {} read from the cache, {} parsed{}; {} builds, each "
                            "serving both renders\n",

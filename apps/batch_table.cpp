@@ -113,6 +113,22 @@ std::pair<std::vector<std::string>, std::vector<std::string>> settingsOf(const s
     return {settings, warnings};
 }
 
+// A scene's heat maps share one full scale when its jobs ran together; merged shards may not.
+std::vector<std::string> heatmapScaleWarnings(const std::vector<json>& jobs) {
+    std::map<std::string, std::set<float>> scales;  // scene -> full scales of its heat maps
+    for (const json& job : jobs)
+        for (const auto& [name, run] : job.at("runs").items())
+            if (run.contains("heatmap") && run["heatmap"].contains("scale"))
+                scales[job.at("scene").get<std::string>()].insert(run["heatmap"]["scale"].get<float>());
+    std::vector<std::string> warnings;
+    for (const auto& [scene, set] : scales)
+        if (set.size() > 1)
+            warnings.push_back(fmt::format("the heat maps of {} have different full scales ({}): its jobs ran in "
+                                           "different shards; set Output::heatmapScale for one scale",
+                                           scene, fmt::join(set, ", ")));
+    return warnings;
+}
+
 std::string readText(const std::filesystem::path& file) {
     std::ifstream in(file);
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
@@ -150,6 +166,7 @@ BatchTables makeBatchTables(const std::vector<json>& jobs) {
     BatchTables t;
     const auto [settings, warnings] = settingsOf(jobs);
     t.warnings = warnings;
+    for (const std::string& w : heatmapScaleWarnings(jobs)) t.warnings.push_back(w);
 
     std::vector<Row> rows;
     for (const json& job : jobs) rows.push_back(makeRow(job, false)), rows.push_back(makeRow(job, true));
@@ -166,7 +183,7 @@ BatchTables makeBatchTables(const std::vector<json>& jobs) {
     md += fmt::format("# bvhlab batch: {} scenes x {} accelerators, without and with shadows\n\n", scenes.size(),
                       accels.size());
     md += fmt::format("Settings: {}.\n\n", fmt::join(settings, ", "));
-    for (const std::string& w : warnings) md += fmt::format("**Warning:** {}.\n\n", w);
+    for (const std::string& w : t.warnings) md += fmt::format("**Warning:** {}.\n\n", w);
     md += "| scene | accel | | #Prims | #Leaves | #Nodes | SAH | T_B [ms] | T_R [µs] | N_IT | N_TR | N_Q | render [ms] |\n";
     md += "|:--|:--|:--|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
     for (const Row& r : rows) {
@@ -204,7 +221,7 @@ BatchTables makeBatchTables(const std::vector<json>& jobs) {
 
     // JSON: the table's rows, and per job primary and shadow queries apart.
     json& j = t.json;
-    j = {{"format", "bvhlab-batch-results-1"}, {"settings", settings}, {"warnings", warnings},
+    j = {{"format", "bvhlab-batch-results-1"}, {"settings", settings}, {"warnings", t.warnings},
          {"rows", json::array()}, {"jobs", json::array()}};
     for (const Row& r : rows)
         j["rows"].push_back({{"scene", r.scene}, {"accel", r.accel}, {"shadows", r.shadows}, {"prims", r.prims},

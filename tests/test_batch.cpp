@@ -1,6 +1,7 @@
 // `bvhlab batch` end to end on two tiny generated scenes: the tables, images and contact sheet
 // are written; a second run reads the scenes from the cache; two shards merged give the table
-// of one run (timings aside); a corrupt cache entry is ignored; bad --shard values are errors.
+// of one run (timings aside); a corrupt cache entry is ignored; bad --shard values are errors;
+// a scene's heat maps share one scale.
 #include "tests/cli_run.h"
 #include "tests/scratch_dir.h"
 
@@ -68,6 +69,11 @@ std::vector<std::vector<std::string>> csvWithoutTimings(const fs::path& file) {
         table.push_back(kept);
     }
     return table;
+}
+
+nlohmann::json readJson(const fs::path& file) {
+    std::ifstream in(file);
+    return nlohmann::json::parse(in);
 }
 
 size_t count(const std::string& text, const std::string& what) {
@@ -214,4 +220,40 @@ TEST(Batch, BadArgumentsAreOneLineErrors) {
     r = run(batchArgs(dir, "out") + " --shard 0/2 --merge " + (dir / "out").string());
     EXPECT_EQ(r.exitCode, 1);
     EXPECT_FALSE(fs::exists(dir / "out" / "jobs" / "first__naive.json"));  // nothing ran
+}
+
+TEST(Batch, HeatmapsOfASceneShareOneScale) {
+    const fs::path dir = makeScenes("heatmaps");
+    const Result r = run(batchArgs(dir, "out") + " --accel naive,sahbvh,embree -DOutput::heatmap=true");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("heat maps of first: none for embree"), std::string::npos) << r.output;
+    for (const char* scene : {"first", "second"}) {
+        // Without and with shadows, naive and sahbvh: one scale, the largest 99th percentile of them.
+        std::vector<double> scales, percentiles;
+        for (const char* accel : {"naive", "sahbvh"}) {
+            const nlohmann::json job = readJson(dir / "out" / "jobs" / (std::string(scene) + "__" + accel + ".json"));
+            for (const char* name : {"no_shadows", "shadows"}) {
+                const nlohmann::json& heatmap = job["runs"][name]["heatmap"];
+                scales.push_back(heatmap["scale"]), percentiles.push_back(heatmap["p99"]);
+                EXPECT_NE(heatmap["scale_from"].get<std::string>().find("largest 99th percentile"), std::string::npos);
+                EXPECT_TRUE(fs::exists(dir / "out" / heatmap["file"].get<std::string>())) << heatmap;
+                EXPECT_EQ(job["runs"][name]["images"]["heatmap"], heatmap["file"]);
+            }
+        }
+        EXPECT_EQ(std::count(scales.begin(), scales.end(), scales[0]), 4) << scene;
+        EXPECT_EQ(scales[0], *std::max_element(percentiles.begin(), percentiles.end())) << scene;
+        EXPECT_LT(*std::min_element(percentiles.begin(), percentiles.end()), scales[0]) << scene;  // naive is cheaper
+
+        // Embree counts nothing: no heat map, and the job says why.
+        const nlohmann::json embree = readJson(dir / "out" / "jobs" / (std::string(scene) + "__embree.json"));
+        EXPECT_TRUE(embree["runs"]["shadows"]["heatmap"].contains("skipped")) << embree["runs"]["shadows"];
+        EXPECT_FALSE(embree["runs"]["shadows"]["images"].contains("heatmap"));
+        EXPECT_FALSE(fs::exists(dir / "out" / "images" / (std::string(scene) + "__embree.heatmap.png")));
+    }
+
+    // A fixed scale for every heat map.
+    ASSERT_EQ(run(batchArgs(dir, "fixed") + " -DOutput::heatmap=true -DOutput::heatmapScale=30").exitCode, 0);
+    const nlohmann::json job = readJson(dir / "fixed" / "jobs" / "second__sahbvh.json");
+    EXPECT_EQ(job["runs"]["shadows"]["heatmap"]["scale"], 30.0);
+    EXPECT_EQ(job["runs"]["shadows"]["heatmap"]["scale_from"], "Output::heatmapScale");
 }
