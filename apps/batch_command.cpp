@@ -1,8 +1,10 @@
 // `bvhlab batch`: the report's Table 1 side by side. For each scene x accelerator (a job): load
 // the scene (through the scene cache), build once, render without and with shadows, write the
-// images and DIR/jobs/SCENE__ACCEL.json; then make the tables and the contact sheet from every
-// job file in DIR. `--shard i/n` runs every n-th job; `--merge DIR...` joins shards.
+// images and DIR/jobs/SCENE__ACCEL.json; then make the tables and the contact sheet from the
+// jobs of the folder's one batch (DIR/batch.json; a folder holding another batch is refused).
+// `--shard i/n` runs every n-th job; `--merge DIR...` joins the shards of one batch.
 #include "accel/registry.h"
+#include "apps/batch_settings.h"
 #include "apps/batch_table.h"
 #include "apps/cli_common.h"
 #include "apps/commands.h"
@@ -26,7 +28,7 @@
 #include <chrono>
 #include <fstream>
 #include <map>
-#include <random>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -103,18 +105,6 @@ private:
     Clock::time_point start_ = Clock::now();
 };
 
-// Writes `text` to `file` by way of a temporary file, so a reader never sees half a job.
-void writeAtomically(const std::filesystem::path& file, const std::string& text) {
-    std::random_device random;
-    const std::filesystem::path temporary = file.string() + fmt::format(".tmp-{:08x}", random());
-    {
-        std::ofstream out(temporary);
-        out << text;
-        if (!out) throw InputError(fmt::format("{}: cannot write", temporary.string()));
-    }
-    std::filesystem::rename(temporary, file);
-}
-
 struct SceneEntry {
     std::string id;  // the env file's stem: a10, conference, ...
     std::filesystem::path envFile;
@@ -128,6 +118,7 @@ struct Options {
     std::string shard;
     bool shardGiven = false;
     std::vector<std::string> merge;
+    bool fresh = false;  // delete the folder's batch first
 };
 
 // A job's framebuffer step counts, kept until the scene's heat maps are drawn at one scale.
@@ -140,8 +131,8 @@ struct FinishedJob {
 
 // One job: build once, render without and with shadows, write images and the job file.
 FinishedJob runJob(const Options& options, const Scene& scene, const SceneLoadInfo& loadInfo, const Env& sceneEnv,
-                   const SceneEntry& entry, const std::string& accel, const json& order, const Shard& shard,
-                   const Progress& progress, size_t jobNumber) {
+                   const SceneEntry& entry, const std::string& accel, const BatchSettings& batch, const json& order,
+                   const Shard& shard, const Progress& progress, size_t jobNumber) {
     const std::filesystem::path out = options.out;
     const std::string name = batchJobName(entry.id, accel);
     const std::string label = fmt::format("{} {}", entry.id, accel);
@@ -187,6 +178,8 @@ FinishedJob runJob(const Options& options, const Scene& scene, const SceneLoadIn
     json job = {{"format", "bvhlab-batch-job-1"},
                 {"job", name},
                 {"scene", entry.id},
+                {"settings", batch.scene(entry.id)->hash},  // the key the tables check
+                {"batch", batch.hash},
                 {"scene_name", scene.name},
                 {"scene_env", std::filesystem::absolute(entry.envFile).lexically_normal().string()},
                 {"scene_file", scene.source.string()},
@@ -202,7 +195,7 @@ FinishedJob runJob(const Options& options, const Scene& scene, const SceneLoadIn
                 {"runs", runs},
                 {"env", env.toJson()},
                 {"provenance", provenanceJson()}};
-    writeAtomically(out / "jobs" / (name + ".json"), job.dump(2) + "\n");
+    writeFileAtomically(out / "jobs" / (name + ".json"), job.dump(2) + "\n");
     finished.job = std::move(job);
     return finished;
 }
@@ -231,7 +224,7 @@ void writeSceneHeatmaps(const std::filesystem::path& out, const std::string& sce
             run["heatmap"] = writeHeatmap(out / file, file, f.steps[shadows], f.width, f.height, f.hasCounters, accel, scale);
             if (f.hasCounters) run["images"]["heatmap"] = file;
         }
-        writeAtomically(out / "jobs" / (name + ".json"), f.job.dump(2) + "\n");
+        writeFileAtomically(out / "jobs" / (name + ".json"), f.job.dump(2) + "\n");
     }
     if (!counted.empty())
         fmt::print(stderr, "heat maps of {}: full scale {} traversal steps ({})\n", sceneId, scale.steps, scale.from);
@@ -246,14 +239,44 @@ void copyInto(const std::filesystem::path& from, const std::filesystem::path& to
     std::filesystem::copy_file(from, to, std::filesystem::copy_options::overwrite_existing);
 }
 
-// Copies the job files and their images of every shard folder into `out`.
-void mergeShards(const std::vector<std::string>& dirs, const std::filesystem::path& out) {
-    std::map<std::string, std::string> seen;  // job -> folder it came from
+// Makes `out` the folder of the batch `settings`: cleared first with --fresh, refused if it holds
+// jobs of another batch, then its settings recorded (before any job, so an interrupted run is
+// resumed by the same command).
+void prepareFolder(const std::filesystem::path& out, const BatchSettings& settings, bool fresh) {
+    if (fresh) clearBatchFolder(out);
+    checkBatchFolder(out, settings);
+    std::filesystem::create_directories(out / "jobs");
+    std::filesystem::create_directories(out / "images");
+    writeBatchSettings(out, settings);
+}
+
+// Copies the job files and their images of every shard folder into `out`; the shards must be of
+// one batch.
+void mergeShards(const std::vector<std::string>& dirs, const std::filesystem::path& out, bool fresh) {
+    std::optional<BatchSettings> batch;
     for (const std::filesystem::path dir : dirs) {
         if (!std::filesystem::is_directory(dir / "jobs"))
             throw InputError(fmt::format("--merge {}: no jobs/ folder here (not the output of bvhlab batch)", dir.string()));
+        const std::optional<BatchSettings> settings = readBatchSettings(dir);
+        if (!settings)
+            throw InputError(fmt::format("--merge {}: no batch.json (written by an older bvhlab): the settings of its "
+                                         "jobs are unknown, so they cannot be merged with others; run that shard again",
+                                         dir.string()));
+        if (batch && settings->hash != batch->hash)
+            throw InputError(fmt::format("--merge: {} and {} hold shards of different batches ({} -> {}):\n  {}\nmerge "
+                                         "only the shards of one batch (run with the same --env, -D, --accel and --scenes)",
+                                         dirs.front(), dir.string(), dirs.front(), dir.string(),
+                                         fmt::join(batchDifferences(*batch, *settings), "\n  ")));
+        if (fresh && std::filesystem::exists(out) && std::filesystem::equivalent(dir, out))
+            throw InputError(fmt::format("--fresh would delete {}, one of the folders to merge", dir.string()));
+        batch = settings;
+    }
+    prepareFolder(out, *batch, fresh);
+
+    std::map<std::string, std::string> seen;  // job -> folder it came from
+    for (const std::filesystem::path dir : dirs) {
         size_t count = 0;
-        for (const json& job : readBatchJobs(dir)) {
+        for (const json& job : readBatchJobs(dir, *batch)) {
             const std::string name = job.at("job").get<std::string>();
             if (const auto it = seen.find(name); it != seen.end())
                 fmt::print(stderr, "warning: job {} is in {} and {}; keeping the one from {}\n", name, it->second,
@@ -274,15 +297,9 @@ void mergeShards(const std::vector<std::string>& dirs, const std::filesystem::pa
 
 void runBatch(const Options& options) {
     const std::filesystem::path out = options.out;
-    auto makeFolders = [&] {
-        std::filesystem::create_directories(out / "jobs");
-        std::filesystem::create_directories(out / "images");
-    };
-
     if (!options.merge.empty()) {
         if (options.shardGiven) throw InputError("--merge and --shard do not go together");
-        makeFolders();
-        mergeShards(options.merge, out);
+        mergeShards(options.merge, out, options.fresh);
     } else {
         const Shard shard = options.shardGiven ? parseShard(options.shard) : Shard{};
         const std::vector<std::string> accels = parseAccelList(options.accels);
@@ -303,8 +320,11 @@ void runBatch(const Options& options) {
                     throw InputError(fmt::format("{}: scene file {} does not exist", file.string(), scenePath.string()));
             }
         }
+        std::vector<std::pair<std::string, Env>> idsAndEnvs;
+        for (size_t s = 0; s < scenes.size(); ++s) idsAndEnvs.emplace_back(scenes[s].id, sceneEnvs[s]);
+        const BatchSettings batch = makeBatchSettings(idsAndEnvs, accels);
+        prepareFolder(out, batch, options.fresh);
 
-        makeFolders();
         // Jobs in table order; this shard takes every n-th.
         const size_t totalJobs = scenes.size() * accels.size();
         std::vector<size_t> mine;
@@ -330,8 +350,8 @@ void runBatch(const Options& options) {
             for (size_t j : sceneJobs) {
                 const size_t a = j % accels.size();
                 const json order = {{"scene", s}, {"accel", a}, {"job", j}, {"jobs", totalJobs}};
-                finished.push_back(
-                    runJob(options, scene, info, sceneEnvs[s], scenes[s], accels[a], order, shard, progress, ++jobNumber));
+                finished.push_back(runJob(options, scene, info, sceneEnvs[s], scenes[s], accels[a], batch, order, shard,
+                                          progress, ++jobNumber));
             }
             if (sceneEnvs[s].getBool("Output::heatmap"))
                 writeSceneHeatmaps(out, scenes[s].id, finished, sceneEnvs[s].getFloat("Output::heatmapScale"));
@@ -368,6 +388,8 @@ void addBatchCommand(CLI::App& app) {
     CLI::Option* shard = command->add_option("--shard", options->shard,
                                              "i/n: run every n-th job starting at job i (0-based, as $SLURM_ARRAY_TASK_ID)");
     command->add_option("--merge", options->merge, "join the jobs of these batch output folders into --out and make its tables");
+    command->add_flag("--fresh", options->fresh,
+                      "first delete the batch --out holds (jobs/, images/, tables): needed when its settings differ");
     command->callback([options, shard] {
         options->shardGiven = shard->count() > 0;
         const int code = runGuarded([&] { runBatch(*options); });
