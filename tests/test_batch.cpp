@@ -176,6 +176,9 @@ TEST(Batch, TwoShardsMergedGiveTheTableOfOneRun) {
                               " --out " + (dir / "merged").string());
     ASSERT_EQ(merged.exitCode, 0) << merged.output;
     EXPECT_EQ(csvWithoutTimings(dir / "merged" / "results.csv"), csvWithoutTimings(dir / "whole" / "results.csv"));
+    // Each shard scaled the heat maps of its own accelerators: the merged table says so.
+    EXPECT_NE(merged.output.find("the heat maps of first have different full scales"), std::string::npos)
+        << merged.output;
     EXPECT_TRUE(fs::exists(dir / "merged" / "contact_sheet.png"));
     EXPECT_TRUE(fs::exists(dir / "merged" / "images" / "first__sahbvh_shadows.png"));
 
