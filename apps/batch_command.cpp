@@ -1,14 +1,17 @@
 // `bvhlab batch`: the report's Table 1 side by side. For each scene x accelerator (a job): load
 // the scene (through the scene cache), build once, render without and with shadows, write the
-// images and DIR/jobs/SCENE__ACCEL.json; then make the tables and the contact sheet from every
-// job file in DIR. `--shard i/n` runs every n-th job; `--merge DIR...` joins shards.
+// images and DIR/jobs/SCENE__ACCEL.json; then make the tables and the contact sheet from the
+// jobs of the folder's one batch (DIR/batch.json; a folder holding another batch is refused).
+// `--shard i/n` runs every n-th job; `--merge DIR...` joins the shards of one batch.
 #include "accel/registry.h"
+#include "apps/batch_settings.h"
 #include "apps/batch_table.h"
 #include "apps/cli_common.h"
 #include "apps/commands.h"
 #include "apps/scene_list.h"
 #include "framework/camera.h"
 #include "framework/error.h"
+#include "framework/heatmap.h"
 #include "framework/image_io.h"
 #include "framework/provenance.h"
 #include "framework/renderer.h"
@@ -25,7 +28,7 @@
 #include <chrono>
 #include <fstream>
 #include <map>
-#include <random>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -102,18 +105,6 @@ private:
     Clock::time_point start_ = Clock::now();
 };
 
-// Writes `text` to `file` by way of a temporary file, so a reader never sees half a job.
-void writeAtomically(const std::filesystem::path& file, const std::string& text) {
-    std::random_device random;
-    const std::filesystem::path temporary = file.string() + fmt::format(".tmp-{:08x}", random());
-    {
-        std::ofstream out(temporary);
-        out << text;
-        if (!out) throw InputError(fmt::format("{}: cannot write", temporary.string()));
-    }
-    std::filesystem::rename(temporary, file);
-}
-
 struct SceneEntry {
     std::string id;  // the env file's stem: a10, conference, ...
     std::filesystem::path envFile;
@@ -127,12 +118,21 @@ struct Options {
     std::string shard;
     bool shardGiven = false;
     std::vector<std::string> merge;
+    bool fresh = false;  // delete the folder's batch first
+};
+
+// A job's framebuffer step counts, kept until the scene's heat maps are drawn at one scale.
+struct FinishedJob {
+    nlohmann::json job;
+    bool hasCounters = false;
+    int width = 0, height = 0;
+    std::vector<float> steps[2];  // traversal steps without and with shadows
 };
 
 // One job: build once, render without and with shadows, write images and the job file.
-void runJob(const Options& options, const Scene& scene, const SceneLoadInfo& loadInfo, const Env& sceneEnv,
-            const SceneEntry& entry, const std::string& accel, const json& order, const Shard& shard,
-            const Progress& progress, size_t jobNumber) {
+FinishedJob runJob(const Options& options, const Scene& scene, const SceneLoadInfo& loadInfo, const Env& sceneEnv,
+                   const SceneEntry& entry, const std::string& accel, const BatchSettings& batch, const json& order,
+                   const Shard& shard, const Progress& progress, size_t jobNumber) {
     const std::filesystem::path out = options.out;
     const std::string name = batchJobName(entry.id, accel);
     const std::string label = fmt::format("{} {}", entry.id, accel);
@@ -150,6 +150,7 @@ void runJob(const Options& options, const Scene& scene, const SceneLoadInfo& loa
 
     const Camera camera(resolveCamera(scene, env));
     const RenderSettings settings = RenderSettings::fromEnv(env, scene, camera.spec());
+    FinishedJob finished{json(), built.accel->hasCounters(), camera.width(), camera.height(), {}};
     json runs = json::object();
     for (const bool shadows : {false, true}) {
         progress.step(jobNumber, shadows ? 0.55 : 0.1, label + (shadows ? ": rendering with shadows" : ": rendering without shadows"));
@@ -158,13 +159,13 @@ void runJob(const Options& options, const Scene& scene, const SceneLoadInfo& loa
         Framebuffer fb(camera.width(), camera.height());
         const RenderStats stats = render(scene, *built.accel, camera, s, fb);
 
-        // Images: the PNG always (the contact sheet is made from it), EXR and heat map as Output:: says.
+        // Images: the PNG always (the contact sheet is made from it), EXR as Output:: says; the heat
+        // map after the scene's last job (writeSceneHeatmaps).
         const std::string base = "images/" + name + (shadows ? "_shadows" : "");
         json images = {{"png", base + ".png"}};
         writePng(out / (base + ".png"), fb);
         if (env.getBool("Output::exr")) writeExr(out / (base + ".exr"), fb), images["exr"] = base + ".exr";
-        if (env.getBool("Output::heatmap"))
-            writeHeatmapPng(out / (base + ".heatmap.png"), fb), images["heatmap"] = base + ".heatmap.png";
+        if (env.getBool("Output::heatmap")) finished.steps[shadows] = std::move(fb.traversalSteps);
 
         const StatsRow row{scene.name, accel, scene.triangleCount(), scene.report,
                            built.accel->hasCounters(), built.stats, stats};
@@ -175,25 +176,61 @@ void runJob(const Options& options, const Scene& scene, const SceneLoadInfo& loa
     }
 
     progress.step(jobNumber, 0.98, label + ": writing " + (out / "jobs" / (name + ".json")).string());
-    const json job = {{"format", "bvhlab-batch-job-1"},
-                      {"job", name},
-                      {"scene", entry.id},
-                      {"scene_name", scene.name},
-                      {"scene_env", std::filesystem::absolute(entry.envFile).lexically_normal().string()},
-                      {"scene_file", scene.source.string()},
-                      {"scene_from_cache", loadInfo.fromCache},
-                      {"scene_cache_file", loadInfo.cacheFile.string()},
-                      {"scene_load_ms", loadInfo.ms},
-                      {"accel", accel},
-                      {"build_shared", true},  // one build served both renders
-                      {"order", order},
-                      {"shard", fmt::format("{}/{}", shard.index, shard.count)},
-                      {"threads", threads},
-                      {"image", {{"width", camera.width()}, {"height", camera.height()}, {"samples", settings.samples}}},
-                      {"runs", runs},
-                      {"env", env.toJson()},
-                      {"provenance", provenanceJson()}};
-    writeAtomically(out / "jobs" / (name + ".json"), job.dump(2) + "\n");
+    json job = {{"format", "bvhlab-batch-job-1"},
+                {"job", name},
+                {"scene", entry.id},
+                {"settings", batch.scene(entry.id)->hash},  // the key the tables check
+                {"batch", batch.hash},
+                {"scene_name", scene.name},
+                {"scene_env", std::filesystem::absolute(entry.envFile).lexically_normal().string()},
+                {"scene_file", scene.source.string()},
+                {"scene_from_cache", loadInfo.fromCache},
+                {"scene_cache_file", loadInfo.cacheFile.string()},
+                {"scene_load_ms", loadInfo.ms},
+                {"accel", accel},
+                {"build_shared", true},  // one build served both renders
+                {"order", order},
+                {"shard", fmt::format("{}/{}", shard.index, shard.count)},
+                {"threads", threads},
+                {"image", {{"width", camera.width()}, {"height", camera.height()}, {"samples", settings.samples}}},
+                {"runs", runs},
+                {"env", env.toJson()},
+                {"provenance", provenanceJson()}};
+    writeFileAtomically(out / "jobs" / (name + ".json"), job.dump(2) + "\n");
+    finished.job = std::move(job);
+    return finished;
+}
+
+// The scene's heat maps at one full scale, so that colours compare across its accelerators:
+// Output::heatmapScale when set, else the largest 99th percentile of its renders in this run
+// (every accelerator with counters, without and with shadows). A structure without counters gets
+// none. Then the job files are written again with the heat maps' records.
+void writeSceneHeatmaps(const std::filesystem::path& out, const std::string& sceneId, std::vector<FinishedJob>& jobs,
+                        float fixedScale) {
+    float largest = 1.0f;
+    std::vector<std::string> counted, uncounted;
+    for (const FinishedJob& f : jobs) {
+        (f.hasCounters ? counted : uncounted).push_back(f.job.at("accel").get<std::string>());
+        if (f.hasCounters)
+            for (const std::vector<float>& steps : f.steps) largest = std::max(largest, heatmapPercentile99(steps));
+    }
+    const HeatmapScale scale = chooseHeatmapScale(
+        fixedScale, largest,
+        fmt::format("largest 99th percentile of the scene's renders in this run: {}", fmt::join(counted, ", ")));
+    for (FinishedJob& f : jobs) {
+        const std::string name = f.job.at("job").get<std::string>(), accel = f.job.at("accel").get<std::string>();
+        for (const bool shadows : {false, true}) {
+            json& run = f.job["runs"][shadows ? "shadows" : "no_shadows"];
+            const std::string file = "images/" + name + (shadows ? "_shadows" : "") + ".heatmap.png";
+            run["heatmap"] = writeHeatmap(out / file, file, f.steps[shadows], f.width, f.height, f.hasCounters, accel, scale);
+            if (f.hasCounters) run["images"]["heatmap"] = file;
+        }
+        writeFileAtomically(out / "jobs" / (name + ".json"), f.job.dump(2) + "\n");
+    }
+    if (!counted.empty())
+        fmt::print(stderr, "heat maps of {}: full scale {} traversal steps ({})\n", sceneId, scale.steps, scale.from);
+    for (const std::string& accel : uncounted)
+        fmt::print(stderr, "heat maps of {}: none for {}: it counts no traversal steps\n", sceneId, accel);
 }
 
 // Copies, replacing `to` (a copy, not a link: a shard folder rerun later must not change the merge).
@@ -203,14 +240,44 @@ void copyInto(const std::filesystem::path& from, const std::filesystem::path& to
     std::filesystem::copy_file(from, to, std::filesystem::copy_options::overwrite_existing);
 }
 
-// Copies the job files and their images of every shard folder into `out`.
-void mergeShards(const std::vector<std::string>& dirs, const std::filesystem::path& out) {
-    std::map<std::string, std::string> seen;  // job -> folder it came from
+// Makes `out` the folder of the batch `settings`: cleared first with --fresh, refused if it holds
+// jobs of another batch, then its settings recorded (before any job, so an interrupted run is
+// resumed by the same command).
+void prepareFolder(const std::filesystem::path& out, const BatchSettings& settings, bool fresh) {
+    if (fresh) clearBatchFolder(out);
+    checkBatchFolder(out, settings);
+    std::filesystem::create_directories(out / "jobs");
+    std::filesystem::create_directories(out / "images");
+    writeBatchSettings(out, settings);
+}
+
+// Copies the job files and their images of every shard folder into `out`; the shards must be of
+// one batch.
+void mergeShards(const std::vector<std::string>& dirs, const std::filesystem::path& out, bool fresh) {
+    std::optional<BatchSettings> batch;
     for (const std::filesystem::path dir : dirs) {
         if (!std::filesystem::is_directory(dir / "jobs"))
             throw InputError(fmt::format("--merge {}: no jobs/ folder here (not the output of bvhlab batch)", dir.string()));
+        const std::optional<BatchSettings> settings = readBatchSettings(dir);
+        if (!settings)
+            throw InputError(fmt::format("--merge {}: no batch.json (written by an older bvhlab): the settings of its "
+                                         "jobs are unknown, so they cannot be merged with others; run that shard again",
+                                         dir.string()));
+        if (batch && settings->hash != batch->hash)
+            throw InputError(fmt::format("--merge: {} and {} hold shards of different batches ({} -> {}):\n  {}\nmerge "
+                                         "only the shards of one batch (run with the same --env, -D, --accel and --scenes)",
+                                         dirs.front(), dir.string(), dirs.front(), dir.string(),
+                                         fmt::join(batchDifferences(*batch, *settings), "\n  ")));
+        if (fresh && std::filesystem::exists(out) && std::filesystem::equivalent(dir, out))
+            throw InputError(fmt::format("--fresh would delete {}, one of the folders to merge", dir.string()));
+        batch = settings;
+    }
+    prepareFolder(out, *batch, fresh);
+
+    std::map<std::string, std::string> seen;  // job -> folder it came from
+    for (const std::filesystem::path dir : dirs) {
         size_t count = 0;
-        for (const json& job : readBatchJobs(dir)) {
+        for (const json& job : readBatchJobs(dir, *batch)) {
             const std::string name = job.at("job").get<std::string>();
             if (const auto it = seen.find(name); it != seen.end())
                 fmt::print(stderr, "warning: job {} is in {} and {}; keeping the one from {}\n", name, it->second,
@@ -231,15 +298,9 @@ void mergeShards(const std::vector<std::string>& dirs, const std::filesystem::pa
 
 void runBatch(const Options& options) {
     const std::filesystem::path out = options.out;
-    auto makeFolders = [&] {
-        std::filesystem::create_directories(out / "jobs");
-        std::filesystem::create_directories(out / "images");
-    };
-
     if (!options.merge.empty()) {
         if (options.shardGiven) throw InputError("--merge and --shard do not go together");
-        makeFolders();
-        mergeShards(options.merge, out);
+        mergeShards(options.merge, out, options.fresh);
     } else {
         const Shard shard = options.shardGiven ? parseShard(options.shard) : Shard{};
         const std::vector<std::string> accels = parseAccelList(options.accels);
@@ -257,8 +318,11 @@ void runBatch(const Options& options) {
                     throw InputError(fmt::format("{}: scene file {} does not exist", file.string(), scenePath.string()));
             }
         }
+        std::vector<std::pair<std::string, Env>> idsAndEnvs;
+        for (size_t s = 0; s < scenes.size(); ++s) idsAndEnvs.emplace_back(scenes[s].id, sceneEnvs[s]);
+        const BatchSettings batch = makeBatchSettings(idsAndEnvs, accels);
+        prepareFolder(out, batch, options.fresh);
 
-        makeFolders();
         // Jobs in table order; this shard takes every n-th.
         const size_t totalJobs = scenes.size() * accels.size();
         std::vector<size_t> mine;
@@ -280,11 +344,15 @@ void runBatch(const Options& options) {
             SceneLoadInfo info;
             const Scene scene = loadSceneFor("", sceneEnvs[s], true, &info);
             (info.fromCache ? scenesFromCache : scenesParsed) += 1;
+            std::vector<FinishedJob> finished;
             for (size_t j : sceneJobs) {
                 const size_t a = j % accels.size();
                 const json order = {{"scene", s}, {"accel", a}, {"job", j}, {"jobs", totalJobs}};
-                runJob(options, scene, info, sceneEnvs[s], scenes[s], accels[a], order, shard, progress, ++jobNumber);
+                finished.push_back(runJob(options, scene, info, sceneEnvs[s], scenes[s], accels[a], batch, order, shard,
+                                          progress, ++jobNumber));
             }
+            if (sceneEnvs[s].getBool("Output::heatmap"))
+                writeSceneHeatmaps(out, scenes[s].id, finished, sceneEnvs[s].getFloat("Output::heatmapScale"));
         }
         fmt::print(stderr, "batch: {} jobs in {}; scenes: {} read from the cache, {} parsed{}; {} builds, each "
                            "serving both renders\n",
@@ -319,6 +387,8 @@ void addBatchCommand(CLI::App& app) {
     CLI::Option* shard = command->add_option("--shard", options->shard,
                                              "i/n: run every n-th job starting at job i (0-based, as $SLURM_ARRAY_TASK_ID)");
     command->add_option("--merge", options->merge, "join the jobs of these batch output folders into --out and make its tables");
+    command->add_flag("--fresh", options->fresh,
+                      "first delete the batch --out holds (jobs/, images/, tables): needed when its settings differ");
     command->callback([options, shard] {
         options->shardGiven = shard->count() > 0;
         const int code = runGuarded([&] { runBatch(*options); });

@@ -1,6 +1,7 @@
 #include "apps/batch_table.h"
 
 #include "apps/contact_sheet.h"
+#include "framework/error.h"
 
 #include <fmt/core.h>
 #include <fmt/ranges.h>
@@ -8,8 +9,8 @@
 #include <algorithm>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <set>
-#include <tuple>
 
 namespace bvhlab {
 namespace {
@@ -113,6 +114,22 @@ std::pair<std::vector<std::string>, std::vector<std::string>> settingsOf(const s
     return {settings, warnings};
 }
 
+// A scene's heat maps share one full scale when its jobs ran together; merged shards may not.
+std::vector<std::string> heatmapScaleWarnings(const std::vector<json>& jobs) {
+    std::map<std::string, std::set<float>> scales;  // scene -> full scales of its heat maps
+    for (const json& job : jobs)
+        for (const auto& [name, run] : job.at("runs").items())
+            if (run.contains("heatmap") && run["heatmap"].contains("scale"))
+                scales[job.at("scene").get<std::string>()].insert(run["heatmap"]["scale"].get<float>());
+    std::vector<std::string> warnings;
+    for (const auto& [scene, set] : scales)
+        if (set.size() > 1)
+            warnings.push_back(fmt::format("the heat maps of {} have different full scales ({}): its jobs ran in "
+                                           "different shards; set Output::heatmapScale for one scale",
+                                           scene, fmt::join(set, ", ")));
+    return warnings;
+}
+
 std::string readText(const std::filesystem::path& file) {
     std::ifstream in(file);
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
@@ -122,34 +139,42 @@ std::string readText(const std::filesystem::path& file) {
 
 std::string batchJobName(const std::string& scene, const std::string& accel) { return scene + "__" + accel; }
 
-std::vector<json> readBatchJobs(const std::filesystem::path& dir) {
-    std::vector<json> jobs;
+std::vector<json> readBatchJobs(const std::filesystem::path& dir, const BatchSettings& settings) {
+    // Table position of a job of this batch; none for another batch's.
+    auto position = [&](const json& job) -> std::optional<std::pair<size_t, size_t>> {
+        const BatchSettings::Scene* scene = settings.scene(job.at("scene").get<std::string>());
+        const auto accel = std::find(settings.accels.begin(), settings.accels.end(), job.at("accel").get<std::string>());
+        if (!scene || accel == settings.accels.end() || job.value("settings", std::string()) != scene->hash)
+            return std::nullopt;
+        return std::pair(size_t(scene - settings.scenes.data()), size_t(accel - settings.accels.begin()));
+    };
+    std::vector<std::pair<std::pair<size_t, size_t>, json>> jobs;  // with their table positions
     const std::filesystem::path folder = dir / "jobs";
-    if (!std::filesystem::is_directory(folder)) return jobs;
+    if (!std::filesystem::is_directory(folder)) return {};
     for (const auto& entry : std::filesystem::directory_iterator(folder)) {
         if (entry.path().extension() != ".json") continue;
         try {
             json job = json::parse(readText(entry.path()));
             if (job.value("format", std::string()) != "bvhlab-batch-job-1") throw std::runtime_error("not a batch job file");
             makeRow(job, false), makeRow(job, true);  // has what the tables need
-            jobs.push_back(std::move(job));
+            const auto at = position(job);
+            if (!at) throw std::runtime_error("a job of another batch (its scene, accelerator or settings are not this folder's)");
+            jobs.emplace_back(*at, std::move(job));
         } catch (const std::exception& e) {
             fmt::print(stderr, "warning: {}: skipped: {}\n", entry.path().string(), e.what());
         }
     }
-    auto key = [](const json& j) {
-        const json& order = j.value("order", json::object());
-        return std::tuple(order.value("scene", 0), order.value("accel", 0), j.at("scene").get<std::string>(),
-                          j.at("accel").get<std::string>());
-    };
-    std::sort(jobs.begin(), jobs.end(), [&](const json& a, const json& b) { return key(a) < key(b); });
-    return jobs;
+    std::sort(jobs.begin(), jobs.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::vector<json> sorted;
+    for (auto& [at, job] : jobs) sorted.push_back(std::move(job));
+    return sorted;
 }
 
-BatchTables makeBatchTables(const std::vector<json>& jobs) {
+BatchTables makeBatchTables(const std::vector<json>& jobs, size_t batchJobs) {
     BatchTables t;
     const auto [settings, warnings] = settingsOf(jobs);
     t.warnings = warnings;
+    for (const std::string& w : heatmapScaleWarnings(jobs)) t.warnings.push_back(w);
 
     std::vector<Row> rows;
     for (const json& job : jobs) rows.push_back(makeRow(job, false)), rows.push_back(makeRow(job, true));
@@ -166,7 +191,7 @@ BatchTables makeBatchTables(const std::vector<json>& jobs) {
     md += fmt::format("# bvhlab batch: {} scenes x {} accelerators, without and with shadows\n\n", scenes.size(),
                       accels.size());
     md += fmt::format("Settings: {}.\n\n", fmt::join(settings, ", "));
-    for (const std::string& w : warnings) md += fmt::format("**Warning:** {}.\n\n", w);
+    for (const std::string& w : t.warnings) md += fmt::format("**Warning:** {}.\n\n", w);
     md += "| scene | accel | | #Prims | #Leaves | #Nodes | SAH | T_B [ms] | T_R [µs] | N_IT | N_TR | N_Q | render [ms] |\n";
     md += "|:--|:--|:--|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
     for (const Row& r : rows) {
@@ -184,9 +209,9 @@ BatchTables makeBatchTables(const std::vector<json>& jobs) {
           "with a shadow ray per light; T_R, N_IT and N_TR averaged over all its queries (primary and shadow "
           "together), N_Q counting them all (results.json keeps them apart). n/a: not available (Embree shows "
           "no tree and counts nothing).\n\n";
-    md += fmt::format("Jobs: {} (one build each, serving both renders); the scene came from the scene cache in {} "
+    md += fmt::format("Jobs: {}{} (one build each, serving both renders); the scene came from the scene cache in {} "
                       "of them.",
-                      jobs.size(), fromCache);
+                      jobs.size(), jobs.size() < batchJobs ? fmt::format(" of the batch's {}", batchJobs) : "", fromCache);
     if (!jobs.empty()) {
         const json& p = jobs.front().value("provenance", json::object());
         md += fmt::format(" Commit {}, {}, {}.", p.value("git_commit", std::string("?")), p.value("cpu", std::string("?")),
@@ -204,7 +229,7 @@ BatchTables makeBatchTables(const std::vector<json>& jobs) {
 
     // JSON: the table's rows, and per job primary and shadow queries apart.
     json& j = t.json;
-    j = {{"format", "bvhlab-batch-results-1"}, {"settings", settings}, {"warnings", warnings},
+    j = {{"format", "bvhlab-batch-results-1"}, {"settings", settings}, {"warnings", t.warnings},
          {"rows", json::array()}, {"jobs", json::array()}};
     for (const Row& r : rows)
         j["rows"].push_back({{"scene", r.scene}, {"accel", r.accel}, {"shadows", r.shadows}, {"prims", r.prims},
@@ -233,8 +258,10 @@ BatchTables makeBatchTables(const std::vector<json>& jobs) {
 }
 
 BatchTables writeBatchResults(const std::filesystem::path& dir) {
-    const std::vector<json> jobs = readBatchJobs(dir);
-    BatchTables t = makeBatchTables(jobs);
+    const std::optional<BatchSettings> batch = readBatchSettings(dir);
+    if (!batch) throw InputError(fmt::format("{}: no batch.json, so no batch to make tables of", dir.string()));
+    const std::vector<json> jobs = readBatchJobs(dir, *batch);
+    BatchTables t = makeBatchTables(jobs, batch->jobCount());
     std::ofstream(dir / "results.md") << t.markdown;
     std::ofstream(dir / "results.csv") << t.csv;
     std::ofstream(dir / "results.json") << t.json.dump(2) << "\n";

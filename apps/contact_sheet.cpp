@@ -1,60 +1,24 @@
 #include "apps/contact_sheet.h"
 
 #include "framework/image_io.h"
+#include "framework/image_text.h"
 
-#include <stb_easy_font.h>
 #include <stb_image_resize.h>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <optional>
 
 namespace bvhlab {
 namespace {
 
-using Rgb = std::array<uint8_t, 3>;
-
 constexpr Rgb kBackground{28, 28, 32}, kText{235, 235, 235}, kMissing{90, 90, 90};
-constexpr int kMargin = 10, kGap = 10, kLineHeight = 12;  // stb_easy_font: 12 units per line
-
-void fillRect(Rgb8Image& image, int x0, int y0, int x1, int y1, Rgb color) {
-    x0 = std::max(x0, 0), y0 = std::max(y0, 0), x1 = std::min(x1, image.width), y1 = std::min(y1, image.height);
-    for (int y = y0; y < y1; ++y)
-        for (int x = x0; x < x1; ++x) std::copy(color.begin(), color.end(), &image.pixels[(size_t(y) * image.width + x) * 3]);
-}
-
-// stb_easy_font knows printable ASCII (and line breaks) only.
-std::string printable(std::string text) {
-    for (char& c : text)
-        if ((c < 32 || c > 126) && c != '\n') c = '?';
-    return text;
-}
-
-int textWidth(const std::string& text) { return stb_easy_font_width(const_cast<char*>(text.c_str())); }
-
-// Draws `text` with its top left at (x, y), each font unit `scale` pixels.
-void drawText(Rgb8Image& image, int x, int y, std::string text, int scale, Rgb color) {
-    text = printable(std::move(text));
-    std::vector<char> vertices(text.size() * 300 + 64);  // ~270 bytes per character
-    const int quads = stb_easy_font_print(0, 0, text.data(), nullptr, vertices.data(), int(vertices.size()));
-    for (int q = 0; q < quads; ++q) {
-        // Four vertices of 16 bytes (x, y, z, rgba); the strokes are axis-aligned rectangles.
-        float minX = 1e30f, minY = 1e30f, maxX = -1e30f, maxY = -1e30f;
-        for (int v = 0; v < 4; ++v) {
-            const float* p = reinterpret_cast<const float*>(vertices.data() + (q * 4 + v) * 16);
-            minX = std::min(minX, p[0]), maxX = std::max(maxX, p[0]);
-            minY = std::min(minY, p[1]), maxY = std::max(maxY, p[1]);
-        }
-        fillRect(image, x + int(std::lround(minX * scale)), y + int(std::lround(minY * scale)),
-                 x + int(std::lround(maxX * scale)), y + int(std::lround(maxY * scale)), color);
-    }
-}
+constexpr int kMargin = 10, kGap = 10;
 
 // `text` at scale 2 on one line, or broken at its last space onto two, else at scale 1 (shortened
 // with ".." if even that is too wide). Returns the text (with '\n' where it breaks) and the scale.
 std::pair<std::string, int> fitText(std::string text, int width, bool mayBreak = true) {
-    text = printable(std::move(text));
+    text = printableText(std::move(text));
     if (textWidth(text) * 2 <= width) return {text, 2};
     if (const size_t space = text.rfind(' '); mayBreak && space != std::string::npos) {
         const std::string broken = text.substr(0, space) + "\n" + text.substr(space + 1);
@@ -92,8 +56,8 @@ void writeContactSheet(const std::filesystem::path& out, const std::vector<std::
     }
     if (thumbHeight == 0) thumbHeight = thumbWidth;
 
-    const int labelHeight = 2 * 2 * kLineHeight + 4;  // two lines at scale 2
-    const int titleHeight = title.empty() ? 0 : 2 * kLineHeight + kGap;
+    const int labelHeight = 2 * 2 * kTextLineHeight + 4;  // two lines at scale 2
+    const int titleHeight = title.empty() ? 0 : 2 * kTextLineHeight + kGap;
     const int tileHeight = thumbHeight + labelHeight;
     Rgb8Image sheet;
     sheet.width = 2 * kMargin + int(std::max<size_t>(columns, 1)) * thumbWidth + int(columns > 1 ? columns - 1 : 0) * kGap;

@@ -1,5 +1,5 @@
 // A contact sheet: many renders scaled down onto one PNG, each with its name written under it
-// (stb_image_resize for the thumbnails, stb_easy_font's strokes rasterised for the labels).
+// (stb_image_resize for the thumbnails, framework/image_text.h for the labels).
 #pragma once
 
 #include <filesystem>

@@ -4,6 +4,7 @@
 #include "apps/cli_common.h"
 #include "apps/run_record.h"
 #include "framework/camera.h"
+#include "framework/heatmap.h"
 #include "framework/image_io.h"
 #include "framework/provenance.h"
 #include "framework/renderer.h"
@@ -52,9 +53,14 @@ void addRenderCommand(CLI::App& app) {
 
             if (env.getBool("Output::exr")) writeExr(out.string() + ".exr", fb);
             if (env.getBool("Output::png")) writePng(out.string() + ".png", fb);
+            nlohmann::json heatmap;  // for the JSON: the heat map's file and scale, or why there is none
             if (env.getBool("Output::heatmap")) {
-                const float scale = writeHeatmapPng(out.string() + ".heatmap.png", fb);
-                fmt::print(stderr, "heat map: traversal steps per pixel, full scale {:.0f}\n", scale);
+                const HeatmapScale scale = chooseHeatmapScale(env.getFloat("Output::heatmapScale"),
+                                                              heatmapPercentile99(fb.traversalSteps),
+                                                              "99th percentile of this image");
+                heatmap = writeHeatmap(out.string() + ".heatmap.png", out.string() + ".heatmap.png", fb.traversalSteps,
+                                       fb.width, fb.height, built.accel->hasCounters(), built.accel->name(), scale);
+                fmt::print(stderr, "{}\n", heatmapNote(heatmap));
             }
             const StatsRow row{scene.name, std::string(built.accel->name()), scene.triangleCount(),
                                scene.report, built.accel->hasCounters(), built.stats, stats};
@@ -65,6 +71,7 @@ void addRenderCommand(CLI::App& app) {
             json["env_files"] = options->env.files(choice.envFile);
             json["env"] = env.toJson();
             json["provenance"] = provenanceJson();
+            if (!heatmap.is_null()) json["heatmap"] = heatmap;
             std::ofstream(out.string() + ".json") << json.dump(2) << "\n";
             fmt::print("{}\n", formatStatsTable(row));
             fmt::print(stderr, "wrote {}.{{exr,png,json}}\n", out.string());

@@ -32,7 +32,8 @@ void registerFrameworkKeys(EnvRegistry& r, const std::vector<std::string>& accel
 
     r.add({"Output::exr", T::Bool, "true", "write PATH.exr (RGB, depth, primitive, normal, N_TR, N_IT)", 0, 0, {}});
     r.add({"Output::png", T::Bool, "true", "write PATH.png (tone-mapped RGB)", 0, 0, {}});
-    r.add({"Output::heatmap", T::Bool, "false", "also write PATH.heatmap.png: traversal steps per pixel", 0, 0, {}});
+    r.add({"Output::heatmap", T::Bool, "false", "also write PATH.heatmap.png: traversal steps per pixel, with a colour bar", 0, 0, {}});
+    r.add({"Output::heatmapScale", T::Float, "0", "heat map full scale in traversal steps per pixel, fixed so heat maps compare; 0 = per image (its 99th percentile; bvhlab batch: one per scene)", 0, 1e30, {}});
 }
 
 }  // namespace bvhlab

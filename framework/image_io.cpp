@@ -23,20 +23,6 @@ uint8_t toSrgb8(float linear) {
     return uint8_t(std::lround(s * 255.0f));
 }
 
-// Google's Turbo colour map, polynomial fit (Mikhailov 2019): dark blue -> green -> dark red.
-Vec3 turbo(float x) {
-    x = std::clamp(x, 0.0f, 1.0f);
-    const glm::vec4 v4(1.0f, x, x * x, x * x * x);
-    const glm::vec2 v2 = glm::vec2(v4.z, v4.w) * v4.z;
-    const glm::vec4 kR(0.13572138f, 4.61539260f, -42.66032258f, 132.13108234f);
-    const glm::vec4 kG(0.09140261f, 2.19418839f, 4.84296658f, -14.18503333f);
-    const glm::vec4 kB(0.10667330f, 12.64194608f, -60.58204836f, 110.36276771f);
-    const glm::vec2 kR2(-152.94239396f, 59.28637943f), kG2(4.27729857f, 2.82956604f), kB2(-89.90310912f, 27.34824973f);
-    return glm::clamp(Vec3(glm::dot(v4, kR) + glm::dot(v2, kR2), glm::dot(v4, kG) + glm::dot(v2, kG2),
-                           glm::dot(v4, kB) + glm::dot(v2, kB2)),
-                      0.0f, 1.0f);
-}
-
 void writeRgb8(const std::filesystem::path& file, int width, int height, const std::vector<uint8_t>& rgb) {
     if (!stbi_write_png(file.string().c_str(), width, height, 3, rgb.data(), width * 3))
         throw InputError(file.string() + ": cannot write PNG");
@@ -94,20 +80,6 @@ void writePng(const std::filesystem::path& file, const Framebuffer& fb) {
     for (size_t i = 0; i < fb.color.size(); ++i)
         for (int c = 0; c < 3; ++c) rgb[3 * i + c] = toSrgb8(fb.color[i][c]);
     writeRgb8(file, fb.width, fb.height, rgb);
-}
-
-float writeHeatmapPng(const std::filesystem::path& file, const Framebuffer& fb) {
-    std::vector<float> sorted = fb.traversalSteps;
-    const size_t p99 = sorted.empty() ? 0 : (sorted.size() - 1) * 99 / 100;
-    std::nth_element(sorted.begin(), sorted.begin() + p99, sorted.end());
-    const float scale = sorted.empty() ? 1.0f : std::max(sorted[p99], 1.0f);
-    std::vector<uint8_t> rgb(fb.traversalSteps.size() * 3);
-    for (size_t i = 0; i < fb.traversalSteps.size(); ++i) {
-        const Vec3 c = turbo(fb.traversalSteps[i] / scale);
-        for (int k = 0; k < 3; ++k) rgb[3 * i + k] = uint8_t(std::lround(c[k] * 255.0f));
-    }
-    writeRgb8(file, fb.width, fb.height, rgb);
-    return scale;
 }
 
 std::vector<float> readExrChannel(const std::filesystem::path& file, const std::string& channel, int& width,

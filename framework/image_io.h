@@ -1,5 +1,5 @@
-// Writing the framebuffer: OpenEXR with every channel, PNG for looking at, and the
-// traversal-cost heat map.
+// Writing the framebuffer: OpenEXR with every channel, PNG for looking at (the traversal-cost
+// heat map is framework/heatmap.h).
 #pragma once
 
 #include "framework/framebuffer.h"
@@ -25,10 +25,6 @@ struct Rgb8Image {
 void writePng(const std::filesystem::path& file, const Rgb8Image& image);
 // Any PNG (grey, alpha and palette converted to RGB); throws InputError if unreadable.
 Rgb8Image readPng(const std::filesystem::path& file);
-
-// Per-pixel traversal steps through a perceptual colour map, scaled to the 99th percentile
-// so a few expensive pixels do not wash out the rest. Returns that scale.
-float writeHeatmapPng(const std::filesystem::path& file, const Framebuffer& fb);
 
 // One float channel of an EXR file (for tests and image comparisons).
 std::vector<float> readExrChannel(const std::filesystem::path& file, const std::string& channel, int& width,

@@ -1,6 +1,9 @@
 // `bvhlab batch` end to end on two tiny generated scenes: the tables, images and contact sheet
 // are written; a second run reads the scenes from the cache; two shards merged give the table
-// of one run (timings aside); a corrupt cache entry is ignored; bad --shard values are errors.
+// of one run (timings aside); a corrupt cache entry is ignored; bad --shard values are errors;
+// a folder holds one batch (another is refused, the same one resumed), and its tables count and
+// order what they show; a scene's heat maps share one scale.
+#include "framework/image_io.h"
 #include "tests/cli_run.h"
 #include "tests/scratch_dir.h"
 
@@ -68,6 +71,11 @@ std::vector<std::vector<std::string>> csvWithoutTimings(const fs::path& file) {
         table.push_back(kept);
     }
     return table;
+}
+
+nlohmann::json readJson(const fs::path& file) {
+    std::ifstream in(file);
+    return nlohmann::json::parse(in);
 }
 
 size_t count(const std::string& text, const std::string& what) {
@@ -168,6 +176,9 @@ TEST(Batch, TwoShardsMergedGiveTheTableOfOneRun) {
                               " --out " + (dir / "merged").string());
     ASSERT_EQ(merged.exitCode, 0) << merged.output;
     EXPECT_EQ(csvWithoutTimings(dir / "merged" / "results.csv"), csvWithoutTimings(dir / "whole" / "results.csv"));
+    // Each shard scaled the heat maps of its own accelerators: the merged table says so.
+    EXPECT_NE(merged.output.find("the heat maps of first have different full scales"), std::string::npos)
+        << merged.output;
     EXPECT_TRUE(fs::exists(dir / "merged" / "contact_sheet.png"));
     EXPECT_TRUE(fs::exists(dir / "merged" / "images" / "first__sahbvh_shadows.png"));
 
@@ -214,4 +225,138 @@ TEST(Batch, BadArgumentsAreOneLineErrors) {
     r = run(batchArgs(dir, "out") + " --shard 0/2 --merge " + (dir / "out").string());
     EXPECT_EQ(r.exitCode, 1);
     EXPECT_FALSE(fs::exists(dir / "out" / "jobs" / "first__naive.json"));  // nothing ran
+}
+
+TEST(Batch, FolderOfAnotherBatchIsRefusedWithWhatDiffers) {
+    const fs::path dir = makeScenes("refuse");
+    const fs::path out = dir / "out";
+    const std::string first = batchArgs(dir, "out") + " -DCamera::width=16 -DCamera::height=12";
+    ASSERT_EQ(run(first).exitCode, 0);
+    const std::string table = readText(out / "results.md");
+
+    // Another image size and other accelerators into the same folder: refused, naming both
+    // settings and the ways out; nothing in the folder is touched.
+    const std::string second = batchArgs(dir, "out") + " -DCamera::width=8 -DCamera::height=12 --accel sahbvh";
+    const Result refused = run(second);
+    EXPECT_EQ(refused.exitCode, 1) << refused.output;
+    for (const char* what : {"holds 4 jobs of another batch", "Camera::width: 16 -> 8 (first, second)",
+                             "--accel: naive,sahbvh -> sahbvh", "--fresh", "another --out"})
+        EXPECT_NE(refused.output.find(what), std::string::npos) << what << "\n" << refused.output;
+    EXPECT_EQ(refused.output.find("Camera::height"), std::string::npos) << refused.output;  // the same in both
+    EXPECT_EQ(readText(out / "results.md"), table);
+
+    // The same settings again: accepted (a resumed or repeated run), the table as before.
+    const Result again = run(first);
+    ASSERT_EQ(again.exitCode, 0) << again.output;
+    EXPECT_EQ(csvWithoutTimings(out / "results.csv").size(), 9u);
+
+    // --fresh: the old batch deleted, the new one alone in the tables.
+    const Result fresh = run(second + " --fresh");
+    ASSERT_EQ(fresh.exitCode, 0) << fresh.output;
+    const std::string md = readText(out / "results.md");
+    EXPECT_NE(md.find("# bvhlab batch: 2 scenes x 1 accelerators"), std::string::npos) << md;
+    EXPECT_NE(md.find("Jobs: 2 ("), std::string::npos) << md;
+    EXPECT_EQ(md.find("naive"), std::string::npos) << md;
+    EXPECT_FALSE(fs::exists(out / "jobs" / "first__naive.json"));
+    EXPECT_FALSE(fs::exists(out / "images" / "first__naive.png"));
+
+    // A folder of jobs without recorded settings (an older bvhlab's) is refused as well.
+    fs::remove(out / "batch.json");
+    const Result unknown = run(second);
+    EXPECT_EQ(unknown.exitCode, 1) << unknown.output;
+    EXPECT_NE(unknown.output.find("no batch.json"), std::string::npos) << unknown.output;
+}
+
+TEST(Batch, ShardsOfDifferentBatchesAreNotMerged) {
+    const fs::path dir = makeScenes("mergeguard");
+    ASSERT_EQ(run(batchArgs(dir, "shard0") + " --shard 0/2 -DCamera::width=16").exitCode, 0);
+    ASSERT_EQ(run(batchArgs(dir, "shard1") + " --shard 1/2 -DCamera::width=8").exitCode, 0);
+    const Result r = run("batch --merge " + (dir / "shard0").string() + " " + (dir / "shard1").string() + " --out " +
+                         (dir / "merged").string());
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("hold shards of different batches"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("Camera::width: 16 -> 8 (first, second)"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir / "merged" / "results.md"));
+
+    // Nor is a shard merged into a folder holding another batch.
+    const Result into = run("batch --merge " + (dir / "shard0").string() + " --out " + (dir / "shard1").string());
+    EXPECT_EQ(into.exitCode, 1) << into.output;
+    EXPECT_NE(into.output.find("holds 2 jobs of another batch"), std::string::npos) << into.output;
+}
+
+TEST(Batch, TablesAndContactSheetCountAndOrderWhatTheyShow) {
+    const fs::path dir = makeScenes("counts");
+    std::ofstream(dir / "reversed.list") << "second.env\nfirst.env\n";
+    const std::string args = "batch --scenes " + (dir / "reversed.list").string() + " --accel sahbvh,naive -DScene::cacheDir=" +
+                             (dir / "cache").string() + " --out ";
+    ASSERT_EQ(run(args + (dir / "clean").string()).exitCode, 0);
+
+    // A job file of another batch dropped into the folder (copied by hand): neither shown nor counted.
+    ASSERT_EQ(run(batchArgs(dir, "other") + " --accel tdbvh -DCamera::width=12").exitCode, 0);
+    ASSERT_EQ(run(args + (dir / "out").string()).exitCode, 0);
+    fs::copy_file(dir / "other" / "jobs" / "first__tdbvh.json", dir / "out" / "jobs" / "first__tdbvh.json");
+    for (const char* image : {"first__tdbvh.png", "first__tdbvh_shadows.png"})
+        fs::copy_file(dir / "other" / "images" / image, dir / "out" / "images" / image);
+    const Result r = run(args + (dir / "out").string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("first__tdbvh.json: skipped: a job of another batch"), std::string::npos) << r.output;
+
+    // Table order: the scene list's, then --accel's; the title and footer count the jobs shown.
+    const std::string md = readText(dir / "out" / "results.md");
+    EXPECT_EQ(md.find("| tdbvh |"), std::string::npos) << md;
+    EXPECT_NE(md.find("# bvhlab batch: 2 scenes x 2 accelerators"), std::string::npos) << md;
+    EXPECT_NE(md.find("Jobs: 4 ("), std::string::npos) << md;
+    const size_t rows[] = {md.find("| second | sahbvh |"), md.find("| second | naive |"), md.find("| first | sahbvh |"),
+                           md.find("| first | naive |")};
+    for (size_t i = 0; i < 4; ++i) ASSERT_NE(rows[i], std::string::npos) << i << md;
+    EXPECT_TRUE(std::is_sorted(std::begin(rows), std::end(rows))) << md;
+    EXPECT_EQ(csvWithoutTimings(dir / "out" / "results.csv"), csvWithoutTimings(dir / "clean" / "results.csv"));
+
+    // The contact sheet: a row per scene, two tiles per accelerator, as for the clean folder.
+    const Rgb8Image sheet = readPng(dir / "out" / "contact_sheet.png"), clean = readPng(dir / "clean" / "contact_sheet.png");
+    EXPECT_EQ(sheet.width, 2 * 10 + 4 * 256 + 3 * 10);
+    EXPECT_EQ(sheet.width, clean.width);
+    EXPECT_EQ(sheet.height, clean.height);
+
+    // A shard's folder: its jobs counted as part of the batch.
+    ASSERT_EQ(run(args + (dir / "shard").string() + " --shard 0/2").exitCode, 0);
+    const std::string shard = readText(dir / "shard" / "results.md");
+    EXPECT_NE(shard.find("# bvhlab batch: 2 scenes x 1 accelerators"), std::string::npos) << shard;
+    EXPECT_NE(shard.find("Jobs: 2 of the batch's 4 ("), std::string::npos) << shard;
+}
+
+TEST(Batch, HeatmapsOfASceneShareOneScale) {
+    const fs::path dir = makeScenes("heatmaps");
+    const Result r = run(batchArgs(dir, "out") + " --accel naive,sahbvh,embree -DOutput::heatmap=true");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("heat maps of first: none for embree"), std::string::npos) << r.output;
+    for (const char* scene : {"first", "second"}) {
+        // Without and with shadows, naive and sahbvh: one scale, the largest 99th percentile of them.
+        std::vector<double> scales, percentiles;
+        for (const char* accel : {"naive", "sahbvh"}) {
+            const nlohmann::json job = readJson(dir / "out" / "jobs" / (std::string(scene) + "__" + accel + ".json"));
+            for (const char* name : {"no_shadows", "shadows"}) {
+                const nlohmann::json& heatmap = job["runs"][name]["heatmap"];
+                scales.push_back(heatmap["scale"]), percentiles.push_back(heatmap["p99"]);
+                EXPECT_NE(heatmap["scale_from"].get<std::string>().find("largest 99th percentile"), std::string::npos);
+                EXPECT_TRUE(fs::exists(dir / "out" / heatmap["file"].get<std::string>())) << heatmap;
+                EXPECT_EQ(job["runs"][name]["images"]["heatmap"], heatmap["file"]);
+            }
+        }
+        EXPECT_EQ(std::count(scales.begin(), scales.end(), scales[0]), 4) << scene;
+        EXPECT_EQ(scales[0], *std::max_element(percentiles.begin(), percentiles.end())) << scene;
+        EXPECT_LT(*std::min_element(percentiles.begin(), percentiles.end()), scales[0]) << scene;  // naive is cheaper
+
+        // Embree counts nothing: no heat map, and the job says why.
+        const nlohmann::json embree = readJson(dir / "out" / "jobs" / (std::string(scene) + "__embree.json"));
+        EXPECT_TRUE(embree["runs"]["shadows"]["heatmap"].contains("skipped")) << embree["runs"]["shadows"];
+        EXPECT_FALSE(embree["runs"]["shadows"]["images"].contains("heatmap"));
+        EXPECT_FALSE(fs::exists(dir / "out" / "images" / (std::string(scene) + "__embree.heatmap.png")));
+    }
+
+    // A fixed scale for every heat map.
+    ASSERT_EQ(run(batchArgs(dir, "fixed") + " -DOutput::heatmap=true -DOutput::heatmapScale=30").exitCode, 0);
+    const nlohmann::json job = readJson(dir / "fixed" / "jobs" / "second__sahbvh.json");
+    EXPECT_EQ(job["runs"]["shadows"]["heatmap"]["scale"], 30.0);
+    EXPECT_EQ(job["runs"]["shadows"]["heatmap"]["scale_from"], "Output::heatmapScale");
 }
