@@ -8,6 +8,7 @@
 #include "apps/batch_table.h"
 #include "apps/cli_common.h"
 #include "apps/commands.h"
+#include "apps/run_record.h"
 #include "apps/scene_list.h"
 #include "framework/camera.h"
 #include "framework/error.h"
@@ -36,7 +37,6 @@ namespace bvhlab {
 namespace {
 
 using nlohmann::json;
-using Clock = std::chrono::steady_clock;
 
 struct Shard {
     int index = 0, count = 1;
@@ -62,11 +62,7 @@ Shard parseShard(const std::string& text) {
 std::vector<std::string> parseAccelList(const std::string& text) {
     std::vector<std::string> names, known;
     for (const AcceleratorInfo& info : acceleratorInfos()) known.push_back(info.name);
-    std::string item;
-    for (std::stringstream in(text); std::getline(in, item, ',');) {
-        item.erase(0, item.find_first_not_of(" \t"));
-        item.erase(item.find_last_not_of(" \t") + 1);
-        if (item.empty()) continue;
+    for (const std::string& item : splitCommaList(text)) {
         if (std::find(known.begin(), known.end(), item) == known.end())
             throw InputError(fmt::format("--accel: unknown accelerator '{}' (known: {})", item, fmt::join(known, ", ")));
         if (std::find(names.begin(), names.end(), item) != names.end())
@@ -76,34 +72,6 @@ std::vector<std::string> parseAccelList(const std::string& text) {
     if (names.empty()) throw InputError("--accel: no accelerator given");
     return names;
 }
-
-// 12s, 1m12s, 1h05m.
-std::string duration(double seconds) {
-    const long s = std::lround(std::max(seconds, 0.0));
-    if (s < 60) return fmt::format("{}s", s);
-    if (s < 3600) return fmt::format("{}m{:02}s", s / 60, s % 60);
-    return fmt::format("{}h{:02}m", s / 3600, s % 3600 / 60);
-}
-
-// Progress lines on stderr: [job 3/30 12%] conference sahbvh: rendering with shadows (elapsed 1m12s, ETA 8m00s)
-class Progress {
-public:
-    explicit Progress(size_t jobs) : jobs_(jobs) {}
-
-    // `done` jobs finished plus `fraction` of the current one.
-    void step(size_t job, double fraction, const std::string& what) const {
-        const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
-        const double done = (double(job - 1) + fraction) / double(std::max<size_t>(jobs_, 1));
-        const std::string eta = done > 0.0 ? duration(elapsed * (1.0 - done) / done) : "?";
-        fmt::print(stderr, "[job {}/{} {:.0f}%] {} (elapsed {}, ETA {})\n", job, jobs_, 100.0 * done, what,
-                   duration(elapsed), eta);
-    }
-    double elapsedSeconds() const { return std::chrono::duration<double>(Clock::now() - start_).count(); }
-
-private:
-    size_t jobs_;
-    Clock::time_point start_ = Clock::now();
-};
 
 struct SceneEntry {
     std::string id;  // the env file's stem: a10, conference, ...
@@ -132,10 +100,10 @@ struct FinishedJob {
 // One job: build once, render without and with shadows, write images and the job file.
 FinishedJob runJob(const Options& options, const Scene& scene, const SceneLoadInfo& loadInfo, const Env& sceneEnv,
                    const SceneEntry& entry, const std::string& accel, const BatchSettings& batch, const json& order,
-                   const Shard& shard, const Progress& progress, size_t jobNumber) {
+                   const Shard& shard, Progress& progress, const std::string& jobLabel) {
     const std::filesystem::path out = options.out;
     const std::string name = batchJobName(entry.id, accel);
-    const std::string label = fmt::format("{} {}", entry.id, accel);
+    const std::string label = fmt::format("{} {} {}", jobLabel, entry.id, accel);
 
     Env env = sceneEnv;
     env.set("ASDS::type", accel, "bvhlab batch --accel");
@@ -143,7 +111,7 @@ FinishedJob runJob(const Options& options, const Scene& scene, const SceneLoadIn
     const int threads = options.env.threads >= 0 ? options.env.threads : env.getInt("Batch::threads");
     env.set("SetRayTracing::threads", std::to_string(threads), options.env.threads >= 0 ? "--threads" : "Batch::threads");
 
-    progress.step(jobNumber, 0.0, label + ": building");
+    progress.phase(label + ": building");
     tbb::task_arena arena(threads > 0 ? threads : tbb::info::default_concurrency());
     BuiltAccelerator built;
     arena.execute([&] { built = buildAccelerator(scene, env); });
@@ -153,11 +121,11 @@ FinishedJob runJob(const Options& options, const Scene& scene, const SceneLoadIn
     FinishedJob finished{json(), built.accel->hasCounters(), camera.width(), camera.height(), {}};
     json runs = json::object();
     for (const bool shadows : {false, true}) {
-        progress.step(jobNumber, shadows ? 0.55 : 0.1, label + (shadows ? ": rendering with shadows" : ": rendering without shadows"));
         RenderSettings s = settings;
         s.shadows = shadows;
         Framebuffer fb(camera.width(), camera.height());
-        const RenderStats stats = render(scene, *built.accel, camera, s, fb);
+        const RenderStats stats = renderWithProgress(scene, *built.accel, camera, s, fb, progress,
+                                                     label + (shadows ? ": rendering with shadows" : ": rendering without shadows"));
 
         // Images: the PNG always (the contact sheet is made from it), EXR as Output:: says; the heat
         // map after the scene's last job (writeSceneHeatmaps).
@@ -175,7 +143,6 @@ FinishedJob runJob(const Options& options, const Scene& scene, const SceneLoadIn
         runs[shadows ? "shadows" : "no_shadows"] = run;
     }
 
-    progress.step(jobNumber, 0.98, label + ": writing " + (out / "jobs" / (name + ".json")).string());
     json job = {{"format", "bvhlab-batch-job-1"},
                 {"job", name},
                 {"scene", entry.id},
@@ -195,6 +162,7 @@ FinishedJob runJob(const Options& options, const Scene& scene, const SceneLoadIn
                 {"image", {{"width", camera.width()}, {"height", camera.height()}, {"samples", settings.samples}}},
                 {"runs", runs},
                 {"env", env.toJson()},
+                {"run", runJson()},
                 {"provenance", provenanceJson()}};
     writeFileAtomically(out / "jobs" / (name + ".json"), job.dump(2) + "\n");
     finished.job = std::move(job);
@@ -297,7 +265,7 @@ void mergeShards(const std::vector<std::string>& dirs, const std::filesystem::pa
 }
 
 void runBatch(const Options& options) {
-    const std::filesystem::path out = options.out;
+    const std::filesystem::path out = prepareOutputFolder(options.out);
     if (!options.merge.empty()) {
         if (options.shardGiven) throw InputError("--merge and --shard do not go together");
         mergeShards(options.merge, out, options.fresh);
@@ -328,19 +296,24 @@ void runBatch(const Options& options) {
         std::vector<size_t> mine;
         for (size_t j = 0; j < totalJobs; ++j)
             if (j % size_t(shard.count) == size_t(shard.index)) mine.push_back(j);
-        fmt::print(stderr, "batch: {} scenes x {} accelerators = {} jobs{}; render threads (Batch::threads): {}; into {}\n",
+        fmt::print(stderr, "batch: {} scenes x {} accelerators = {} jobs{}; render threads ({}): {}; into {}\n",
                    scenes.size(), accels.size(), totalJobs,
                    shard.count > 1 ? fmt::format(", shard {}/{} runs {} of them", shard.index, shard.count, mine.size()) : "",
-                   sceneEnvs.empty() ? 1 : sceneEnvs.front().getInt("Batch::threads"), out.string());
+                   options.env.threads >= 0 ? "--threads" : "Batch::threads",
+                   options.env.threads >= 0 ? options.env.threads
+                   : sceneEnvs.empty()      ? 1
+                                            : sceneEnvs.front().getInt("Batch::threads"),
+                   out.string());
 
-        const Progress progress(mine.size());
+        const auto start = Progress::Clock::now();
+        Progress progress;
         size_t jobNumber = 0, scenesFromCache = 0, scenesParsed = 0;
         for (size_t s = 0; s < scenes.size(); ++s) {
             std::vector<size_t> sceneJobs;
             for (size_t j : mine)
                 if (j / accels.size() == s) sceneJobs.push_back(j);
             if (sceneJobs.empty()) continue;
-            progress.step(jobNumber + 1, 0.0, scenes[s].id + ": loading the scene");
+            progress.phase(fmt::format("[job {}/{}] {}: loading the scene", jobNumber + 1, mine.size(), scenes[s].id));
             SceneLoadInfo info;
             const Scene scene = loadSceneFor("", sceneEnvs[s], true, &info);
             (info.fromCache ? scenesFromCache : scenesParsed) += 1;
@@ -348,15 +321,18 @@ void runBatch(const Options& options) {
             for (size_t j : sceneJobs) {
                 const size_t a = j % accels.size();
                 const json order = {{"scene", s}, {"accel", a}, {"job", j}, {"jobs", totalJobs}};
+                ++jobNumber;
                 finished.push_back(runJob(options, scene, info, sceneEnvs[s], scenes[s], accels[a], batch, order, shard,
-                                          progress, ++jobNumber));
+                                          progress, fmt::format("[job {}/{}]", jobNumber, mine.size())));
             }
             if (sceneEnvs[s].getBool("Output::heatmap"))
                 writeSceneHeatmaps(out, scenes[s].id, finished, sceneEnvs[s].getFloat("Output::heatmapScale"));
         }
         fmt::print(stderr, "batch: {} jobs in {}; scenes: {} read from the cache, {} parsed{}; {} builds, each "
                            "serving both renders\n",
-                   mine.size(), duration(progress.elapsedSeconds()), scenesFromCache, scenesParsed,
+                   mine.size(),
+                   Progress::formatDuration(std::chrono::duration<double>(Progress::Clock::now() - start).count()),
+                   scenesFromCache, scenesParsed,
                    scenesParsed && !sceneEnvs.empty() && !sceneEnvs.front().getPath("Scene::cacheDir").empty()
                        ? fmt::format(" (and stored in {})", sceneEnvs.front().getPath("Scene::cacheDir").string())
                        : "",
