@@ -264,7 +264,7 @@ private:
                     const AccelConfig& config = *baseline.config;
                     BuildStats stats;
                     const auto accel = build(config, scene, stats);
-                    const TransformCheck check = checkTransformed(scene, *accel, scale, offset, baseRays, baseline.hits,
+                    const TransformCheck check = checkTransformed(*accel, scale, offset, baseRays, baseline.hits,
                                                                   probes.probes, options_.threads);
                     const LeakStats& leaks = check.leaks;
                     const size_t primDiff = check.otherPrimitive, tDiff = check.tNotScaling, compared = check.compared;

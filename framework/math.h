@@ -45,7 +45,6 @@ struct Bounds3 {
         const Vec3 d = diagonal();
         return d.x * d.y + d.y * d.z + d.z * d.x;
     }
-    float surfaceArea() const { return 2.0f * halfArea(); }
 };
 
 inline Bounds3 unionOf(const Bounds3& a, const Bounds3& b) {

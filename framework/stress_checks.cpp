@@ -9,7 +9,7 @@
 
 namespace bvhlab {
 
-TransformCheck checkTransformed(const Scene&, const Accelerator& accel, double scale, const DVec3& offset,
+TransformCheck checkTransformed(const Accelerator& accel, double scale, const DVec3& offset,
                                 std::span<const Ray> baseRays, std::span<const Hit> baseHits,
                                 std::span<const WatertightProbeRay> probes, int threads) {
     TransformCheck check;

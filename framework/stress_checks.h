@@ -24,7 +24,7 @@ struct TransformCheck {
 
     bool passed() const { return leaks.leaks == 0 && leaks.occlusionLeaks == 0 && otherPrimitive == 0 && tNotScaling == 0; }
 };
-TransformCheck checkTransformed(const Scene& scene, const Accelerator& accel, double scale, const DVec3& offset,
+TransformCheck checkTransformed(const Accelerator& accel, double scale, const DVec3& offset,
                                 std::span<const Ray> baseRays, std::span<const Hit> baseHits,
                                 std::span<const WatertightProbeRay> probes, int threads = 0);
 

@@ -738,3 +738,37 @@ TEST(WideBvh, CollapseKeepsEveryLeafOnce) {
 
 }  // namespace
 }  // namespace bvhlab
+
+namespace bvhlab {
+namespace {
+
+// A split rule that breaks the hook's contract: it hands back an empty left half.
+class EmptyHalfBuilder : public TopDownBuilder {
+public:
+    using TopDownBuilder::TopDownBuilder;
+
+protected:
+    std::optional<Split> trySplit(const BuildRange& range, bool) override {
+        return Split{{range.begin, range.begin, {}, {}}, range};
+    }
+};
+
+}  // namespace
+
+// An empty half would become a node of count 0, which reads as an inner node: the recursion
+// refuses it instead of building a tree that traverses garbage.
+TEST(Bvh, RecursionRefusesASplitWithAnEmptyHalf) {
+    std::vector<PrimRef> refs(8);
+    BuildRange root{0, 8, {}, {}};
+    for (uint32_t i = 0; i < 8; ++i) {
+        refs[i] = {{float(i), 0.0f, 0.0f}, i, {float(i) + 0.5f, 1.0f, 1.0f}, 0};
+        root.bounds.extend(Bounds3{{float(i), 0.0f, 0.0f}, {float(i) + 0.5f, 1.0f, 1.0f}});
+        root.centroidBounds.extend(Vec3(float(i) + 0.25f, 0.5f, 0.5f));
+    }
+    BvhBuildConfig config;
+    config.maxLeaf = 1;
+    EmptyHalfBuilder builder(config);
+    EXPECT_THROW(builder.build(refs, root), std::logic_error);
+}
+
+}  // namespace bvhlab

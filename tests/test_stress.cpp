@@ -237,7 +237,7 @@ TEST_P(Stress, ScaleAndTranslationChangeNothing) {
             const ProbeSet probes = makeWatertightProbes(MeshTopology::of(scene), options);
             BuildStats stats;
             const auto accel = build(scene, &stats);
-            const TransformCheck c = checkTransformed(scene, *accel, scale, offset, baseRays, baseHits, probes.probes);
+            const TransformCheck c = checkTransformed(*accel, scale, offset, baseRays, baseHits, probes.probes);
             EXPECT_GT(c.compared, baseRays.size() / 2);
             leaks += c.leaks.leaks + c.leaks.occlusionLeaks;
             probed += c.leaks.rays;

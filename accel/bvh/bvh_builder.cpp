@@ -4,8 +4,11 @@
 #include "accel/bvh/sweep_sah_builder.h"
 #include "accel/bvh/tdbvh_builder.h"
 
+#include <fmt/core.h>
+
 #include <algorithm>
 #include <bit>
+#include <stdexcept>
 
 namespace bvhlab {
 
@@ -96,6 +99,11 @@ std::vector<BvhNode, TraversalAllocator<BvhNode>> TopDownBuilder::build(std::spa
             node.count = item.range.size();
             continue;
         }
+        // A split rule's contract: two non-empty halves (an empty leaf would read as an inner
+        // node, count == 0), and a depth the traversal stacks can hold (kBvhMaxDepth).
+        if (split->left.size() == 0 || split->right.size() == 0 || item.depth + 1 >= kBvhMaxDepth)
+            throw std::logic_error(fmt::format("BVH builder: split of {} primitives at depth {} into {} + {}",
+                                               item.range.size(), item.depth, split->left.size(), split->right.size()));
         const uint32_t left = uint32_t(nodes.size());
         node.index = left;  // `node` is still valid: reserve() covers every node there can be
         node.count = 0;
@@ -107,6 +115,9 @@ std::vector<BvhNode, TraversalAllocator<BvhNode>> TopDownBuilder::build(std::spa
     return nodes;
 }
 
+namespace {
+
+// Step one of buildBvh: one PrimRef per valid triangle, and their boxes.
 BuildRange preparePrimRefs(const PrimitiveSet& prims, bool simd, PrimRef* out) {
     const uint32_t n = uint32_t(prims.valid.size());
     const Triangle* triangles = prims.triangles.data();
@@ -150,13 +161,16 @@ BuildRange preparePrimRefs(const PrimitiveSet& prims, bool simd, PrimRef* out) {
     return {0, n, acc.bounds(), acc.centroidBounds()};
 }
 
+}  // namespace
+
 std::unique_ptr<TopDownBuilder> makeBvhBuilder(BvhKind kind, const BvhBuildConfig& config) {
     switch (kind) {
     case BvhKind::TopDown: return std::make_unique<TdBvhBuilder>(config);
     case BvhKind::BinnedSah: return std::make_unique<BinnedSahBuilder>(config);
     case BvhKind::SweepSah: return std::make_unique<SweepSahBuilder>(config);
     }
-    return nullptr;
+    // Every BvhKind is a case above; a value outside the enum is a programming error.
+    throw std::logic_error(fmt::format("makeBvhBuilder: unknown BvhKind {}", int(kind)));
 }
 
 Bvh buildBvh(BvhKind kind, const BvhBuildConfig& config, const PrimitiveSet& prims) {

@@ -129,9 +129,6 @@ Split TopDownBuilder::partition(const BuildRange& range, IsLeft isLeft) {
 // chosen builder, then the leaf arrays (primitive indices and triangles in leaf order).
 Bvh buildBvh(BvhKind kind, const BvhBuildConfig& config, const PrimitiveSet& prims);
 
-// Step one of buildBvh, exposed for tests: one PrimRef per valid triangle, and their boxes.
-BuildRange preparePrimRefs(const PrimitiveSet& prims, bool simd, PrimRef* out);
-
 std::unique_ptr<TopDownBuilder> makeBvhBuilder(BvhKind kind, const BvhBuildConfig& config);
 
 }  // namespace bvhlab

@@ -20,7 +20,6 @@ public:
     bool findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const override;
     bool isOccluded(const Ray& ray, QueryCounters& counters) const override;
 
-    const WideBvh& wideBvh() const { return bvh_; }
 
 private:
     BvhKind kind_;
