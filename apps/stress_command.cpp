@@ -11,7 +11,6 @@
 // Tables on stdout, JSON in --out, progress on stderr. Exit code 1 when one of our
 // accelerators (not Embree, which is reported only) fails a check.
 #include "accel/bvh/bvh_node.h"
-#include "accel/naive/naive_accelerator.h"
 #include "accel/registry.h"
 #include "apps/accel_config.h"
 #include "apps/cli_common.h"
@@ -379,15 +378,15 @@ private:
         for (const auto& make : scenes) {
             const Scene scene = make();
             const std::vector<Ray> rays = raysTowardTriangles(scene, 256, options_.seed + 3);
-            NaiveAccelerator naive;
-            naive.build(scene.primitives());
+            const std::unique_ptr<Accelerator> naive = createAccelerator("naive", env_);
+            naive->build(scene.primitives());
             std::vector<Hit> reference(rays.size());
             {
                 tbb::task_arena arena(options_.threads > 0 ? options_.threads : tbb::task_arena::automatic);
                 arena.execute([&] {
                     tbb::parallel_for(size_t(0), rays.size(), [&](size_t i) {
                         QueryCounters c;
-                        naive.findNearest(rays[i], reference[i], c);
+                        naive->findNearest(rays[i], reference[i], c);
                     });
                 });
             }

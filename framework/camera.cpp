@@ -48,9 +48,18 @@ CameraSpec resolveCamera(const Scene& scene, const Env& env) {
     if (const auto from = env.getVec3("Camera::from")) spec.from = *from;
     if (const auto at = env.getVec3("Camera::at")) spec.at = *at;
     if (const auto up = env.getVec3("Camera::up")) spec.up = *up;
+    // The one gate every render passes: a camera from a reader or a forged scene cache entry
+    // is checked here as strictly as one from env.
+    if (!isFinite(spec.from) || !isFinite(spec.at) || !isFinite(spec.up))
+        throw InputError("camera: 'from', 'at' and 'up' must be finite");
     const Vec3 forward = spec.at - spec.from;
     if (glm::length(forward) == 0.0f || glm::length(glm::cross(forward, spec.up)) == 0.0f)
         throw InputError("camera: 'from' and 'at' coincide or 'up' is parallel to the view direction");
+    if (!(spec.fovyDegrees > 0.0f && spec.fovyDegrees < 180.0f))
+        throw InputError(fmt::format("camera: field of view {} degrees, expected 0 < fovy < 180", spec.fovyDegrees));
+    if (spec.width < 1 || spec.height < 1 || spec.width > kMaxImageSide || spec.height > kMaxImageSide)
+        throw InputError(fmt::format("camera: image {} x {}, expected 1 to {} pixels a side", spec.width, spec.height,
+                                     kMaxImageSide));
     return spec;
 }
 

@@ -36,12 +36,15 @@ CameraSpec readViewpoint(TextParser& text) {
     camera.up = readVec3(text, "the up vector");
     expectKeyword(text, "angle");
     camera.fovyDegrees = text.readOnLine<float>("the field of view in degrees");
+    if (!(camera.fovyDegrees > 0.0f && camera.fovyDegrees < 180.0f))
+        throw text.error("the field of view must lie between 0 and 180 degrees");
     expectKeyword(text, "hither");
     text.readOnLine<float>("the hither distance");  // we do not clip near the eye
     expectKeyword(text, "resolution");
     camera.width = text.readOnLine<int>("the image width");
     camera.height = text.readOnLine<int>("the image height");
-    if (camera.width <= 0 || camera.height <= 0) throw text.error("the resolution must be positive");
+    if (camera.width <= 0 || camera.height <= 0 || camera.width > kMaxImageSide || camera.height > kMaxImageSide)
+        throw text.error(fmt::format("the resolution must be 1 to {} pixels a side", kMaxImageSide));
     return camera;
 }
 

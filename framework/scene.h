@@ -24,6 +24,9 @@ struct PointLight {
     Vec3 intensity{1.0f};
 };
 
+// The largest image width or height (Camera::width and Camera::height have the same range).
+inline constexpr int kMaxImageSide = 16384;
+
 struct CameraSpec {
     Vec3 from{0.0f, 0.0f, 1.0f};
     Vec3 at{0.0f};

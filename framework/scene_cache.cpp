@@ -171,7 +171,8 @@ std::optional<Scene> readSceneCache(const std::filesystem::path& cacheFile, cons
     if (!in.read(reinterpret_cast<char*>(&storedCrc), sizeof(storedCrc))) return fail("truncated");
     if (storedCrc != r.crc()) return fail("checksum mismatch (corrupt)");
 
-    // Ranges the renderer relies on, checked so that even a forged entry cannot crash it.
+    // Ranges the renderer relies on, checked so that even a forged entry cannot crash it (its
+    // camera is checked where every camera is, in resolveCamera).
     if (!scene.normals.empty() && scene.normals.size() != scene.positions.size())
         return fail("normals do not match the vertices");
     for (const glm::uvec3& idx : scene.indices)

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
+
 using namespace bvhlab;
 
 TEST(Camera, CentreRayLooksAtTarget) {
@@ -47,4 +49,24 @@ TEST(Camera, EnvOverridesSceneCamera) {
     EXPECT_EQ(spec.height, scene.camera->height);
     env.setOverride("Camera::at=0 5 5");
     EXPECT_THROW(resolveCamera(scene, env), InputError);
+}
+
+// Every render's camera passes resolveCamera, so a scene's own camera (from a reader or a
+// forged scene cache entry) is held to the ranges of the env keys.
+TEST(Camera, SceneCameraOutOfRangeIsRefused) {
+    const Env env;
+    for (int bad = 0; bad < 5; ++bad) {
+        Scene scene;
+        CameraSpec spec;
+        if (bad == 0) spec.fovyDegrees = 0.0f;
+        if (bad == 1) spec.fovyDegrees = std::numeric_limits<float>::quiet_NaN();
+        if (bad == 2) spec.width = kMaxImageSide + 1;
+        if (bad == 3) spec.height = 0;
+        if (bad == 4) spec.from.x = std::numeric_limits<float>::infinity();
+        scene.camera = spec;
+        EXPECT_THROW(resolveCamera(scene, env), InputError) << bad;
+    }
+    Scene fine;
+    fine.camera = CameraSpec{};
+    EXPECT_NO_THROW(resolveCamera(fine, env));
 }
