@@ -226,6 +226,7 @@ void addBenchCommand(CLI::App& app) {
                                       {"rows", nlohmann::json::array()}};
             const std::vector<SceneArgument> scenes = expandSceneList(options->scenes, options->env);
             const std::filesystem::path out = prepareOutputFile(options->out);
+            Progress progress;
             for (size_t s = 0; s < scenes.size(); ++s) {
                 const Env env = scenes[s].load(options->env);
                 const Scene scene = loadSceneFor("", env);
@@ -236,8 +237,8 @@ void addBenchCommand(CLI::App& app) {
                     reference->build(scene.primitives());
                     return makeRaySets(scene, camera, settings.lights, *reference);
                 }();
-                fmt::print(stderr, "[{}/{}] {}: {} primary, {} shadow, {} incoherent rays\n", s + 1, scenes.size(),
-                           scene.name, rays.primary.size(), rays.shadow.size(), rays.incoherent.size());
+                progress.phase(fmt::format("[{}/{}] {}: {} primary, {} shadow, {} incoherent rays", s + 1, scenes.size(),
+                                           scene.name, rays.primary.size(), rays.shadow.size(), rays.incoherent.size()));
 
                 for (int threads : threadCounts) {
                     for (nlohmann::json& row : measureRounds(scene, rays, env, configs, threads, options->builds,

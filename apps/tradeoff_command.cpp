@@ -133,6 +133,7 @@ void addTradeoffCommand(CLI::App& app) {
             std::vector<std::string> ids;
             size_t kept = 0, measured = 0;
             const size_t total = scenes.size() * configs.size();
+            Progress progress;
             for (size_t i = 0; i < scenes.size(); ++i) {
                 const std::string& id = scenes[i].id;
                 ids.push_back(id);
@@ -145,8 +146,8 @@ void addTradeoffCommand(CLI::App& app) {
                     if (options->resume && std::filesystem::exists(file) && storedMatches(file, fingerprint)) ++kept;
                     else pending.push_back(config);
                 }
-                fmt::print(stderr, "[scene {}/{}] {}: {} of {} configurations to measure\n", i + 1, scenes.size(), id,
-                           pending.size(), configs.size());
+                progress.phase(fmt::format("[scene {}/{}] {}: {} of {} configurations to measure", i + 1, scenes.size(),
+                                           id, pending.size(), configs.size()));
                 if (pending.empty()) continue;  // not even loaded
 
                 std::filesystem::create_directories(sceneDir);
