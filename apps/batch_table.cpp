@@ -30,9 +30,17 @@ json allQueries(const json& run) {
     const json& p = run.at("primary");
     const json& s = run.at("shadow");
     const double qp = p.at("queries").get<double>(), qs = s.at("queries").get<double>(), q = qp + qs;
+    // A kind of query that was not traced (no shadow rays) adds no weight; one that was traced
+    // but not counted (Embree's N_IT) makes the figure unavailable; nothing traced at all: n/a.
     auto mean = [&](const char* key) -> json {
-        if (p.at(key).is_null() || s.at(key).is_null()) return nullptr;
-        return q > 0 ? (p.at(key).get<double>() * qp + s.at(key).get<double>() * qs) / q : 0.0;
+        double sum = 0.0;
+        for (const json* part : {&p, &s}) {
+            const double n = part->at("queries").get<double>();
+            if (n == 0.0) continue;
+            if (part->at(key).is_null()) return nullptr;
+            sum += part->at(key).get<double>() * n;
+        }
+        return q > 0 ? json(sum / q) : json();
     };
     return {{"queries", p.at("queries").get<uint64_t>() + s.at("queries").get<uint64_t>()},
             {"t_r_us", mean("t_r_us")},

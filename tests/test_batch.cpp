@@ -134,6 +134,8 @@ TEST(Batch, RunWritesTablesImagesAndContactSheet) {
     EXPECT_GT(shadow, 0u);
     EXPECT_EQ(j["rows"][1]["n_q"].get<uint64_t>(), primary + shadow);
     EXPECT_EQ(j["rows"][0]["n_q"].get<uint64_t>(), 24u * 18u);
+    // The row without shadows has its figures: the untraced shadow rays add no weight.
+    for (const char* figure : {"t_r_us", "n_it", "n_tr"}) EXPECT_TRUE(j["rows"][0][figure].is_number()) << figure;
 
     // The job file: provenance, env, the cache flag and both renders of one build.
     std::ifstream jobIn(out / "jobs" / "first__sahbvh.json");
