@@ -73,11 +73,6 @@ std::vector<std::string> parseAccelList(const std::string& text) {
     return names;
 }
 
-struct SceneEntry {
-    std::string id;  // the env file's stem: a10, conference, ...
-    std::filesystem::path envFile;
-};
-
 struct Options {
     EnvOptions env;
     std::vector<std::string> scenes;
@@ -99,7 +94,7 @@ struct FinishedJob {
 
 // One job: build once, render without and with shadows, write images and the job file.
 FinishedJob runJob(const Options& options, const Scene& scene, const SceneLoadInfo& loadInfo, const Env& sceneEnv,
-                   const SceneEntry& entry, const std::string& accel, const BatchSettings& batch, const json& order,
+                   const SceneArgument& entry, const std::string& accel, const BatchSettings& batch, const json& order,
                    const Shard& shard, Progress& progress, const std::string& jobLabel) {
     const std::filesystem::path out = options.out;
     const std::string name = batchJobName(entry.id, accel);
@@ -149,7 +144,8 @@ FinishedJob runJob(const Options& options, const Scene& scene, const SceneLoadIn
                 {"settings", batch.scene(entry.id)->hash},  // the key the tables check
                 {"batch", batch.hash},
                 {"scene_name", scene.name},
-                {"scene_env", std::filesystem::absolute(entry.envFile).lexically_normal().string()},
+                {"scene_env", entry.envFile.empty() ? json()
+                                                    : json(std::filesystem::absolute(entry.envFile).lexically_normal().string())},
                 {"scene_file", scene.source.string()},
                 {"scene_from_cache", loadInfo.fromCache},
                 {"scene_cache_file", loadInfo.cacheFile.string()},
@@ -272,12 +268,11 @@ void runBatch(const Options& options) {
     } else {
         const Shard shard = options.shardGiven ? parseShard(options.shard) : Shard{};
         const std::vector<std::string> accels = parseAccelList(options.accels);
-        std::vector<SceneEntry> scenes;
-        std::vector<Env> sceneEnvs;
         // Every env file is read up front, so a typo in the last one fails now, not in an hour.
-        for (const SceneArgument& scene : expandSceneList(options.scenes, options.env)) {
+        const std::vector<SceneArgument> scenes = expandSceneList(options.scenes, options.env);
+        std::vector<Env> sceneEnvs;
+        for (const SceneArgument& scene : scenes) {
             const std::filesystem::path file = scene.envFile.empty() ? scene.sceneFile : scene.envFile;
-            scenes.push_back({scene.id, file});
             sceneEnvs.push_back(scene.load(options.env));
             const Env& env = sceneEnvs.back();
             if (!env.getString("Scene::file").empty()) {
@@ -315,7 +310,7 @@ void runBatch(const Options& options) {
             if (sceneJobs.empty()) continue;
             progress.phase(fmt::format("[job {}/{}] {}: loading the scene", jobNumber + 1, mine.size(), scenes[s].id));
             SceneLoadInfo info;
-            const Scene scene = loadSceneFor("", sceneEnvs[s], true, &info);
+            const Scene scene = loadSceneFor(sceneEnvs[s], true, &info);
             (info.fromCache ? scenesFromCache : scenesParsed) += 1;
             std::vector<FinishedJob> finished;
             for (size_t j : sceneJobs) {

@@ -229,7 +229,7 @@ void addBenchCommand(CLI::App& app) {
             Progress progress;
             for (size_t s = 0; s < scenes.size(); ++s) {
                 const Env env = scenes[s].load(options->env);
-                const Scene scene = loadSceneFor("", env);
+                const Scene scene = loadSceneFor(env);
                 const Camera camera(resolveCamera(scene, env));
                 const RenderSettings settings = RenderSettings::fromEnv(env, scene, camera.spec());
                 const RaySets rays = [&] {

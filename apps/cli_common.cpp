@@ -103,13 +103,11 @@ Env SceneChoice::load(const EnvOptions& options) const {
     return env;
 }
 
-Scene loadSceneFor(const std::string& file, const Env& env, bool useCache, SceneLoadInfo* info) {
-    // A file named on the command line is relative to the working folder, one named in env
-    // to Scene::dir (absolute paths stay as they are).
-    const std::filesystem::path path =
-        !file.empty() ? std::filesystem::path(file)
-        : env.getString("Scene::file").empty() ? std::filesystem::path()
-                                                : env.getPath("Scene::dir") / env.getString("Scene::file");
+Scene loadSceneFor(const Env& env, bool useCache, SceneLoadInfo* info) {
+    // Relative to Scene::dir; an absolute Scene::file (as --scene sets it) stays as it is.
+    const std::filesystem::path path = env.getString("Scene::file").empty()
+                                           ? std::filesystem::path()
+                                           : env.getPath("Scene::dir") / env.getString("Scene::file");
     const std::filesystem::path cacheDir = useCache ? env.getPath("Scene::cacheDir") : std::filesystem::path();
     SceneLoadInfo loaded;
     const auto start = std::chrono::steady_clock::now();

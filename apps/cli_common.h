@@ -61,11 +61,11 @@ struct SceneLoadInfo {
     double ms = 0.0;                  // load time (hashing, reading or parsing, finalize)
 };
 
-// The scene from `file`, else from Scene::file (in Scene::dir), else the embedded default; load problems
+// The scene of Scene::file (in Scene::dir; --scene sets it absolute), else the embedded default; load problems
 // (degenerate triangles, unsupported NFF primitives, warnings) are reported on stderr. With `useCache`
 // a scene file is read from / stored into the binary cache in Scene::cacheDir (empty = no cache; see
 // framework/scene_cache.h); `bvhlab batch` uses it, render, raycast and bench parse every time.
-Scene loadSceneFor(const std::string& file, const Env& env, bool useCache = false, SceneLoadInfo* info = nullptr);
+Scene loadSceneFor(const Env& env, bool useCache = false, SceneLoadInfo* info = nullptr);
 
 struct BuiltAccelerator {
     std::unique_ptr<Accelerator> accel;

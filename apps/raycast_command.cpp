@@ -35,7 +35,7 @@ void addRaycastCommand(CLI::App& app) {
             const std::filesystem::path out = prepareOutputFile(options->out);
             Progress progress;
             progress.phase("loading the scene");
-            const Scene scene = loadSceneFor("", env);
+            const Scene scene = loadSceneFor(env);
             progress.phase(fmt::format("building {}", env.getString("ASDS::type")));
             const BuiltAccelerator built = buildAccelerator(scene, env);
             const std::vector<Ray> rays = readRayFile(options->rays);

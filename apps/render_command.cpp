@@ -41,7 +41,7 @@ void addRenderCommand(CLI::App& app) {
 
             Progress progress;
             progress.phase("loading the scene");
-            const Scene scene = loadSceneFor("", env);
+            const Scene scene = loadSceneFor(env);
             progress.phase(fmt::format("building {}", env.getString("ASDS::type")));
             const BuiltAccelerator built = buildAccelerator(scene, env);
             progress.finish();
