@@ -6,8 +6,8 @@
 #include "accel/embree/embree_accelerator.h"
 #include "accel/embree/embree_env.h"
 #include "accel/naive/naive_accelerator.h"
-#include "framework/env_keys.h"
-#include "framework/error.h"
+#include "framework/config/env_keys.h"
+#include "framework/core/error.h"
 
 #include <fmt/ranges.h>
 
@@ -21,8 +21,8 @@ const std::vector<AcceleratorInfo>& acceleratorInfos() {
          {"Embree::quality", "Embree::robust", "Embree::threads"},
          [](const Env& env) { return std::make_unique<EmbreeAccelerator>(env); }},
         {"tdbvh", "BVH by spatial median: the middle of the longest axis (BVH::tdbvhSplit), object median fallback",
-         bvhEnvKeys(BvhKind::TopDown),
-         [](const Env& env) { return std::make_unique<BvhAccelerator>(BvhKind::TopDown, bvhConfigFromEnv(env)); }},
+         bvhEnvKeys(BvhKind::SpatialMedian),
+         [](const Env& env) { return std::make_unique<BvhAccelerator>(BvhKind::SpatialMedian, bvhConfigFromEnv(env)); }},
         {"sahbvh", "BVH by binned SAH (Wald 2007): BVH::bins bins along the widest centre axis, SSE binning",
          bvhEnvKeys(BvhKind::BinnedSah),
          [](const Env& env) { return std::make_unique<BvhAccelerator>(BvhKind::BinnedSah, bvhConfigFromEnv(env)); }},

@@ -2,8 +2,8 @@
 // means one entry in registry.cpp (see docs/adding-an-accelerator.md).
 #pragma once
 
-#include "framework/accelerator.h"
-#include "framework/env.h"
+#include "framework/core/accelerator.h"
+#include "framework/config/env.h"
 
 #include <functional>
 #include <memory>

@@ -1,8 +1,8 @@
 // bvhlab: build, trace and measure bounding volume hierarchies.
-#include "apps/commands.h"
-#include "apps/progress.h"
-#include "apps/run_record.h"
-#include "framework/provenance.h"
+#include "apps/common/commands.h"
+#include "apps/common/progress.h"
+#include "apps/common/run_record.h"
+#include "framework/report/provenance.h"
 
 int main(int argc, char** argv) {
     bvhlab::recordRun(argc, argv);

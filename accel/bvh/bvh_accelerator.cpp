@@ -1,6 +1,6 @@
 #include "accel/bvh/bvh_accelerator.h"
 
-#include "accel/bvh/bvh_traversal.h"
+#include "accel/bvh/traverse/bvh_traversal.h"
 
 #include <chrono>
 
@@ -8,7 +8,7 @@ namespace bvhlab {
 
 std::string_view BvhAccelerator::name() const {
     switch (kind_) {
-    case BvhKind::TopDown: return "tdbvh";
+    case BvhKind::SpatialMedian: return "tdbvh";
     case BvhKind::BinnedSah: return "sahbvh";
     case BvhKind::SweepSah: return "sweepbvh";
     }

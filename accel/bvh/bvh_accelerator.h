@@ -2,8 +2,8 @@
 // parameterised by the builder (tdbvh, sahbvh, sweepbvh).
 #pragma once
 
-#include "accel/bvh/bvh_builder.h"
-#include "framework/accelerator.h"
+#include "accel/bvh/build/bvh_builder.h"
+#include "framework/core/accelerator.h"
 
 namespace bvhlab {
 

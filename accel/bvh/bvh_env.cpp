@@ -35,7 +35,7 @@ void registerBvhKeys(EnvRegistry& r) {
 std::vector<std::string> bvhEnvKeys(BvhKind kind) {
     std::vector<std::string> keys = {"BVH::maxLeaf", "BVH::leafCap", "BVH::cTraversal", "BVH::cIntersect", "BVH::simd", "BVH::robust"};
     switch (kind) {
-    case BvhKind::TopDown: keys.push_back("BVH::tdbvhSplit"); break;
+    case BvhKind::SpatialMedian: keys.push_back("BVH::tdbvhSplit"); break;
     case BvhKind::BinnedSah:
         keys.insert(keys.end(), {"BVH::sahTermination", "BVH::bins", "BVH::allAxes"});
         break;
@@ -55,7 +55,7 @@ BvhBuildConfig bvhConfigFromEnv(const Env& env) {
     c.allAxes = env.getBool("BVH::allAxes");
     c.simd = env.getBool("BVH::simd");
     c.robust = env.getBool("BVH::robust");
-    c.tdSplit = env.getString("BVH::tdbvhSplit") == "nodebox" ? TdSplitBox::NodeBox : TdSplitBox::CentroidBox;
+    c.medianSplitBox = env.getString("BVH::tdbvhSplit") == "nodebox" ? MedianSplitBox::NodeBox : MedianSplitBox::CentroidBox;
     return c;
 }
 

@@ -1,8 +1,8 @@
 // The env keys of the BVH accelerators (tdbvh, sahbvh, sweepbvh), all in section BVH::.
 #pragma once
 
-#include "accel/bvh/bvh_builder.h"
-#include "framework/env.h"
+#include "accel/bvh/build/bvh_builder.h"
+#include "framework/config/env.h"
 
 #include <string>
 #include <vector>

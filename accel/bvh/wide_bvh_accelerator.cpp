@@ -1,6 +1,6 @@
 #include "accel/bvh/wide_bvh_accelerator.h"
 
-#include "accel/bvh/wide_bvh_traversal.h"
+#include "accel/bvh/traverse/wide_bvh_traversal.h"
 
 #include <chrono>
 
@@ -8,7 +8,7 @@ namespace bvhlab {
 
 std::string_view WideBvhAccelerator::name() const {
     switch (kind_) {
-    case BvhKind::TopDown: return "tdbvh4";
+    case BvhKind::SpatialMedian: return "tdbvh4";
     case BvhKind::BinnedSah: return "sahbvh4";
     case BvhKind::SweepSah: return "sweepbvh4";
     }

@@ -3,9 +3,9 @@
 // only the traversal's step differs, so the two measure what the node width buys.
 #pragma once
 
-#include "accel/bvh/bvh_builder.h"
-#include "accel/bvh/wide_bvh.h"
-#include "framework/accelerator.h"
+#include "accel/bvh/build/bvh_builder.h"
+#include "accel/bvh/layout/wide_bvh.h"
+#include "framework/core/accelerator.h"
 
 namespace bvhlab {
 

@@ -1,7 +1,7 @@
 // The env keys of the `embree` accelerator (Embree::quality, Embree::robust, Embree::threads).
 #pragma once
 
-#include "framework/env.h"
+#include "framework/config/env.h"
 
 namespace bvhlab {
 

@@ -2,7 +2,7 @@
 // reference every other accelerator is tested against.
 #pragma once
 
-#include "framework/accelerator.h"
+#include "framework/core/accelerator.h"
 
 #include <vector>
 

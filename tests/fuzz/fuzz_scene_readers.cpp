@@ -3,8 +3,8 @@
 // input must end in an InputError; anything else (a crash, a sanitizer report, another
 // exception, a hang, an allocation beyond -rss_limit_mb) is a finding. Built with
 // -DBVHLAB_FUZZ=ON (clang); see docs/accuracy.md, "Robustness", for how to run it.
-#include "framework/error.h"
-#include "framework/scene_loader.h"
+#include "framework/core/error.h"
+#include "framework/scene/scene_loader.h"
 
 #include <cstddef>
 #include <cstdint>

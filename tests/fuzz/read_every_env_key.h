@@ -1,13 +1,13 @@
 // What fuzz_env does with an env once loaded, shared with its regression tests
-// (tests/test_fuzz_regressions.cpp): every registered key read back through its typed getter
+// (tests/fuzz/test_fuzz_regressions.cpp): every registered key read back through its typed getter
 // and through the consumers of the env (BVH and Embree configuration, camera, render settings).
 #pragma once
 
 #include "accel/bvh/bvh_env.h"
 #include "accel/embree/embree_accelerator.h"
-#include "framework/camera.h"
-#include "framework/env.h"
-#include "framework/renderer.h"
+#include "framework/render/camera.h"
+#include "framework/config/env.h"
+#include "framework/render/renderer.h"
 
 #include <nlohmann/json.hpp>
 

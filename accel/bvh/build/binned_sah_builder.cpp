@@ -1,0 +1,220 @@
+#include "accel/bvh/build/binned_sah_builder.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace bvhlab {
+
+namespace {
+
+// Keeps the largest centre strictly inside the last bin: k1 * (cb_max - k0) = K * (1 - eps).
+constexpr float kBinEpsilon = 1e-5f;
+
+// Wald's binID = k1 * (c - k0), computed on doubled coordinates: c2 = lower + upper is twice
+// the box centre (k0 and k1 are set up for it), and c2 - k0 leaves no multiply-add for the
+// compiler to fuse. That matters: the index must come out bit for bit the same in binning and
+// in partitioning, in scalar and in SSE code, or a primitive would change sides. Centres are
+// never below k0 (their minimum): the clamp at 0 only keeps a bug from writing out of bounds.
+inline uint32_t binOf(const PrimRef& r, int axis, float k0, float k1, float maxBin) {
+    const float c2 = r.lower[axis] + r.upper[axis];
+    return uint32_t(int(minSse(maxSse((c2 - k0) * k1, 0.0f), maxBin)));
+}
+
+inline float halfArea(const float* lower, const float* upper) {
+    const float dx = upper[0] - lower[0], dy = upper[1] - lower[1], dz = upper[2] - lower[2];
+    return dx * dy + dy * dz + dz * dx;
+}
+
+}  // namespace
+
+// The box of the bins swept so far, grown bin by bin (SSE or scalar, the same result); its
+// half area is computed by the same scalar code on both paths.
+struct BinnedSahBuilder::GrowingBox {
+    alignas(16) float lower[4] = {kInfinity, kInfinity, kInfinity, kInfinity};
+    alignas(16) float upper[4] = {-kInfinity, -kInfinity, -kInfinity, -kInfinity};
+    bool simd;
+
+    explicit GrowingBox(bool simd) : simd(simd) {}
+    float grow(const Bin& bin) {
+#if BVHLAB_BVH_SSE
+        if (simd) {
+            _mm_store_ps(lower, _mm_min_ps(_mm_load_ps(lower), _mm_load_ps(bin.lower)));
+            _mm_store_ps(upper, _mm_max_ps(_mm_load_ps(upper), _mm_load_ps(bin.upper)));
+            return halfArea(lower, upper);
+        }
+#endif
+        for (int a = 0; a < 3; ++a) {
+            lower[a] = minSse(lower[a], bin.lower[a]);
+            upper[a] = maxSse(upper[a], bin.upper[a]);
+        }
+        return halfArea(lower, upper);
+    }
+};
+
+BinnedSahBuilder::BinnedSahBuilder(const BvhBuildConfig& config)
+    : TopDownBuilder(config),
+      binCount_(uint32_t(std::max(config.bins, 2))),
+      maxBin_(float(binCount_ - 1)),
+      bins_(3 * binCount_),
+      counts_(3 * binCount_),
+      rightArea_(binCount_),
+      rightCount_(binCount_) {}
+
+void BinnedSahBuilder::binOneAxis(const BuildRange& range, const AxisBinning& b) {
+    Bin* const bins = binsOf(b.axis);
+    uint32_t* const counts = countsOf(b.axis);
+    const PrimRef* refs = refs_.data();
+    const float maxBin = maxBin_;
+#if BVHLAB_BVH_SSE
+    if (config_.simd) {
+        for (uint32_t i = range.begin; i < range.end; ++i) {
+            const PrimRef& r = refs[i];
+            const uint32_t k = binOf(r, b.axis, b.k0, b.k1, maxBin);
+            Bin& bin = bins[k];
+            _mm_store_ps(bin.lower, _mm_min_ps(_mm_load_ps(bin.lower), _mm_load_ps(r.lower)));
+            _mm_store_ps(bin.upper, _mm_max_ps(_mm_load_ps(bin.upper), _mm_load_ps(r.upper)));
+            ++counts[k];
+        }
+        return;
+    }
+#endif
+    for (uint32_t i = range.begin; i < range.end; ++i) {
+        const PrimRef& r = refs[i];
+        const uint32_t k = binOf(r, b.axis, b.k0, b.k1, maxBin);
+        Bin& bin = bins[k];
+        for (int a = 0; a < 3; ++a) {
+            bin.lower[a] = minSse(bin.lower[a], r.lower[a]);
+            bin.upper[a] = maxSse(bin.upper[a], r.upper[a]);
+        }
+        ++counts[k];
+    }
+}
+
+void BinnedSahBuilder::binAllAxes(const BuildRange& range, const AxisBinning (&b)[3]) {
+    const PrimRef* refs = refs_.data();
+    // Local pointers: the stores into the bins could otherwise alias this builder's members.
+    Bin* const bins[3] = {binsOf(0), binsOf(1), binsOf(2)};
+    uint32_t* const counts[3] = {countsOf(0), countsOf(1), countsOf(2)};
+    const float maxBinScalar = maxBin_;
+#if BVHLAB_BVH_SSE
+    if (config_.simd) {
+        // All three bin indices at once, lane by lane the operations of binOf.
+        const __m128 k0 = _mm_setr_ps(b[0].k0, b[1].k0, b[2].k0, 0.0f);
+        const __m128 k1 = _mm_setr_ps(b[0].k1, b[1].k1, b[2].k1, 0.0f);
+        const __m128 maxBin = _mm_set1_ps(maxBinScalar), zero = _mm_setzero_ps();
+        for (uint32_t i = range.begin; i < range.end; ++i) {
+            const __m128 lo = _mm_load_ps(refs[i].lower), hi = _mm_load_ps(refs[i].upper);
+            const __m128 scaled = _mm_max_ps(_mm_mul_ps(_mm_sub_ps(_mm_add_ps(lo, hi), k0), k1), zero);
+            const __m128i k = _mm_cvttps_epi32(_mm_min_ps(scaled, maxBin));
+            const uint32_t kx = uint32_t(_mm_cvtsi128_si32(k));
+            const uint32_t ky = uint32_t(_mm_cvtsi128_si32(_mm_shuffle_epi32(k, 1)));
+            const uint32_t kz = uint32_t(_mm_cvtsi128_si32(_mm_shuffle_epi32(k, 2)));
+            Bin& bx = bins[0][kx];
+            Bin& by = bins[1][ky];
+            Bin& bz = bins[2][kz];
+            _mm_store_ps(bx.lower, _mm_min_ps(_mm_load_ps(bx.lower), lo));
+            _mm_store_ps(bx.upper, _mm_max_ps(_mm_load_ps(bx.upper), hi));
+            _mm_store_ps(by.lower, _mm_min_ps(_mm_load_ps(by.lower), lo));
+            _mm_store_ps(by.upper, _mm_max_ps(_mm_load_ps(by.upper), hi));
+            _mm_store_ps(bz.lower, _mm_min_ps(_mm_load_ps(bz.lower), lo));
+            _mm_store_ps(bz.upper, _mm_max_ps(_mm_load_ps(bz.upper), hi));
+            ++counts[0][kx];
+            ++counts[1][ky];
+            ++counts[2][kz];
+        }
+        return;
+    }
+#endif
+    for (uint32_t i = range.begin; i < range.end; ++i) {
+        const PrimRef& r = refs[i];
+        for (int axis = 0; axis < 3; ++axis) {
+            const uint32_t k = binOf(r, axis, b[axis].k0, b[axis].k1, maxBinScalar);
+            Bin& bin = bins[axis][k];
+            for (int a = 0; a < 3; ++a) {
+                bin.lower[a] = minSse(bin.lower[a], r.lower[a]);
+                bin.upper[a] = maxSse(bin.upper[a], r.upper[a]);
+            }
+            ++counts[axis][k];
+        }
+    }
+}
+
+// Suffix sweep from the right stores A_R and N_R per plane; the prefix sweep from the left
+// then prices every plane. Plane p separates bins [0, p) from [p, K). Empty bins change
+// nothing (deep in the tree most of them are empty), so they are skipped.
+void BinnedSahBuilder::sweep(int axis, PlaneChoice& best) {
+    const Bin* bins = binsOf(axis);
+    const uint32_t* counts = countsOf(axis);
+    GrowingBox box(config_.simd);
+    uint32_t count = 0;
+    float area = 0.0f;
+    for (uint32_t p = binCount_ - 1; p > 0; --p) {
+        if (counts[p] != 0) {
+            count += counts[p];
+            area = box.grow(bins[p]);
+        }
+        rightArea_[p] = area;
+        rightCount_[p] = count;
+    }
+    box = GrowingBox(config_.simd);
+    count = 0;
+    area = 0.0f;
+    for (uint32_t p = 1; p < binCount_; ++p) {
+        if (counts[p - 1] != 0) {
+            count += counts[p - 1];
+            area = box.grow(bins[p - 1]);
+        }
+        if (count == 0 || rightCount_[p] == 0) continue;
+        const float cost = area * float(count) + rightArea_[p] * float(rightCount_[p]);
+        if (cost < best.cost) best = {cost, axis, p};
+    }
+}
+
+std::optional<Split> BinnedSahBuilder::trySplit(const BuildRange& range, bool mayBeLeaf) {
+    const Bounds3& cb = range.centroidBounds;
+    const uint32_t K = binCount_;
+
+    // The axes to bin: the widest of the centre box, or every axis the centres spread along.
+    // k0 and k1 are for doubled coordinates (see binOf): k0 = 2 cb_min, k1 = K(1-eps)/(2 extent).
+    AxisBinning binning[3];
+    bool active[3] = {false, false, false};
+    for (int axis = 0; axis < 3; ++axis) {
+        const float k0 = 2.0f * cb.lower[axis], extent2 = 2.0f * cb.upper[axis] - k0;
+        const float k1 = float(K) * (1.0f - kBinEpsilon) / extent2;
+        binning[axis] = {axis, k0, k1};
+        active[axis] = extent2 > 0.0f && std::isfinite(k1);
+    }
+    const int widest = cb.largestAxis();
+    if (!config_.allAxes) {
+        for (int axis = 0; axis < 3; ++axis) active[axis] = active[axis] && axis == widest;
+    }
+    if (!active[0] && !active[1] && !active[2]) return std::nullopt;
+
+    // All axes are binned in all-axes mode (inactive ones with k1 = 0: all in bin 0, unread).
+    for (int axis = 0; axis < 3; ++axis) {
+        if (config_.allAxes && !active[axis]) binning[axis].k1 = 0.0f;
+        if (!active[axis] && !config_.allAxes) continue;
+        std::fill_n(binsOf(axis), K, Bin{{kInfinity, kInfinity, kInfinity, 0.0f}, {-kInfinity, -kInfinity, -kInfinity, 0.0f}});
+        std::fill_n(countsOf(axis), K, 0u);
+    }
+    if (config_.allAxes) {
+        binAllAxes(range, binning);
+    } else {
+        binOneAxis(range, binning[widest]);
+    }
+
+    PlaneChoice best{kInfinity, -1, 0};
+    for (int axis = 0; axis < 3; ++axis) {
+        if (active[axis]) sweep(axis, best);
+    }
+    if (best.axis < 0) return std::nullopt;
+    if (mayBeLeaf && config_.sahTermination && sahPrefersLeaf(range, best.cost)) return std::nullopt;
+
+    const AxisBinning b = binning[best.axis];
+    const float maxBin = maxBin_;
+    return partition(range, [b, maxBin, plane = best.plane](const PrimRef& r) {
+        return binOf(r, b.axis, b.k0, b.k1, maxBin) < plane;
+    });
+}
+
+}  // namespace bvhlab

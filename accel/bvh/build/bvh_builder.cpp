@@ -1,0 +1,194 @@
+#include "accel/bvh/build/bvh_builder.h"
+
+#include "accel/bvh/build/binned_sah_builder.h"
+#include "accel/bvh/build/sweep_sah_builder.h"
+#include "accel/bvh/build/spatial_median_builder.h"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <bit>
+#include <stdexcept>
+
+namespace bvhlab {
+
+namespace {
+
+int ceilLog2(uint32_t n) { return n <= 1 ? 0 : int(std::bit_width(n - 1)); }
+
+bool allCentresEqual(const BuildRange& range) {
+    const Bounds3& c = range.centroidBounds;
+    return c.lower.x == c.upper.x && c.lower.y == c.upper.y && c.lower.z == c.upper.z;
+}
+
+}  // namespace
+
+bool TopDownBuilder::sahPrefersLeaf(const BuildRange& range, float splitCost) const {
+    const float area = range.bounds.halfArea();
+    if (!(area > 0.0f)) return false;  // no meaningful ratio: keep splitting
+    const float n = float(range.size());
+    return !(config_.cTraversal + config_.cIntersect * splitCost / area < config_.cIntersect * n);
+}
+
+Split TopDownBuilder::splitAtIndex(const BuildRange& range, uint32_t mid) {
+    const PrimRef* refs = refs_.data();
+    if (config_.simd) {
+        return {boundsOf<SseBoundsAccumulator>(refs, range.begin, mid),
+                boundsOf<SseBoundsAccumulator>(refs, mid, range.end)};
+    }
+    return {boundsOf<ScalarBoundsAccumulator>(refs, range.begin, mid),
+            boundsOf<ScalarBoundsAccumulator>(refs, mid, range.end)};
+}
+
+Split TopDownBuilder::objectMedianSplit(const BuildRange& range, int axis) {
+    PrimRef* begin = refs_.data() + range.begin;
+    const uint32_t mid = range.begin + range.size() / 2;
+    std::nth_element(begin, refs_.data() + mid, refs_.data() + range.end, [axis](const PrimRef& a, const PrimRef& b) {
+        const float ca = a.center(axis), cb = b.center(axis);
+        return ca < cb || (ca == cb && a.prim < b.prim);
+    });
+    return splitAtIndex(range, mid);
+}
+
+// The leaf rules, in order: small ranges are leaves; coincident centres cannot be separated
+// by any plane (a leaf, or halves by index when too many); near the depth bound only
+// object-median splits (halving the count) are allowed, which bounds the depth by
+// depth + ceil(log2 N) <= kBvhMaxDepth - 1; otherwise the builder decides.
+std::optional<Split> TopDownBuilder::chooseSplit(const BuildRange& range, int depth) {
+    const uint32_t n = range.size();
+    const bool mayBeLeaf = n <= config_.effectiveLeafCap();
+    if (n <= uint32_t(config_.maxLeaf)) return std::nullopt;
+    if (allCentresEqual(range)) {
+        if (mayBeLeaf) return std::nullopt;
+        return splitAtIndex(range, range.begin + n / 2);
+    }
+    if (depth + ceilLog2(n) >= kBvhMaxDepth - 1) return objectMedianSplit(range, range.centroidBounds.largestAxis());
+    if (std::optional<Split> split = trySplit(range, mayBeLeaf)) return split;
+    if (mayBeLeaf) return std::nullopt;
+    return objectMedianSplit(range, range.centroidBounds.largestAxis());
+}
+
+std::vector<BvhNode, TraversalAllocator<BvhNode>> TopDownBuilder::build(std::span<PrimRef> refs,
+                                                                        const BuildRange& root) {
+    refs_ = refs;
+    std::vector<BvhNode, TraversalAllocator<BvhNode>> nodes;
+    if (refs.empty()) return nodes;
+    // The root, the padding slot that aligns the sibling pairs, and at most N - 1 pairs.
+    nodes.reserve(2 * refs.size());
+    nodes.resize(2);
+    nodes[1] = BvhNode{{0, 0, 0, 0, 0, 0}, 0, 0};
+
+    struct WorkItem {
+        BuildRange range;
+        uint32_t node;
+        int depth;
+    };
+    // Depth first, left before right: a subtree's nodes are contiguous, and the work stack
+    // holds at most one pending right sibling per level.
+    std::vector<WorkItem> stack;
+    stack.reserve(2 * kBvhMaxDepth);
+    stack.push_back({root, 0, 0});
+    while (!stack.empty()) {
+        const WorkItem item = stack.back();
+        stack.pop_back();
+        BvhNode& node = nodes[item.node];
+        node.setBox(item.range.bounds);
+        const std::optional<Split> split = chooseSplit(item.range, item.depth);
+        if (!split) {
+            node.index = item.range.begin;
+            node.count = item.range.size();
+            continue;
+        }
+        // A split rule's contract: two non-empty halves (an empty leaf would read as an inner
+        // node, count == 0), and a depth the traversal stacks can hold (kBvhMaxDepth).
+        if (split->left.size() == 0 || split->right.size() == 0 || item.depth + 1 >= kBvhMaxDepth)
+            throw std::logic_error(fmt::format("BVH builder: split of {} primitives at depth {} into {} + {}",
+                                               item.range.size(), item.depth, split->left.size(), split->right.size()));
+        const uint32_t left = uint32_t(nodes.size());
+        node.index = left;  // `node` is still valid: reserve() covers every node there can be
+        node.count = 0;
+        nodes.emplace_back();
+        nodes.emplace_back();
+        stack.push_back({split->right, left + 1, item.depth + 1});
+        stack.push_back({split->left, left, item.depth + 1});
+    }
+    return nodes;
+}
+
+namespace {
+
+// Step one of buildBvh: one PrimRef per valid triangle, and their boxes.
+BuildRange preparePrimRefs(const PrimitiveSet& prims, bool simd, PrimRef* out) {
+    const uint32_t n = uint32_t(prims.valid.size());
+    const Triangle* triangles = prims.triangles.data();
+    const uint32_t* valid = prims.valid.data();
+#if BVHLAB_BVH_SSE
+    if (simd) {
+        SseBoundsAccumulator acc;
+        for (uint32_t i = 0; i < n; ++i) {
+            const uint32_t prim = valid[i];
+            const Triangle& t = triangles[prim];
+            // Unaligned 4-float loads; v2 is loaded from v1.z onwards and shifted down, so that
+            // no load reads past the triangle (the last one may end the array).
+            const __m128 v0 = _mm_loadu_ps(&t.v0.x);
+            const __m128 v1 = _mm_loadu_ps(&t.v1.x);
+            const __m128 v2s = _mm_loadu_ps(&t.v1.z);
+            const __m128 v2 = _mm_shuffle_ps(v2s, v2s, _MM_SHUFFLE(3, 3, 2, 1));
+            PrimRef& ref = out[i];
+            _mm_store_ps(ref.lower, _mm_min_ps(_mm_min_ps(v0, v1), v2));
+            _mm_store_ps(ref.upper, _mm_max_ps(_mm_max_ps(v0, v1), v2));
+            ref.prim = prim;
+            ref.pad = 0;
+            acc.add(ref);
+        }
+        return {0, n, acc.bounds(), acc.centroidBounds()};
+    }
+#endif
+    (void)simd;
+    ScalarBoundsAccumulator acc;
+    for (uint32_t i = 0; i < n; ++i) {
+        const uint32_t prim = valid[i];
+        const Triangle& t = triangles[prim];
+        PrimRef& ref = out[i];
+        for (int a = 0; a < 3; ++a) {
+            ref.lower[a] = minSse(minSse(t.v0[a], t.v1[a]), t.v2[a]);
+            ref.upper[a] = maxSse(maxSse(t.v0[a], t.v1[a]), t.v2[a]);
+        }
+        ref.prim = prim;
+        ref.pad = 0;
+        acc.add(ref);
+    }
+    return {0, n, acc.bounds(), acc.centroidBounds()};
+}
+
+}  // namespace
+
+std::unique_ptr<TopDownBuilder> makeBvhBuilder(BvhKind kind, const BvhBuildConfig& config) {
+    switch (kind) {
+    case BvhKind::SpatialMedian: return std::make_unique<SpatialMedianBuilder>(config);
+    case BvhKind::BinnedSah: return std::make_unique<BinnedSahBuilder>(config);
+    case BvhKind::SweepSah: return std::make_unique<SweepSahBuilder>(config);
+    }
+    // Every BvhKind is a case above; a value outside the enum is a programming error.
+    throw std::logic_error(fmt::format("makeBvhBuilder: unknown BvhKind {}", int(kind)));
+}
+
+Bvh buildBvh(BvhKind kind, const BvhBuildConfig& config, const PrimitiveSet& prims) {
+    const size_t n = prims.valid.size();
+    // Uninitialised storage: every PrimRef is written by preparePrimRefs.
+    const std::unique_ptr<PrimRef[]> refs = std::make_unique_for_overwrite<PrimRef[]>(n);
+    const BuildRange root = preparePrimRefs(prims, config.simd, refs.get());
+
+    Bvh bvh;
+    bvh.nodes = makeBvhBuilder(kind, config)->build({refs.get(), n}, root);
+
+    bvh.primIndices.resize(n);
+    bvh.leafTriangles.reserve(n);
+    for (size_t i = 0; i < n; ++i) {
+        bvh.primIndices[i] = refs[i].prim;
+        bvh.leafTriangles.push_back(prims.triangles[refs[i].prim]);
+    }
+    return bvh;
+}
+
+}  // namespace bvhlab

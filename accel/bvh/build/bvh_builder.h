@@ -1,0 +1,134 @@
+// The top-down recursion every BVH builder shares (after madmann91/bvh v2's
+// top_down_sah_builder): a work stack, the leaf rules, the depth bound and node emission live
+// here, once. A builder only says how to split a range of primitives: it partitions the range
+// in place and returns the two halves, or declines (the range becomes a leaf).
+#pragma once
+
+#include "accel/bvh/layout/bvh.h"
+#include "accel/bvh/build/prim_ref.h"
+
+#include <algorithm>
+#include <memory>
+#include <optional>
+#include <span>
+
+namespace bvhlab {
+
+enum class BvhKind {
+    SpatialMedian,  // tdbvh: spatial median
+    BinnedSah,  // sahbvh: binned SAH (Wald 2007)
+    SweepSah,   // sweepbvh: full-sweep SAH, the exact reference for the binning
+};
+
+enum class MedianSplitBox {
+    NodeBox,      // halve the box of the primitives (classic spatial median)
+    CentroidBox,  // halve the box of their centres (pbrt's "middle"; never an empty side unless
+                  // rounding puts the midpoint on the lowest centre)
+};
+
+struct BvhBuildConfig {
+    int maxLeaf = 2;             // ranges of this many primitives or fewer always become leaves
+    int leafCap = 16;            // largest leaf made when splitting does not pay (SAH termination)
+                                 // or cannot separate primitives (coincident centres); >= maxLeaf
+    bool sahTermination = true;  // SAH builders: leaf when no split beats testing every primitive
+    float cTraversal = 1.0f;     // SAH cost of visiting an inner node, in units of ...
+    float cIntersect = 1.0f;     // ... the cost of one ray-triangle test
+    int bins = 16;               // binned SAH: bins per axis; more bins approach the sweep, slower
+    bool allAxes = false;        // binned SAH: bin all three axes and take the best, not the widest
+    bool simd = true;            // SSE in the hot loops (prep, binning, partition); false = scalar
+    MedianSplitBox medianSplitBox = MedianSplitBox::CentroidBox;  // tdbvh: which box's longest axis is halved
+    bool robust = true;  // traversal, not build: watertight triangles and conservative boxes;
+                         // false = Moeller-Trumbore and plain boxes, to measure what robustness costs
+
+    uint32_t effectiveLeafCap() const { return uint32_t(std::max(maxLeaf, leafCap)); }
+};
+
+// A node under construction: the primitives refs[begin, end) and their boxes.
+struct BuildRange {
+    uint32_t begin = 0, end = 0;
+    Bounds3 bounds;          // of the primitives' boxes
+    Bounds3 centroidBounds;  // of the centres of those boxes
+    uint32_t size() const { return end - begin; }
+};
+
+// A range partitioned in place into [left.begin, left.end) and [right.begin, right.end).
+struct Split {
+    BuildRange left, right;
+};
+
+class TopDownBuilder {
+public:
+    explicit TopDownBuilder(const BvhBuildConfig& config) : config_(config) {}
+    virtual ~TopDownBuilder() = default;
+
+    // Builds over `refs`, reordering them: leaves index into the reordered array. `root`
+    // spans all of refs with their boxes. Depth stays below kBvhMaxDepth.
+    std::vector<BvhNode, TraversalAllocator<BvhNode>> build(std::span<PrimRef> refs, const BuildRange& root);
+
+protected:
+    // The hook: partition `range` in place and return the halves (both non-empty), or nullopt
+    // for a leaf. `mayBeLeaf` says the range is small enough to be one; when it is not, a
+    // nullopt answer gets an object-median split instead. Called only for ranges larger than
+    // maxLeaf whose centres are not all equal.
+    virtual std::optional<Split> trySplit(const BuildRange& range, bool mayBeLeaf) = 0;
+
+    // The SAH leaf test: a split of cost `splitCost` = A_L*N_L + A_R*N_R pays off when
+    // C_trav + C_isect * splitCost / A < C_isect * N.
+    bool sahPrefersLeaf(const BuildRange& range, float splitCost) const;
+
+    // Moves the primitives for which isLeft(ref) holds to the front; computes both halves' boxes
+    // in the same pass (SIMD or scalar per config). Halves may be empty.
+    template <typename IsLeft>
+    Split partition(const BuildRange& range, IsLeft isLeft);
+    // Splits at refs index `mid` as they lie, computing both halves' boxes.
+    Split splitAtIndex(const BuildRange& range, uint32_t mid);
+    // Median by centre along `axis` (ties by primitive index): halves of equal size.
+    Split objectMedianSplit(const BuildRange& range, int axis);
+
+    template <typename Accumulator>
+    static BuildRange boundsOf(const PrimRef* refs, uint32_t begin, uint32_t end);
+
+    BvhBuildConfig config_;
+    std::span<PrimRef> refs_;
+
+private:
+    std::optional<Split> chooseSplit(const BuildRange& range, int depth);
+};
+
+template <typename Accumulator>
+BuildRange TopDownBuilder::boundsOf(const PrimRef* refs, uint32_t begin, uint32_t end) {
+    Accumulator acc;
+    for (uint32_t i = begin; i < end; ++i) acc.add(refs[i]);
+    return {begin, end, acc.bounds(), acc.centroidBounds()};
+}
+
+template <typename IsLeft>
+Split TopDownBuilder::partition(const BuildRange& range, IsLeft isLeft) {
+    // Hoare partition from both ends; every primitive is classified once and added to the
+    // box of the side it ends up on.
+    auto run = [&](auto leftAcc, auto rightAcc) {
+        PrimRef* refs = refs_.data();
+        uint32_t l = range.begin, r = range.end;
+        for (;;) {
+            while (l < r && isLeft(refs[l])) leftAcc.add(refs[l++]);
+            while (l < r && !isLeft(refs[r - 1])) rightAcc.add(refs[--r]);
+            if (l == r) break;
+            // refs[l] belongs right and refs[r - 1] left.
+            std::swap(refs[l], refs[r - 1]);
+            leftAcc.add(refs[l++]);
+            rightAcc.add(refs[--r]);
+        }
+        return Split{{range.begin, l, leftAcc.bounds(), leftAcc.centroidBounds()},
+                     {l, range.end, rightAcc.bounds(), rightAcc.centroidBounds()}};
+    };
+    if (config_.simd) return run(SseBoundsAccumulator{}, SseBoundsAccumulator{});
+    return run(ScalarBoundsAccumulator{}, ScalarBoundsAccumulator{});
+}
+
+// The whole build: PrimRefs from the valid triangles (SIMD or scalar), the recursion of the
+// chosen builder, then the leaf arrays (primitive indices and triangles in leaf order).
+Bvh buildBvh(BvhKind kind, const BvhBuildConfig& config, const PrimitiveSet& prims);
+
+std::unique_ptr<TopDownBuilder> makeBvhBuilder(BvhKind kind, const BvhBuildConfig& config);
+
+}  // namespace bvhlab

@@ -1,0 +1,370 @@
+// `bvhlab batch`: the report's Table 1 side by side. For each scene x accelerator (a job): load
+// the scene (through the scene cache), build once, render without and with shadows, write the
+// images and DIR/jobs/SCENE__ACCEL.json; then make the tables and the contact sheet from the
+// jobs of the folder's one batch (DIR/batch.json; a folder holding another batch is refused).
+// `--shard i/n` runs every n-th job; `--merge DIR...` joins the shards of one batch.
+#include "accel/registry.h"
+#include "apps/batch/batch_settings.h"
+#include "apps/batch/batch_table.h"
+#include "apps/common/cli_common.h"
+#include "apps/common/commands.h"
+#include "apps/common/run_record.h"
+#include "apps/common/scene_list.h"
+#include "framework/render/camera.h"
+#include "framework/core/error.h"
+#include "framework/io/heatmap.h"
+#include "framework/io/image_io.h"
+#include "framework/report/provenance.h"
+#include "framework/render/renderer.h"
+#include "framework/report/statistics.h"
+
+#include <fmt/core.h>
+#include <fmt/ranges.h>
+#include <nlohmann/json.hpp>
+#include <tbb/info.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <charconv>
+#include <chrono>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <set>
+#include <sstream>
+
+namespace bvhlab {
+namespace {
+
+using nlohmann::json;
+
+struct Shard {
+    int index = 0, count = 1;
+};
+
+// "i/n" with 0 <= i < n, i 0-based as $SLURM_ARRAY_TASK_ID.
+Shard parseShard(const std::string& text) {
+    const size_t slash = text.find('/');
+    Shard s;
+    auto parse = [](std::string_view part, int& value) {
+        const auto [end, ec] = std::from_chars(part.data(), part.data() + part.size(), value);
+        return ec == std::errc() && end == part.data() + part.size() && !part.empty();
+    };
+    const std::string_view view = text;
+    if (slash == std::string::npos || !parse(view.substr(0, slash), s.index) || !parse(view.substr(slash + 1), s.count) ||
+        s.count < 1 || s.index < 0 || s.index >= s.count)
+        throw InputError(fmt::format("--shard {}: expected i/n with n >= 1 and 0 <= i < n (i is 0-based, as "
+                                     "$SLURM_ARRAY_TASK_ID), e.g. --shard 0/10",
+                                     text));
+    return s;
+}
+
+std::vector<std::string> parseAccelList(const std::string& text) {
+    std::vector<std::string> names, known;
+    for (const AcceleratorInfo& info : acceleratorInfos()) known.push_back(info.name);
+    for (const std::string& item : splitCommaList(text)) {
+        if (std::find(known.begin(), known.end(), item) == known.end())
+            throw InputError(fmt::format("--accel: unknown accelerator '{}' (known: {})", item, fmt::join(known, ", ")));
+        if (std::find(names.begin(), names.end(), item) != names.end())
+            throw InputError(fmt::format("--accel: '{}' is listed twice", item));
+        names.push_back(item);
+    }
+    if (names.empty()) throw InputError("--accel: no accelerator given");
+    return names;
+}
+
+struct Options {
+    EnvOptions env;
+    std::vector<std::string> scenes;
+    std::string accels = "tdbvh,sahbvh,embree";
+    std::string out = "out/batch";
+    std::string shard;
+    bool shardGiven = false;
+    std::vector<std::string> merge;
+    bool fresh = false;  // delete the folder's batch first
+};
+
+// A job's framebuffer step counts, kept until the scene's heat maps are drawn at one scale.
+struct FinishedJob {
+    nlohmann::json job;
+    bool hasCounters = false;
+    int width = 0, height = 0;
+    std::vector<float> steps[2];  // traversal steps without and with shadows
+};
+
+// One job: build once, render without and with shadows, write images and the job file.
+FinishedJob runJob(const Options& options, const Scene& scene, const SceneLoadInfo& loadInfo, const Env& sceneEnv,
+                   const SceneArgument& entry, const std::string& accel, const BatchSettings& batch, const json& order,
+                   const Shard& shard, Progress& progress, const std::string& jobLabel) {
+    const std::filesystem::path out = options.out;
+    const std::string name = batchJobName(entry.id, accel);
+    const std::string label = fmt::format("{} {} {}", jobLabel, entry.id, accel);
+
+    Env env = sceneEnv;
+    env.set("ASDS::type", accel, "bvhlab batch --accel");
+    // --threads, else Batch::threads (the report's single render thread by default).
+    const int threads = options.env.threads >= 0 ? options.env.threads : env.getInt("Batch::threads");
+    env.set("SetRayTracing::threads", std::to_string(threads), options.env.threads >= 0 ? "--threads" : "Batch::threads");
+
+    progress.phase(label + ": building");
+    tbb::task_arena arena(threads > 0 ? threads : tbb::info::default_concurrency());
+    BuiltAccelerator built;
+    arena.execute([&] { built = buildAccelerator(scene, env); });
+
+    const Camera camera(resolveCamera(scene, env));
+    const RenderSettings settings = RenderSettings::fromEnv(env, scene, camera.spec());
+    FinishedJob finished{json(), built.accel->hasCounters(), camera.width(), camera.height(), {}};
+    json runs = json::object();
+    for (const bool shadows : {false, true}) {
+        RenderSettings s = settings;
+        s.shadows = shadows;
+        Framebuffer fb(camera.width(), camera.height());
+        const RenderStats stats = renderWithProgress(scene, *built.accel, camera, s, fb, progress,
+                                                     label + (shadows ? ": rendering with shadows" : ": rendering without shadows"));
+
+        // Images: the PNG always (the contact sheet is made from it), EXR as Output:: says; the heat
+        // map after the scene's last job (writeSceneHeatmaps).
+        const std::string base = "images/" + name + (shadows ? "_shadows" : "");
+        json images = {{"png", base + ".png"}};
+        writePng(out / (base + ".png"), fb);
+        if (env.getBool("Output::exr")) writeExr(out / (base + ".exr"), fb), images["exr"] = base + ".exr";
+        if (env.getBool("Output::heatmap")) finished.steps[shadows] = std::move(fb.traversalSteps);
+
+        const StatsRow row{scene.name, accel, scene.triangleCount(), scene.report,
+                           built.accel->hasCounters(), built.stats, stats};
+        json run = statsJson(row);
+        run["shadows"] = shadows;
+        run["images"] = images;
+        runs[shadows ? "shadows" : "no_shadows"] = run;
+    }
+
+    json job = {{"format", "bvhlab-batch-job-1"},
+                {"job", name},
+                {"scene", entry.id},
+                {"settings", batch.scene(entry.id)->hash},  // the key the tables check
+                {"batch", batch.hash},
+                {"scene_name", scene.name},
+                {"scene_env", entry.envFile.empty() ? json()
+                                                    : json(std::filesystem::absolute(entry.envFile).lexically_normal().string())},
+                {"scene_file", scene.source.string()},
+                {"scene_from_cache", loadInfo.fromCache},
+                {"scene_cache_file", loadInfo.cacheFile.string()},
+                {"scene_load_ms", loadInfo.ms},
+                {"accel", accel},
+                {"build_shared", true},  // one build served both renders
+                {"order", order},
+                {"shard", fmt::format("{}/{}", shard.index, shard.count)},
+                {"threads", threads},
+                {"image", {{"width", camera.width()}, {"height", camera.height()}, {"samples", settings.samples}}},
+                {"runs", runs},
+                {"env", env.toJson()},
+                {"run", runJson()},
+                {"provenance", provenanceJson()}};
+    writeFileAtomically(out / "jobs" / (name + ".json"), job.dump(2) + "\n");
+    finished.job = std::move(job);
+    return finished;
+}
+
+// The scene's heat maps at one full scale, so that colours compare across its accelerators:
+// Output::heatmapScale when set, else the largest 99th percentile of its renders in this run
+// (every accelerator with counters, without and with shadows). A structure without counters gets
+// none. Then the job files are written again with the heat maps' records.
+void writeSceneHeatmaps(const std::filesystem::path& out, const std::string& sceneId, std::vector<FinishedJob>& jobs,
+                        float fixedScale) {
+    float largest = 1.0f;
+    std::vector<std::string> counted, uncounted;
+    for (const FinishedJob& f : jobs) {
+        (f.hasCounters ? counted : uncounted).push_back(f.job.at("accel").get<std::string>());
+        if (f.hasCounters)
+            for (const std::vector<float>& steps : f.steps) largest = std::max(largest, heatmapPercentile99(steps));
+    }
+    const HeatmapScale scale = chooseHeatmapScale(
+        fixedScale, largest,
+        fmt::format("largest 99th percentile of the scene's renders in this run: {}", fmt::join(counted, ", ")));
+    for (FinishedJob& f : jobs) {
+        const std::string name = f.job.at("job").get<std::string>(), accel = f.job.at("accel").get<std::string>();
+        for (const bool shadows : {false, true}) {
+            json& run = f.job["runs"][shadows ? "shadows" : "no_shadows"];
+            const std::string file = "images/" + name + (shadows ? "_shadows" : "") + ".heatmap.png";
+            run["heatmap"] = writeHeatmap(out / file, file, f.steps[shadows], f.width, f.height, f.hasCounters, accel, scale);
+            if (f.hasCounters) run["images"]["heatmap"] = file;
+        }
+        writeFileAtomically(out / "jobs" / (name + ".json"), f.job.dump(2) + "\n");
+    }
+    if (!counted.empty())
+        fmt::print(stderr, "heat maps of {}: full scale {} traversal steps ({})\n", sceneId, scale.steps, scale.from);
+    for (const std::string& accel : uncounted)
+        fmt::print(stderr, "heat maps of {}: none for {}: it counts no traversal steps\n", sceneId, accel);
+}
+
+// Copies, replacing `to` (a copy, not a link: a shard folder rerun later must not change the merge).
+void copyInto(const std::filesystem::path& from, const std::filesystem::path& to) {
+    std::error_code ec;
+    if (std::filesystem::exists(to) && std::filesystem::equivalent(from, to, ec)) return;  // merging into a shard
+    std::filesystem::copy_file(from, to, std::filesystem::copy_options::overwrite_existing);
+}
+
+// Makes `out` the folder of the batch `settings`: cleared first with --fresh, refused if it holds
+// jobs of another batch, then its settings recorded (before any job, so an interrupted run is
+// resumed by the same command).
+void prepareFolder(const std::filesystem::path& out, const BatchSettings& settings, bool fresh) {
+    if (fresh) clearBatchFolder(out);
+    checkBatchFolder(out, settings);
+    std::filesystem::create_directories(out / "jobs");
+    std::filesystem::create_directories(out / "images");
+    writeBatchSettings(out, settings);
+}
+
+// Copies the job files and their images of every shard folder into `out`; the shards must be of
+// one batch.
+void mergeShards(const std::vector<std::string>& dirs, const std::filesystem::path& out, bool fresh) {
+    std::optional<BatchSettings> batch;
+    for (const std::filesystem::path dir : dirs) {
+        if (!std::filesystem::is_directory(dir / "jobs"))
+            throw InputError(fmt::format("--merge {}: no jobs/ folder here (not the output of bvhlab batch)", dir.string()));
+        const std::optional<BatchSettings> settings = readBatchSettings(dir);
+        if (!settings)
+            throw InputError(fmt::format("--merge {}: no batch.json (written by an older bvhlab): the settings of its "
+                                         "jobs are unknown, so they cannot be merged with others; run that shard again",
+                                         dir.string()));
+        if (batch && settings->hash != batch->hash)
+            throw InputError(fmt::format("--merge: {} and {} hold shards of different batches ({} -> {}):\n  {}\nmerge "
+                                         "only the shards of one batch (run with the same --env, -D, --accel and --scenes)",
+                                         dirs.front(), dir.string(), dirs.front(), dir.string(),
+                                         fmt::join(batchDifferences(*batch, *settings), "\n  ")));
+        if (fresh && std::filesystem::exists(out) && std::filesystem::equivalent(dir, out))
+            throw InputError(fmt::format("--fresh would delete {}, one of the folders to merge", dir.string()));
+        batch = settings;
+    }
+    prepareFolder(out, *batch, fresh);
+
+    std::map<std::string, std::string> seen;  // job -> folder it came from
+    for (const std::filesystem::path dir : dirs) {
+        size_t count = 0;
+        for (const json& job : readBatchJobs(dir, *batch)) {
+            const std::string name = job.at("job").get<std::string>();
+            if (const auto it = seen.find(name); it != seen.end())
+                fmt::print(stderr, "warning: job {} is in {} and {}; keeping the one from {}\n", name, it->second,
+                           dir.string(), dir.string());
+            seen[name] = dir.string();
+            copyInto(dir / "jobs" / (name + ".json"), out / "jobs" / (name + ".json"));
+            for (const auto& [runName, run] : job.at("runs").items()) {
+                const json images = run.value("images", json::object());  // kept alive for the loop
+                for (const auto& [kind, file] : images.items())
+                    if (std::filesystem::exists(dir / file.get<std::string>()))
+                        copyInto(dir / file.get<std::string>(), out / file.get<std::string>());
+            }
+            ++count;
+        }
+        fmt::print(stderr, "merged {} jobs from {}\n", count, dir.string());
+    }
+}
+
+void runBatch(const Options& options) {
+    const std::filesystem::path out = prepareOutputFolder(options.out);
+    if (!options.merge.empty()) {
+        if (options.shardGiven) throw InputError("--merge and --shard do not go together");
+        mergeShards(options.merge, out, options.fresh);
+    } else {
+        const Shard shard = options.shardGiven ? parseShard(options.shard) : Shard{};
+        const std::vector<std::string> accels = parseAccelList(options.accels);
+        // Every env file is read up front, so a typo in the last one fails now, not in an hour.
+        const std::vector<SceneArgument> scenes = expandSceneList(options.scenes, options.env);
+        std::vector<Env> sceneEnvs;
+        for (const SceneArgument& scene : scenes) {
+            const std::filesystem::path file = scene.envFile.empty() ? scene.sceneFile : scene.envFile;
+            sceneEnvs.push_back(scene.load(options.env));
+            const Env& env = sceneEnvs.back();
+            if (!env.getString("Scene::file").empty()) {
+                const std::filesystem::path scenePath = env.getPath("Scene::dir") / env.getString("Scene::file");
+                if (!std::filesystem::exists(scenePath))
+                    throw InputError(fmt::format("{}: scene file {} does not exist", file.string(), scenePath.string()));
+            }
+        }
+        std::vector<std::pair<std::string, Env>> idsAndEnvs;
+        for (size_t s = 0; s < scenes.size(); ++s) idsAndEnvs.emplace_back(scenes[s].id, sceneEnvs[s]);
+        const BatchSettings batch = makeBatchSettings(idsAndEnvs, accels);
+        prepareFolder(out, batch, options.fresh);
+
+        // Jobs in table order; this shard takes every n-th.
+        const size_t totalJobs = scenes.size() * accels.size();
+        std::vector<size_t> mine;
+        for (size_t j = 0; j < totalJobs; ++j)
+            if (j % size_t(shard.count) == size_t(shard.index)) mine.push_back(j);
+        fmt::print(stderr, "batch: {} scenes x {} accelerators = {} jobs{}; render threads ({}): {}; into {}\n",
+                   scenes.size(), accels.size(), totalJobs,
+                   shard.count > 1 ? fmt::format(", shard {}/{} runs {} of them", shard.index, shard.count, mine.size()) : "",
+                   options.env.threads >= 0 ? "--threads" : "Batch::threads",
+                   options.env.threads >= 0 ? options.env.threads
+                   : sceneEnvs.empty()      ? 1
+                                            : sceneEnvs.front().getInt("Batch::threads"),
+                   out.string());
+
+        const auto start = Progress::Clock::now();
+        Progress progress;
+        size_t jobNumber = 0, scenesFromCache = 0, scenesParsed = 0;
+        for (size_t s = 0; s < scenes.size(); ++s) {
+            std::vector<size_t> sceneJobs;
+            for (size_t j : mine)
+                if (j / accels.size() == s) sceneJobs.push_back(j);
+            if (sceneJobs.empty()) continue;
+            progress.phase(fmt::format("[job {}/{}] {}: loading the scene", jobNumber + 1, mine.size(), scenes[s].id));
+            SceneLoadInfo info;
+            const Scene scene = loadSceneFor(sceneEnvs[s], true, &info);
+            (info.fromCache ? scenesFromCache : scenesParsed) += 1;
+            std::vector<FinishedJob> finished;
+            for (size_t j : sceneJobs) {
+                const size_t a = j % accels.size();
+                const json order = {{"scene", s}, {"accel", a}, {"job", j}, {"jobs", totalJobs}};
+                ++jobNumber;
+                finished.push_back(runJob(options, scene, info, sceneEnvs[s], scenes[s], accels[a], batch, order, shard,
+                                          progress, fmt::format("[job {}/{}]", jobNumber, mine.size())));
+            }
+            if (sceneEnvs[s].getBool("Output::heatmap"))
+                writeSceneHeatmaps(out, scenes[s].id, finished, sceneEnvs[s].getFloat("Output::heatmapScale"));
+        }
+        fmt::print(stderr, "batch: {} jobs in {}; scenes: {} read from the cache, {} parsed{}; {} builds, each "
+                           "serving both renders\n",
+                   mine.size(),
+                   Progress::formatDuration(std::chrono::duration<double>(Progress::Clock::now() - start).count()),
+                   scenesFromCache, scenesParsed,
+                   scenesParsed && !sceneEnvs.empty() && !sceneEnvs.front().getPath("Scene::cacheDir").empty()
+                       ? fmt::format(" (and stored in {})", sceneEnvs.front().getPath("Scene::cacheDir").string())
+                       : "",
+                   mine.size());
+    }
+
+    const BatchTables tables = writeBatchResults(out);
+    for (const std::string& warning : tables.warnings) fmt::print(stderr, "warning: {}\n", warning);
+    fmt::print("{}", tables.markdown);
+    fmt::print(stderr, "wrote {0}/results.{{md,csv,json}}, {0}/contact_sheet.png, {0}/images, {0}/jobs\n", out.string());
+}
+
+}  // namespace
+
+void addBatchCommand(CLI::App& app) {
+    auto options = std::make_shared<Options>();
+    CLI::App* command = app.add_subcommand(
+        "batch", "render every scene with every chosen accelerator, without and with shadows: tables, images, contact sheet");
+    options->env.addTo(*command);
+    options->env.addThreadsTo(*command);
+    command->add_option("--scenes", options->scenes, "scene env files, .list files or scene files (default env/scenes.list)");
+    command->add_option("--accel", options->accels, "comma-separated accelerators")
+        ->capture_default_str()
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+    command->add_option("--out", options->out, "output folder: results.{md,csv,json}, contact_sheet.png, images/, jobs/")
+        ->capture_default_str()
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+    CLI::Option* shard = command->add_option("--shard", options->shard,
+                                             "i/n: run every n-th job starting at job i (0-based, as $SLURM_ARRAY_TASK_ID)");
+    command->add_option("--merge", options->merge, "join the jobs of these batch output folders into --out and make its tables");
+    command->add_flag("--fresh", options->fresh,
+                      "first delete the batch --out holds (jobs/, images/, tables): needed when its settings differ");
+    command->callback([options, shard] {
+        options->shardGiven = shard->count() > 0;
+        const int code = runGuarded([&] { runBatch(*options); });
+        if (code != 0) throw CLI::RuntimeError(code);
+    });
+}
+
+}  // namespace bvhlab

@@ -1,0 +1,302 @@
+#include "apps/batch/batch_table.h"
+
+#include "apps/batch/contact_sheet.h"
+#include "framework/core/error.h"
+
+#include <fmt/core.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <set>
+
+namespace bvhlab {
+namespace {
+
+using nlohmann::json;
+
+// One line of the table: a render of a job, with its build's columns.
+struct Row {
+    std::string scene, accel;
+    bool shadows = false;
+    json prims, leaves, nodes, sah, buildMs;  // of the build, shared by both renders
+    json trUs, nIt, nTr, nQ, renderMs;          // over all queries of this render
+};
+
+// T_R, N_IT and N_TR averaged over every query of a render, primary and shadow together.
+json allQueries(const json& run) {
+    const json& p = run.at("primary");
+    const json& s = run.at("shadow");
+    const double qp = p.at("queries").get<double>(), qs = s.at("queries").get<double>(), q = qp + qs;
+    // A kind of query that was not traced (no shadow rays) adds no weight; one that was traced
+    // but not counted (Embree's N_IT) makes the figure unavailable; nothing traced at all: n/a.
+    auto mean = [&](const char* key) -> json {
+        double sum = 0.0;
+        for (const json* part : {&p, &s}) {
+            const double n = part->at("queries").get<double>();
+            if (n == 0.0) continue;
+            if (part->at(key).is_null()) return nullptr;
+            sum += part->at(key).get<double>() * n;
+        }
+        return q > 0 ? json(sum / q) : json();
+    };
+    return {{"queries", p.at("queries").get<uint64_t>() + s.at("queries").get<uint64_t>()},
+            {"t_r_us", mean("t_r_us")},
+            {"n_it", mean("n_it")},
+            {"n_tr", mean("n_tr")}};
+}
+
+Row makeRow(const json& job, bool shadows) {
+    const json& run = job.at("runs").at(shadows ? "shadows" : "no_shadows");
+    const json all = allQueries(run);
+    return {job.at("scene").get<std::string>(), job.at("accel").get<std::string>(), shadows,
+            run.at("prims"), run.at("leaves"), run.at("nodes"), run.at("sah"), run.at("build_ms"),
+            all.at("t_r_us"), all.at("n_it"), all.at("n_tr"), all.at("queries"), run.at("render_ms")};
+}
+
+// A number as the Markdown table shows it; null is "n/a" (unavailable, never 0).
+std::string cell(const json& v, const char* format) {
+    if (v.is_null()) return "n/a";
+    if (v.is_number_integer() || v.is_number_unsigned()) return fmt::format("{}", v.get<uint64_t>());
+    return fmt::format(fmt::runtime(format), v.get<double>());
+}
+
+// A number as the CSV holds it: shortest exact form, empty when unavailable.
+std::string csvCell(const json& v) {
+    if (v.is_null()) return "";
+    if (v.is_number_integer() || v.is_number_unsigned()) return fmt::format("{}", v.get<uint64_t>());
+    return fmt::format("{}", v.get<double>());
+}
+
+std::string csvText(const std::string& s) {
+    if (s.find_first_of(",\"\n") == std::string::npos) return s;
+    std::string quoted = "\"";
+    for (char c : s) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+    return quoted + "\"";
+}
+
+// Keys that may differ between jobs of one batch: what scene, view, accelerator, output.
+bool variesByJob(const std::string& key) {
+    for (const char* prefix : {"Scene::", "Camera::", "Lights::", "Output::", "ASDS::", "Batch::"})
+        if (key.rfind(prefix, 0) == 0) return true;
+    return key == "SetRayTracing::shadows";  // batch renders both
+}
+
+// Settings the jobs were run with ("key=value", or "key varies") and warnings where jobs differ.
+std::pair<std::vector<std::string>, std::vector<std::string>> settingsOf(const std::vector<json>& jobs) {
+    std::vector<std::string> settings, warnings;
+    if (jobs.empty()) return {settings, warnings};
+    std::map<std::string, std::set<std::string>> values;
+    for (const json& job : jobs) {
+        const json env = job.value("env", json::object());  // kept alive for the loop
+        for (const auto& [key, v] : env.items())
+            if (!variesByJob(key)) values[key].insert(v.value("value", std::string()));
+    }
+    for (const auto& [key, set] : values)
+        if (set.size() > 1) warnings.push_back(fmt::format("jobs were run with different {}: {}", key, fmt::join(set, " / ")));
+    std::set<std::string> commits, cpus, sizes;
+    for (const json& job : jobs) {
+        commits.insert(job.value("provenance", json::object()).value("git_commit", std::string("?")));
+        cpus.insert(job.value("provenance", json::object()).value("cpu", std::string("?")));
+        const json& image = job.value("image", json::object());
+        sizes.insert(fmt::format("{}x{}", image.value("width", 0), image.value("height", 0)));
+    }
+    if (commits.size() > 1) warnings.push_back(fmt::format("jobs come from different commits: {}", fmt::join(commits, ", ")));
+    if (cpus.size() > 1) warnings.push_back(fmt::format("jobs ran on different CPUs (timings not comparable): {}", fmt::join(cpus, "; ")));
+
+    auto show = [&](const std::string& key, const std::string& label) {
+        const auto it = values.find(key);
+        if (it == values.end()) return;
+        settings.push_back(it->second.size() == 1 ? fmt::format("{}={}", label, *it->second.begin())
+                                                  : fmt::format("{} varies", label));
+    };
+    settings.push_back(sizes.size() == 1 ? fmt::format("image {}", *sizes.begin()) : "image size varies");
+    show("SetRayTracing::threads", "threads");
+    show("SetRayTracing::cntSamples", "samples");
+    show("SetRayTracing::depthLimit", "depthLimit");
+    for (const char* key : {"BVH::bins", "BVH::maxLeaf", "BVH::leafCap", "BVH::sahTermination", "BVH::cTraversal",
+                            "BVH::cIntersect", "BVH::tdbvhSplit", "Embree::quality"})
+        show(key, key);
+    return {settings, warnings};
+}
+
+// A scene's heat maps share one full scale when its jobs ran together; merged shards may not.
+std::vector<std::string> heatmapScaleWarnings(const std::vector<json>& jobs) {
+    std::map<std::string, std::set<float>> scales;  // scene -> full scales of its heat maps
+    for (const json& job : jobs)
+        for (const auto& [name, run] : job.at("runs").items())
+            if (run.contains("heatmap") && run["heatmap"].contains("scale"))
+                scales[job.at("scene").get<std::string>()].insert(run["heatmap"]["scale"].get<float>());
+    std::vector<std::string> warnings;
+    for (const auto& [scene, set] : scales)
+        if (set.size() > 1)
+            warnings.push_back(fmt::format("the heat maps of {} have different full scales ({}): its jobs ran in "
+                                           "different shards; set Output::heatmapScale for one scale",
+                                           scene, fmt::join(set, ", ")));
+    return warnings;
+}
+
+std::string readText(const std::filesystem::path& file) {
+    std::ifstream in(file);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+}  // namespace
+
+std::string batchJobName(const std::string& scene, const std::string& accel) { return scene + "__" + accel; }
+
+std::vector<json> readBatchJobs(const std::filesystem::path& dir, const BatchSettings& settings) {
+    // Table position of a job of this batch; none for another batch's.
+    auto position = [&](const json& job) -> std::optional<std::pair<size_t, size_t>> {
+        const BatchSettings::Scene* scene = settings.scene(job.at("scene").get<std::string>());
+        const auto accel = std::find(settings.accels.begin(), settings.accels.end(), job.at("accel").get<std::string>());
+        if (!scene || accel == settings.accels.end() || job.value("settings", std::string()) != scene->hash)
+            return std::nullopt;
+        return std::pair(size_t(scene - settings.scenes.data()), size_t(accel - settings.accels.begin()));
+    };
+    std::vector<std::pair<std::pair<size_t, size_t>, json>> jobs;  // with their table positions
+    const std::filesystem::path folder = dir / "jobs";
+    if (!std::filesystem::is_directory(folder)) return {};
+    for (const auto& entry : std::filesystem::directory_iterator(folder)) {
+        if (entry.path().extension() != ".json") continue;
+        try {
+            json job = json::parse(readText(entry.path()));
+            if (job.value("format", std::string()) != "bvhlab-batch-job-1") throw std::runtime_error("not a batch job file");
+            makeRow(job, false), makeRow(job, true);  // has what the tables need
+            const auto at = position(job);
+            if (!at) throw std::runtime_error("a job of another batch (its scene, accelerator or settings are not this folder's)");
+            jobs.emplace_back(*at, std::move(job));
+        } catch (const std::exception& e) {
+            fmt::print(stderr, "warning: {}: skipped: {}\n", entry.path().string(), e.what());
+        }
+    }
+    std::sort(jobs.begin(), jobs.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    std::vector<json> sorted;
+    for (auto& [at, job] : jobs) sorted.push_back(std::move(job));
+    return sorted;
+}
+
+BatchTables makeBatchTables(const std::vector<json>& jobs, size_t batchJobs) {
+    BatchTables t;
+    const auto [settings, warnings] = settingsOf(jobs);
+    t.warnings = warnings;
+    for (const std::string& w : heatmapScaleWarnings(jobs)) t.warnings.push_back(w);
+
+    std::vector<Row> rows;
+    for (const json& job : jobs) rows.push_back(makeRow(job, false)), rows.push_back(makeRow(job, true));
+
+    // Markdown in the report's layout.
+    std::set<std::string> scenes, accels;
+    size_t fromCache = 0;
+    for (const json& job : jobs) {
+        scenes.insert(job.at("scene").get<std::string>());
+        accels.insert(job.at("accel").get<std::string>());
+        fromCache += job.value("scene_from_cache", false);
+    }
+    std::string& md = t.markdown;
+    md += fmt::format("# bvhlab batch: {} scenes x {} accelerators, without and with shadows\n\n", scenes.size(),
+                      accels.size());
+    md += fmt::format("Settings: {}.\n\n", fmt::join(settings, ", "));
+    for (const std::string& w : t.warnings) md += fmt::format("**Warning:** {}.\n\n", w);
+    md += "| scene | accel | | #Prims | #Leaves | #Nodes | SAH | T_B [ms] | T_R [µs] | N_IT | N_TR | N_Q | render [ms] |\n";
+    md += "|:--|:--|:--|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
+    for (const Row& r : rows) {
+        if (!r.shadows)
+            md += fmt::format("| {} | {} | | {} | {} | {} | {} | {} ", r.scene, r.accel, cell(r.prims, "{}"),
+                              cell(r.leaves, "{}"), cell(r.nodes, "{}"), cell(r.sah, "{:.2f}"), cell(r.buildMs, "{:.1f}"));
+        else
+            md += "| | | + shadows | | | | | ";
+        md += fmt::format("| {} | {} | {} | {} | {} |\n", cell(r.trUs, "{:.3f}"), cell(r.nIt, "{:.2f}"),
+                          cell(r.nTr, "{:.2f}"), cell(r.nQ, "{}"), cell(r.renderMs, "{:.1f}"));
+    }
+    md += "\nT_B: build time. T_R: µs per query (thread time inside the query loops / queries). N_IT, N_TR: "
+          "ray-triangle tests and nodes visited per query. N_Q: queries. SAH: normalised by the root box, with "
+          "C_trav and C_isect as set. Render time: wall, build excluded. \"+ shadows\": the same build rendered "
+          "with a shadow ray per light; T_R, N_IT and N_TR averaged over all its queries (primary and shadow "
+          "together), N_Q counting them all (results.json keeps them apart). n/a: not available (Embree shows "
+          "no tree and counts nothing).\n\n";
+    md += fmt::format("Jobs: {}{} (one build each, serving both renders); the scene came from the scene cache in {} "
+                      "of them.",
+                      jobs.size(), jobs.size() < batchJobs ? fmt::format(" of the batch's {}", batchJobs) : "", fromCache);
+    if (!jobs.empty()) {
+        const json& p = jobs.front().value("provenance", json::object());
+        md += fmt::format(" Commit {}, {}, {}.", p.value("git_commit", std::string("?")), p.value("cpu", std::string("?")),
+                          p.value("compiler", std::string("?")));
+    }
+    md += "\n";
+
+    // CSV: every column on both rows.
+    t.csv = "scene,accel,shadows,prims,leaves,nodes,sah,t_b_ms,t_r_us,n_it,n_tr,n_q,render_ms\n";
+    for (const Row& r : rows)
+        t.csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{}\n", csvText(r.scene), csvText(r.accel),
+                             r.shadows ? "true" : "false", csvCell(r.prims), csvCell(r.leaves), csvCell(r.nodes),
+                             csvCell(r.sah), csvCell(r.buildMs), csvCell(r.trUs), csvCell(r.nIt), csvCell(r.nTr),
+                             csvCell(r.nQ), csvCell(r.renderMs));
+
+    // JSON: the table's rows, and per job primary and shadow queries apart.
+    json& j = t.json;
+    j = {{"format", "bvhlab-batch-results-1"}, {"settings", settings}, {"warnings", t.warnings},
+         {"rows", json::array()}, {"jobs", json::array()}};
+    for (const Row& r : rows)
+        j["rows"].push_back({{"scene", r.scene}, {"accel", r.accel}, {"shadows", r.shadows}, {"prims", r.prims},
+                             {"leaves", r.leaves}, {"nodes", r.nodes}, {"sah", r.sah}, {"t_b_ms", r.buildMs},
+                             {"t_r_us", r.trUs}, {"n_it", r.nIt}, {"n_tr", r.nTr}, {"n_q", r.nQ},
+                             {"render_ms", r.renderMs}});
+    for (const json& job : jobs) {
+        json summary = {{"job", job.at("job")},
+                        {"scene", job.at("scene")},
+                        {"accel", job.at("accel")},
+                        {"scene_file", job.value("scene_file", std::string())},
+                        {"scene_from_cache", job.value("scene_from_cache", false)}};
+        for (const char* key : {"prims", "degenerate", "leaves", "nodes", "sah", "build_ms", "bytes", "max_depth"})
+            summary[key] = job["runs"]["no_shadows"].value(key, json());
+        for (const char* name : {"no_shadows", "shadows"}) {
+            const json& run = job["runs"][name];
+            summary[name] = {{"render_ms", run["render_ms"]},
+                             {"primary", run["primary"]},
+                             {"shadow", run["shadow"]},
+                             {"all", allQueries(run)},
+                             {"images", run.value("images", json::object())}};
+        }
+        j["jobs"].push_back(std::move(summary));
+    }
+    return t;
+}
+
+BatchTables writeBatchResults(const std::filesystem::path& dir) {
+    const std::optional<BatchSettings> batch = readBatchSettings(dir);
+    if (!batch) throw InputError(fmt::format("{}: no batch.json, so no batch to make tables of", dir.string()));
+    const std::vector<json> jobs = readBatchJobs(dir, *batch);
+    BatchTables t = makeBatchTables(jobs, batch->jobCount());
+    std::ofstream(dir / "results.md") << t.markdown;
+    std::ofstream(dir / "results.csv") << t.csv;
+    std::ofstream(dir / "results.json") << t.json.dump(2) << "\n";
+
+    // The contact sheet: a row per scene, per accelerator the render without and with shadows.
+    std::vector<std::vector<ContactImage>> sheet;
+    std::string previousScene;
+    std::vector<std::string> accels;  // in table order
+    for (const json& job : jobs) {
+        const std::string scene = job.at("scene").get<std::string>(), accel = job.at("accel").get<std::string>();
+        if (std::find(accels.begin(), accels.end(), accel) == accels.end()) accels.push_back(accel);
+        if (sheet.empty() || scene != previousScene) sheet.emplace_back();
+        previousScene = scene;
+        for (const char* name : {"no_shadows", "shadows"}) {
+            const std::string png = job["runs"][name].value("images", json::object()).value("png", std::string());
+            sheet.back().push_back({png.empty() ? std::filesystem::path() : dir / png,
+                                    fmt::format("{} {}{}", scene, accel, std::string(name) == "shadows" ? " +shadows" : "")});
+        }
+    }
+    std::vector<std::string> settings;  // the few that fit in the title
+    for (const std::string& s : t.json["settings"].get<std::vector<std::string>>())
+        for (const char* key : {"image", "threads", "maxLeaf", "sahTermination"})
+            if (s.find(key) != std::string::npos) settings.push_back(s);
+    writeContactSheet(dir / "contact_sheet.png", sheet,
+                      fmt::format("bvhlab batch: {} scenes x {}; {}", sheet.size(), fmt::join(accels, ", "),
+                                  fmt::join(settings, ", ")));
+    return t;
+}
+
+}  // namespace bvhlab

@@ -1,0 +1,207 @@
+#include "apps/common/cli_common.h"
+
+#include "accel/registry.h"
+#include "framework/core/error.h"
+#include "framework/scene/procedural.h"
+#include "framework/scene/scene_cache.h"
+#include "framework/scene/scene_loader.h"
+
+#include <fmt/core.h>
+#include <fmt/ranges.h>
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <unistd.h>
+
+namespace bvhlab {
+
+std::filesystem::path repositoryFile(const std::filesystem::path& relative) {
+    return std::filesystem::exists(relative) ? relative : std::filesystem::path(BVHLAB_SOURCE_DIR) / relative;
+}
+
+void EnvOptions::addTo(CLI::App& command) {
+    command.add_option("--env", envFiles,
+                       "env file(s) layered on env/global.env (and the scene's env file), later ones win");
+    command.add_option("-D", overrides, "override an env key: -DSection::key=value (repeatable; wins over files)")
+        ->allow_extra_args(false);
+    command.add_flag("--no-global-env", noGlobalEnv, "do not read env/global.env: start from the keys' defaults");
+}
+
+void EnvOptions::addThreadsTo(CLI::App& command) {
+    command.add_option("--threads", threads, "threads (SetRayTracing::threads); 0 = all hardware threads")
+        ->check(CLI::Range(0, 1024));
+}
+
+std::vector<std::string> EnvOptions::files(const std::filesystem::path& sceneEnvFile) const {
+    std::vector<std::string> result;
+    if (!noGlobalEnv) result.push_back(repositoryFile("env/global.env").string());
+    if (!sceneEnvFile.empty()) result.push_back(sceneEnvFile.string());
+    result.insert(result.end(), envFiles.begin(), envFiles.end());
+    return result;
+}
+
+Env EnvOptions::load(const std::filesystem::path& sceneEnvFile) const {
+    Env env;
+    for (const std::string& file : files(sceneEnvFile)) env.loadFile(file);
+    if (threads >= 0) env.set("SetRayTracing::threads", std::to_string(threads), "--threads");
+    for (const std::string& assignment : overrides) env.setOverride(assignment);
+    return env;
+}
+
+std::filesystem::path sceneEnvFor(const std::filesystem::path& sceneFile, const EnvOptions& options) {
+    const std::filesystem::path folder = repositoryFile("env/scenes");
+    if (!std::filesystem::is_directory(folder)) return {};
+    std::vector<std::filesystem::path> candidates;
+    for (const auto& entry : std::filesystem::directory_iterator(folder))
+        if (entry.path().extension() == ".env") candidates.push_back(entry.path());
+    std::sort(candidates.begin(), candidates.end());
+    std::error_code ec;
+    for (const std::filesystem::path& candidate : candidates) {
+        const Env env = options.load(candidate);
+        if (env.getString("Scene::file").empty()) continue;
+        if (std::filesystem::equivalent(env.getPath("Scene::dir") / env.getString("Scene::file"), sceneFile, ec))
+            return candidate;
+    }
+    return {};
+}
+
+SceneChoice chooseScene(const std::string& scene, const std::string& sceneEnv, const EnvOptions& options) {
+    SceneChoice choice;
+    if (!sceneEnv.empty()) {
+        if (!std::filesystem::is_regular_file(sceneEnv))
+            throw InputError(fmt::format("--scene-env {}: no such file", sceneEnv));
+        choice.envFile = sceneEnv;
+    }
+    if (scene.empty()) return choice;
+    if (std::filesystem::exists(scene)) {
+        choice.sceneFile = scene;
+        if (choice.envFile.empty()) choice.envFile = sceneEnvFor(scene, options);
+        return choice;
+    }
+    const std::filesystem::path named = repositoryFile(std::filesystem::path("env/scenes") / (scene + ".env"));
+    if (scene.find('/') == std::string::npos && std::filesystem::is_regular_file(named)) {
+        if (choice.envFile.empty()) choice.envFile = named;
+        return choice;
+    }
+    std::vector<std::string> known;
+    if (std::filesystem::is_directory(repositoryFile("env/scenes")))
+        for (const auto& entry : std::filesystem::directory_iterator(repositoryFile("env/scenes")))
+            if (entry.path().extension() == ".env") known.push_back(entry.path().stem().string());
+    std::sort(known.begin(), known.end());
+    throw InputError(fmt::format("--scene {}: no such file, and no scene env file env/scenes/{}.env (scene names: {})",
+                                 scene, scene, fmt::join(known, ", ")));
+}
+
+Env SceneChoice::load(const EnvOptions& options) const {
+    Env env = options.load(envFile);
+    if (!sceneFile.empty())
+        env.set("Scene::file", std::filesystem::absolute(sceneFile).lexically_normal().string(), "--scene");
+    return env;
+}
+
+Scene loadSceneFor(const Env& env, bool useCache, SceneLoadInfo* info) {
+    // Relative to Scene::dir; an absolute Scene::file (as --scene sets it) stays as it is.
+    const std::filesystem::path path = env.getString("Scene::file").empty()
+                                           ? std::filesystem::path()
+                                           : env.getPath("Scene::dir") / env.getString("Scene::file");
+    const std::filesystem::path cacheDir = useCache ? env.getPath("Scene::cacheDir") : std::filesystem::path();
+    SceneLoadInfo loaded;
+    const auto start = std::chrono::steady_clock::now();
+    Scene scene;
+    if (path.empty()) {
+        scene = makeDefaultScene();
+    } else if (cacheDir.empty()) {
+        scene = loadScene(path);
+    } else {
+        CachedScene cached = loadSceneCached(path, cacheDir);
+        if (!cached.note.empty()) fmt::print(stderr, "scene cache: {}\n", cached.note);
+        scene = std::move(cached.scene);
+        loaded.fromCache = cached.fromCache;
+        loaded.cacheFile = cached.cacheFile;
+    }
+    loaded.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    fmt::print(stderr, "scene {}: {} triangles ({} degenerate, not built over) {} in {:.0f} ms\n", scene.name,
+               scene.triangleCount(), scene.report.degenerateTriangles,
+               loaded.fromCache ? "read from cache " + loaded.cacheFile.string() : std::string("loaded"), loaded.ms);
+    if (scene.report.unsupportedSpheres || scene.report.unsupportedCones)
+        fmt::print(stderr, "scene {}: not yet supported and not rendered: {} spheres, {} cones/cylinders\n",
+                   scene.name, scene.report.unsupportedSpheres, scene.report.unsupportedCones);
+    for (const std::string& warning : scene.report.warnings) fmt::print(stderr, "warning: {}\n", warning);
+    if (info) *info = loaded;
+    return scene;
+}
+
+BuiltAccelerator buildAccelerator(const Scene& scene, const Env& env) {
+    BuiltAccelerator built{createAccelerator(env), {}};
+    built.stats = built.accel->build(scene.primitives());
+    fmt::print(stderr, "{}: built over {} primitives in {:.1f} ms\n", built.accel->name(), built.stats.primitives,
+               built.stats.buildMs);
+    return built;
+}
+
+RenderStats renderWithProgress(const Scene& scene, const Accelerator& accel, const Camera& camera,
+                               const RenderSettings& settings, Framebuffer& fb, Progress& progress,
+                               const std::string& label) {
+    progress.phase(label, tileCount(fb.width, fb.height));
+    const RenderStats stats = render(scene, accel, camera, settings, fb, [&](uint64_t rays) { progress.advance(1, rays); });
+    progress.finish();
+    return stats;
+}
+
+std::filesystem::path prepareOutputFile(const std::string& path, const std::string& option) {
+    const std::filesystem::path file = path;
+    if (path.empty()) throw InputError(option + ": empty path (give a file, e.g. out/render)");
+    if (!file.has_filename() || file.filename() == "." || file.filename() == ".." || std::filesystem::is_directory(file))
+        throw InputError(fmt::format("{} {}: names a folder; give a file in it, e.g. {}", option, path,
+                                     (file / "render").lexically_normal().string()));
+    if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());
+    return file;
+}
+
+std::filesystem::path prepareOutputFolder(const std::string& path, const std::string& option) {
+    if (path.empty()) throw InputError(option + ": empty path (give a folder, e.g. out/batch)");
+    const std::filesystem::path folder = path;
+    if (std::filesystem::exists(folder) && !std::filesystem::is_directory(folder))
+        throw InputError(fmt::format("{} {}: is a file, not a folder", option, path));
+    std::filesystem::create_directories(folder);
+    return folder;
+}
+
+std::vector<std::string> splitCommaList(const std::string& text) {
+    std::vector<std::string> items;
+    std::string item;
+    for (std::stringstream in(text); std::getline(in, item, ',');) {
+        item.erase(0, item.find_first_not_of(" \t"));
+        item.erase(item.find_last_not_of(" \t") + 1);
+        if (!item.empty()) items.push_back(item);
+    }
+    return items;
+}
+
+void writeFileAtomically(const std::filesystem::path& file, const std::string& text) {
+    const std::filesystem::path temporary = file.string() + fmt::format(".tmp-{}", ::getpid());
+    {
+        std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+        out << text;
+        if (!out) throw InputError(fmt::format("{}: cannot write", temporary.string()));
+    }
+    std::filesystem::rename(temporary, file);
+}
+
+int runGuarded(const std::function<void()>& body) {
+    try {
+        body();
+        return 0;
+    } catch (const InputError& e) {
+        fmt::print(stderr, "error: {}\n", e.what());
+    } catch (const std::exception& e) {
+        fmt::print(stderr, "error: {}\n", e.what());
+    }
+    return 1;
+}
+
+}  // namespace bvhlab

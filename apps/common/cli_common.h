@@ -1,0 +1,97 @@
+// What every subcommand shares: --env files, -D overrides, loading the scene and building
+// the chosen accelerator with a report on stderr.
+#pragma once
+
+#include "apps/common/progress.h"
+#include "framework/core/accelerator.h"
+#include "framework/render/camera.h"
+#include "framework/config/env.h"
+#include "framework/render/framebuffer.h"
+#include "framework/render/renderer.h"
+#include "framework/scene/scene.h"
+
+#include <CLI/CLI.hpp>
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace bvhlab {
+
+// A file of the repository (env/global.env, env/scenes/...): in the working folder when bvhlab
+// runs from the repository root, else in the source tree it was built from.
+std::filesystem::path repositoryFile(const std::filesystem::path& relative);
+
+// Every subcommand's configuration options. The layers, later ones winning: env/global.env
+// (unless --no-global-env), a scene's env file (camera, lights), the --env files, --threads,
+// then the -D overrides.
+struct EnvOptions {
+    std::vector<std::string> envFiles;
+    std::vector<std::string> overrides;
+    bool noGlobalEnv = false;
+    int threads = -1;  // --threads; -1: not given
+
+    // Adds --env, -D and --no-global-env.
+    void addTo(CLI::App& command);
+    // Adds --threads N (0 = all hardware threads), setting SetRayTracing::threads.
+    void addThreadsTo(CLI::App& command);
+    Env load(const std::filesystem::path& sceneEnvFile = {}) const;
+    // The env files load() reads, in order.
+    std::vector<std::string> files(const std::filesystem::path& sceneEnvFile = {}) const;
+};
+
+// The env file under env/scenes/ whose Scene::file is `sceneFile` (the same file on disk), or
+// empty: so a scene named by its file is seen from its own camera with its own lights.
+std::filesystem::path sceneEnvFor(const std::filesystem::path& sceneFile, const EnvOptions& options);
+
+// What `--scene X [--scene-env F]` names. X is a scene file, or NAME for env/scenes/NAME.env.
+struct SceneChoice {
+    std::filesystem::path sceneFile;  // empty: the env's Scene::file
+    std::filesystem::path envFile;    // the scene's env file; empty: none
+    // The layered env, with Scene::file set to the file actually read.
+    Env load(const EnvOptions& options) const;
+};
+SceneChoice chooseScene(const std::string& scene, const std::string& sceneEnv, const EnvOptions& options);
+
+// How loadSceneFor got its scene.
+struct SceneLoadInfo {
+    bool fromCache = false;           // read from the scene cache, not parsed
+    std::filesystem::path cacheFile;  // the cache entry read or written; empty when the cache was not used
+    double ms = 0.0;                  // load time (hashing, reading or parsing, finalize)
+};
+
+// The scene of Scene::file (in Scene::dir; --scene sets it absolute), else the embedded default; load problems
+// (degenerate triangles, unsupported NFF primitives, warnings) are reported on stderr. With `useCache`
+// a scene file is read from / stored into the binary cache in Scene::cacheDir (empty = no cache; see
+// framework/scene/scene_cache.h); `bvhlab batch` uses it, render, raycast and bench parse every time.
+Scene loadSceneFor(const Env& env, bool useCache = false, SceneLoadInfo* info = nullptr);
+
+struct BuiltAccelerator {
+    std::unique_ptr<Accelerator> accel;
+    BuildStats stats;
+};
+BuiltAccelerator buildAccelerator(const Scene& scene, const Env& env);
+
+// Renders with a progress line on `progress`: phase `label`, tiles done, rays per second.
+RenderStats renderWithProgress(const Scene& scene, const Accelerator& accel, const Camera& camera,
+                               const RenderSettings& settings, Framebuffer& fb, Progress& progress,
+                               const std::string& label);
+
+// An output path given to `option`, checked the same way by every subcommand: not empty, not a
+// folder (for a file, or a path without extension); its folder is created. Throws InputError.
+std::filesystem::path prepareOutputFile(const std::string& path, const std::string& option = "--out");
+// An output folder given to `option`: not empty; created.
+std::filesystem::path prepareOutputFolder(const std::string& path, const std::string& option = "--out");
+
+// "a, b,,c" -> {"a", "b", "c"}: every option's comma-separated list.
+std::vector<std::string> splitCommaList(const std::string& text);
+
+// Writes `text` to `file` by way of a temporary file beside it, so a reader (or a run resumed
+// after an interruption) never sees half a file.
+void writeFileAtomically(const std::filesystem::path& file, const std::string& text);
+
+// Runs `body`, turning InputError and other exceptions into a one-line message and exit code 1.
+int runGuarded(const std::function<void()>& body);
+
+}  // namespace bvhlab

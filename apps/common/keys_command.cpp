@@ -1,0 +1,36 @@
+// `bvhlab keys`: prints every env key and accelerator as Markdown (docs/env-keys.md); with
+// --env, -D or --no-global-env, the configuration they resolve to instead: every key, its
+// value and where the value came from.
+#include "accel/registry.h"
+#include "apps/common/cli_common.h"
+#include "apps/common/commands.h"
+
+#include <fmt/core.h>
+#include <fmt/ranges.h>
+#include <nlohmann/json.hpp>
+
+namespace bvhlab {
+
+void addKeysCommand(CLI::App& app) {
+    auto options = std::make_shared<EnvOptions>();
+    CLI::App* command = app.add_subcommand(
+        "keys", "print every env key and accelerator as Markdown (docs/env-keys.md); with --env or -D, the resolved values");
+    options->addTo(*command);
+    command->callback([options, command] {
+        const bool resolve = command->count("--env") + command->count("-D") + command->count("--no-global-env") > 0;
+        if (!resolve) {
+            fmt::print("{}", envKeysMarkdown());
+            return;
+        }
+        const int code = runGuarded([&] {
+            const Env env = options->load();
+            fmt::print("# env files: {}\n", fmt::join(options->files(), " "));
+            const nlohmann::json resolved = env.toJson();
+            for (const auto& [name, value] : resolved.items())
+                fmt::print("{} {}  # {}\n", name, value["value"].get<std::string>(), value["from"].get<std::string>());
+        });
+        if (code != 0) throw CLI::RuntimeError(code);
+    });
+}
+
+}  // namespace bvhlab

@@ -1,0 +1,57 @@
+#include "apps/common/run_record.h"
+
+#include "framework/scene/scene_cache.h"
+
+#include <fmt/core.h>
+
+#include <chrono>
+#include <ctime>
+
+namespace bvhlab {
+namespace {
+
+std::string commandLine;
+std::string started;
+
+// A word as a POSIX shell reads it back: quoted when it holds anything but safe characters.
+std::string shellWord(const std::string& word) {
+    const bool safe = !word.empty() && word.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                                             "0123456789_-+=/.,:@%") == std::string::npos;
+    if (safe) return word;
+    std::string quoted = "'";
+    for (char c : word) {
+        if (c == '\'') quoted += "'\\''";
+        else quoted += c;
+    }
+    quoted += '\'';
+    return quoted;
+}
+
+}  // namespace
+
+void recordRun(int argc, char** argv) {
+    commandLine.clear();
+    for (int i = 0; i < argc; ++i) {
+        if (i > 0) commandLine += ' ';
+        commandLine += shellWord(argv[i]);
+    }
+    const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+    std::tm utc{};
+    gmtime_r(&now, &utc);
+    char text[32];
+    std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &utc);
+    started = text;
+}
+
+nlohmann::json runJson() { return {{"command_line", commandLine}, {"started", started}}; }
+
+nlohmann::json sceneFileJson(const Scene& scene) {
+    if (scene.source.empty()) return {{"file", nullptr}, {"embedded", true}};
+    const SceneCacheKey key = sceneCacheKey(scene.source);
+    return {{"file", std::filesystem::absolute(scene.source).lexically_normal().string()},
+            {"size", key.size},
+            {"crc32", fmt::format("{:08x}", key.crc32)},
+            {"adler32", fmt::format("{:08x}", key.adler32)}};
+}
+
+}  // namespace bvhlab

@@ -1,0 +1,21 @@
+// What every result file records of the run that made it, beside the code's provenance: the
+// command line, when it started, and the scene file actually read with its checksum.
+#pragma once
+
+#include "framework/scene/scene.h"
+
+#include <nlohmann/json.hpp>
+
+namespace bvhlab {
+
+// Called once by main: the command line and the start time.
+void recordRun(int argc, char** argv);
+
+// {"command_line": "bvhlab render ...", "started": "2026-12-01T20:33:00Z"}
+nlohmann::json runJson();
+
+// {"file": absolute path, "size": bytes, "crc32": "...", "adler32": "..."}, or {"file": null,
+// "embedded": true} for the embedded default scene.
+nlohmann::json sceneFileJson(const Scene& scene);
+
+}  // namespace bvhlab

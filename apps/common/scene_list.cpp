@@ -1,0 +1,64 @@
+#include "apps/common/scene_list.h"
+
+#include "framework/core/error.h"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <fstream>
+
+namespace bvhlab {
+
+Env SceneArgument::load(const EnvOptions& options) const { return SceneChoice{sceneFile, envFile}.load(options); }
+
+std::vector<SceneArgument> expandSceneList(const std::vector<std::string>& arguments, const EnvOptions& options) {
+    std::vector<std::string> items;
+    for (const std::string& argument : arguments)
+        for (const std::string& item : splitCommaList(argument)) items.push_back(item);
+    if (items.empty()) items.push_back(repositoryFile("env/scenes.list").string());
+
+    std::vector<std::filesystem::path> files;  // env and scene files, lists expanded
+    for (const std::filesystem::path item : items) {
+        if (item.extension() != ".list") {
+            if (!std::filesystem::is_regular_file(item))
+                throw InputError(fmt::format("--scenes {}: no such file", item.string()));
+            files.push_back(item);
+            continue;
+        }
+        std::ifstream in(item);
+        if (!in) throw inputError(item, 0, "cannot open scene list");
+        std::string line;
+        for (size_t lineNo = 1; std::getline(in, line); ++lineNo) {
+            line = line.substr(0, line.find('#'));
+            line.erase(0, line.find_first_not_of(" \t\r"));
+            line.erase(line.find_last_not_of(" \t\r") + 1);
+            if (line.empty()) continue;
+            const std::filesystem::path file = item.parent_path() / line;
+            if (!std::filesystem::exists(file)) throw inputError(item, lineNo, "no such env file: " + file.string());
+            files.push_back(file);
+        }
+    }
+
+    std::vector<SceneArgument> scenes;
+    for (const std::filesystem::path& file : files) {
+        SceneArgument scene;
+        if (file.extension() == ".env") {
+            scene.envFile = file;
+        } else {
+            scene.sceneFile = file;
+            scene.envFile = sceneEnvFor(file, options);
+        }
+        // munich.ply.gz and munich.ply are both "munich"; an env file is named as it is.
+        std::filesystem::path stem = file.filename();
+        while (stem.has_extension()) stem = stem.stem();
+        scene.id = file.extension() == ".env" ? file.stem().string() : stem.string();
+        if (std::any_of(scenes.begin(), scenes.end(), [&](const SceneArgument& s) { return s.id == scene.id; }))
+            throw InputError(fmt::format("--scenes: two scenes are named '{}' ({}): jobs and rows are named by the "
+                                         "file's stem",
+                                         scene.id, file.string()));
+        scenes.push_back(scene);
+    }
+    return scenes;
+}
+
+}  // namespace bvhlab

@@ -1,0 +1,28 @@
+// The scenes a batch, bench, tradeoff or stress run goes over, as --scenes names them: scene
+// env files (.env: camera, lights, Scene::file), .list files of env files (one per line,
+// relative to the list's folder, `#` comments), or scene files (.obj .ply .off .nff, .gz),
+// each taken with the env file under env/scenes/ that names it where there is one.
+#pragma once
+
+#include "apps/common/cli_common.h"
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace bvhlab {
+
+struct SceneArgument {
+    std::string id;                   // the env file's stem, else the scene file's: names jobs and rows
+    std::filesystem::path envFile;    // the scene's env file; empty for a scene file no env file names
+    std::filesystem::path sceneFile;  // the scene file named directly; empty when the env file names it
+
+    // The layered env of this scene (SceneChoice::load).
+    Env load(const EnvOptions& options) const;
+};
+
+// Expands the arguments (each may also be a comma-separated list); with none, env/scenes.list
+// of the repository. Throws InputError for a missing file or two scenes of one id.
+std::vector<SceneArgument> expandSceneList(const std::vector<std::string>& arguments, const EnvOptions& options);
+
+}  // namespace bvhlab

@@ -1,0 +1,55 @@
+#include "apps/common/timing.h"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <chrono>
+#include <ctime>
+
+namespace bvhlab {
+
+double median(std::vector<double> values) {
+    std::sort(values.begin(), values.end());
+    const size_t n = values.size();
+    return n == 0 ? 0.0 : n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+double processCpuMs() {
+    timespec t{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
+}
+
+PassResult tracePasses(const Accelerator& accel, const std::vector<Ray>& rays, bool anyHit, int threads, int passes) {
+    PassResult result;
+    if (rays.empty()) return result;
+    std::vector<double> times, cpuTimes;
+    tbb::task_arena arena(threads);
+    for (int pass = 0; pass < passes; ++pass) {
+        tbb::enumerable_thread_specific<QueryCounters> counters;
+        const auto start = std::chrono::steady_clock::now();
+        const double cpuStart = processCpuMs();
+        arena.execute([&] {
+            tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), 4096), [&](const auto& range) {
+                QueryCounters& local = counters.local();
+                Hit hit;
+                for (size_t i = range.begin(); i < range.end(); ++i) {
+                    if (anyHit) accel.isOccluded(rays[i], local);
+                    else accel.findNearest(rays[i], hit, local);
+                }
+            });
+        });
+        times.push_back(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count() /
+                        double(rays.size()));
+        cpuTimes.push_back((processCpuMs() - cpuStart) * 1e3 / double(rays.size()));
+        if (pass == 0)
+            for (const QueryCounters& c : counters) result.counters += c;
+    }
+    result.usPerQuery = median(times);
+    result.cpuUsPerQuery = median(cpuTimes);
+    return result;
+}
+
+}  // namespace bvhlab

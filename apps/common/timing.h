@@ -1,0 +1,26 @@
+// What the measuring subcommands (bench, tradeoff) share: medians and timed passes over a ray
+// set (see apps/common/accel_config.h for the NAME:Key=value configurations they run).
+#pragma once
+
+#include "framework/core/accelerator.h"
+
+#include <vector>
+
+namespace bvhlab {
+
+double median(std::vector<double> values);
+
+// CPU time of the whole process so far [ms]. With one thread at work it leaves out the time
+// a shared, loaded machine gives to other processes, which wall time does not.
+double processCpuMs();
+
+struct PassResult {
+    double usPerQuery = 0.0;     // median over passes of wall time / queries
+    double cpuUsPerQuery = 0.0;  // median over passes of process CPU time / queries (all threads)
+    QueryCounters counters;      // of one pass
+};
+
+// Answers every ray `passes` times with `threads` threads; the first pass also counts.
+PassResult tracePasses(const Accelerator& accel, const std::vector<Ray>& rays, bool anyHit, int threads, int passes);
+
+}  // namespace bvhlab

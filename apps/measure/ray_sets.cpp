@@ -1,0 +1,54 @@
+#include "apps/measure/ray_sets.h"
+
+#include "framework/core/ray_offset.h"
+
+#include <glm/gtc/constants.hpp>
+#include <tbb/parallel_for.h>
+
+#include <random>
+
+namespace bvhlab {
+namespace {
+
+// Cosine-distributed direction around the unit normal n (Malley's method).
+Vec3 cosineDirection(const Vec3& n, float u1, float u2) {
+    const float r = std::sqrt(u1), phi = glm::two_pi<float>() * u2;
+    const Vec3 t = std::abs(n.x) > 0.9f ? glm::normalize(glm::cross(n, Vec3(0, 1, 0)))
+                                        : glm::normalize(glm::cross(n, Vec3(1, 0, 0)));
+    const Vec3 b = glm::cross(n, t);
+    return r * std::cos(phi) * t + r * std::sin(phi) * b + std::sqrt(std::max(0.0f, 1.0f - u1)) * n;
+}
+
+}  // namespace
+
+RaySets makeRaySets(const Scene& scene, const Camera& camera, const std::vector<PointLight>& lights,
+                    const Accelerator& reference, float aoRadiusFraction, uint32_t seed) {
+    RaySets sets;
+    for (int y = 0; y < camera.height(); ++y)
+        for (int x = 0; x < camera.width(); ++x) sets.primary.push_back(camera.generateRay(x + 0.5f, y + 0.5f));
+
+    std::vector<Hit> hits(sets.primary.size());
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, hits.size(), 4096), [&](const auto& range) {
+        QueryCounters unused;
+        for (size_t i = range.begin(); i < range.end(); ++i) reference.findNearest(sets.primary[i], hits[i], unused);
+    });
+
+    const float aoRadius = aoRadiusFraction * glm::length(scene.bounds.diagonal());
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+    for (size_t i = 0; i < hits.size(); ++i) {
+        if (!hits[i].found()) continue;
+        const Triangle& tri = scene.triangles[hits[i].primitive];
+        const Vec3 p = (1.0f - hits[i].u - hits[i].v) * tri.v0 + hits[i].u * tri.v1 + hits[i].v * tri.v2;
+        Vec3 n = glm::normalize(tri.geometricNormal());
+        if (glm::dot(n, sets.primary[i].dir) > 0.0f) n = -n;
+        const Vec3 origin = offsetRayOrigin(p, n, tri);
+        for (const PointLight& light : lights)
+            if (glm::dot(n, light.position - p) > 0.0f)
+                sets.shadow.push_back({origin, light.position - origin, 0.0f, 1.0f - 1e-5f});
+        sets.incoherent.push_back({origin, cosineDirection(n, uniform(rng), uniform(rng)), 0.0f, aoRadius});
+    }
+    return sets;
+}
+
+}  // namespace bvhlab

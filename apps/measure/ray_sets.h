@@ -1,0 +1,24 @@
+// The ray sets the bench traces, made once per scene so every structure answers the same
+// rays: primary rays through pixel centres, shadow rays from their hits to each light, and
+// incoherent rays (cosine-distributed bounces from the hits, as ambient occlusion casts them).
+#pragma once
+
+#include "framework/core/accelerator.h"
+#include "framework/render/camera.h"
+
+#include <vector>
+
+namespace bvhlab {
+
+struct RaySets {
+    std::vector<Ray> primary;
+    std::vector<Ray> shadow;      // any-hit queries
+    std::vector<Ray> incoherent;  // any-hit queries of length aoRadius
+};
+
+// `reference` answers the primary rays to find the surfaces the other rays start from.
+// `aoRadiusFraction` is the incoherent rays' length relative to the scene's bounding diagonal.
+RaySets makeRaySets(const Scene& scene, const Camera& camera, const std::vector<PointLight>& lights,
+                    const Accelerator& reference, float aoRadiusFraction = 0.1f, uint32_t seed = 1);
+
+}  // namespace bvhlab

@@ -1,0 +1,189 @@
+// `bvhlab tradeoff [--scenes ...] [--out DIR] [--quick] [--resume | --fresh]`: run time against
+// error for tdbvh, sahbvh with K bins, sweepbvh and embree (see apps/measure/tradeoff.h). Results are kept
+// per configuration in DIR/<scene>/<config>.json; a run skips those already measured with the
+// same settings, so an interrupted run resumes where it stopped.
+#include "apps/common/cli_common.h"
+#include "apps/common/commands.h"
+#include "apps/common/scene_list.h"
+#include "apps/measure/tradeoff.h"
+#include "framework/core/error.h"
+
+#include <fmt/core.h>
+#include <tbb/info.h>
+
+#include <chrono>
+#include <fstream>
+#include <sstream>
+
+namespace bvhlab {
+namespace {
+
+using nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+std::vector<int> parseBins(const std::string& text) {
+    std::vector<int> bins;
+    std::string item;
+    for (std::stringstream in(text); std::getline(in, item, ',');) {
+        size_t used = 0;
+        int k = 0;
+        try {
+            k = std::stoi(item, &used);
+        } catch (const std::exception&) {
+            used = 0;
+        }
+        if (used != item.size() || k < 2 || k > 256)
+            throw InputError(fmt::format("--bins: '{}' is not a bin count in 2..256", item));
+        bins.push_back(k);
+    }
+    if (bins.empty()) throw InputError("--bins: no bin count given");
+    return bins;
+}
+
+// What a stored result must match to be reused: the settings and the scene's resolved env
+// (values only; output switches and the cache folder do not change a measurement).
+json fingerprintOf(const TradeoffSettings& settings, const Env& env) {
+    json values = json::object();
+    const json resolved = env.toJson();
+    for (const auto& [key, entry] : resolved.items())
+        if (key.rfind("Output::", 0) != 0 && key != "Scene::cacheDir" && key.rfind("Batch::", 0) != 0)
+            values[key] = entry["value"];
+    return {{"settings", settings.toJson()}, {"env", values}};
+}
+
+bool storedMatches(const std::filesystem::path& file, const json& fingerprint) {
+    try {
+        std::ifstream in(file);
+        return json::parse(in).at("fingerprint") == fingerprint;
+    } catch (const std::exception&) {
+        return false;  // unreadable (e.g. written by an older version): measure again
+    }
+}
+
+
+}  // namespace
+
+void addTradeoffCommand(CLI::App& app) {
+    struct Options {
+        EnvOptions env;
+        std::vector<std::string> scenes;
+        std::string out = "out/tradeoff";
+        bool quick = false;
+        bool resume = true;
+        std::string bins = "2,4,8,16,32,64,128";
+        TradeoffSettings settings;
+    };
+    auto options = std::make_shared<Options>();
+    CLI::App* command = app.add_subcommand(
+        "tradeoff", "run time against error: build time vs SAH gap, T_R, time to image, image error, mismatches vs Embree");
+    options->env.addTo(*command);
+    TradeoffSettings& s = options->settings;
+    command->add_option("--scenes", options->scenes,
+                        "scene env files, .list files or scene files (default env/scenes.list; --quick: munich and sibenik)");
+    command->add_option("--out", options->out, "folder of the results: DIR/<scene>/<config>.json, tradeoff.csv, "
+                                               "image_error.csv, tradeoff.md")
+        ->capture_default_str();
+    command->add_flag("--quick", options->quick,
+                      "CI subset: munich and sibenik, 200x200, K 4,16,64, up to 16 spp, reference 64 spp, 2 passes");
+    command->add_flag("--resume,!--fresh", options->resume,
+                      "keep results already in DIR that were measured with the same settings (default); --fresh "
+                      "measures everything again");
+    command->add_option("--bins", options->bins, "sahbvh bin counts K")->capture_default_str();
+    command->add_option("--ray-size", s.raySize, "T_R and mismatch rays: primary rays of an NxN image (0 = the scene's size)")
+        ->capture_default_str()->check(CLI::Range(0, 16384));
+    command->add_option("--size", s.seriesSize, "images of the spp series and the reference: NxN")
+        ->capture_default_str()->check(CLI::Range(1, 16384));
+    command->add_option("--max-spp", s.maxSpp, "the series renders 1, 2, 4, ... up to this many samples per pixel")
+        ->capture_default_str()->check(CLI::Range(1, 65536));
+    command->add_option("--reference-spp", s.referenceSpp, "samples per pixel of the reference image")
+        ->capture_default_str()->check(CLI::Range(1, 65536));
+    command->add_option("--builds", s.builds, "builds per configuration (median)")->capture_default_str()->check(CLI::Range(1, 100));
+    command->add_option("--passes", s.passes, "passes over each ray set (median)")->capture_default_str()->check(CLI::Range(1, 100));
+    command->add_option("--threads", s.threads, "threads of every timed build, trace and render; 0 = all hardware threads")
+        ->capture_default_str()->check(CLI::Range(0, 1024));
+
+    command->callback([options, command] {
+        const int code = runGuarded([&] {
+            const auto start = Clock::now();
+            TradeoffSettings settings = options->settings;
+            std::string bins = options->bins;
+            if (options->quick) {
+                // The quick subset, except where an option was given explicitly.
+                auto quick = [&](const char* option, auto& field, auto value) {
+                    if (command->count(option) == 0) field = value;
+                };
+                quick("--bins", bins, std::string("4,16,64"));
+                quick("--ray-size", settings.raySize, 200);
+                quick("--size", settings.seriesSize, 200);
+                quick("--max-spp", settings.maxSpp, 16);
+                quick("--reference-spp", settings.referenceSpp, 64);
+                quick("--passes", settings.passes, 2);
+                settings.quick = true;
+            }
+            settings.bins = parseBins(bins);
+            if (settings.threads == 0) settings.threads = tbb::info::default_concurrency();
+            std::vector<std::string> sceneArgs = options->scenes;
+            if (sceneArgs.empty() && options->quick)
+                for (const char* id : {"munich", "sibenik"})
+                    sceneArgs.push_back(repositoryFile(std::filesystem::path("env/scenes") / (std::string(id) + ".env")).string());
+            const std::vector<SceneArgument> scenes = expandSceneList(sceneArgs, options->env);
+            const std::vector<AccelConfig> configs = tradeoffConfigs(settings);
+            const std::filesystem::path dir = prepareOutputFolder(options->out);
+
+            std::vector<std::string> ids;
+            size_t kept = 0, measured = 0;
+            const size_t total = scenes.size() * configs.size();
+            Progress progress;
+            for (size_t i = 0; i < scenes.size(); ++i) {
+                const std::string& id = scenes[i].id;
+                ids.push_back(id);
+                const Env sceneEnv = scenes[i].load(options->env);
+                const json fingerprint = fingerprintOf(settings, tradeoffSceneEnv(sceneEnv, settings, settings.raySize, settings.raySize));
+                const std::filesystem::path sceneDir = dir / id;
+                std::vector<AccelConfig> pending;
+                for (const AccelConfig& config : configs) {
+                    const std::filesystem::path file = sceneDir / (config.label + ".json");
+                    if (options->resume && std::filesystem::exists(file) && storedMatches(file, fingerprint)) ++kept;
+                    else pending.push_back(config);
+                }
+                progress.phase(fmt::format("[scene {}/{}] {}: {} of {} configurations to measure", i + 1, scenes.size(),
+                                           id, pending.size(), configs.size()));
+                if (pending.empty()) continue;  // not even loaded
+
+                std::filesystem::create_directories(sceneDir);
+                const TradeoffScene scene = prepareTradeoffScene(id, sceneEnv, settings, sceneDir, fingerprint);
+                fmt::print(stderr, "  {}: {} triangles, {} primary and {} shadow rays, images {}x{}\n", id,
+                           scene.scene.triangleCount(), scene.rays.primary.size(), scene.rays.shadow.size(),
+                           scene.seriesCamera.width, scene.seriesCamera.height);
+                for (const AccelConfig& config : pending) {
+                    const auto configStart = Clock::now();
+                    json result = measureTradeoffConfig(scene, config, settings);
+                    result["fingerprint"] = fingerprint;
+                    result["measure_s"] = std::chrono::duration<double>(Clock::now() - configStart).count();
+                    writeFileAtomically(sceneDir / (config.label + ".json"), result.dump(2) + "\n");
+                    ++measured;
+                    const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+                    const size_t left = total - kept - measured;
+                    fmt::print(stderr,
+                               "  {} {}: T_B {:.1f} ms, SAH {}, T_R {:.3f}/{:.3f} us, image {} spp {:.0f} ms (CPU; wall "
+                               "{:.0f} ms), mismatches {}/{} ({}, {} left, ETA {})\n",
+                               id, config.label, result["build_cpu_ms"].get<double>(),
+                               result["sah"].is_null() ? "n/a" : fmt::format("{:.2f}", result["sah"].get<double>()),
+                               result["primary"]["t_r_cpu_us"].get<double>(), result["shadow"]["t_r_cpu_us"].get<double>(),
+                               settings.maxSpp, result["series"].back()["time_to_image_cpu_ms"].get<double>(),
+                               result["series"].back()["time_to_image_ms"].get<double>(),
+                               result["primary"]["mismatches"].get<size_t>(), result["shadow"]["mismatches"].get<size_t>(),
+                               Progress::formatDuration(elapsed), left, Progress::formatDuration(elapsed / double(measured) * double(left)));
+                }
+            }
+            const std::string md = writeTradeoffReport(dir, ids, configs, settings);
+            fmt::print("{}", md);
+            fmt::print(stderr, "tradeoff: {} configurations measured, {} kept from an earlier run, in {}; wrote {}\n",
+                       measured, kept, Progress::formatDuration(std::chrono::duration<double>(Clock::now() - start).count()),
+                       (dir / "tradeoff.csv").string());
+        });
+        if (code != 0) throw CLI::RuntimeError(code);
+    });
+}
+
+}  // namespace bvhlab

@@ -1,0 +1,76 @@
+// `bvhlab raycast`: answer a file of rays with the chosen accelerator and write the hits.
+#include "apps/common/cli_common.h"
+#include "apps/common/commands.h"
+#include "framework/io/ray_file.h"
+
+#include <fmt/core.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/info.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <chrono>
+
+namespace bvhlab {
+
+void addRaycastCommand(CLI::App& app) {
+    struct Options {
+        EnvOptions env;
+        std::string scene, rays, out;
+        bool any = false;
+    };
+    auto options = std::make_shared<Options>();
+    CLI::App* command = app.add_subcommand("raycast", "answer every ray of a BVHRAYS1 file, write a BVHHITS1 file");
+    options->env.addTo(*command);
+    options->env.addThreadsTo(*command);
+    command->add_option("--scene", options->scene,
+                        "scene file, or NAME for env/scenes/NAME.env (default: Scene::file, else the embedded scene)");
+    command->add_option("--rays", options->rays, "input rays (BVHRAYS1)")->required();
+    command->add_option("--out", options->out, "output hits (BVHHITS1)")->required();
+    command->add_flag("--any", options->any, "any-hit queries (isOccluded) instead of closest hit");
+    command->callback([options] {
+        const int code = runGuarded([&] {
+            const SceneChoice choice = chooseScene(options->scene, "", options->env);
+            const Env env = choice.load(options->env);
+            const std::filesystem::path out = prepareOutputFile(options->out);
+            Progress progress;
+            progress.phase("loading the scene");
+            const Scene scene = loadSceneFor(env);
+            progress.phase(fmt::format("building {}", env.getString("ASDS::type")));
+            const BuiltAccelerator built = buildAccelerator(scene, env);
+            const std::vector<Ray> rays = readRayFile(options->rays);
+            constexpr size_t kRaysPerStep = 1024;
+            progress.phase(fmt::format("tracing {} rays", rays.size()), (rays.size() + kRaysPerStep - 1) / kRaysPerStep);
+            std::vector<Hit> hits(rays.size());
+            const int threads = env.getInt("SetRayTracing::threads");
+            tbb::enumerable_thread_specific<QueryCounters> perThread;
+
+            const auto start = std::chrono::steady_clock::now();
+            tbb::task_arena(threads > 0 ? threads : tbb::info::default_concurrency()).execute([&] {
+                tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), kRaysPerStep), [&](const auto& range) {
+                    QueryCounters& counters = perThread.local();
+                    for (size_t i = range.begin(); i < range.end(); ++i) {
+                        if (!options->any) built.accel->findNearest(rays[i], hits[i], counters);
+                        else if (built.accel->isOccluded(rays[i], counters)) hits[i] = {0.0f, 0, 0.0f, 0.0f};
+                    }
+                    progress.advance((range.size() + kRaysPerStep - 1) / kRaysPerStep, range.size());
+                });
+            });
+            const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            progress.finish();
+            writeHitFile(out, hits);
+
+            QueryCounters total;
+            for (const QueryCounters& c : perThread) total += c;
+            const double n = std::max<double>(1.0, double(total.queries));
+            const std::string nit = built.accel->hasCounters() ? fmt::format("{:.2f}", total.intersectionTests / n) : "n/a";
+            const std::string ntr = built.accel->hasCounters() ? fmt::format("{:.2f}", total.traversalSteps / n) : "n/a";
+            fmt::print("{} {} queries: {}  N_IT {}  N_TR {}  T_R {:.3f} us (wall time / queries)\n",
+                       built.accel->name(), options->any ? "any-hit" : "closest-hit", total.queries, nit, ntr,
+                       seconds * 1e6 / n);
+        });
+        if (code != 0) throw CLI::RuntimeError(code);
+    });
+}
+
+}  // namespace bvhlab

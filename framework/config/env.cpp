@@ -1,0 +1,245 @@
+#include "framework/config/env.h"
+
+#include "framework/core/error.h"
+
+#include <fmt/ranges.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <charconv>
+#include <fstream>
+#include <sstream>
+
+namespace bvhlab {
+namespace {
+
+std::string trim(std::string_view s) {
+    const size_t b = s.find_first_not_of(" \t\r");
+    if (b == std::string_view::npos) return {};
+    const size_t e = s.find_last_not_of(" \t\r");
+    return std::string(s.substr(b, e - b + 1));
+}
+
+size_t editDistance(const std::string& a, const std::string& b) {
+    std::vector<size_t> row(b.size() + 1);
+    for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (size_t i = 1; i <= a.size(); ++i) {
+        size_t diagonal = row[0];
+        row[0] = i;
+        for (size_t j = 1; j <= b.size(); ++j) {
+            const size_t substitute =
+                diagonal + (std::tolower(static_cast<unsigned char>(a[i - 1])) ==
+                                    std::tolower(static_cast<unsigned char>(b[j - 1]))
+                                ? 0
+                                : 1);
+            diagonal = row[j];
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, substitute});
+        }
+    }
+    return row[b.size()];
+}
+
+std::optional<bool> parseBool(const std::string& s) {
+    if (s == "true" || s == "on" || s == "yes" || s == "1") return true;
+    if (s == "false" || s == "off" || s == "no" || s == "0") return false;
+    return std::nullopt;
+}
+
+template <typename T>
+std::optional<T> parseNumber(std::string_view s) {
+    T v{};
+    const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+    if (ec != std::errc() || end != s.data() + s.size()) return std::nullopt;
+    return v;
+}
+
+std::optional<Vec3> parseVec3(const std::string& s) {
+    std::istringstream in(s);
+    std::string a, b, c, extra;
+    if (!(in >> a >> b >> c) || (in >> extra)) return std::nullopt;
+    const auto x = parseNumber<float>(a), y = parseNumber<float>(b), z = parseNumber<float>(c);
+    if (!x || !y || !z || !std::isfinite(*x) || !std::isfinite(*y) || !std::isfinite(*z)) return std::nullopt;
+    return Vec3(*x, *y, *z);
+}
+
+std::vector<std::string> splitList(const std::string& s) {
+    std::vector<std::string> items;
+    std::string item;
+    std::istringstream in(s);
+    while (std::getline(in, item, ',')) items.push_back(trim(item));
+    return items;
+}
+
+const char* typeName(EnvType type) {
+    switch (type) {
+    case EnvType::Bool: return "a boolean (true/false)";
+    case EnvType::Int: return "an integer";
+    case EnvType::Float: return "a number";
+    case EnvType::String: return "text";
+    case EnvType::Choice: return "one of the listed words";
+    case EnvType::Path: return "a path";
+    case EnvType::Vec3: return "three numbers 'x y z'";
+    case EnvType::Vec3List: return "a list 'x y z, x y z, ...'";
+    }
+    return "?";
+}
+
+// Checks `text` against the key's type; returns the canonical text or an error message.
+std::string validate(const EnvKey& key, const std::string& text, const std::filesystem::path& baseDir,
+                     std::string& error) {
+    auto fail = [&](const std::string& why) {
+        error = fmt::format("{}: bad value '{}': {}", key.name, text, why);
+        return std::string();
+    };
+    switch (key.type) {
+    case EnvType::Bool: {
+        const auto b = parseBool(text);
+        if (!b) return fail("expected true or false");
+        return *b ? "true" : "false";
+    }
+    case EnvType::Int: {
+        const auto v = parseNumber<long long>(text);
+        if (!v) return fail("expected an integer");
+        if (*v < key.min || *v > key.max) return fail(fmt::format("expected {} to {}", key.min, key.max));
+        return text;
+    }
+    case EnvType::Float: {
+        const auto v = parseNumber<double>(text);
+        if (!v || !std::isfinite(*v)) return fail("expected a finite number");
+        if (*v < key.min || *v > key.max) return fail(fmt::format("expected {} to {}", key.min, key.max));
+        return text;
+    }
+    case EnvType::String: return text;
+    case EnvType::Choice:
+        if (std::find(key.choices.begin(), key.choices.end(), text) == key.choices.end())
+            return fail(fmt::format("expected one of: {}", fmt::join(key.choices, ", ")));
+        return text;
+    case EnvType::Path:
+        if (text.empty()) return text;
+        return (baseDir / text).lexically_normal().string();
+    case EnvType::Vec3:
+        if (text.empty()) return text;
+        if (!parseVec3(text)) return fail("expected three finite numbers 'x y z'");
+        return text;
+    case EnvType::Vec3List:
+        if (text.empty()) return text;
+        for (const std::string& item : splitList(text))
+            if (!parseVec3(item)) return fail(fmt::format("'{}' is not three finite numbers 'x y z'", item));
+        return text;
+    }
+    return text;
+}
+
+}  // namespace
+
+void EnvRegistry::add(EnvKey key) {
+    const std::string name = key.name;
+    keys_[name] = std::move(key);
+}
+
+const EnvKey* EnvRegistry::find(const std::string& name) const {
+    const auto it = keys_.find(name);
+    return it == keys_.end() ? nullptr : &it->second;
+}
+
+std::vector<std::string> EnvRegistry::nearest(const std::string& name, size_t count) const {
+    std::vector<std::pair<size_t, std::string>> scored;
+    for (const auto& [known, key] : keys_) scored.emplace_back(editDistance(name, known), known);
+    std::sort(scored.begin(), scored.end());
+    std::vector<std::string> result;
+    // Only suggest keys that are plausibly what was meant.
+    const size_t limit = std::max<size_t>(3, name.size() / 3);
+    for (size_t i = 0; i < scored.size() && result.size() < count; ++i)
+        if (scored[i].first <= limit) result.push_back(scored[i].second);
+    return result;
+}
+
+Env::Env(const EnvRegistry& registry) : registry_(&registry) {
+    // Relative default paths are relative to the repository root, so they work from any folder.
+    for (const auto& [name, key] : registry.keys()) {
+        std::string text = key.defaultValue;
+        if (key.type == EnvType::Path && !text.empty())
+            text = (std::filesystem::path(BVHLAB_SOURCE_DIR) / text).lexically_normal().string();
+        values_[name] = {text, "default"};
+    }
+}
+
+void Env::set(const std::string& name, const std::string& text, const std::string& origin,
+              const std::filesystem::path& baseDir) {
+    const EnvKey* key = registry_->find(name);
+    if (!key) {
+        const auto near = registry_->nearest(name);
+        throw InputError(fmt::format("{}: unknown key '{}'{}", origin, name,
+                                     near.empty() ? "" : fmt::format(" (did you mean {}?)", fmt::join(near, ", "))));
+    }
+    std::string error;
+    std::string canonical = validate(*key, text, baseDir, error);
+    if (!error.empty()) throw InputError(fmt::format("{}: {}", origin, error));
+    values_[name] = {std::move(canonical), origin};
+}
+
+void Env::setOverride(const std::string& assignment) {
+    const size_t eq = assignment.find('=');
+    if (eq == std::string::npos)
+        throw InputError(fmt::format("-D{}: expected Section::key=value", assignment));
+    set(trim(assignment.substr(0, eq)), trim(assignment.substr(eq + 1)), "-D" + trim(assignment.substr(0, eq)));
+}
+
+void Env::loadFile(const std::filesystem::path& file) {
+    std::ifstream in(file);
+    if (!in) throw inputError(file, 0, "cannot open env file");
+    const std::filesystem::path baseDir = std::filesystem::absolute(file).parent_path();
+    std::string line;
+    for (size_t lineNo = 1; std::getline(in, line); ++lineNo) {
+        const size_t hash = line.find('#');
+        const std::string content = trim(std::string_view(line).substr(0, hash));
+        if (content.empty()) continue;
+        const size_t split = content.find_first_of(" \t");
+        const std::string name = content.substr(0, split);
+        const std::string text = split == std::string::npos ? "" : trim(content.substr(split));
+        if (name.find("::") == std::string::npos || name.size() < 4)
+            throw inputError(file, lineNo, fmt::format("expected 'Section::key value', got '{}'", content));
+        set(name, text, fmt::format("{}:{}", file.string(), lineNo), baseDir);
+    }
+}
+
+const Env::Value& Env::value(const std::string& name, EnvType expected) const {
+    const EnvKey* key = registry_->find(name);
+    // Asking for an unregistered key or with the wrong type is a programming error.
+    if (!key || key->type != expected)
+        throw std::logic_error(fmt::format("env key '{}' is not registered as {}", name, typeName(expected)));
+    return values_.at(name);
+}
+
+bool Env::getBool(const std::string& key) const { return value(key, EnvType::Bool).text == "true"; }
+int Env::getInt(const std::string& key) const { return *parseNumber<int>(value(key, EnvType::Int).text); }
+// Validated as a double in the key's range; a value too small for a float (1e-50) becomes 0 or a
+// subnormal here instead of failing to parse as one.
+float Env::getFloat(const std::string& key) const { return float(*parseNumber<double>(value(key, EnvType::Float).text)); }
+
+std::string Env::getString(const std::string& name) const {
+    const EnvKey* key = registry_->find(name);
+    return value(name, key && key->type == EnvType::Choice ? EnvType::Choice : EnvType::String).text;
+}
+
+std::filesystem::path Env::getPath(const std::string& key) const { return value(key, EnvType::Path).text; }
+
+std::optional<Vec3> Env::getVec3(const std::string& key) const { return parseVec3(value(key, EnvType::Vec3).text); }
+
+std::vector<Vec3> Env::getVec3List(const std::string& key) const {
+    const std::string& text = value(key, EnvType::Vec3List).text;
+    std::vector<Vec3> list;
+    if (text.empty()) return list;
+    for (const std::string& item : splitList(text)) list.push_back(*parseVec3(item));
+    return list;
+}
+
+bool Env::isExplicit(const std::string& key) const { return values_.at(key).origin != "default"; }
+
+nlohmann::json Env::toJson() const {
+    nlohmann::json j = nlohmann::json::object();
+    for (const auto& [name, v] : values_) j[name] = {{"value", v.text}, {"from", v.origin}};
+    return j;
+}
+
+}  // namespace bvhlab

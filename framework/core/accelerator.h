@@ -1,0 +1,73 @@
+// The interface every acceleration structure implements (nanoGolem style): build over the
+// scene's triangles, then answer closest-hit and any-hit queries, counting its work.
+#pragma once
+
+#include "framework/core/primitive_set.h"
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace bvhlab {
+
+// Work done by queries, in Havran's terms. One instance per thread, passed into every
+// query, merged after the run: no atomics, no sharing on the hot path.
+struct QueryCounters {
+    uint64_t queries = 0;
+    uint64_t intersectionTests = 0;  // N_IT: ray-primitive tests
+    uint64_t traversalSteps = 0;     // N_TR: nodes visited
+
+    QueryCounters& operator+=(const QueryCounters& o) {
+        queries += o.queries;
+        intersectionTests += o.intersectionTests;
+        traversalSteps += o.traversalSteps;
+        return *this;
+    }
+};
+
+// SAH cost normalised by the root box: C_trav * sum over inner nodes of A(n)/A(root)
+// + C_isect * sum over leaves of A(l)/A(root) * N(l). The constants are stated with it.
+struct SahCost {
+    double cost = 0.0;
+    double cTraversal = 1.0;
+    double cIntersect = 1.0;
+};
+
+// What a build reports. Structures without a visible tree (Embree) leave the tree fields
+// unset: unavailable, not zero.
+struct BuildStats {
+    double buildMs = 0.0;
+    size_t primitives = 0;  // primitives built over (degenerate ones excluded)
+    std::optional<size_t> nodes;  // all nodes, leaves included
+    std::optional<size_t> leaves;
+    std::optional<double> avgLeafPrimitives;
+    std::optional<size_t> maxLeafPrimitives;
+    std::optional<int> maxDepth;
+    // The depth the structure promises to stay below (its traversal stacks hold that many
+    // levels); unset when it has no such bound. Checked by `bvhlab stress`, not reported.
+    std::optional<int> depthBound;
+    std::optional<SahCost> sah;
+    std::optional<size_t> bytes;
+};
+
+class Accelerator {
+public:
+    virtual ~Accelerator() = default;
+
+    virtual std::string_view name() const = 0;
+
+    // Builds over prims.valid; keeps a view of prims.triangles, which must outlive it.
+    virtual BuildStats build(const PrimitiveSet& prims) = 0;
+
+    // Closest hit in [ray.tmin, ray.tmax]; on a miss returns false and leaves `hit` unchanged.
+    virtual bool findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const = 0;
+
+    // Any hit in [ray.tmin, ray.tmax], stopping at the first one found.
+    virtual bool isOccluded(const Ray& ray, QueryCounters& counters) const = 0;
+
+    // False when the structure cannot count N_IT and N_TR (they are then reported as unavailable).
+    virtual bool hasCounters() const { return true; }
+};
+
+}  // namespace bvhlab

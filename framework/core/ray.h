@@ -1,0 +1,44 @@
+// A ray with its valid interval and the answer to a closest-hit query.
+#pragma once
+
+#include "framework/core/math.h"
+
+namespace bvhlab {
+
+inline constexpr uint32_t kInvalidPrimitive = 0xFFFFFFFFu;
+
+// Directions need not be unit length: t is measured in multiples of dir.
+struct Ray {
+    Vec3 org{0.0f};
+    Vec3 dir{0.0f, 0.0f, 1.0f};
+    float tmin = 0.0f;
+    float tmax = kInfinity;
+
+    Vec3 at(float t) const { return org + t * dir; }
+    // Rays with NaN components or an empty interval are answered as misses.
+    bool isValid() const {
+        return !(std::isnan(org.x) || std::isnan(org.y) || std::isnan(org.z) || std::isnan(dir.x) ||
+                 std::isnan(dir.y) || std::isnan(dir.z) || std::isnan(tmin) || std::isnan(tmax)) &&
+               (dir.x != 0.0f || dir.y != 0.0f || dir.z != 0.0f) && tmin <= tmax;
+    }
+};
+
+// Hit convention (fixed for every accelerator, Embree's): the hit point is
+// (1-u-v)*v0 + u*v1 + v*v2 of triangle `primitive`, which is its index in load order.
+struct Hit {
+    float t = kInfinity;
+    uint32_t primitive = kInvalidPrimitive;
+    float u = 0.0f;
+    float v = 0.0f;
+
+    bool found() const { return primitive != kInvalidPrimitive; }
+};
+
+// Two closest-hit answers agree when both miss, or their t differ by at most
+// 1e-4*max(1,|t|); the primitive may then differ (ties at shared edges, coincident triangles).
+inline bool hitsAgree(const Hit& a, const Hit& b) {
+    if (!a.found() || !b.found()) return a.found() == b.found();
+    return std::abs(a.t - b.t) <= 1e-4f * std::max(1.0f, std::abs(a.t));
+}
+
+}  // namespace bvhlab

@@ -1,0 +1,248 @@
+#include "framework/render/renderer.h"
+
+#include "framework/render/pixel_sampler.h"
+#include "framework/core/ray_offset.h"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/info.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <chrono>
+
+namespace bvhlab {
+namespace {
+
+constexpr int kTileSize = 16;
+
+// A light as the renderer uses it: intensity already multiplied by the squared distance
+// to the scene centre, so irradiance = intensity / d^2.
+struct ShadingLight {
+    Vec3 position;
+    Vec3 intensity;
+};
+
+// One path of the current wavefront of a tile.
+struct PathState {
+    Ray ray;
+    Vec3 throughput;
+    uint32_t pixel;
+};
+
+// A shadow ray and the radiance it carries to its pixel if unoccluded.
+struct ShadowQuery {
+    Ray ray;
+    Vec3 radiance;
+    uint32_t pixel;
+};
+
+// Per-thread scratch and statistics, reused across tiles: nothing is allocated per ray.
+struct ThreadState {
+    std::vector<PathState> paths, nextPaths;
+    std::vector<Hit> hits;
+    std::vector<ShadowQuery> shadows;
+    RenderStats stats;
+};
+
+class TileRenderer {
+public:
+    TileRenderer(const Scene& scene, const Accelerator& accel, const Camera& camera,
+                 const RenderSettings& settings, const std::vector<ShadingLight>& lights, Framebuffer& fb)
+        : scene_(scene), accel_(accel), camera_(camera), settings_(settings), lights_(lights), fb_(fb) {}
+
+    void renderTile(int x0, int y0, ThreadState& ts) const {
+        const int x1 = std::min(x0 + kTileSize, fb_.width), y1 = std::min(y0 + kTileSize, fb_.height);
+        for (int s = 0; s < settings_.samples; ++s) {
+            ts.paths.clear();
+            for (int y = y0; y < y1; ++y)
+                for (int x = x0; x < x1; ++x) {
+                    const uint32_t pixel = uint32_t(fb_.index(x, y));
+                    const glm::vec2 o = sampleOffset(pixel, s, settings_.samples);
+                    ts.paths.push_back({camera_.generateRay(float(x) + o.x, float(y) + o.y),
+                                        Vec3(1.0f / float(settings_.samples)), pixel});
+                }
+            for (int depth = 0; depth < settings_.depthLimit && !ts.paths.empty(); ++depth) {
+                traceWavefront(ts, depth, s == 0);
+                std::swap(ts.paths, ts.nextPaths);
+            }
+        }
+    }
+
+private:
+    using Clock = std::chrono::steady_clock;
+
+    void traceWavefront(ThreadState& ts, int depth, bool firstSample) const {
+        ts.nextPaths.clear();
+        ts.shadows.clear();
+        QueryStats& primary = ts.stats.primary;
+        const auto start = Clock::now();
+        // Closest hits of the whole wavefront first, timed as a block.
+        std::vector<Hit>& hits = ts.hits;
+        hits.assign(ts.paths.size(), Hit{});
+        for (size_t i = 0; i < ts.paths.size(); ++i) {
+            const QueryCounters before = primary.counters;
+            accel_.findNearest(ts.paths[i].ray, hits[i], primary.counters);
+            recordCost(ts.paths[i].pixel, before, primary.counters);
+        }
+        primary.queryNanoseconds += std::chrono::duration<double, std::nano>(Clock::now() - start).count();
+
+        for (size_t i = 0; i < ts.paths.size(); ++i) shade(ts, ts.paths[i], hits[i], depth, firstSample);
+        traceShadows(ts);
+    }
+
+    void recordCost(uint32_t pixel, const QueryCounters& before, const QueryCounters& after) const {
+        fb_.traversalSteps[pixel] += float(after.traversalSteps - before.traversalSteps);
+        fb_.intersectionTests[pixel] += float(after.intersectionTests - before.intersectionTests);
+    }
+
+    void shade(ThreadState& ts, const PathState& path, const Hit& hit, int depth, bool firstSample) const {
+        if (!hit.found()) {
+            fb_.color[path.pixel] += path.throughput * settings_.background;
+            return;
+        }
+        const Triangle& tri = scene_.triangles[hit.primitive];
+        // The hit point from barycentrics is more accurate than org + t*dir far from the origin.
+        const Vec3 p = (1.0f - hit.u - hit.v) * tri.v0 + hit.u * tri.v1 + hit.v * tri.v2;
+        Vec3 ng = glm::normalize(tri.geometricNormal());
+        if (glm::dot(ng, path.ray.dir) > 0.0f) ng = -ng;
+        Vec3 ns = ng;
+        if (!scene_.normals.empty()) {
+            const glm::uvec3 idx = scene_.indices[hit.primitive];
+            const Vec3 n = (1.0f - hit.u - hit.v) * scene_.normals[idx.x] + hit.u * scene_.normals[idx.y] +
+                           hit.v * scene_.normals[idx.z];
+            if (glm::dot(n, n) > 0.0f) ns = glm::faceforward(glm::normalize(n), -ng, ng);
+        }
+        if (depth == 0 && firstSample) {
+            fb_.depth[path.pixel] = hit.t * glm::length(path.ray.dir);
+            fb_.primitive[path.pixel] = hit.primitive;
+            fb_.normal[path.pixel] = ns;
+        }
+
+        const Material& material = scene_.materials[scene_.materialOf(hit.primitive)];
+        const Vec3 diffuse = path.throughput * material.diffuse * (1.0f - material.mirror);
+        fb_.color[path.pixel] += diffuse * settings_.ambient;
+        const Vec3 origin = offsetRayOrigin(p, ng, scene_.triangles[hit.primitive]);
+        for (const ShadingLight& light : lights_) {
+            const Vec3 toLight = light.position - p;
+            const float distance2 = glm::dot(toLight, toLight);
+            const float cosine = glm::dot(ns, toLight) / std::sqrt(distance2);
+            if (cosine <= 0.0f || glm::dot(ng, toLight) <= 0.0f) {
+                ++ts.stats.shadowRaysSkippedBackfacing;
+                continue;
+            }
+            const Vec3 radiance = diffuse * light.intensity * (cosine / distance2);
+            if (!settings_.shadows) {
+                ++ts.stats.shadowRaysSkippedDisabled;
+                fb_.color[path.pixel] += radiance;
+                continue;
+            }
+            // The ray ends just short of the light: t = 1 is the light itself.
+            ts.shadows.push_back({Ray{origin, light.position - origin, 0.0f, 1.0f - 1e-5f}, radiance, path.pixel});
+        }
+
+        if (material.mirror > 0.0f) {
+            if (depth + 1 < settings_.depthLimit) {
+                const Vec3 reflected = glm::reflect(path.ray.dir, ns);
+                ts.nextPaths.push_back({Ray{origin, reflected, 0.0f, kInfinity},
+                                        path.throughput * material.mirror, path.pixel});
+            } else {
+                ++ts.stats.bouncesSkipped;
+            }
+        }
+    }
+
+    void traceShadows(ThreadState& ts) const {
+        QueryStats& shadow = ts.stats.shadow;
+        const auto start = Clock::now();
+        for (ShadowQuery& q : ts.shadows) {
+            const QueryCounters before = shadow.counters;
+            // Unoccluded rays keep their radiance; occluded ones are zeroed and add nothing.
+            if (accel_.isOccluded(q.ray, shadow.counters)) q.radiance = Vec3(0.0f);
+            recordCost(q.pixel, before, shadow.counters);
+        }
+        shadow.queryNanoseconds += std::chrono::duration<double, std::nano>(Clock::now() - start).count();
+        for (const ShadowQuery& q : ts.shadows) fb_.color[q.pixel] += q.radiance;
+    }
+
+    const Scene& scene_;
+    const Accelerator& accel_;
+    const Camera& camera_;
+    const RenderSettings& settings_;
+    const std::vector<ShadingLight>& lights_;
+    Framebuffer& fb_;
+};
+
+}  // namespace
+
+RenderSettings RenderSettings::fromEnv(const Env& env, const Scene& scene, const CameraSpec& camera) {
+    RenderSettings s;
+    s.samples = env.getInt("SetRayTracing::cntSamples");
+    s.depthLimit = env.getInt("SetRayTracing::depthLimit");
+    s.shadows = env.getBool("SetRayTracing::shadows");
+    s.threads = env.getInt("SetRayTracing::threads");
+    s.ambient = env.getFloat("Render::ambient");
+    if (const auto bg = env.getVec3("Scene::background")) s.background = *bg;
+    else if (scene.background) s.background = *scene.background;
+
+    const std::vector<Vec3> positions = env.getVec3List("Lights::positions");
+    if (!positions.empty()) {
+        for (const Vec3& p : positions) s.lights.push_back({p, Vec3(env.getFloat("Lights::intensity"))});
+    } else if (!scene.lights.empty()) {
+        s.lights = scene.lights;
+    } else {
+        // A light above and to the right of the eye, so shadows fall visibly behind objects.
+        const Vec3 forward = glm::normalize(camera.at - camera.from);
+        const Vec3 right = glm::normalize(glm::cross(forward, camera.up));
+        const float radius = 0.5f * glm::length(scene.bounds.diagonal());
+        s.lights.push_back({camera.from + radius * (0.6f * right + 0.8f * glm::normalize(camera.up)), Vec3(1.0f)});
+    }
+    return s;
+}
+
+size_t tileCount(int width, int height) {
+    return size_t((width + kTileSize - 1) / kTileSize) * size_t((height + kTileSize - 1) / kTileSize);
+}
+
+RenderStats render(const Scene& scene, const Accelerator& accel, const Camera& camera,
+                   const RenderSettings& settings, Framebuffer& fb, const TileDone& onTile) {
+    std::vector<ShadingLight> lights;
+    const Vec3 center = scene.bounds.isEmpty() ? Vec3(0.0f) : scene.bounds.center();
+    for (const PointLight& light : settings.lights) {
+        const Vec3 d = light.position - center;
+        lights.push_back({light.position, light.intensity * std::max(glm::dot(d, d), 1e-30f)});
+    }
+
+    const int threads = settings.threads > 0 ? settings.threads : tbb::info::default_concurrency();
+    const int tilesX = (fb.width + kTileSize - 1) / kTileSize, tilesY = (fb.height + kTileSize - 1) / kTileSize;
+    TileRenderer renderer(scene, accel, camera, settings, lights, fb);
+    tbb::enumerable_thread_specific<ThreadState> states;
+
+    const auto start = std::chrono::steady_clock::now();
+    tbb::task_arena arena(threads);
+    arena.execute([&] {
+        tbb::parallel_for(tbb::blocked_range<int>(0, tilesX * tilesY, 1), [&](const tbb::blocked_range<int>& range) {
+            ThreadState& ts = states.local();
+            for (int tile = range.begin(); tile < range.end(); ++tile) {
+                const uint64_t before = ts.stats.primary.counters.queries + ts.stats.shadow.counters.queries;
+                renderer.renderTile(tile % tilesX * kTileSize, tile / tilesX * kTileSize, ts);
+                if (onTile) onTile(ts.stats.primary.counters.queries + ts.stats.shadow.counters.queries - before);
+            }
+        });
+    });
+
+    RenderStats total;
+    total.renderMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    total.threads = threads;
+    for (const ThreadState& ts : states) {
+        total.primary.counters += ts.stats.primary.counters;
+        total.primary.queryNanoseconds += ts.stats.primary.queryNanoseconds;
+        total.shadow.counters += ts.stats.shadow.counters;
+        total.shadow.queryNanoseconds += ts.stats.shadow.queryNanoseconds;
+        total.shadowRaysSkippedDisabled += ts.stats.shadowRaysSkippedDisabled;
+        total.shadowRaysSkippedBackfacing += ts.stats.shadowRaysSkippedBackfacing;
+        total.bouncesSkipped += ts.stats.bouncesSkipped;
+    }
+    return total;
+}
+
+}  // namespace bvhlab

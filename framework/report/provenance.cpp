@@ -1,0 +1,31 @@
+#include "framework/report/provenance.h"
+
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+#include <thread>
+
+namespace bvhlab {
+
+std::string gitCommit() { return BVHLAB_GIT_COMMIT; }
+
+std::string cpuModel() {
+    std::ifstream in("/proc/cpuinfo");
+    std::string line;
+    while (std::getline(in, line))
+        if (line.rfind("model name", 0) == 0) {
+            const size_t colon = line.find(':');
+            if (colon != std::string::npos) return line.substr(line.find_first_not_of(" \t", colon + 1));
+        }
+    return "unknown";
+}
+
+nlohmann::json provenanceJson() {
+    return {{"git_commit", gitCommit()},
+            {"compiler", BVHLAB_COMPILER},
+            {"cxx_flags", BVHLAB_CXX_FLAGS},
+            {"cpu", cpuModel()},
+            {"hardware_threads", std::thread::hardware_concurrency()}};
+}
+
+}  // namespace bvhlab

@@ -1,0 +1,96 @@
+#include "framework/report/statistics.h"
+
+#include <fmt/format.h>
+
+namespace bvhlab {
+namespace {
+
+template <typename T>
+std::string orNa(const std::optional<T>& value, const char* format) {
+    return value ? fmt::format(fmt::runtime(format), *value) : "n/a";
+}
+
+double perQuery(uint64_t total, uint64_t queries) { return queries ? double(total) / double(queries) : 0.0; }
+
+// Per-query figures are null where nothing was traced (e.g. shadows off) or nothing counted.
+nlohmann::json queryJson(const QueryStats& q, bool hasCounters) {
+    const bool traced = q.counters.queries > 0;
+    nlohmann::json j = {{"queries", q.counters.queries}};
+    j["t_r_us"] = traced ? nlohmann::json(q.usPerQuery()) : nlohmann::json();
+    j["n_it"] = traced && hasCounters ? nlohmann::json(perQuery(q.counters.intersectionTests, q.counters.queries))
+                                      : nlohmann::json();
+    j["n_tr"] = traced && hasCounters ? nlohmann::json(perQuery(q.counters.traversalSteps, q.counters.queries))
+                                      : nlohmann::json();
+    return j;
+}
+
+template <typename T>
+nlohmann::json optionalJson(const std::optional<T>& value) {
+    return value ? nlohmann::json(*value) : nlohmann::json();
+}
+
+}  // namespace
+
+std::string formatStatsTable(const StatsRow& row) {
+    const BuildStats& b = row.build;
+    std::string out = fmt::format("{:<14} {:<9} {:>9} {:>9} {:>9} {:>10} {:>9} {:>9} {:>8} {:>8} {:>10} {:>10}\n",
+                                  "scene", "accel", "#Prims", "#Leaves", "#Nodes", "SAH", "T_B ms", "T_R us",
+                                  "N_IT", "N_TR", "N_Q", "render ms");
+    auto line = [&](const char* label, const QueryStats& q, bool first) {
+        const bool traced = q.counters.queries > 0, counted = traced && row.hasCounters;
+        const std::string nit = counted ? fmt::format("{:.2f}", perQuery(q.counters.intersectionTests, q.counters.queries)) : "n/a";
+        const std::string ntr = counted ? fmt::format("{:.2f}", perQuery(q.counters.traversalSteps, q.counters.queries)) : "n/a";
+        const std::string tr = traced ? fmt::format("{:.3f}", q.usPerQuery()) : "n/a";
+        out += fmt::format("{:<14} {:<9} {:>9} {:>9} {:>9} {:>10} {:>9} {:>9} {:>8} {:>8} {:>10} {:>10}\n",
+                           first ? row.scene : label, first ? row.accel : "",
+                           first ? fmt::format("{}", row.prims) : "", first ? orNa(b.leaves, "{}") : "",
+                           first ? orNa(b.nodes, "{}") : "",
+                           first ? (b.sah ? fmt::format("{:.3f}", b.sah->cost) : "n/a") : "",
+                           first ? fmt::format("{:.1f}", b.buildMs) : "", tr, nit, ntr,
+                           q.counters.queries, first ? fmt::format("{:.1f}", row.render.renderMs) : "");
+    };
+    // The first line is the closest-hit queries (camera rays and mirror bounces), the second
+    // the shadow rays alone (any-hit queries toward the lights), as the report's rows.
+    line("primary", row.render.primary, true);
+    line("  shadow rays", row.render.shadow, false);
+    out += fmt::format("degenerate triangles skipped: {}; not supported, skipped: {} spheres, {} cones/cylinders; "
+                       "shadow rays skipped: {} (shadows off), {} (light behind surface); bounces cut by depthLimit: "
+                       "{}; threads: {}",
+                       row.load.degenerateTriangles, row.load.unsupportedSpheres, row.load.unsupportedCones,
+                       row.render.shadowRaysSkippedDisabled, row.render.shadowRaysSkippedBackfacing,
+                       row.render.bouncesSkipped, row.render.threads);
+    if (b.sah) out += fmt::format("; SAH with C_trav={} C_isect={}", b.sah->cTraversal, b.sah->cIntersect);
+    return out;
+}
+
+nlohmann::json statsJson(const StatsRow& row) {
+    const BuildStats& b = row.build;
+    nlohmann::json j = {
+        {"scene", row.scene},
+        {"accel", row.accel},
+        {"prims", row.prims},
+        {"degenerate", row.load.degenerateTriangles},
+        {"unsupported_spheres", row.load.unsupportedSpheres},
+        {"unsupported_cones", row.load.unsupportedCones},
+        {"nodes", optionalJson(b.nodes)},
+        {"leaves", optionalJson(b.leaves)},
+        {"avg_leaf_prims", optionalJson(b.avgLeafPrimitives)},
+        {"max_leaf_prims", optionalJson(b.maxLeafPrimitives)},
+        {"max_depth", optionalJson(b.maxDepth)},
+        {"bytes", optionalJson(b.bytes)},
+        {"sah", b.sah ? nlohmann::json(b.sah->cost) : nlohmann::json()},
+        {"sah_c_trav", b.sah ? nlohmann::json(b.sah->cTraversal) : nlohmann::json()},
+        {"sah_c_isect", b.sah ? nlohmann::json(b.sah->cIntersect) : nlohmann::json()},
+        {"build_ms", b.buildMs},
+        {"render_ms", row.render.renderMs},
+        {"threads", row.render.threads},
+        {"primary", queryJson(row.render.primary, row.hasCounters)},
+        {"shadow", queryJson(row.render.shadow, row.hasCounters)},
+        {"skipped", {{"shadow_disabled", row.render.shadowRaysSkippedDisabled},
+                     {"shadow_backfacing", row.render.shadowRaysSkippedBackfacing},
+                     {"bounces", row.render.bouncesSkipped}}},
+    };
+    return j;
+}
+
+}  // namespace bvhlab

@@ -1,0 +1,33 @@
+// The statistics row in the report's terms (#Prims, #Nodes, #Leaves, SAH, T_B, T_R, N_IT,
+// N_TR, N_Q, render time), for primary and shadow queries apart, as a table and as JSON.
+#pragma once
+
+#include "framework/core/accelerator.h"
+#include "framework/render/renderer.h"
+#include "framework/scene/scene.h"
+
+#include <nlohmann/json.hpp>
+
+#include <string>
+
+namespace bvhlab {
+
+struct StatsRow {
+    std::string scene;
+    std::string accel;
+    size_t prims = 0;            // triangles in the scene, degenerate ones included
+    LoadReport load;             // what loading skipped: degenerate triangles, spheres, cones
+    bool hasCounters = true;     // false: N_IT and N_TR unavailable
+    BuildStats build;
+    RenderStats render;
+};
+
+// The table printed after a render (two lines: primary, shadow).
+std::string formatStatsTable(const StatsRow& row);
+
+// JSON with keys scene, accel, prims, degenerate, unsupported_spheres, unsupported_cones,
+// nodes, leaves, sah, build_ms, render_ms, threads and objects primary/shadow {queries, n_it,
+// n_tr, t_r_us}; unavailable values are null.
+nlohmann::json statsJson(const StatsRow& row);
+
+}  // namespace bvhlab

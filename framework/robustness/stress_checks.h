@@ -1,0 +1,43 @@
+// The checks of the robustness stress suite that `bvhlab stress` and tests/framework/robustness/test_stress.cpp
+// share: one scale/translation case and one shadow-acne render. The accelerator is built by
+// the caller (the framework does not know the registry).
+#pragma once
+
+#include "framework/core/accelerator.h"
+#include "framework/robustness/watertight_probe.h"
+
+#include <optional>
+#include <span>
+
+namespace bvhlab {
+
+// One case of the scale/translation sweep: `accel` is built over
+// transformedScene(base, scale, offset) = `scene`; `baseRays` and `baseHits` are rays in the
+// base scene and the base answers of the same kind of accelerator; `probes` are watertightness
+// probes of the transformed scene.
+struct TransformCheck {
+    LeakStats leaks;         // of the watertightness probes
+    size_t compared = 0;     // base rays whose answer is unambiguous (hit far from every edge)
+    size_t otherPrimitive = 0;  // of them, the moved ray hit another primitive (or nothing)
+    size_t tNotScaling = 0;     // the same primitive, but t / scale differs by more than 1e-4 relative
+    std::vector<std::string> examples;
+
+    bool passed() const { return leaks.leaks == 0 && leaks.occlusionLeaks == 0 && otherPrimitive == 0 && tNotScaling == 0; }
+};
+TransformCheck checkTransformed(const Accelerator& accel, double scale, const DVec3& offset,
+                                std::span<const Ray> baseRays, std::span<const Hit> baseHits,
+                                std::span<const WatertightProbeRay> probes, int threads = 0);
+
+// Renders `planeScene` (makeDistantPlaneScene: its camera sees only the plane, lit) with and
+// without shadows; a pixel is self-shadowed when the shadow ray took its light away.
+struct AcneCheck {
+    size_t pixels = 0;
+    size_t onPlane = 0;       // pixels whose camera ray hit the plane
+    size_t selfShadowed = 0;  // darker with shadows than without
+    size_t dark = 0;          // not above the ambient term
+
+    bool passed() const { return onPlane == pixels && selfShadowed == 0 && dark == 0; }
+};
+AcneCheck checkShadowAcne(const Scene& planeScene, const Accelerator& accel, int pixels, int threads = 0);
+
+}  // namespace bvhlab

@@ -1,0 +1,307 @@
+#include "framework/robustness/watertight_probe.h"
+
+#include "framework/robustness/stress_rng.h"
+
+#include <fmt/format.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <numbers>
+#include <unordered_map>
+
+namespace bvhlab {
+namespace {
+
+struct PositionKey {
+    std::array<uint32_t, 3> bits;
+    bool operator==(const PositionKey&) const = default;
+};
+struct PositionHash {
+    size_t operator()(const PositionKey& k) const {
+        uint64_t h = 0x9E3779B97F4A7C15ull;
+        for (uint32_t b : k.bits) h = (h ^ b) * 0x100000001B3ull + (h >> 29);
+        return size_t(h);
+    }
+};
+PositionKey keyOf(const Vec3& v) {
+    // + 0.0f turns -0 into +0, so that both weld together.
+    return {{std::bit_cast<uint32_t>(v.x + 0.0f), std::bit_cast<uint32_t>(v.y + 0.0f), std::bit_cast<uint32_t>(v.z + 0.0f)}};
+}
+
+// Distance from p to segment [a, b], measured in the plane perpendicular to unit u.
+double distanceAcross(const DVec3& p, const DVec3& u, const DVec3& a, const DVec3& b) {
+    auto across = [&](const DVec3& q) {
+        const DVec3 w = q - p;
+        return w - glm::dot(w, u) * u;
+    };
+    const DVec3 wa = across(a), wb = across(b), e = wb - wa;
+    const double l2 = glm::dot(e, e);
+    const double s = l2 > 0 ? std::clamp(-glm::dot(wa, e) / l2, 0.0, 1.0) : 0.0;
+    return glm::length(wa + s * e);
+}
+
+std::string describeProbe(size_t index, const WatertightProbeRay& p, bool closestMissed, bool anyMissed) {
+    const Ray& r = p.ray;
+    return fmt::format("probe #{} at {} {}: org ({:.9g}, {:.9g}, {:.9g}) dir ({:.9g}, {:.9g}, {:.9g}) tmax {:.9g} "
+                       "aimed at ({:.17g}, {:.17g}, {:.17g}); {}{}",
+                       index, p.atVertex ? "vertex" : "edge", p.feature, r.org.x, r.org.y, r.org.z, r.dir.x, r.dir.y,
+                       r.dir.z, r.tmax, p.target.x, p.target.y, p.target.z, closestMissed ? "findNearest missed" : "",
+                       anyMissed ? (closestMissed ? ", isOccluded missed" : "isOccluded missed") : "");
+}
+
+}  // namespace
+
+std::string MeshTopology::summary() const {
+    return fmt::format("{} faces, {} vertices, {} interior edges, {} boundary, {} non-manifold, {} inconsistently "
+                       "wound edges: {}",
+                       faces.size(), vertices.size(), interiorEdges.size(), boundaryEdges, nonManifoldEdges,
+                       inconsistentEdges, closed() ? "closed" : "not closed");
+}
+
+MeshTopology MeshTopology::of(const Scene& scene) {
+    MeshTopology m;
+    std::unordered_map<PositionKey, uint32_t, PositionHash> ids;
+    ids.reserve(scene.validPrimitives.size());
+    auto weld = [&](const Vec3& v) {
+        const auto [it, inserted] = ids.try_emplace(keyOf(v), uint32_t(m.vertices.size()));
+        if (inserted) m.vertices.emplace_back(v);
+        return it->second;
+    };
+    for (uint32_t prim : scene.validPrimitives) {
+        const Triangle& t = scene.triangles[prim];
+        Face f{{weld(t.v0), weld(t.v1), weld(t.v2)}, prim, DVec3(0.0)};
+        if (f.v[0] == f.v[1] || f.v[1] == f.v[2] || f.v[2] == f.v[0]) continue;
+        m.faces.push_back(f);
+        m.bounds.extend(t.bounds());
+    }
+
+    // Normals and the signed volume (about the centre, to keep the sum well conditioned).
+    const DVec3 centre = m.bounds.isEmpty() ? DVec3(0.0) : DVec3(m.bounds.center());
+    for (Face& f : m.faces) {
+        const DVec3 a = m.vertices[f.v[0]] - centre, b = m.vertices[f.v[1]] - centre, c = m.vertices[f.v[2]] - centre;
+        m.signedVolume += glm::dot(a, glm::cross(b, c)) / 6.0;
+        f.normal = glm::cross(b - a, c - a);
+    }
+    const double orientation = m.signedVolume < 0 ? -1.0 : 1.0;
+    for (Face& f : m.faces) {
+        const double l = glm::length(f.normal);
+        f.normal = l > 0 && std::isfinite(l) ? orientation * f.normal / l : DVec3(0.0);
+    }
+
+    // Edges: sort the half-edges by their undirected key and look at each group.
+    struct HalfEdge {
+        uint32_t lo, hi, face;
+        bool forward;  // lo -> hi in the face's winding
+    };
+    std::vector<HalfEdge> halfEdges;
+    halfEdges.reserve(3 * m.faces.size());
+    for (uint32_t i = 0; i < m.faces.size(); ++i)
+        for (int e = 0; e < 3; ++e) {
+            const uint32_t a = m.faces[i].v[e], b = m.faces[i].v[(e + 1) % 3];
+            halfEdges.push_back({std::min(a, b), std::max(a, b), i, a < b});
+        }
+    std::sort(halfEdges.begin(), halfEdges.end(), [](const HalfEdge& x, const HalfEdge& y) {
+        return x.lo != y.lo ? x.lo < y.lo : x.hi != y.hi ? x.hi < y.hi : x.face < y.face;
+    });
+    m.vertexInterior.assign(m.vertices.size(), 1);
+    for (size_t i = 0; i < halfEdges.size();) {
+        size_t j = i;
+        while (j < halfEdges.size() && halfEdges[j].lo == halfEdges[i].lo && halfEdges[j].hi == halfEdges[i].hi) ++j;
+        const size_t n = j - i;
+        bool interior = false;
+        if (n == 1) ++m.boundaryEdges;
+        else if (n > 2) ++m.nonManifoldEdges;
+        else if (halfEdges[i].forward == halfEdges[i + 1].forward) ++m.inconsistentEdges;
+        else interior = true;
+        if (interior)
+            m.interiorEdges.push_back({halfEdges[i].lo, halfEdges[i].hi, {halfEdges[i].face, halfEdges[i + 1].face}});
+        else
+            m.vertexInterior[halfEdges[i].lo] = m.vertexInterior[halfEdges[i].hi] = 0;
+        i = j;
+    }
+
+    m.starOffsets.assign(m.vertices.size() + 1, 0);
+    for (const Face& f : m.faces)
+        for (uint32_t v : f.v) ++m.starOffsets[v + 1];
+    for (size_t v = 0; v < m.vertices.size(); ++v) m.starOffsets[v + 1] += m.starOffsets[v];
+    m.starFaces.resize(m.starOffsets.back());
+    std::vector<uint32_t> fill(m.starOffsets.begin(), m.starOffsets.end() - 1);
+    for (uint32_t i = 0; i < m.faces.size(); ++i)
+        for (uint32_t v : m.faces[i].v) m.starFaces[fill[v]++] = i;
+    for (size_t v = 0; v < m.vertices.size(); ++v)
+        if (m.starOffsets[v] == m.starOffsets[v + 1]) m.vertexInterior[v] = 0;
+    for (const Face& f : m.faces)
+        if (f.normal == DVec3(0.0))
+            for (uint32_t v : f.v) m.vertexInterior[v] = 0;
+    return m;
+}
+
+ProbeSet makeWatertightProbes(const MeshTopology& m, const ProbeOptions& o) {
+    ProbeSet set;
+    std::vector<uint32_t> vertices;
+    for (uint32_t v = 0; v < m.vertices.size(); ++v)
+        if (m.vertexInterior[v]) vertices.push_back(v);
+    std::vector<uint32_t> edges;
+    for (uint32_t e = 0; e < m.interiorEdges.size(); ++e) {
+        const MeshTopology::Edge& edge = m.interiorEdges[e];
+        if (m.faces[edge.faces[0]].normal != DVec3(0.0) && m.faces[edge.faces[1]].normal != DVec3(0.0)) edges.push_back(e);
+    }
+    if (vertices.empty() && edges.empty()) return set;
+
+    StressRng rng(o.seed * 0x2545F4914F6CDD1Dull + 0x1234567);
+    const double radius = 0.5 * glm::length(DVec3(m.bounds.diagonal()));
+    const double sinMin = std::sin(o.minDegreesFromGrazing * std::numbers::pi / 180.0);
+    // Bound on how far (across the ray) the float ray and the float triangle test may stray from
+    // the point, in units of the float epsilon times the distances involved: a few roundings
+    // suffice; 256 leaves a wide margin.
+    constexpr double kStrayUlps = 256.0 * 0x1.0p-24;
+
+    std::vector<uint32_t> faces;
+    std::vector<std::pair<DVec3, DVec3>> rim;  // segments bounding the faces around the point
+    set.probes.reserve(o.rays);
+    for (size_t r = 0; r < o.rays; ++r) {
+        for (int attempt = 0; attempt < o.maxAttemptsPerRay; ++attempt) {
+            ++set.candidates;
+            faces.clear();
+            rim.clear();
+            const bool atVertex = edges.empty() || (!vertices.empty() && rng.uniform() < o.vertexFraction);
+            DVec3 p;
+            uint32_t feature;
+            double localSize;
+            if (atVertex) {
+                feature = vertices[rng.index(vertices.size())];
+                p = m.vertices[feature];
+                double sum = 0.0;
+                for (uint32_t k = m.starOffsets[feature]; k < m.starOffsets[feature + 1]; ++k) {
+                    const MeshTopology::Face& f = m.faces[m.starFaces[k]];
+                    faces.push_back(m.starFaces[k]);
+                    const int at = f.v[0] == feature ? 0 : f.v[1] == feature ? 1 : 2;
+                    const DVec3& u = m.vertices[f.v[(at + 1) % 3]];
+                    const DVec3& w = m.vertices[f.v[(at + 2) % 3]];
+                    rim.emplace_back(u, w);
+                    sum += glm::length(u - p);
+                }
+                localSize = sum / double(faces.size());
+            } else {
+                feature = edges[rng.index(edges.size())];
+                const MeshTopology::Edge& e = m.interiorEdges[feature];
+                const DVec3 &a = m.vertices[e.a], &b = m.vertices[e.b];
+                p = a + rng.uniform(0.01, 0.99) * (b - a);
+                localSize = glm::length(b - a);
+                for (uint32_t fi : e.faces) {
+                    faces.push_back(fi);
+                    const MeshTopology::Face& f = m.faces[fi];
+                    const uint32_t c = f.v[0] != e.a && f.v[0] != e.b ? f.v[0] : f.v[1] != e.a && f.v[1] != e.b ? f.v[1] : f.v[2];
+                    rim.emplace_back(a, m.vertices[c]);
+                    rim.emplace_back(b, m.vertices[c]);
+                }
+            }
+
+            // A direction within the cone where every face around p is front-facing by > sinMin.
+            DVec3 mean(0.0);
+            for (uint32_t f : faces) mean += m.faces[f].normal;
+            if (!(glm::length(mean) > 1e-9)) continue;
+            mean = glm::normalize(mean);
+            auto worstFacing = [&](const DVec3& d) {
+                double worst = 1.0;
+                for (uint32_t f : faces) worst = std::min(worst, glm::dot(m.faces[f].normal, d));
+                return worst;
+            };
+            DVec3 out(0.0);
+            for (int tries = 0; tries < 8; ++tries) {
+                const DVec3 d = glm::normalize(mean + rng.uniform(0.0, 1.2) * rng.unitVector());
+                if (worstFacing(d) > sinMin) {
+                    out = d;
+                    break;
+                }
+            }
+            if (out == DVec3(0.0)) continue;
+
+            const double lo = o.minDistance * localSize, hi = std::max(o.maxDistance * radius, lo * 1.0001);
+            if (!(lo > 0) || !std::isfinite(hi)) continue;
+            const double distance = rng.logUniform(lo, hi);
+            const Vec3 org(p + distance * out);
+            if (!isFinite(org)) continue;
+            const DVec3 toP = p - DVec3(org);
+            const double length = glm::length(toP);
+            if (!(length > 0)) continue;
+            const DVec3 u = toP / length;
+            if (worstFacing(-u) <= sinMin) continue;  // the rounded origin moved the ray too far
+            double reach = 0.0;
+            for (const auto& [a, b] : rim) reach = std::max({reach, glm::length(a - p), glm::length(b - p)});
+            const double stray = kStrayUlps * (length + reach);
+            bool clear = true;
+            for (const auto& [a, b] : rim)
+                if (distanceAcross(p, u, a, b) < stray) {
+                    clear = false;
+                    break;
+                }
+            if (!clear) continue;
+
+            const Ray ray{org, Vec3(u), 0.0f, float(o.tmaxFactor * length)};
+            set.probes.push_back({ray, p, feature, atVertex});
+            break;
+        }
+    }
+    set.rejected = set.candidates - set.probes.size();
+    return set;
+}
+
+LeakStats countLeaks(const Accelerator& accel, std::span<const WatertightProbeRay> probes, int threads,
+                     size_t maxExamples) {
+    struct Partial {
+        LeakStats stats;
+        std::vector<size_t> leaked;  // indices, for the examples
+    };
+    tbb::enumerable_thread_specific<Partial> partials;
+    tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+    arena.execute([&] {
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, probes.size(), 1024), [&](const tbb::blocked_range<size_t>& range) {
+            Partial& local = partials.local();
+            QueryCounters counters;
+            for (size_t i = range.begin(); i < range.end(); ++i) {
+                const WatertightProbeRay& p = probes[i];
+                Hit hit;
+                const bool missed = !accel.findNearest(p.ray, hit, counters);
+                const bool notOccluded = !accel.isOccluded(p.ray, counters);
+                LeakStats& s = local.stats;
+                ++s.rays;
+                ++(p.atVertex ? s.vertexRays : s.edgeRays);
+                if (missed) {
+                    ++s.leaks;
+                    ++(p.atVertex ? s.vertexLeaks : s.edgeLeaks);
+                }
+                if (notOccluded) ++s.occlusionLeaks;
+                if ((missed || notOccluded) && local.leaked.size() < maxExamples) local.leaked.push_back(i);
+            }
+        });
+    });
+    LeakStats total;
+    std::vector<size_t> leaked;
+    for (const Partial& p : partials) {
+        total.rays += p.stats.rays;
+        total.leaks += p.stats.leaks;
+        total.edgeRays += p.stats.edgeRays;
+        total.edgeLeaks += p.stats.edgeLeaks;
+        total.vertexRays += p.stats.vertexRays;
+        total.vertexLeaks += p.stats.vertexLeaks;
+        total.occlusionLeaks += p.stats.occlusionLeaks;
+        leaked.insert(leaked.end(), p.leaked.begin(), p.leaked.end());
+    }
+    std::sort(leaked.begin(), leaked.end());
+    leaked.resize(std::min(leaked.size(), maxExamples));
+    for (size_t i : leaked) {
+        QueryCounters counters;
+        Hit hit;
+        const bool missed = !accel.findNearest(probes[i].ray, hit, counters);
+        total.examples.push_back(describeProbe(i, probes[i], missed, !accel.isOccluded(probes[i].ray, counters)));
+    }
+    return total;
+}
+
+}  // namespace bvhlab

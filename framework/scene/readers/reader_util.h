@@ -1,0 +1,148 @@
+// What the scene readers share: strict number parsing, a tokenizer that knows line numbers
+// for error messages, fan triangulation and a cap on counts read from untrusted headers.
+#pragma once
+
+#include "framework/core/error.h"
+#include "framework/scene/scene.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cstdint>
+#include <cstdlib>
+#include <span>
+#include <string>
+#include <string_view>
+#include <type_traits>
+
+namespace bvhlab {
+
+// Parses all of `token` as a number. Accepts a leading '+', and "nan"/"inf"/"infinity" for
+// floating point (a NaN vertex is a degenerate triangle, not a reason to reject the file).
+template <typename T>
+bool parseNumber(std::string_view token, T& value) {
+    if (token.size() > 1 && token[0] == '+' && token[1] != '-') token.remove_prefix(1);
+    const char* end = token.data() + token.size();
+    const auto [ptr, ec] = std::from_chars(token.data(), end, value);
+    if constexpr (std::is_floating_point_v<T>) {
+        // from_chars leaves overflow and underflow unset; strtod's inf or 0 is what we want.
+        if (ec == std::errc::result_out_of_range && ptr == end) {
+            const std::string copy(token);
+            if constexpr (std::is_same_v<T, float>) value = std::strtof(copy.c_str(), nullptr);
+            else value = std::strtod(copy.c_str(), nullptr);
+            return true;
+        }
+    }
+    return ec == std::errc() && ptr == end && !token.empty();
+}
+
+// A token quoted for an error message, shortened so that binary garbage stays readable.
+inline std::string quoted(std::string_view token) {
+    constexpr size_t kMaxShown = 32;
+    if (token.size() > kMaxShown) return fmt::format("'{}...'", token.substr(0, kMaxShown));
+    return fmt::format("'{}'", token);
+}
+
+// Whitespace-separated tokens of a text, with the line number of the last one read so
+// that errors can say "file:line:". Tokens are views into the text.
+class TextParser {
+public:
+    // With hashComments, a token starting with '#' comments out the rest of its line.
+    // firstLine is the line number of the text's start within the file.
+    TextParser(const std::filesystem::path& file, std::string_view text, bool hashComments, size_t firstLine = 1)
+        : file_(file), text_(text), hashComments_(hashComments), line_(firstLine) {}
+    // The parser keeps a reference to the file name for its errors.
+    TextParser(std::filesystem::path&&, std::string_view, bool, size_t = 1) = delete;
+
+    // The next token on the current line, or empty at its end.
+    std::string_view nextOnLine() {
+        if (atLineEnd()) return {};
+        const size_t start = pos_;
+        while (pos_ < text_.size() && !isSpace(text_[pos_])) ++pos_;
+        return text_.substr(start, pos_ - start);
+    }
+
+    // The next token on any line, or empty at the end of the text.
+    std::string_view next() {
+        while (atLineEnd()) {
+            if (pos_ == text_.size()) return {};
+            ++pos_;
+            ++line_;
+        }
+        return nextOnLine();
+    }
+
+    // True when the current line holds no more tokens (comments do not count).
+    bool atLineEnd() {
+        while (pos_ < text_.size() && isSpace(text_[pos_]) && text_[pos_] != '\n') ++pos_;
+        if (hashComments_ && pos_ < text_.size() && text_[pos_] == '#') {
+            while (pos_ < text_.size() && text_[pos_] != '\n') ++pos_;
+        }
+        return pos_ == text_.size() || text_[pos_] == '\n';
+    }
+
+    // Drops the rest of the current line, whatever it holds.
+    void skipLine() {
+        while (pos_ < text_.size() && text_[pos_] != '\n') ++pos_;
+        if (pos_ < text_.size()) {
+            ++pos_;
+            ++line_;
+        }
+    }
+
+    // Requires the current line to hold no more tokens, then moves past it.
+    void endLine() {
+        if (!atLineEnd()) throw error(fmt::format("unexpected {} at the end of the line", quoted(nextOnLine())));
+        skipLine();
+    }
+
+    // The next number, which may be on a later line; `what` names it for the error message.
+    template <typename T>
+    T read(std::string_view what) {
+        return toNumber<T>(next(), what);
+    }
+
+    // The next number, which must be on the current line.
+    template <typename T>
+    T readOnLine(std::string_view what) {
+        return toNumber<T>(nextOnLine(), what);
+    }
+
+    size_t line() const { return line_; }
+    // Byte offset of the parser in the text, for readers that switch to binary data.
+    size_t offset() const { return pos_; }
+    InputError error(const std::string& message) const { return inputError(file_, line_, message); }
+
+private:
+    static bool isSpace(char c) { return c == ' ' || c == '\n' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+
+    template <typename T>
+    T toNumber(std::string_view token, std::string_view what) const {
+        if (token.empty()) {
+            const char* where = pos_ == text_.size() ? "file" : "line";
+            throw error(fmt::format("expected {}, found the end of the {}", what, where));
+        }
+        T value;
+        if (!parseNumber(token, value)) throw error(fmt::format("expected {}, found {}", what, quoted(token)));
+        return value;
+    }
+
+    const std::filesystem::path& file_;
+    std::string_view text_;
+    bool hashComments_;
+    size_t pos_ = 0;
+    size_t line_;
+};
+
+// Splits the polygon (v0 v1 ... vn-1) into the fan (v0 vi vi+1), i = 1..n-2, in that order:
+// every reader triangulates this way, so that primitive indices follow file order.
+inline void appendFan(std::vector<glm::uvec3>& indices, std::span<const uint32_t> polygon) {
+    for (size_t i = 1; i + 1 < polygon.size(); ++i) indices.emplace_back(polygon[0], polygon[i], polygon[i + 1]);
+}
+
+// A count read from a file, for reserve(): no more items than the rest of the file can hold
+// when each takes at least minBytes, so that a lying header cannot make us allocate.
+inline size_t plausibleCount(uint64_t count, size_t bytesLeft, size_t minBytes) {
+    return size_t(std::min<uint64_t>(count, bytesLeft / std::max<size_t>(minBytes, 1)));
+}
+
+}  // namespace bvhlab

@@ -1,0 +1,81 @@
+// The scene model every reader fills and every accelerator builds over: triangle meshes in
+// one flat list, materials, point lights and an optional camera.
+#pragma once
+
+#include "framework/core/primitive_set.h"
+#include "framework/core/triangle.h"
+
+#include <filesystem>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace bvhlab {
+
+struct Material {
+    Vec3 diffuse{0.8f};
+    float mirror = 0.0f;  // reflectance of a perfect mirror, used when depthLimit > 1
+};
+
+struct PointLight {
+    Vec3 position{0.0f};
+    // Irradiance the light gives at the centre of the scene's bounds (NFF's convention of 1 =
+    // full light, made scale-free); the renderer lets it fall off with the squared distance.
+    Vec3 intensity{1.0f};
+};
+
+// The largest image width or height (Camera::width and Camera::height have the same range).
+inline constexpr int kMaxImageSide = 16384;
+
+struct CameraSpec {
+    Vec3 from{0.0f, 0.0f, 1.0f};
+    Vec3 at{0.0f};
+    Vec3 up{0.0f, 1.0f, 0.0f};
+    float fovyDegrees = 45.0f;
+    int width = 512;
+    int height = 512;
+};
+
+// What a reader met and did not turn into triangles, reported after loading.
+struct LoadReport {
+    size_t degenerateTriangles = 0;  // see isDegenerate: kept, never built over
+    size_t unsupportedSpheres = 0;   // NFF `s`
+    size_t unsupportedCones = 0;     // NFF `c`
+    std::vector<std::string> warnings;
+};
+
+struct Scene {
+    std::string name;
+    std::filesystem::path source;  // empty for generated scenes
+
+    // Meshes as read, one flat list. Triangle i (the primitive index) is indices[i]:
+    // its place in file order after fan triangulation, degenerate triangles included.
+    std::vector<Vec3> positions;
+    std::vector<Vec3> normals;  // per vertex; empty when the file has none
+    std::vector<glm::uvec3> indices;
+    std::vector<uint32_t> materialIds;  // per triangle; empty means material 0 everywhere
+    std::vector<Material> materials{Material{}};
+
+    std::optional<CameraSpec> camera;
+    std::vector<PointLight> lights;
+    std::optional<Vec3> background;
+    LoadReport report;
+
+    // Derived by finalize().
+    std::vector<Triangle> triangles;
+    std::vector<uint32_t> validPrimitives;
+    Bounds3 bounds;  // of the valid triangles
+
+    // Builds the derived arrays and counts degenerate triangles; readers call it last.
+    void finalize();
+    PrimitiveSet primitives() const { return {triangles, validPrimitives}; }
+    uint32_t materialOf(uint32_t prim) const { return materialIds.empty() ? 0 : materialIds[prim]; }
+    size_t triangleCount() const { return indices.size(); }
+};
+
+// Zero area, a NaN or infinite vertex, or a normal that cannot be normalised in float (its
+// squared length under- or overflows): no hit on it could be shaded or offset.
+bool isDegenerate(const Triangle& tri);
+
+}  // namespace bvhlab

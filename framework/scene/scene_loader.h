@@ -1,0 +1,25 @@
+// Reads a scene file, choosing the reader by extension (.obj .ply .off .nff, each optionally
+// .gz). Throws InputError with file and line on malformed input.
+#pragma once
+
+#include "framework/scene/scene.h"
+
+namespace bvhlab {
+
+Scene loadScene(const std::filesystem::path& file);
+
+// Throws InputError naming the file when a loaded, finalized scene has nothing to render (no
+// primitives, all degenerate, or all of a kind we do not render). loadScene calls it; so does
+// the scene cache on a hit. Scenes built in code may be empty on purpose and are not checked.
+void requireSomethingToRender(const Scene& scene);
+
+// The readers loadScene dispatches to; each takes the file's (decompressed) bytes.
+Scene readObj(const std::filesystem::path& file, const std::string& bytes);
+Scene readPly(const std::filesystem::path& file, const std::string& bytes);
+Scene readOff(const std::filesystem::path& file, const std::string& bytes);
+Scene readNff(const std::filesystem::path& file, const std::string& bytes);
+
+// The whole file as bytes, gunzipped when it is gzip-compressed.
+std::string readFileBytes(const std::filesystem::path& file);
+
+}  // namespace bvhlab

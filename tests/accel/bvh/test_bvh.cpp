@@ -1,0 +1,775 @@
+// The BVH accelerators' structure (tdbvh, sahbvh, sweepbvh): tree invariants on random and
+// adversarial scenes, the depth bound, leaf rules, SAH quality of the binning against the
+// sweep, the SAH statistic itself, SIMD and scalar builds agreeing bit for bit, and a quick
+// check of both queries against brute force. Hit agreement on whole scenes is tested, for
+// every registered accelerator, in the cross-accelerator suite.
+#include "accel/bvh/bvh_accelerator.h"
+#include "accel/bvh/bvh_env.h"
+#include "accel/bvh/layout/wide_bvh.h"
+#include "accel/naive/naive_accelerator.h"
+#include "accel/registry.h"
+#include "framework/scene/scene.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <random>
+#include <set>
+
+namespace bvhlab {
+namespace {
+
+constexpr BvhKind kAllKinds[] = {BvhKind::SpatialMedian, BvhKind::BinnedSah, BvhKind::SweepSah};
+
+const char* kindName(BvhKind kind) {
+    switch (kind) {
+    case BvhKind::SpatialMedian: return "tdbvh";
+    case BvhKind::BinnedSah: return "sahbvh";
+    case BvhKind::SweepSah: return "sweepbvh";
+    }
+    return "?";
+}
+
+// A triangle soup; `valid` lists every triangle unless told otherwise.
+struct Soup {
+    std::vector<Triangle> triangles;
+    std::vector<uint32_t> valid;
+
+    void add(const Triangle& t) {
+        valid.push_back(uint32_t(triangles.size()));
+        triangles.push_back(t);
+    }
+    PrimitiveSet prims() const { return {triangles, valid}; }
+};
+
+// Triangles with corners in [0, extent)^3 and edge lengths up to `size`.
+Soup randomSoup(size_t n, uint32_t seed, float extent = 10.0f, float size = 1.0f) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> pos(0.0f, extent), offset(-size, size);
+    Soup soup;
+    while (soup.triangles.size() < n) {
+        const Vec3 p(pos(rng), pos(rng), pos(rng));
+        const Triangle t{p, p + Vec3(offset(rng), offset(rng), offset(rng)), p + Vec3(offset(rng), offset(rng), offset(rng))};
+        if (!isDegenerate(t)) soup.add(t);
+    }
+    return soup;
+}
+
+// Sizes from 1e-6 to 1e3 (log-uniform), positions over a 1e3 cube.
+Soup mixedScaleSoup(size_t n, uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> pos(-500.0f, 500.0f), unit(-1.0f, 1.0f), exponent(-6.0f, 3.0f);
+    Soup soup;
+    while (soup.triangles.size() < n) {
+        const float size = std::pow(10.0f, exponent(rng));
+        const Vec3 p(pos(rng), pos(rng), pos(rng));
+        const Triangle t{p, p + size * Vec3(unit(rng), unit(rng), unit(rng)), p + size * Vec3(unit(rng), unit(rng), unit(rng))};
+        if (!isDegenerate(t)) soup.add(t);
+    }
+    return soup;
+}
+
+BvhBuildConfig defaultConfig() { return BvhBuildConfig{}; }
+
+bool contains(const Bounds3& outer, const Bounds3& inner) {
+    return outer.lower.x <= inner.lower.x && outer.lower.y <= inner.lower.y && outer.lower.z <= inner.lower.z &&
+           outer.upper.x >= inner.upper.x && outer.upper.y >= inner.upper.y && outer.upper.z >= inner.upper.z;
+}
+
+bool sameBox(const Bounds3& a, const Bounds3& b) { return a.lower == b.lower && a.upper == b.upper; }
+
+struct TreeFacts {
+    size_t nodes = 0, leaves = 0, maxLeaf = 0;
+    int maxDepth = 0;
+};
+
+// Checks every structural invariant and returns the counts found by walking the tree:
+// each valid primitive exactly once in the leaves, leaf ranges tiling the leaf arrays, the
+// leaf triangles the primitives' own, boxes exactly the union of what they hold (children
+// inside their parent, triangles inside their leaf), sibling pairs at even indices.
+TreeFacts checkTree(const Bvh& bvh, const Soup& soup) {
+    TreeFacts facts;
+    const size_t n = soup.valid.size();
+    EXPECT_EQ(bvh.primIndices.size(), n);
+    EXPECT_EQ(bvh.leafTriangles.size(), n);
+    if (n == 0) {
+        EXPECT_TRUE(bvh.empty());
+        return facts;
+    }
+    EXPECT_EQ(reinterpret_cast<uintptr_t>(bvh.nodes.data()) % 64, 0u) << "sibling pairs must share a cache line";
+
+    std::multiset<uint32_t> seen(bvh.primIndices.begin(), bvh.primIndices.end());
+    EXPECT_EQ(seen, std::multiset<uint32_t>(soup.valid.begin(), soup.valid.end()));
+    for (size_t i = 0; i < n; ++i) {
+        const Triangle& a = bvh.leafTriangles[i];
+        const Triangle& b = soup.triangles[bvh.primIndices[i]];
+        EXPECT_TRUE(a.v0 == b.v0 && a.v1 == b.v1 && a.v2 == b.v2) << "leaf triangle " << i;
+    }
+
+    std::vector<int> covered(n, 0);
+    struct Item {
+        uint32_t node;
+        int depth;
+    };
+    std::vector<Item> stack{{0, 0}};
+    while (!stack.empty()) {
+        const auto [index, depth] = stack.back();
+        stack.pop_back();
+        if (index >= bvh.nodes.size()) {
+            ADD_FAILURE() << "node index " << index << " out of range";
+            continue;
+        }
+        const BvhNode& node = bvh.nodes[index];
+        ++facts.nodes;
+        facts.maxDepth = std::max(facts.maxDepth, depth);
+        const Bounds3 box = node.box();
+        if (node.isLeaf()) {
+            ++facts.leaves;
+            facts.maxLeaf = std::max<size_t>(facts.maxLeaf, node.count);
+            EXPECT_LE(size_t(node.index) + node.count, n);
+            Bounds3 tight;
+            for (uint32_t i = node.index; i < node.index + node.count && i < n; ++i) {
+                ++covered[i];
+                tight.extend(bvh.leafTriangles[i].bounds());
+            }
+            EXPECT_TRUE(sameBox(box, tight)) << "leaf " << index << " box is not its triangles' box";
+        } else {
+            EXPECT_TRUE(node.index >= 2 && node.index % 2 == 0) << "children of " << index << " at " << node.index;
+            if (node.index + 1 >= bvh.nodes.size()) {
+                ADD_FAILURE() << "children of " << index << " out of range";
+                continue;
+            }
+            const Bounds3 left = bvh.nodes[node.index].box(), right = bvh.nodes[node.index + 1].box();
+            EXPECT_TRUE(contains(box, left) && contains(box, right)) << "children outside node " << index;
+            EXPECT_TRUE(sameBox(box, unionOf(left, right))) << "node " << index << " box is not its children's";
+            stack.push_back({node.index, depth + 1});
+            stack.push_back({node.index + 1, depth + 1});
+        }
+    }
+    for (size_t i = 0; i < n; ++i) EXPECT_EQ(covered[i], 1) << "leaf slot " << i << " covered " << covered[i] << " times";
+    EXPECT_EQ(facts.nodes, 2 * facts.leaves - 1);
+    EXPECT_LT(facts.maxDepth, kBvhMaxDepth);
+    return facts;
+}
+
+// Builds, checks the tree and that BuildStats reports what the walk found.
+TreeFacts buildAndCheck(BvhAccelerator& accel, const Soup& soup) {
+    const BuildStats stats = accel.build(soup.prims());
+    const TreeFacts facts = checkTree(accel.bvh(), soup);
+    EXPECT_EQ(stats.primitives, soup.valid.size());
+    EXPECT_EQ(stats.nodes.value_or(0), facts.nodes);
+    EXPECT_EQ(stats.leaves.value_or(0), facts.leaves);
+    EXPECT_EQ(stats.maxLeafPrimitives.value_or(0), facts.maxLeaf);
+    EXPECT_EQ(stats.maxDepth.value_or(-1), facts.maxDepth);
+    EXPECT_EQ(stats.bytes.value_or(0), accel.bvh().bytes());
+    EXPECT_TRUE(stats.sah.has_value());
+    return facts;
+}
+
+Ray randomRay(std::mt19937& rng, float extent) {
+    std::uniform_real_distribution<float> pos(-0.2f * extent, 1.2f * extent), dir(-1.0f, 1.0f);
+    Ray ray;
+    ray.org = {pos(rng), pos(rng), pos(rng)};
+    const Vec3 target(pos(rng), pos(rng), pos(rng));
+    ray.dir = target - ray.org;
+    // Every seventh ray runs along an axis, from a triangle's vertex coordinate: slab planes.
+    if (rng() % 7 == 0) ray.dir = Vec3(0.0f), ray.dir[rng() % 3] = (rng() & 1) ? 1.0f : -1.0f;
+    return ray;
+}
+
+// Both queries against brute force on `count` rays.
+void expectAgreesWithNaive(const BvhAccelerator& accel, const Soup& soup, int count, float extent, uint32_t seed) {
+    NaiveAccelerator naive;
+    naive.build(soup.prims());
+    std::mt19937 rng(seed);
+    int mismatches = 0;
+    for (int i = 0; i < count && mismatches < 5; ++i) {
+        Ray ray = randomRay(rng, extent);
+        if (!soup.triangles.empty() && i % 3 == 0) {
+            // Aim at a vertex-derived point on a triangle: many rays hit something.
+            const Triangle& t = soup.triangles[soup.valid[rng() % soup.valid.size()]];
+            ray.dir = (t.v0 + t.v1 + t.v2) * (1.0f / 3.0f) - ray.org;
+        }
+        if (i % 5 == 0) ray.tmax = std::uniform_real_distribution<float>(0.1f, 1.5f)(rng);
+        // Intervals reaching behind the origin: far slab distances are then negative too.
+        if (i % 4 == 1) ray.tmin = -std::uniform_real_distribution<float>(0.0f, 2.0f)(rng);
+        Hit expected, actual;
+        QueryCounters c1, c2;
+        const bool e = naive.findNearest(ray, expected, c1);
+        const bool a = accel.findNearest(ray, actual, c2);
+        if (e != a || !hitsAgree(expected, actual)) {
+            ++mismatches;
+            ADD_FAILURE() << accel.name() << " ray " << i << ": naive t=" << expected.t << " prim " << expected.primitive
+                          << ", bvh t=" << actual.t << " prim " << actual.primitive;
+        }
+        if (naive.isOccluded(ray, c1) != accel.isOccluded(ray, c2)) {
+            ++mismatches;
+            ADD_FAILURE() << accel.name() << " ray " << i << ": occlusion differs";
+        }
+        EXPECT_EQ(c2.queries, 2u);
+    }
+}
+
+TEST(Bvh, NodeIsThirtyTwoBytes) {
+    EXPECT_EQ(sizeof(BvhNode), 32u);
+    EXPECT_EQ(sizeof(PrimRef), 32u);
+}
+
+TEST(Bvh, InvariantsOnRandomScenes) {
+    const Soup soup = randomSoup(3000, 1);
+    for (BvhKind kind : kAllKinds) {
+        for (bool simd : {true, false}) {
+            SCOPED_TRACE(std::string(kindName(kind)) + (simd ? " simd" : " scalar"));
+            BvhBuildConfig config;
+            config.simd = simd;
+            BvhAccelerator accel(kind, config);
+            buildAndCheck(accel, soup);
+        }
+    }
+    // The other settings of each builder.
+    BvhBuildConfig allAxes;
+    allAxes.allAxes = true;
+    allAxes.bins = 7;
+    BvhBuildConfig nodeBox;
+    nodeBox.medianSplitBox = MedianSplitBox::NodeBox;
+    BvhBuildConfig manyBins;
+    manyBins.bins = 256;
+    for (const auto& [kind, config] : {std::pair{BvhKind::BinnedSah, allAxes}, std::pair{BvhKind::SpatialMedian, nodeBox},
+                                       std::pair{BvhKind::BinnedSah, manyBins}}) {
+        BvhAccelerator accel(kind, config);
+        buildAndCheck(accel, soup);
+    }
+}
+
+// BVH::robust=false (Moeller-Trumbore, plain boxes) is not watertight at edges, but away from
+// them it must give the same answers: it is a baseline for timing, not a different ray tracer.
+TEST(Bvh, NonRobustTraversalAgreesAwayFromEdges) {
+    const Soup soup = randomSoup(3000, 5);
+    BvhBuildConfig config;
+    config.robust = false;
+    BvhAccelerator accel(BvhKind::BinnedSah, config);
+    buildAndCheck(accel, soup);
+    expectAgreesWithNaive(accel, soup, 3000, 2.0f, 11);
+}
+
+TEST(Bvh, TinyScenes) {
+    for (size_t n : {0, 1, 2, 3}) {
+        const Soup soup = randomSoup(n, 7 + uint32_t(n));
+        for (BvhKind kind : kAllKinds) {
+            SCOPED_TRACE(std::string(kindName(kind)) + " with " + std::to_string(n) + " triangles");
+            BvhBuildConfig config;
+            config.maxLeaf = 1;
+            config.sahTermination = false;
+            BvhAccelerator accel(kind, config);
+            const TreeFacts facts = buildAndCheck(accel, soup);
+            EXPECT_EQ(facts.leaves, n);
+            // A ray at each triangle's centroid finds it (or one equally near).
+            for (uint32_t prim : soup.valid) {
+                const Triangle& t = soup.triangles[prim];
+                Ray ray;
+                ray.org = t.centroid() + 5.0f * glm::normalize(t.geometricNormal());
+                ray.dir = t.centroid() - ray.org;
+                Hit hit;
+                QueryCounters counters;
+                ASSERT_TRUE(accel.findNearest(ray, hit, counters));
+                EXPECT_LE(hit.t, 1.0001f);
+                EXPECT_TRUE(accel.isOccluded(ray, counters));
+                EXPECT_EQ(counters.queries, 2u);
+                EXPECT_GE(counters.traversalSteps, 2u);
+            }
+            // Nothing to hit.
+            Ray away;
+            away.org = {-100, -100, -100};
+            away.dir = {-1, 0, 0};
+            Hit hit;
+            QueryCounters counters;
+            EXPECT_FALSE(accel.findNearest(away, hit, counters));
+            EXPECT_FALSE(hit.found());
+            EXPECT_FALSE(accel.isOccluded(away, counters));
+        }
+    }
+}
+
+TEST(Bvh, DegeneratePrimitivesAreNotBuiltOver) {
+    // Valid lists only some triangles: the others never appear in leaves; hits report the
+    // primitive index of the full list.
+    Soup soup = randomSoup(50, 3);
+    soup.valid = {4, 9, 10, 31, 49};
+    for (BvhKind kind : kAllKinds) {
+        BvhAccelerator accel(kind, defaultConfig());
+        buildAndCheck(accel, soup);
+        expectAgreesWithNaive(accel, soup, 300, 10.0f, 5);
+    }
+}
+
+TEST(Bvh, HundredThousandCoincidentTriangles) {
+    Soup soup;
+    for (int i = 0; i < 100000; ++i) soup.add({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+    for (BvhKind kind : kAllKinds) {
+        SCOPED_TRACE(kindName(kind));
+        BvhAccelerator accel(kind, defaultConfig());
+        const BuildStats stats = accel.build(soup.prims());
+        EXPECT_LT(stats.buildMs, 2000.0);
+        const TreeFacts facts = checkTree(accel.bvh(), soup);
+        // Split by index into halves: depth log2(100000 / leafCap) + 1.
+        EXPECT_LE(facts.maxDepth, 14);
+        EXPECT_LE(facts.maxLeaf, size_t(defaultConfig().leafCap));
+
+        Ray ray;
+        ray.org = {0.25f, 0.25f, 1.0f};
+        ray.dir = {0, 0, -1};
+        Hit hit;
+        QueryCounters counters;
+        ASSERT_TRUE(accel.findNearest(ray, hit, counters));
+        EXPECT_FLOAT_EQ(hit.t, 1.0f);
+    }
+    // With leafCap 1 every leaf holds one primitive even here.
+    BvhBuildConfig strict;
+    strict.maxLeaf = 1;
+    strict.leafCap = 1;
+    strict.sahTermination = false;
+    BvhAccelerator accel(BvhKind::BinnedSah, strict);
+    accel.build(soup.prims());
+    EXPECT_EQ(checkTree(accel.bvh(), soup).maxLeaf, 1u);
+}
+
+TEST(Bvh, CentresOnALineOnAPlaneAndClustered) {
+    Soup line, plane, clusters;
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> u(0.0f, 100.0f);
+    for (int i = 0; i < 4000; ++i) {
+        const float x = u(rng), y = u(rng);
+        line.add({{x - 1, -1, 0}, {x + 1, -1, 0}, {x, 2, 0}});        // centres on the x axis
+        plane.add({{x - 1, y - 1, 0}, {x + 1, y - 1, 0}, {x, y + 2, 0}});  // centres in z = 0
+        const float c = float(i % 8) * 10.0f;                          // 8 points, 500 each
+        clusters.add({{c - 1, -1, 0}, {c + 1, -1, 0}, {c, 2, 0}});
+    }
+    for (const Soup* soup : {&line, &plane, &clusters}) {
+        for (BvhKind kind : kAllKinds) {
+            for (MedianSplitBox box : {MedianSplitBox::CentroidBox, MedianSplitBox::NodeBox}) {
+                if (kind != BvhKind::SpatialMedian && box == MedianSplitBox::NodeBox) continue;
+                BvhBuildConfig config;
+                config.medianSplitBox = box;
+                BvhAccelerator accel(kind, config);
+                buildAndCheck(accel, *soup);
+                expectAgreesWithNaive(accel, *soup, 200, 100.0f, 13);
+            }
+        }
+    }
+}
+
+TEST(Bvh, DepthStaysBoundedOnGeometricSpacing) {
+    // Centres at x = 1.5^i: the middle of the centre box separates only the last one, so a
+    // spatial median would build a chain of depth N; the builders must stop short of 64.
+    Soup soup;
+    for (int i = 0; i < 200; ++i) {
+        const float x = std::pow(1.5f, float(i) - 100.0f);
+        soup.add({{x, 0, 0}, {x * 1.01f, 0, 0}, {x, 1e-3f, 1e-3f}});
+    }
+    for (BvhKind kind : kAllKinds) {
+        for (MedianSplitBox box : {MedianSplitBox::CentroidBox, MedianSplitBox::NodeBox}) {
+            SCOPED_TRACE(kindName(kind));
+            BvhBuildConfig config;
+            config.maxLeaf = 1;
+            config.sahTermination = false;
+            config.medianSplitBox = box;
+            BvhAccelerator accel(kind, config);
+            const TreeFacts facts = buildAndCheck(accel, soup);
+            EXPECT_EQ(facts.leaves, soup.valid.size());
+            EXPECT_LT(facts.maxDepth, kBvhMaxDepth);
+            if (kind == BvhKind::SpatialMedian && box == MedianSplitBox::CentroidBox) {
+                EXPECT_GE(facts.maxDepth, 40) << "the chain this test is about did not occur";
+            }
+        }
+    }
+}
+
+TEST(Bvh, SizesFromMicrometresToKilometres) {
+    const Soup soup = mixedScaleSoup(3000, 17);
+    for (BvhKind kind : kAllKinds) {
+        BvhAccelerator accel(kind, defaultConfig());
+        buildAndCheck(accel, soup);
+        expectAgreesWithNaive(accel, soup, 1000, 1000.0f, 19);
+    }
+}
+
+TEST(Bvh, AgreesWithNaiveOnRandomRays) {
+    const Soup soup = randomSoup(2000, 23);
+    for (BvhKind kind : kAllKinds) {
+        for (int maxLeaf : {1, 4}) {
+            BvhBuildConfig config;
+            config.maxLeaf = maxLeaf;
+            BvhAccelerator accel(kind, config);
+            accel.build(soup.prims());
+            expectAgreesWithNaive(accel, soup, 3000, 10.0f, 29);
+        }
+    }
+}
+
+TEST(Bvh, AxisParallelRaysAlongBoxFaces) {
+    // Unit squares facing each axis on the lattice planes 0..4: rays along an axis start on
+    // the planes of node boxes, so slab distances are 0 * inf = NaN and must be ignored rather
+    // than turned into misses, also on the outer faces where no other box takes over; -0
+    // direction components must behave like +0.
+    Soup soup;
+    for (int axis = 0; axis < 3; ++axis) {
+        const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+        for (int i = 0; i <= 4; ++i)
+            for (int j = 0; j < 4; ++j)
+                for (int k = 0; k < 4; ++k) {
+                    Vec3 p0(0.0f), p1(0.0f), p2(0.0f), p3(0.0f);
+                    p0[axis] = p1[axis] = p2[axis] = p3[axis] = float(i);
+                    p0[u] = p3[u] = float(j), p1[u] = p2[u] = float(j + 1);
+                    p0[v] = p1[v] = float(k), p2[v] = p3[v] = float(k + 1);
+                    soup.add({p0, p1, p2});
+                    soup.add({p0, p2, p3});
+                }
+    }
+    NaiveAccelerator naive;
+    naive.build(soup.prims());
+    for (BvhKind kind : kAllKinds) {
+        BvhBuildConfig config;
+        config.maxLeaf = 1;
+        BvhAccelerator accel(kind, config);
+        accel.build(soup.prims());
+        int hits = 0;
+        for (int axis = 0; axis < 3; ++axis) {
+            const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+            for (float a : {0.0f, 0.5f, 1.0f, 4.0f})
+                for (float b : {0.0f, 0.25f, 2.0f, 4.0f})
+                    for (float sign : {1.0f, -1.0f}) {
+                        Ray ray;
+                        ray.org[axis] = sign > 0 ? -1.0f : 6.0f;
+                        ray.org[u] = a, ray.org[v] = b;
+                        ray.dir = Vec3(sign < 0 ? -0.0f : 0.0f);
+                        ray.dir[axis] = sign;
+                        Hit expected, actual;
+                        QueryCounters counters;
+                        const bool found = naive.findNearest(ray, expected, counters);
+                        hits += found;
+                        EXPECT_EQ(found, accel.findNearest(ray, actual, counters))
+                            << kindName(kind) << " axis " << axis << " at " << a << ", " << b << " sign " << sign;
+                        EXPECT_TRUE(hitsAgree(expected, actual));
+                        EXPECT_EQ(naive.isOccluded(ray, counters), accel.isOccluded(ray, counters));
+                    }
+        }
+        EXPECT_EQ(hits, 3 * 4 * 4 * 2);  // every ray hits a square facing it, edges included
+    }
+}
+
+TEST(Bvh, FlatBoxesBehindTheOrigin) {
+    // Axis-aligned triangles have flat boxes: near and far distances are equal, and a margin
+    // that shrinks the interval for negative distances (pbrt's far * (1 + 2 gamma)) misses
+    // them when the interval reaches below 0.
+    Soup soup;
+    for (int i = 0; i < 50; ++i) {
+        const float y = float(i) * 0.37f;
+        soup.add({{-4, y, -4}, {4, y, 4}, {4, y, -4}});
+        soup.add({{-4, y, -4}, {-4, y, 4}, {4, y, 4}});
+    }
+    NaiveAccelerator naive;
+    naive.build(soup.prims());
+    std::mt19937 rng(53);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    for (BvhKind kind : kAllKinds) {
+        BvhAccelerator accel(kind, defaultConfig());
+        accel.build(soup.prims());
+        int hits = 0;
+        for (int i = 0; i < 500; ++i) {
+            Ray ray;
+            ray.org = {3.0f * u(rng), 20.0f + 5.0f * u(rng), 3.0f * u(rng)};
+            ray.dir = {0.1f * u(rng), 1.0f, 0.1f * u(rng)};  // pointing away from every triangle
+            ray.tmin = -40.0f;
+            ray.tmax = i % 2 ? kInfinity : -1.0f;
+            Hit expected, actual;
+            QueryCounters counters;
+            const bool found = naive.findNearest(ray, expected, counters);
+            hits += found;
+            ASSERT_EQ(found, accel.findNearest(ray, actual, counters)) << kindName(kind) << " ray " << i;
+            EXPECT_TRUE(hitsAgree(expected, actual));
+            EXPECT_EQ(naive.isOccluded(ray, counters), accel.isOccluded(ray, counters));
+        }
+        EXPECT_GT(hits, 400);
+    }
+}
+
+// An axis-parallel ray beside a box has a far distance of -inf on that axis. The interval
+// reaching below 0 must cull such boxes as the ordinary one does: with nothing behind the
+// origin, tmin = -0.5 visits exactly the nodes that tmin = 0 visits.
+TEST(Bvh, NegativeTminCullsAxisParallelRaysLikeTminZero) {
+    const Soup soup = randomSoup(3000, 29);  // in [-1, 11]^3
+    std::mt19937 rng(31);
+    std::uniform_real_distribution<float> across(0.0f, 10.0f);
+    BvhAccelerator accel(BvhKind::BinnedSah, defaultConfig());
+    accel.build(soup.prims());
+    for (int i = 0; i < 300; ++i) {
+        const int axis = i % 3;
+        Ray ray;
+        ray.org = {across(rng), across(rng), across(rng)};
+        ray.org[axis] = -2.0f;  // every triangle lies ahead, beyond t = 1
+        ray.dir = Vec3(0.0f);
+        ray.dir[axis] = 1.0f;
+        QueryCounters fromZero, fromBelow;
+        Hit a, b;
+        const bool hitA = accel.findNearest(ray, a, fromZero);
+        ray.tmin = -0.5f;
+        const bool hitB = accel.findNearest(ray, b, fromBelow);
+        ASSERT_EQ(hitA, hitB) << "ray " << i;
+        EXPECT_EQ(fromZero.traversalSteps, fromBelow.traversalSteps) << "ray " << i;
+    }
+}
+
+TEST(Bvh, InvalidRaysMissAndCountAQuery) {
+    const Soup soup = randomSoup(100, 31);
+    BvhAccelerator accel(BvhKind::BinnedSah, defaultConfig());
+    accel.build(soup.prims());
+    Ray zero;
+    zero.dir = Vec3(0.0f);
+    Ray nan;
+    nan.org.x = std::nanf("");
+    Ray empty;
+    empty.tmin = 2.0f;
+    empty.tmax = 1.0f;
+    for (const Ray& ray : {zero, nan, empty}) {
+        QueryCounters counters;
+        Hit hit;
+        EXPECT_FALSE(accel.findNearest(ray, hit, counters));
+        EXPECT_FALSE(accel.isOccluded(ray, counters));
+        EXPECT_EQ(counters.queries, 2u);
+        EXPECT_EQ(counters.intersectionTests, 0u);
+    }
+}
+
+double sahOf(BvhKind kind, const BvhBuildConfig& config, const Soup& soup) {
+    BvhAccelerator accel(kind, config);
+    return accel.build(soup.prims()).sah->cost;
+}
+
+TEST(Bvh, BinnedSahIsCloseToTheSweep) {
+    const Soup soup = randomSoup(4000, 37, 10.0f, 0.5f);
+    const double binned = sahOf(BvhKind::BinnedSah, defaultConfig(), soup);
+    const double sweep = sahOf(BvhKind::SweepSah, defaultConfig(), soup);
+    const double median = sahOf(BvhKind::SpatialMedian, defaultConfig(), soup);
+    EXPECT_LE(sweep, binned * 1.001);
+    EXPECT_LE(binned, sweep * 1.03);
+    EXPECT_LT(sweep, median);
+    // More bins on every axis come closer.
+    BvhBuildConfig fine;
+    fine.bins = 64;
+    fine.allAxes = true;
+    EXPECT_LE(sahOf(BvhKind::BinnedSah, fine, soup), sweep * 1.015);
+}
+
+TEST(Bvh, SahTerminationMakesMultiPrimitiveLeaves) {
+    // Dense, overlapping triangles: splitting does not pay near the bottom.
+    const Soup soup = randomSoup(3000, 41, 5.0f, 1.0f);
+    for (BvhKind kind : {BvhKind::BinnedSah, BvhKind::SweepSah}) {
+        BvhBuildConfig config;
+        config.maxLeaf = 1;
+        config.cTraversal = 2.0f;
+        BvhAccelerator accel(kind, config);
+        const BuildStats stats = accel.build(soup.prims());
+        EXPECT_GT(*stats.avgLeafPrimitives, 1.5) << kindName(kind);
+        EXPECT_LE(*stats.maxLeafPrimitives, size_t(config.leafCap));
+        checkTree(accel.bvh(), soup);
+
+        config.sahTermination = false;
+        BvhAccelerator single(kind, config);
+        const BuildStats one = single.build(soup.prims());
+        EXPECT_EQ(*one.leaves, soup.valid.size());
+        EXPECT_EQ(*one.maxLeafPrimitives, 1u);
+        EXPECT_EQ(*one.nodes, 2 * soup.valid.size() - 1);
+        // Termination exists to lower the cost it tests against.
+        EXPECT_LT(stats.sah->cost, one.sah->cost);
+    }
+}
+
+TEST(Bvh, SimdAndScalarBuildTheSameTree) {
+    const Soup soups[] = {randomSoup(5000, 43), mixedScaleSoup(3000, 47)};
+    for (const Soup& soup : soups) {
+        for (BvhKind kind : kAllKinds) {
+            for (bool allAxes : {false, true}) {
+                if (allAxes && kind != BvhKind::BinnedSah) continue;
+                BvhBuildConfig config;
+                config.allAxes = allAxes;
+                BvhAccelerator simd(kind, config);
+                config.simd = false;
+                BvhAccelerator scalar(kind, config);
+                simd.build(soup.prims());
+                scalar.build(soup.prims());
+                const Bvh &a = simd.bvh(), &b = scalar.bvh();
+                ASSERT_EQ(a.nodes.size(), b.nodes.size()) << kindName(kind);
+                EXPECT_EQ(std::memcmp(a.nodes.data(), b.nodes.data(), a.nodes.size() * sizeof(BvhNode)), 0)
+                    << kindName(kind) << (allAxes ? " all axes" : "");
+                EXPECT_EQ(a.primIndices, b.primIndices);
+            }
+        }
+    }
+}
+
+TEST(Bvh, SahCostFollowsTheStatedFormula) {
+    // Two unit triangles far apart, one per leaf: the root is the only inner node.
+    Soup soup;
+    soup.add({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+    soup.add({{9, 9, 9}, {10, 9, 9}, {9, 10, 9}});
+    BvhBuildConfig config;
+    config.maxLeaf = 1;
+    config.cTraversal = 2.0f;
+    config.cIntersect = 3.0f;
+    BvhAccelerator accel(BvhKind::BinnedSah, config);
+    const BuildStats stats = accel.build(soup.prims());
+    ASSERT_EQ(*stats.nodes, 3u);
+    const double rootArea = Bounds3({0, 0, 0}, {10, 10, 9}).halfArea();
+    const double leafArea = Bounds3({0, 0, 0}, {1, 1, 0}).halfArea();
+    EXPECT_NEAR(stats.sah->cost, 2.0 + 3.0 * 2.0 * leafArea / rootArea, 1e-9);
+    EXPECT_EQ(stats.sah->cTraversal, 2.0);
+    EXPECT_EQ(stats.sah->cIntersect, 3.0);
+    EXPECT_EQ(*stats.maxDepth, 1);
+    EXPECT_DOUBLE_EQ(*stats.avgLeafPrimitives, 1.0);
+}
+
+TEST(Bvh, CountersCountVisitsAndTests) {
+    // Traversal steps: the root, then every node entered. A ray missing the scene box costs
+    // one step and no test; a ray through one leaf of a 2-leaf tree costs root + leaf.
+    Soup soup;
+    soup.add({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+    soup.add({{0, 0, 5}, {1, 0, 5}, {0, 1, 5}});
+    BvhBuildConfig config;
+    config.maxLeaf = 1;
+    config.sahTermination = false;
+    BvhAccelerator accel(BvhKind::BinnedSah, config);
+    accel.build(soup.prims());
+    QueryCounters counters;
+    Hit hit;
+    Ray miss;
+    miss.org = {5, 5, -1};
+    EXPECT_FALSE(accel.findNearest(miss, hit, counters));
+    EXPECT_EQ(counters.traversalSteps, 1u);
+    EXPECT_EQ(counters.intersectionTests, 0u);
+
+    counters = {};
+    Ray along;
+    along.org = {0.2f, 0.2f, -1.0f};
+    along.dir = {0, 0, 1};
+    ASSERT_TRUE(accel.findNearest(along, hit, counters));
+    EXPECT_EQ(hit.primitive, 0u);
+    // Both leaves are entered; the far one is dropped once the near hit is closer than its box.
+    EXPECT_EQ(counters.traversalSteps, 2u);
+    EXPECT_EQ(counters.intersectionTests, 1u);
+
+    counters = {};
+    along.tmin = 2.0f;
+    ASSERT_TRUE(accel.findNearest(along, hit, counters));
+    EXPECT_EQ(hit.primitive, 1u);
+    EXPECT_EQ(counters.traversalSteps, 2u);
+    EXPECT_EQ(counters.intersectionTests, 1u);
+}
+
+TEST(Bvh, RegisteredWithTheirEnvKeys) {
+    const EnvRegistry& registry = envRegistry();
+    for (const char* name : {"tdbvh", "sahbvh", "sahbvh4", "sweepbvh"}) {
+        const auto& infos = acceleratorInfos();
+        const auto it = std::find_if(infos.begin(), infos.end(), [&](const AcceleratorInfo& i) { return i.name == name; });
+        ASSERT_NE(it, infos.end()) << name;
+        for (const std::string& key : it->envKeys) EXPECT_NE(registry.find(key), nullptr) << key;
+    }
+    Env env;
+    env.set("BVH::bins", "8", "test");
+    env.set("BVH::maxLeaf", "3", "test");
+    env.set("BVH::tdbvhSplit", "nodebox", "test");
+    const BvhBuildConfig config = bvhConfigFromEnv(env);
+    EXPECT_EQ(config.bins, 8);
+    EXPECT_EQ(config.maxLeaf, 3);
+    EXPECT_EQ(config.medianSplitBox, MedianSplitBox::NodeBox);
+    const auto accel = createAccelerator("sahbvh", env);
+    EXPECT_EQ(accel->name(), "sahbvh");
+    EXPECT_TRUE(accel->hasCounters());
+}
+
+// The 4-wide collapse keeps the binary tree's leaves: every leaf appears in exactly one lane
+// with its box, inner lanes point at wide nodes, unused lanes are empty boxes, and no wide
+// node has fewer than two children (or one: a root that is a single leaf).
+TEST(WideBvh, CollapseKeepsEveryLeafOnce) {
+    for (size_t n : {size_t(1), size_t(2), size_t(7), size_t(3000)}) {  // 1 and 2: the root is a leaf
+        SCOPED_TRACE(n);
+        const Soup soup = randomSoup(n, 41 + uint32_t(n));
+        Bvh binary = buildBvh(BvhKind::BinnedSah, defaultConfig(), soup.prims());
+        std::multiset<std::pair<uint32_t, uint32_t>> binaryLeaves;  // (first triangle, count)
+        for (size_t i = 0; i < binary.nodes.size(); ++i) {
+            if (i != 1 && binary.nodes[i].isLeaf()) binaryLeaves.insert({binary.nodes[i].index, binary.nodes[i].count});
+        }
+        const std::vector<uint32_t> primIndices = binary.primIndices;
+        const WideBvh wide = collapseToWide(std::move(binary));
+        EXPECT_EQ(wide.primIndices, primIndices);
+        ASSERT_EQ(wide.leafTriangles.size(), n);
+
+        std::multiset<std::pair<uint32_t, uint32_t>> wideLeaves;
+        std::vector<int> parents(wide.nodes.size(), 0);
+        for (const WideNode& node : wide.nodes) {
+            int used = 0;
+            for (int i = 0; i < WideNode::kWidth; ++i) {
+                const bool empty = node.lower[0][i] > node.upper[0][i];
+                if (empty) {
+                    EXPECT_EQ(node.count[i], 0u);
+                    continue;
+                }
+                ++used;
+                if (node.count[i] != 0) {
+                    wideLeaves.insert({node.child[i], node.count[i]});
+                    for (uint32_t t = node.child[i]; t < node.child[i] + node.count[i]; ++t) {
+                        const Bounds3 box = wide.leafTriangles[t].bounds();
+                        for (int a = 0; a < 3; ++a) {
+                            EXPECT_LE(node.lower[a][i], box.lower[a]);
+                            EXPECT_GE(node.upper[a][i], box.upper[a]);
+                        }
+                    }
+                } else {
+                    ASSERT_LT(node.child[i], wide.nodes.size());
+                    ++parents[node.child[i]];
+                }
+            }
+            EXPECT_GE(used, binaryLeaves.size() == 1 ? 1 : 2);
+        }
+        EXPECT_EQ(wideLeaves, binaryLeaves);
+        EXPECT_EQ(parents[0], 0);
+        for (size_t i = 1; i < parents.size(); ++i) EXPECT_EQ(parents[i], 1) << "wide node " << i;
+    }
+}
+
+}  // namespace
+}  // namespace bvhlab
+
+namespace bvhlab {
+namespace {
+
+// A split rule that breaks the hook's contract: it hands back an empty left half.
+class EmptyHalfBuilder : public TopDownBuilder {
+public:
+    using TopDownBuilder::TopDownBuilder;
+
+protected:
+    std::optional<Split> trySplit(const BuildRange& range, bool) override {
+        return Split{{range.begin, range.begin, {}, {}}, range};
+    }
+};
+
+}  // namespace
+
+// An empty half would become a node of count 0, which reads as an inner node: the recursion
+// refuses it instead of building a tree that traverses garbage.
+TEST(Bvh, RecursionRefusesASplitWithAnEmptyHalf) {
+    std::vector<PrimRef> refs(8);
+    BuildRange root{0, 8, {}, {}};
+    for (uint32_t i = 0; i < 8; ++i) {
+        refs[i] = {{float(i), 0.0f, 0.0f}, i, {float(i) + 0.5f, 1.0f, 1.0f}, 0};
+        root.bounds.extend(Bounds3{{float(i), 0.0f, 0.0f}, {float(i) + 0.5f, 1.0f, 1.0f}});
+        root.centroidBounds.extend(Vec3(float(i) + 0.25f, 0.5f, 0.5f));
+    }
+    BvhBuildConfig config;
+    config.maxLeaf = 1;
+    EmptyHalfBuilder builder(config);
+    EXPECT_THROW(builder.build(refs, root), std::logic_error);
+}
+
+}  // namespace bvhlab

@@ -1,0 +1,215 @@
+// What every subcommand does alike, from the traps a new user met in a first hour (issue 9):
+// --version, --env and -D everywhere, env layering on env/global.env, a scene named by its file
+// or its env file seen from its own camera, the run recorded in the JSON, --threads and --scenes
+// with one meaning, output paths checked alike, a too-large image refused up front, progress
+// lines and --quiet (the progress line itself: test_progress.cpp).
+#include "framework/io/ray_file.h"
+#include "framework/scene/scene_cache.h"
+#include "tests/support/cli_run.h"
+#include "tests/support/scratch_dir.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <fstream>
+#include <regex>
+
+using namespace bvhlab;
+
+namespace {
+
+using test::Result;
+using test::run;
+namespace fs = std::filesystem;
+
+fs::path tempDir() { return test::scratchDir("cli_conventions"); }
+
+// Scene::dir's default: the scenes beside the repository.
+fs::path scenesDir() { return fs::path(BVHLAB_SOURCE_DIR) / ".." / "shared" / "scenes"; }
+
+nlohmann::json readJson(const fs::path& file) {
+    std::ifstream in(file);
+    return nlohmann::json::parse(in);
+}
+
+// A unit quad in z = 0, in a scene file no env file names.
+fs::path quadScene() {
+    const fs::path file = tempDir() / "quad.obj";
+    std::ofstream(file) << "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n";
+    return file;
+}
+
+const std::string kTiny = " -DCamera::width=16 -DCamera::height=12 ";
+
+}  // namespace
+
+TEST(CliConventions, VersionPrintsVersionAndCommit) {
+    const Result r = run("--version");
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(std::regex_search(r.output, std::regex(R"(^bvhlab \d+\.\d+ \(commit \S+\))"))) << r.output;
+}
+
+TEST(CliConventions, KeysResolvesEnvFilesAndOverrides) {
+    const fs::path env = tempDir() / "bins.env";
+    std::ofstream(env) << "BVH::bins 32\n";
+    const Result r = run("keys --env " + env.string() + " -DBVH::leafCap=2");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("BVH::bins 32  # " + env.string() + ":1"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("BVH::leafCap 2  # -DBVH::leafCap"), std::string::npos) << r.output;
+    // Without them, the Markdown reference as before.
+    EXPECT_NE(run("keys").output.find("| `BVH::bins` |"), std::string::npos);
+}
+
+// --env layers on env/global.env; --no-global-env starts from the keys' defaults.
+TEST(CliConventions, EnvFilesLayerOnGlobalEnv) {
+    const fs::path env = tempDir() / "small.env";
+    std::ofstream(env) << "Camera::width 16\nCamera::height 12\n";
+    const fs::path out = tempDir() / "layered";
+    Result r = run("render --env " + env.string() + " --out " + out.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    nlohmann::json j = readJson(out.string() + ".json");
+    EXPECT_EQ(j["env"]["SetRayTracing::depthLimit"]["value"], "3");
+    EXPECT_NE(j["env"]["SetRayTracing::depthLimit"]["from"].get<std::string>().find("global.env"), std::string::npos);
+    EXPECT_EQ(j["env"]["Camera::width"]["value"], "16");
+    ASSERT_EQ(j["env_files"].size(), 2u);
+    EXPECT_NE(j["env_files"][0].get<std::string>().find("global.env"), std::string::npos);
+
+    r = run("render --no-global-env --env " + env.string() + " --out " + out.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    j = readJson(out.string() + ".json");
+    EXPECT_EQ(j["env"]["SetRayTracing::depthLimit"]["from"], "default");
+    EXPECT_EQ(j["env_files"].size(), 1u);
+}
+
+TEST(CliConventions, RenderRecordsTheSceneReadTheCommandAndTheTime) {
+    const fs::path scene = quadScene(), out = tempDir() / "record";
+    const Result r = run("render --scene " + scene.string() + kTiny + "--out " + out.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const nlohmann::json j = readJson(out.string() + ".json");
+    EXPECT_EQ(j["scene_file"]["file"], fs::absolute(scene).lexically_normal().string());
+    const SceneCacheKey key = sceneCacheKey(scene);
+    EXPECT_EQ(j["scene_file"]["size"], key.size);
+    EXPECT_EQ(j["scene_file"]["crc32"], fmt::format("{:08x}", key.crc32));
+    EXPECT_EQ(j["env"]["Scene::file"]["value"], fs::absolute(scene).lexically_normal().string());
+    EXPECT_EQ(j["env"]["Scene::file"]["from"], "--scene");
+    const std::string command = j["run"]["command_line"];
+    EXPECT_NE(command.find("render --scene " + scene.string()), std::string::npos) << command;
+    EXPECT_TRUE(std::regex_match(j["run"]["started"].get<std::string>(),
+                                 std::regex(R"(\d{4}-\d\d-\d\dT\d\d:\d\d:\d\dZ)")))
+        << j["run"]["started"];
+}
+
+// --scene-env gives a scene its camera; a scene name not found says which names there are.
+TEST(CliConventions, SceneEnvGivesTheCamera) {
+    const fs::path scene = quadScene(), sceneEnv = tempDir() / "quad_view.env", out = tempDir() / "view";
+    std::ofstream(sceneEnv) << "Camera::from 0 0 7\nCamera::at 0 0 0\nCamera::up 0 1 0\n";
+    Result r = run("render --scene " + scene.string() + " --scene-env " + sceneEnv.string() + kTiny + "--out " +
+                   out.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(readJson(out.string() + ".json")["env"]["Camera::from"]["value"], "0 0 7");
+
+    r = run("render --scene no_such_scene --out " + out.string());
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.output.find("no_such_scene: no such file, and no scene env file env/scenes/no_such_scene.env"),
+              std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("munich"), std::string::npos) << r.output;  // the names there are
+}
+
+// `--scene munich` and `--scene .../munich.ply` both take env/scenes/munich.env's view.
+TEST(SharedScenesCli, SceneByNameOrFileTakesItsOwnView) {
+    if (!fs::exists(scenesDir() / "munich.ply")) GTEST_SKIP() << "no munich.ply in " << scenesDir();
+    for (const std::string& scene : {std::string("munich"), (scenesDir() / "munich.ply").string()}) {
+        SCOPED_TRACE(scene);
+        const fs::path out = tempDir() / "munich";
+        const Result r = run("render --scene " + scene + kTiny + "-DSetRayTracing::depthLimit=1 --out " + out.string());
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        const nlohmann::json j = readJson(out.string() + ".json");
+        EXPECT_EQ(j["env"]["Camera::from"]["value"], "480 -820 520");
+        EXPECT_NE(j["env"]["Camera::from"]["from"].get<std::string>().find("munich.env"), std::string::npos);
+        EXPECT_NE(j["scene_file"]["file"].get<std::string>().find("munich.ply"), std::string::npos);
+    }
+}
+
+TEST(CliConventions, OutputPathsAreCheckedAlikeEverywhere) {
+    Result r = run("render --out \"\"");
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.output.find("--out: empty path"), std::string::npos) << r.output;
+    r = run("render --out " + tempDir().string() + "/");
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.output.find("names a folder"), std::string::npos) << r.output;
+
+    // raycast creates the folder of its output, as render does.
+    const fs::path rays = tempDir() / "one.rays", hits = tempDir() / "missing" / "dir" / "x.hits";
+    writeRayFile(rays, {{Vec3(0.0f, 0.0f, 5.0f), Vec3(0.0f, 0.0f, -1.0f), 0.0f, kInfinity}});
+    r = run("raycast --scene " + quadScene().string() + " --rays " + rays.string() + " --out " + hits.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(readHitFile(hits).size(), 1u);
+}
+
+// --threads N (0 = all) on every subcommand that traces. Each run below stops at a missing
+// scene, after its options were accepted.
+TEST(CliConventions, ThreadsMeansTheSameEverywhere) {
+    const fs::path out = tempDir() / "threads";
+    Result r = run("render --threads 1" + kTiny + "--out " + out.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(readJson(out.string() + ".json")["threads"], 1);
+    EXPECT_EQ(readJson(out.string() + ".json")["env"]["SetRayTracing::threads"]["from"], "--threads");
+    for (const std::string command : {"batch", "bench", "tradeoff", "raycast --rays x --out y", "render"}) {
+        r = run(command + " --threads 0 --scenes missing.env --scene missing.obj");
+        EXPECT_EQ(r.output.find("--threads"), std::string::npos) << command << ": " << r.output;
+    }
+}
+
+// --scenes takes scene files as well as env and .list files: a bench over a bare OBJ.
+TEST(CliConventions, ScenesTakeSceneFiles) {
+    const fs::path out = tempDir() / "bench.json";
+    const Result r = run("bench --scenes " + quadScene().string() + kTiny +
+                         "--accel sahbvh --threads 1 --builds 1 --passes 1 --out " + out.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const nlohmann::json j = readJson(out);
+    ASSERT_FALSE(j["rows"].empty());
+    EXPECT_EQ(j["rows"][0]["scene"], "quad");
+}
+
+// Nothing traced is n/a, not zero: shadows off leaves the shadow row without figures.
+TEST(CliConventions, NothingTracedIsNotApplicable) {
+    const fs::path out = tempDir() / "noshadows";
+    const Result r = run("render -DSetRayTracing::shadows=false" + kTiny + "--out " + out.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const nlohmann::json j = readJson(out.string() + ".json");
+    EXPECT_EQ(j["shadow"]["queries"], 0);
+    EXPECT_TRUE(j["shadow"]["t_r_us"].is_null());
+    EXPECT_TRUE(j["shadow"]["n_it"].is_null());
+    EXPECT_FALSE(j["primary"]["t_r_us"].is_null());
+    const std::string shadowLine = r.output.substr(r.output.find("  shadow rays"));
+    EXPECT_NE(shadowLine.substr(0, shadowLine.find('\n')).find("n/a"), std::string::npos) << r.output;
+}
+
+#if !defined(__SANITIZE_ADDRESS__)  // ASan reserves more address space than any ulimit -v below
+TEST(CliConventions, ImageTooLargeForMemoryIsRefusedUpFront) {
+    const Result r = test::runShell("ulimit -v 3000000; " + std::string(BVHLAB_BINARY) +
+                                    " render -DCamera::width=16384 -DCamera::height=16384 --out " +
+                                    (tempDir() / "huge").string());
+    const std::string& output = r.output;
+    EXPECT_EQ(r.exitCode, 1) << output;
+    EXPECT_NE(output.find("a 16384 x 16384 image needs about"), std::string::npos) << output;
+    EXPECT_NE(output.find("ulimit -v"), std::string::npos) << output;
+}
+#endif
+
+// Off a terminal (as here): a line per phase; --quiet, before or after the subcommand: none.
+TEST(CliConventions, ProgressLinesOffATerminalAndQuiet) {
+    const fs::path out = tempDir() / "progress";
+    Result r = run("render" + kTiny + "--out " + out.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    for (const char* phase : {"loading the scene\n", "building sahbvh\n", "rendering 16x12\n"})
+        EXPECT_NE(r.output.find(phase), std::string::npos) << phase << r.output;
+    for (const std::string quiet : {"--quiet render", "render --quiet"}) {
+        r = run(quiet + kTiny + "--out " + out.string());
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        EXPECT_EQ(r.output.find("rendering 16x12"), std::string::npos) << r.output;
+        EXPECT_NE(r.output.find("N_IT"), std::string::npos) << r.output;  // results stay
+    }
+}

@@ -1,0 +1,172 @@
+// `bvhlab tradeoff --quick` end to end on two small generated scenes (a triangle soup and a
+// terrain, written as OBJ with env files into a temporary folder): the CSV files have a row per
+// scene x configuration and per scene x sample count, sweepbvh's gap to itself is 0, no
+// structure disagrees with Embree on the same rays, the image error falls with the sample
+// count and is the same for every structure; a second run keeps every result, a missing one is
+// measured again, and so is everything when the settings change or with --fresh.
+#include "tests/support/cli_run.h"
+#include "tests/support/oracle.h"
+#include "tests/support/scratch_dir.h"
+
+#include <fmt/core.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+using namespace bvhlab;
+
+namespace {
+
+namespace fs = std::filesystem;
+using test::Result;
+using test::run;
+
+void writeObj(const Scene& scene, const fs::path& file) {
+    std::ofstream out(file);
+    for (const Vec3& p : scene.positions) out << fmt::format("v {} {} {}\n", p.x, p.y, p.z);
+    for (const auto& f : scene.indices) out << fmt::format("f {} {} {}\n", f[0] + 1, f[1] + 1, f[2] + 1);
+}
+
+// A fresh folder with soup.obj/.env and terrain.obj/.env (the camera frames each scene).
+fs::path makeScenes() {
+    const fs::path dir = test::scratchDir("tradeoff");
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    writeObj(test::makeSoupScene(1500, 7, 0.2f, 3.0f, 20.0f), dir / "soup.obj");
+    writeObj(test::makeTerrainScene(24, 3), dir / "terrain.obj");
+    for (const char* id : {"soup", "terrain"})
+        std::ofstream(dir / (std::string(id) + ".env")) << "Scene::file " << id << ".obj\nScene::dir .\n";
+    return dir;
+}
+
+std::string args(const fs::path& dir, const std::string& extra = "") {
+    return "tradeoff --quick --scenes " + (dir / "soup.env").string() + " " + (dir / "terrain.env").string() +
+           " --size 40 --ray-size 48 -DScene::cacheDir= --out " + (dir / "out").string() + " " + extra;
+}
+
+// A CSV file as one map per row, keyed by the header's names.
+std::vector<std::map<std::string, std::string>> readCsv(const fs::path& file) {
+    std::ifstream in(file);
+    std::vector<std::map<std::string, std::string>> rows;
+    std::vector<std::string> header;
+    for (std::string line; std::getline(in, line);) {
+        std::vector<std::string> cells;
+        std::stringstream fields(line);
+        for (std::string cell; std::getline(fields, cell, ',');) cells.push_back(cell);
+        if (line.back() == ',') cells.push_back("");
+        if (header.empty()) {
+            header = cells;
+            continue;
+        }
+        EXPECT_EQ(cells.size(), header.size()) << line;
+        std::map<std::string, std::string> row;
+        for (size_t i = 0; i < std::min(cells.size(), header.size()); ++i) row[header[i]] = cells[i];
+        rows.push_back(row);
+    }
+    return rows;
+}
+
+bool contains(const std::string& text, const std::string& what) { return text.find(what) != std::string::npos; }
+
+}  // namespace
+
+TEST(Tradeoff, QuickRunWritesRowsAndResumes) {
+    const fs::path dir = makeScenes();
+    Result r = run(args(dir));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(contains(r.output, "12 configurations measured, 0 kept")) << r.output;
+    const fs::path out = dir / "out";
+    for (const char* file : {"tradeoff.csv", "image_error.csv", "tradeoff.md", "soup/reference.exr", "terrain/reference.png"})
+        EXPECT_TRUE(fs::exists(out / file)) << file;
+
+    // tradeoff.csv: a row per scene x configuration, in order.
+    const std::vector<std::string> configs = {"tdbvh", "sahbvh-K4", "sahbvh-K16", "sahbvh-K64", "sweepbvh", "embree"};
+    const auto rows = readCsv(out / "tradeoff.csv");
+    ASSERT_EQ(rows.size(), 12u);
+    for (size_t i = 0; i < rows.size(); ++i) {
+        const auto& row = rows[i];
+        EXPECT_EQ(row.at("scene"), i < 6 ? "soup" : "terrain");
+        EXPECT_EQ(row.at("config"), configs[i % 6]);
+        EXPECT_TRUE(fs::exists(out / row.at("scene") / (row.at("config") + ".json"))) << row.at("config");
+        // Every structure answers the same rays as Embree and makes Embree's image.
+        EXPECT_EQ(row.at("mismatches_primary"), "0") << row.at("scene") << " " << row.at("config");
+        EXPECT_EQ(row.at("mismatches_shadow"), "0") << row.at("scene") << " " << row.at("config");
+        EXPECT_EQ(row.at("pixels_differing_1spp"), "0") << row.at("scene") << " " << row.at("config");
+        EXPECT_EQ(row.at("max_spp"), "16");
+        EXPECT_EQ(row.at("series_width"), "40");
+        EXPECT_EQ(row.at("primary_rays"), "2304");  // 48 x 48
+        EXPECT_GT(std::stod(row.at("time_to_image_max_ms")), std::stod(row.at("build_ms")));
+        if (row.at("config") == "embree") {
+            EXPECT_EQ(row.at("sah"), "");  // Embree's tree is not visible: no SAH, no gap
+            EXPECT_EQ(row.at("sah_gap"), "");
+        } else {
+            EXPECT_GT(std::stod(row.at("sah")), 0.0);
+            ASSERT_NE(row.at("sah_gap"), "");
+        }
+        // The SAH-greedy sweep is not globally optimal, so binning may beat it: only the
+        // sweep's gap to itself is certain.
+        if (row.at("config") == "sweepbvh") {
+            EXPECT_EQ(std::stod(row.at("sah_gap")), 0.0);
+        }
+    }
+
+    // image_error.csv: a row per scene x sample count; the error falls with the sample count
+    // and is the same for every structure.
+    const auto errors = readCsv(out / "image_error.csv");
+    ASSERT_EQ(errors.size(), 10u);  // 1, 2, 4, 8, 16 spp
+    for (size_t i = 0; i < errors.size(); ++i) {
+        EXPECT_EQ(errors[i].at("spp"), std::to_string(1 << (i % 5)));
+        EXPECT_LT(std::stod(errors[i].at("rmse_spread")), 1e-6) << i;
+        for (const std::string& c : configs) EXPECT_GT(std::stod(errors[i].at("render_ms_" + c)), 0.0) << c;
+    }
+    for (size_t scene : {0, 5}) EXPECT_LT(std::stod(errors[scene + 4].at("rmse")), std::stod(errors[scene].at("rmse")));
+
+    // Resume: everything kept; a missing result measured again; new settings or --fresh measure all.
+    r = run(args(dir));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(contains(r.output, "0 configurations measured, 12 kept")) << r.output;
+    EXPECT_FALSE(contains(r.output, "scene soup:")) << "a scene with nothing to measure is not loaded\n" << r.output;
+    fs::remove(out / "terrain" / "sahbvh-K16.json");
+    r = run(args(dir));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(contains(r.output, "1 configurations measured, 11 kept")) << r.output;
+    EXPECT_TRUE(contains(r.output, "reference image read from")) << r.output;
+    EXPECT_EQ(readCsv(out / "tradeoff.csv").size(), 12u);
+    r = run(args(dir, "--passes 1"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(contains(r.output, "12 configurations measured, 0 kept")) << r.output;
+    r = run(args(dir, "--passes 1 --fresh"));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(contains(r.output, "12 configurations measured, 0 kept")) << r.output;
+}
+
+TEST(Tradeoff, BadBinsAreAnError) {
+    const Result r = run("tradeoff --quick --bins 4,1 --out " + (test::scratchDir("tradeoff_bad")).string());
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_TRUE(contains(r.output, "--bins")) << r.output;
+}
+
+// The plot script draws from a tradeoff folder into its plots/ subfolder, which it creates, and
+// leaves the plots committed in docs/plots alone. Skipped where Debian's matplotlib is missing
+// (setup.sh installs it).
+TEST(TradeoffPlots, ScriptWritesIntoTheDataFolderNotDocs) {
+    if (std::system("/usr/bin/python3 -c 'import matplotlib' 2>/dev/null") != 0)
+        GTEST_SKIP() << "no python3-matplotlib for /usr/bin/python3";
+    const fs::path docs = fs::path(BVHLAB_SOURCE_DIR) / "docs" / "plots";
+    const fs::path data = test::scratchDir("tradeoff_plots") / "data";
+    fs::create_directories(data);
+    for (const char* csv : {"tradeoff.csv", "image_error.csv"})
+        fs::copy_file(docs / csv, data / csv, fs::copy_options::overwrite_existing);
+    const auto committed = fs::last_write_time(docs / "tradeoff_build_vs_gap.png");
+    const std::string command = "/usr/bin/python3 " + (docs / "plot_tradeoff.py").string() + " --data " +
+                                data.string() + " > /dev/null 2>&1";
+    ASSERT_EQ(std::system(command.c_str()), 0) << command;
+    for (const char* png : {"tradeoff_build_vs_gap.png", "tradeoff_time_to_image.png", "tradeoff_error_vs_time.png"})
+        EXPECT_GT(fs::file_size(data / "plots" / png), 1000u) << png;
+    EXPECT_EQ(fs::last_write_time(docs / "tradeoff_build_vs_gap.png"), committed);
+}

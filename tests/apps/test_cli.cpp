@@ -1,0 +1,163 @@
+// The bvhlab program end to end: render writes its files, raycast answers a ray file, and
+// broken input gives a one-line error with file and line and a non-zero exit, never a crash.
+#include "framework/io/ray_file.h"
+#include "tests/support/cli_run.h"
+#include "tests/support/scratch_dir.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <fstream>
+#include <utility>
+
+using namespace bvhlab;
+
+namespace {
+
+using test::Result;
+using test::run;
+
+std::filesystem::path tempDir() {
+    return test::scratchDir("cli");
+}
+
+}  // namespace
+
+TEST(Cli, RenderWritesImagesAndStatistics) {
+    const auto out = tempDir() / "default";
+    const Result r = run("render -DASDS::type=naive -DSetRayTracing::depthLimit=1 -DCamera::width=80 -DCamera::height=60 --out " + out.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("N_IT"), std::string::npos) << r.output;
+    for (const char* ext : {".exr", ".png", ".json"})
+        EXPECT_TRUE(std::filesystem::exists(out.string() + ext)) << ext;
+    std::ifstream in(out.string() + ".json");
+    const nlohmann::json j = nlohmann::json::parse(in);
+    for (const char* key : {"scene", "accel", "prims", "nodes", "leaves", "sah", "build_ms", "render_ms", "threads",
+                            "env", "provenance"})
+        EXPECT_TRUE(j.contains(key)) << key;
+    EXPECT_EQ(j["accel"], "naive");
+    EXPECT_EQ(j["primary"]["queries"], 80 * 60);
+    EXPECT_GT(j["primary"]["n_it"].get<double>(), 0.0);
+    EXPECT_EQ(j["env"]["ASDS::type"]["from"], "-DASDS::type");
+}
+
+TEST(Cli, BadEnvFileIsOneLineErrorWithFileAndLine) {
+    const auto env = tempDir() / "bad.env";
+    std::ofstream(env) << "# ok\nSetRayTracing::cntSamples 1\nSetRayTracing::shadowz true\n";
+    const Result r = run("render --env " + env.string() + " --out " + (tempDir() / "x").string());
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.output.find("bad.env:3"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("SetRayTracing::shadows"), std::string::npos) << r.output;  // the suggestion
+    EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
+}
+
+TEST(Cli, BadValueAndUnknownAcceleratorAreErrors) {
+    Result r = run("render -DSetRayTracing::cntSamples=0 --out " + (tempDir() / "x").string());
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.output.find("cntSamples"), std::string::npos) << r.output;
+    r = run("render -DASDS::type=kdtree --out " + (tempDir() / "x").string());
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.output.find("kdtree"), std::string::npos) << r.output;
+}
+
+TEST(Cli, BrokenSceneIsOneLineErrorWithFileAndLine) {
+    const auto scene = tempDir() / "broken.obj";
+    std::ofstream(scene) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 9\n";
+    const Result r = run("render -DASDS::type=naive --scene " + scene.string() + " --out " + (tempDir() / "x").string());
+    EXPECT_EQ(r.exitCode, 1);
+    EXPECT_NE(r.output.find("broken.obj"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("Segmentation"), std::string::npos) << r.output;
+}
+
+TEST(Cli, SceneWithNothingToRenderIsAnErrorNamingTheFile) {
+    // Files that once rendered as an empty image with exit 0.
+    const std::pair<const char*, std::string> files[] = {
+        {"empty.obj", ""},
+        {"flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n"},
+        {"binary.obj", std::string("\x7f" "ELF\x02\x01\x01\0\0\0", 10)},
+        {"notes.obj", "Not a scene, just notes.\n"},
+        {"munich.obj", "ply\nformat binary_little_endian 1.0\nelement vertex 0\nend_header\n"},
+        {"spheres.nff", "s 0 0 0 1\n"},
+    };
+    for (const auto& [name, bytes] : files) {
+        const auto scene = tempDir() / name;
+        std::ofstream(scene, std::ios::binary) << bytes;
+        const Result r = run("render -DASDS::type=naive --scene " + scene.string() + " --out " + (tempDir() / "x").string());
+        EXPECT_EQ(r.exitCode, 1) << name << ": " << r.output;
+        EXPECT_NE(r.output.find("error: " + scene.string() + ": "), std::string::npos) << r.output;
+    }
+}
+
+TEST(Cli, SkippedSpheresAndConesAreCountedInTheRowAndJson) {
+    // balls.nff in small: a ground quad, three spheres and a cone.
+    const auto scene = tempDir() / "balls.nff";
+    std::ofstream(scene) << "p 4\n-1 -1 0\n1 -1 0\n1 1 0\n-1 1 0\n"
+                            "s 0 0 1 0.5\ns 0 0 2 0.5\ns 0 0 3 0.5\nc 0 0 0 0.2 0 0 1 0.1\n";
+    const auto out = tempDir() / "balls";
+    const Result r = run("render -DASDS::type=naive -DCamera::width=16 -DCamera::height=16 --scene " + scene.string() +
+                         " --out " + out.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("not supported, skipped: 3 spheres, 1 cones/cylinders"), std::string::npos) << r.output;
+    std::ifstream in(out.string() + ".json");
+    const nlohmann::json j = nlohmann::json::parse(in);
+    EXPECT_EQ(j["prims"], 2);
+    EXPECT_EQ(j["degenerate"], 0);
+    EXPECT_EQ(j["unsupported_spheres"], 3);
+    EXPECT_EQ(j["unsupported_cones"], 1);
+}
+
+TEST(Cli, RaycastAnswersRayFileWithNaive) {
+    const auto scene = tempDir() / "quad.obj";
+    std::ofstream(scene) << "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n";
+    const std::vector<Ray> rays = {{Vec3(0.5f, -0.5f, 5), Vec3(0, 0, -1), 0.0f, kInfinity},
+                                   {Vec3(3, 3, 5), Vec3(0, 0, -1), 0.0f, kInfinity},
+                                   {Vec3(0, 0, 5), Vec3(0, 0, -2), 0.0f, 1.0f}};
+    const auto raysFile = tempDir() / "rays.bin", hitsFile = tempDir() / "hits.bin";
+    writeRayFile(raysFile, rays);
+    Result r = run("raycast -DASDS::type=naive --scene " + scene.string() + " --rays " + raysFile.string() +
+                   " --out " + hitsFile.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("N_IT"), std::string::npos);
+    std::vector<Hit> hits = readHitFile(hitsFile);
+    ASSERT_EQ(hits.size(), 3u);
+    EXPECT_FLOAT_EQ(hits[0].t, 5.0f);
+    EXPECT_EQ(hits[0].primitive, 0u);  // fan (1,2,3), (1,3,4): (0.5,-0.5) lies in the first
+    EXPECT_EQ(hits[1].primitive, kInvalidPrimitive);
+    EXPECT_EQ(hits[2].primitive, kInvalidPrimitive);  // tmax = 1 ends 3 units short (dir has length 2)
+
+    r = run("raycast --any -DASDS::type=naive --scene " + scene.string() + " --rays " + raysFile.string() +
+            " --out " + hitsFile.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    hits = readHitFile(hitsFile);
+    EXPECT_EQ(hits[0].t, 0.0f);
+    EXPECT_EQ(hits[0].primitive, 0u);
+    EXPECT_EQ(hits[1].primitive, kInvalidPrimitive);
+}
+
+// `bvhlab bench`, tiny: a row per structure with every round kept; Embree's counters are
+// unavailable (null), not zero; a paired ratio of a series to itself is exactly 1.
+TEST(Cli, BenchMeasuresInRoundsWithPairedRatios) {
+    const auto dir = tempDir();
+    std::ofstream(dir / "tiny.env") << "Camera::width 24\nCamera::height 16\n";
+    const auto out = dir / "bench.json";
+    const Result r = run("bench --scenes " + (dir / "tiny.env").string() +
+                         " --accel sahbvh,sahbvh:BVH::robust=false --threads 1 --builds 2 --passes 3 --out " + out.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("geometric means"), std::string::npos) << r.output;
+    std::ifstream in(out);
+    const nlohmann::json j = nlohmann::json::parse(in);
+    std::vector<std::string> labels;
+    for (const nlohmann::json& row : j["rows"]) {
+        const std::string accel = row["accel"];
+        labels.push_back(accel);
+        EXPECT_EQ(row["build_ms_all"].size(), 2u) << accel;
+        EXPECT_EQ(row["primary"]["t_r_us_all"].size(), 3u) << accel;
+        EXPECT_EQ(row["primary"]["queries"], 24 * 16) << accel;
+        EXPECT_EQ(row["primary"]["n_it"].is_null(), accel.starts_with("embree")) << accel;
+        if (accel == "embree") {
+            EXPECT_EQ(row["ratio_to_embree"]["primary"], 1.0);
+        }
+    }
+    EXPECT_EQ(labels, (std::vector<std::string>{"sahbvh", "sahbvh:BVH::robust=false", "embree", "embree-robust"}));
+}

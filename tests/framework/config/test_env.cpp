@@ -1,0 +1,135 @@
+// The env registry and parser: good files, layering, and every kind of bad line.
+#include "framework/config/env.h"
+#include "framework/core/error.h"
+#include "tests/support/scratch_dir.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+
+using namespace bvhlab;
+
+namespace {
+
+EnvRegistry testRegistry() {
+    EnvRegistry r;
+    r.add({"Set::count", EnvType::Int, "3", "a count", 1, 10, {}});
+    r.add({"Set::scale", EnvType::Float, "0.5", "a scale", 0, 2, {}});
+    r.add({"Set::flag", EnvType::Bool, "false", "a switch", 0, 0, {}});
+    r.add({"Set::mode", EnvType::Choice, "fast", "a mode", 0, 0, {"fast", "exact"}});
+    r.add({"Set::name", EnvType::String, "", "a name", 0, 0, {}});
+    r.add({"Set::file", EnvType::Path, "", "a file", 0, 0, {}});
+    r.add({"Set::point", EnvType::Vec3, "", "a point", 0, 0, {}});
+    r.add({"Set::points", EnvType::Vec3List, "", "points", 0, 0, {}});
+    return r;
+}
+
+std::filesystem::path writeFile(const std::string& name, const std::string& text) {
+    const auto dir = test::scratchDir("env");
+    const auto path = dir / name;
+    std::ofstream(path) << text;
+    return path;
+}
+
+// The message of the InputError that `body` throws, or "" if it throws none.
+template <typename F>
+std::string errorOf(F body) {
+    try {
+        body();
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+}  // namespace
+
+TEST(Env, DefaultsApplyUntilSet) {
+    const EnvRegistry r = testRegistry();
+    Env env(r);
+    EXPECT_EQ(env.getInt("Set::count"), 3);
+    EXPECT_FLOAT_EQ(env.getFloat("Set::scale"), 0.5f);
+    EXPECT_FALSE(env.getBool("Set::flag"));
+    EXPECT_EQ(env.getString("Set::mode"), "fast");
+    EXPECT_FALSE(env.getVec3("Set::point").has_value());
+    EXPECT_TRUE(env.getVec3List("Set::points").empty());
+    EXPECT_FALSE(env.isExplicit("Set::count"));
+}
+
+TEST(Env, ParsesFileWithCommentsAndBlankLines) {
+    const EnvRegistry r = testRegistry();
+    Env env(r);
+    env.loadFile(writeFile("good.env", "# comment\n\nSet::count 7   # trailing comment\n"
+                                       "Set::flag on\nSet::mode exact\nSet::name two words\n"
+                                       "Set::point 1 2 3\nSet::points 1 2 3, -4 5e-1 6\nSet::file sub/x.obj\n"));
+    EXPECT_EQ(env.getInt("Set::count"), 7);
+    EXPECT_TRUE(env.getBool("Set::flag"));
+    EXPECT_EQ(env.getString("Set::mode"), "exact");
+    EXPECT_EQ(env.getString("Set::name"), "two words");
+    EXPECT_EQ(*env.getVec3("Set::point"), Vec3(1, 2, 3));
+    ASSERT_EQ(env.getVec3List("Set::points").size(), 2u);
+    EXPECT_EQ(env.getVec3List("Set::points")[1], Vec3(-4, 0.5f, 6));
+    EXPECT_TRUE(env.isExplicit("Set::count"));
+    // Relative paths resolve against the env file's folder.
+    EXPECT_EQ(env.getPath("Set::file"), test::scratchDir("env") / "sub" / "x.obj");
+}
+
+TEST(Env, LaterFilesAndOverridesWin) {
+    const EnvRegistry r = testRegistry();
+    Env env(r);
+    env.loadFile(writeFile("a.env", "Set::count 4\nSet::scale 1\n"));
+    env.loadFile(writeFile("b.env", "Set::count 5\n"));
+    EXPECT_EQ(env.getInt("Set::count"), 5);
+    EXPECT_FLOAT_EQ(env.getFloat("Set::scale"), 1.0f);
+    env.setOverride("Set::count=9");
+    EXPECT_EQ(env.getInt("Set::count"), 9);
+}
+
+TEST(Env, UnknownKeyNamesFileLineAndNearestKeys) {
+    const EnvRegistry r = testRegistry();
+    Env env(r);
+    const std::string msg = errorOf([&] { env.loadFile(writeFile("typo.env", "Set::count 2\nSet::cuont 3\n")); });
+    EXPECT_NE(msg.find("typo.env:2"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("Set::cuont"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("did you mean Set::count"), std::string::npos) << msg;
+}
+
+TEST(Env, BadValuesAreErrorsWithLine) {
+    const EnvRegistry r = testRegistry();
+    const std::vector<std::string> badLines = {
+        "Set::count 11",      "Set::count 0",       "Set::count 2.5",    "Set::count",       "Set::count 3x",
+        "Set::scale nan",     "Set::scale 3",       "Set::scale abc",    "Set::flag maybe",  "Set::mode slow",
+        "Set::point 1 2",     "Set::point 1 2 3 4", "Set::point 1 2 inf", "Set::points 1 2 3, 4 5",
+        "justaword",          "Set: 3",
+    };
+    for (const std::string& line : badLines) {
+        Env env(r);
+        const std::string msg = errorOf([&] { env.loadFile(writeFile("bad.env", "# first\n" + line + "\n")); });
+        EXPECT_NE(msg.find("bad.env:2"), std::string::npos) << line << " -> " << msg;
+    }
+}
+
+TEST(Env, BadOverrideIsAnError) {
+    const EnvRegistry r = testRegistry();
+    Env env(r);
+    EXPECT_NE(errorOf([&] { env.setOverride("Set::count"); }), "");
+    EXPECT_NE(errorOf([&] { env.setOverride("Set::count=99"); }).find("-DSet::count"), std::string::npos);
+    EXPECT_NE(errorOf([&] { env.setOverride("Nope::key=1"); }).find("unknown key"), std::string::npos);
+}
+
+TEST(Env, MissingFileIsAnError) {
+    const EnvRegistry r = testRegistry();
+    Env env(r);
+    EXPECT_NE(errorOf([&] { env.loadFile("/nonexistent/x.env"); }).find("/nonexistent/x.env"), std::string::npos);
+}
+
+TEST(Env, JsonHoldsValueAndOrigin) {
+    const EnvRegistry r = testRegistry();
+    Env env(r);
+    env.setOverride("Set::count=8");
+    const nlohmann::json j = env.toJson();
+    EXPECT_EQ(j["Set::count"]["value"], "8");
+    EXPECT_EQ(j["Set::count"]["from"], "-DSet::count");
+    EXPECT_EQ(j["Set::scale"]["from"], "default");
+}
