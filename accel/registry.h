@@ -2,8 +2,8 @@
 // means one entry in registry.cpp (see docs/adding-an-accelerator.md).
 #pragma once
 
-#include "framework/core/accelerator.h"
 #include "framework/config/env.h"
+#include "framework/core/accelerator.h"
 
 #include <functional>
 #include <memory>
@@ -11,6 +11,11 @@
 #include <vector>
 
 namespace bvhlab {
+
+namespace keys::ASDS {
+// Its choices, the accelerators' names, are given when it is registered.
+inline constexpr ChoiceKey type{"ASDS::type", "sahbvh", {}, "acceleration structure to build and trace with"};
+}
 
 struct AcceleratorInfo {
     std::string name;
@@ -24,15 +29,10 @@ const std::vector<AcceleratorInfo>& acceleratorInfos();
 // Throws InputError naming the unknown accelerator and the known ones.
 std::unique_ptr<Accelerator> createAccelerator(const std::string& name, const Env& env);
 inline std::unique_ptr<Accelerator> createAccelerator(const Env& env) {
-    return createAccelerator(env.getString("ASDS::type"), env);
+    return createAccelerator(env.get(keys::ASDS::type), env);
 }
 
-}  // namespace bvhlab
-
-namespace bvhlab {
-
-// docs/env-keys.md: every env key (type, default, meaning) and every accelerator with the
-// keys it reads. `bvhlab keys` prints it; a test keeps the committed file equal to it.
-std::string envKeysMarkdown();
+// ASDS::type and every accelerator's keys.
+void registerAcceleratorKeys(EnvRegistry& registry);
 
 }  // namespace bvhlab

@@ -9,6 +9,35 @@
 
 namespace bvhlab {
 
+namespace keys::BVH {
+inline constexpr IntKey maxLeaf{
+    "BVH::maxLeaf", "2", 1, 64,
+    "ranges of this many primitives or fewer become leaves; 1, with sahTermination off and leafCap 1, = the "
+    "report's BVH"};
+inline constexpr IntKey leafCap{
+    "BVH::leafCap", "16", 1, 256,
+    "largest leaf made when SAH termination stops or all centres coincide (raised to maxLeaf if below)"};
+inline constexpr BoolKey sahTermination{"BVH::sahTermination", "true",
+                                        "sahbvh/sweepbvh: leaf when C_trav + C_isect*(A_L*N_L + A_R*N_R)/A >= C_isect*N"};
+inline constexpr FloatKey cTraversal{"BVH::cTraversal", "1", 0, 1e6,
+                                     "SAH cost of an inner node: used by the SAH builders and by the reported SAH cost"};
+inline constexpr FloatKey cIntersect{
+    "BVH::cIntersect", "1", 1e-6, 1e6,
+    "SAH cost of a ray-triangle test: used by the SAH builders and by the reported SAH cost"};
+inline constexpr IntKey bins{"BVH::bins", "16", 2, 256, "sahbvh: bins per axis (Wald 2007: 16 suffices)"};
+inline constexpr BoolKey allAxes{"BVH::allAxes", "false",
+                                 "sahbvh: bin all three axes and take the best, not only the widest"};
+inline constexpr BoolKey simd{"BVH::simd", "true",
+                              "SSE in the build's hot loops (bounds, centres, binning, partition); false = scalar, same tree"};
+inline constexpr BoolKey robust{
+    "BVH::robust", "true",
+    "traversal: watertight triangle test and conservative box test; false = Moeller-Trumbore and plain boxes "
+    "(not watertight), only to measure what robustness costs"};
+inline constexpr std::string_view kMedianSplitBoxes[] = {"centroidbox", "nodebox"};
+inline constexpr ChoiceKey tdbvhSplit{"BVH::tdbvhSplit", "centroidbox", kMedianSplitBoxes,
+                                      "tdbvh: halve the longest axis of the box of the centres, or of the node's box"};
+}  // namespace keys::BVH
+
 void registerBvhKeys(EnvRegistry& registry);
 
 // The keys each builder reads (for AcceleratorInfo::envKeys).

@@ -21,8 +21,8 @@
 // Embree, whose Debian build asserts on them.
 #pragma once
 
-#include "framework/core/accelerator.h"
 #include "framework/config/env.h"
+#include "framework/core/accelerator.h"
 
 #include <memory>
 #include <stdexcept>

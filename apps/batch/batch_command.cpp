@@ -6,16 +6,18 @@
 #include "accel/registry.h"
 #include "apps/batch/batch_settings.h"
 #include "apps/batch/batch_table.h"
+#include "apps/common/app_keys.h"
 #include "apps/common/cli_common.h"
 #include "apps/common/commands.h"
 #include "apps/common/run_record.h"
 #include "apps/common/scene_list.h"
-#include "framework/render/camera.h"
+#include "framework/config/common_keys.h"
 #include "framework/core/error.h"
 #include "framework/io/heatmap.h"
 #include "framework/io/image_io.h"
-#include "framework/report/provenance.h"
+#include "framework/render/camera.h"
 #include "framework/render/renderer.h"
+#include "framework/report/provenance.h"
 #include "framework/report/statistics.h"
 
 #include <fmt/core.h>
@@ -101,10 +103,10 @@ FinishedJob runJob(const Options& options, const Scene& scene, const SceneLoadIn
     const std::string label = fmt::format("{} {} {}", jobLabel, entry.id, accel);
 
     Env env = sceneEnv;
-    env.set("ASDS::type", accel, "bvhlab batch --accel");
+    env.set(keys::ASDS::type, accel, "bvhlab batch --accel");
     // --threads, else Batch::threads (the report's single render thread by default).
-    const int threads = options.env.threads >= 0 ? options.env.threads : env.getInt("Batch::threads");
-    env.set("SetRayTracing::threads", std::to_string(threads), options.env.threads >= 0 ? "--threads" : "Batch::threads");
+    const int threads = options.env.threads >= 0 ? options.env.threads : env.get(keys::Batch::threads);
+    env.set(keys::SetRayTracing::threads, std::to_string(threads), options.env.threads >= 0 ? "--threads" : "Batch::threads");
 
     progress.phase(label + ": building");
     tbb::task_arena arena(threads > 0 ? threads : tbb::info::default_concurrency());
@@ -127,8 +129,8 @@ FinishedJob runJob(const Options& options, const Scene& scene, const SceneLoadIn
         const std::string base = "images/" + name + (shadows ? "_shadows" : "");
         json images = {{"png", base + ".png"}};
         writePng(out / (base + ".png"), fb);
-        if (env.getBool("Output::exr")) writeExr(out / (base + ".exr"), fb), images["exr"] = base + ".exr";
-        if (env.getBool("Output::heatmap")) finished.steps[shadows] = std::move(fb.traversalSteps);
+        if (env.get(keys::Output::exr)) writeExr(out / (base + ".exr"), fb), images["exr"] = base + ".exr";
+        if (env.get(keys::Output::heatmap)) finished.steps[shadows] = std::move(fb.traversalSteps);
 
         const StatsRow row{scene.name, accel, scene.triangleCount(), scene.report,
                            built.accel->hasCounters(), built.stats, stats};
@@ -275,8 +277,8 @@ void runBatch(const Options& options) {
             const std::filesystem::path file = scene.envFile.empty() ? scene.sceneFile : scene.envFile;
             sceneEnvs.push_back(scene.load(options.env));
             const Env& env = sceneEnvs.back();
-            if (!env.getString("Scene::file").empty()) {
-                const std::filesystem::path scenePath = env.getPath("Scene::dir") / env.getString("Scene::file");
+            if (!env.get(keys::Scene::file).empty()) {
+                const std::filesystem::path scenePath = env.get(keys::Scene::dir) / env.get(keys::Scene::file);
                 if (!std::filesystem::exists(scenePath))
                     throw InputError(fmt::format("{}: scene file {} does not exist", file.string(), scenePath.string()));
             }
@@ -297,7 +299,7 @@ void runBatch(const Options& options) {
                    options.env.threads >= 0 ? "--threads" : "Batch::threads",
                    options.env.threads >= 0 ? options.env.threads
                    : sceneEnvs.empty()      ? 1
-                                            : sceneEnvs.front().getInt("Batch::threads"),
+                                            : sceneEnvs.front().get(keys::Batch::threads),
                    out.string());
 
         const auto start = Progress::Clock::now();
@@ -320,16 +322,16 @@ void runBatch(const Options& options) {
                 finished.push_back(runJob(options, scene, info, sceneEnvs[s], scenes[s], accels[a], batch, order, shard,
                                           progress, fmt::format("[job {}/{}]", jobNumber, mine.size())));
             }
-            if (sceneEnvs[s].getBool("Output::heatmap"))
-                writeSceneHeatmaps(out, scenes[s].id, finished, sceneEnvs[s].getFloat("Output::heatmapScale"));
+            if (sceneEnvs[s].get(keys::Output::heatmap))
+                writeSceneHeatmaps(out, scenes[s].id, finished, sceneEnvs[s].get(keys::Output::heatmapScale));
         }
         fmt::print(stderr, "batch: {} jobs in {}; scenes: {} read from the cache, {} parsed{}; {} builds, each "
                            "serving both renders\n",
                    mine.size(),
                    Progress::formatDuration(std::chrono::duration<double>(Progress::Clock::now() - start).count()),
                    scenesFromCache, scenesParsed,
-                   scenesParsed && !sceneEnvs.empty() && !sceneEnvs.front().getPath("Scene::cacheDir").empty()
-                       ? fmt::format(" (and stored in {})", sceneEnvs.front().getPath("Scene::cacheDir").string())
+                   scenesParsed && !sceneEnvs.empty() && !sceneEnvs.front().get(keys::Scene::cacheDir).empty()
+                       ? fmt::format(" (and stored in {})", sceneEnvs.front().get(keys::Scene::cacheDir).string())
                        : "",
                    mine.size());
     }

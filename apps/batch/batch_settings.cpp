@@ -1,7 +1,10 @@
 #include "apps/batch/batch_settings.h"
 
+#include "accel/registry.h"
+#include "apps/common/app_keys.h"
 #include "apps/common/cli_common.h"
 #include "framework/core/error.h"
+#include "framework/render/render_keys.h"
 
 #include <fmt/core.h>
 #include <fmt/ranges.h>
@@ -19,9 +22,9 @@ using nlohmann::json;
 constexpr const char* kFormat = "bvhlab-batch-settings-1";
 
 // Keys that change no figure of a job, or that batch sets per job (see makeBatchSettings).
-bool changesNoFigure(const std::string& key) {
-    return key.rfind("Output::", 0) == 0 || key == "Scene::cacheDir" || key == "ASDS::type" ||
-           key == "SetRayTracing::shadows" || key == "SetRayTracing::threads";
+bool outsideTheSettings(const std::string& key) {
+    return changesNoFigure(key) || key == keys::ASDS::type.name() || key == keys::SetRayTracing::shadows.name() ||
+           key == keys::SetRayTracing::threads.name();
 }
 
 // 64-bit FNV-1a of `text`, as 16 hex digits: a name for settings, not a guard against forgery.
@@ -65,7 +68,7 @@ BatchSettings makeBatchSettings(const std::vector<std::pair<std::string, Env>>& 
         BatchSettings::Scene scene{id, {}, {}};
         const json values = env.toJson();  // kept alive for the loop
         for (const auto& [key, v] : values.items())
-            if (!changesNoFigure(key)) scene.env[key] = v.at("value").get<std::string>();
+            if (!outsideTheSettings(key)) scene.env[key] = v.at("value").get<std::string>();
         s.scenes.push_back(std::move(scene));
     }
     computeHashes(s);

@@ -1,6 +1,9 @@
 #include "apps/common/cli_common.h"
 
 #include "accel/registry.h"
+#include "apps/common/app_keys.h"
+#include "apps/common/program_keys.h"
+#include "framework/config/common_keys.h"
 #include "framework/core/error.h"
 #include "framework/scene/procedural.h"
 #include "framework/scene/scene_cache.h"
@@ -45,9 +48,9 @@ std::vector<std::string> EnvOptions::files(const std::filesystem::path& sceneEnv
 }
 
 Env EnvOptions::load(const std::filesystem::path& sceneEnvFile) const {
-    Env env;
+    Env env(programKeys());
     for (const std::string& file : files(sceneEnvFile)) env.loadFile(file);
-    if (threads >= 0) env.set("SetRayTracing::threads", std::to_string(threads), "--threads");
+    if (threads >= 0) env.set(keys::SetRayTracing::threads, std::to_string(threads), "--threads");
     for (const std::string& assignment : overrides) env.setOverride(assignment);
     return env;
 }
@@ -62,8 +65,8 @@ std::filesystem::path sceneEnvFor(const std::filesystem::path& sceneFile, const 
     std::error_code ec;
     for (const std::filesystem::path& candidate : candidates) {
         const Env env = options.load(candidate);
-        if (env.getString("Scene::file").empty()) continue;
-        if (std::filesystem::equivalent(env.getPath("Scene::dir") / env.getString("Scene::file"), sceneFile, ec))
+        if (env.get(keys::Scene::file).empty()) continue;
+        if (std::filesystem::equivalent(env.get(keys::Scene::dir) / env.get(keys::Scene::file), sceneFile, ec))
             return candidate;
     }
     return {};
@@ -99,16 +102,16 @@ SceneChoice chooseScene(const std::string& scene, const std::string& sceneEnv, c
 Env SceneChoice::load(const EnvOptions& options) const {
     Env env = options.load(envFile);
     if (!sceneFile.empty())
-        env.set("Scene::file", std::filesystem::absolute(sceneFile).lexically_normal().string(), "--scene");
+        env.set(keys::Scene::file, std::filesystem::absolute(sceneFile).lexically_normal().string(), "--scene");
     return env;
 }
 
 Scene loadSceneFor(const Env& env, bool useCache, SceneLoadInfo* info) {
     // Relative to Scene::dir; an absolute Scene::file (as --scene sets it) stays as it is.
-    const std::filesystem::path path = env.getString("Scene::file").empty()
+    const std::filesystem::path path = env.get(keys::Scene::file).empty()
                                            ? std::filesystem::path()
-                                           : env.getPath("Scene::dir") / env.getString("Scene::file");
-    const std::filesystem::path cacheDir = useCache ? env.getPath("Scene::cacheDir") : std::filesystem::path();
+                                           : env.get(keys::Scene::dir) / env.get(keys::Scene::file);
+    const std::filesystem::path cacheDir = useCache ? env.get(keys::Scene::cacheDir) : std::filesystem::path();
     SceneLoadInfo loaded;
     const auto start = std::chrono::steady_clock::now();
     Scene scene;

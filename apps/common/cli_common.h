@@ -3,9 +3,9 @@
 #pragma once
 
 #include "apps/common/progress.h"
+#include "framework/config/env.h"
 #include "framework/core/accelerator.h"
 #include "framework/render/camera.h"
-#include "framework/config/env.h"
 #include "framework/render/framebuffer.h"
 #include "framework/render/renderer.h"
 #include "framework/scene/scene.h"

@@ -4,6 +4,7 @@
 #include "accel/registry.h"
 #include "apps/common/cli_common.h"
 #include "apps/common/commands.h"
+#include "apps/common/program_keys.h"
 
 #include <fmt/core.h>
 #include <fmt/ranges.h>

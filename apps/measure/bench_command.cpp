@@ -5,12 +5,14 @@
 #include "apps/common/accel_config.h"
 #include "apps/common/cli_common.h"
 #include "apps/common/commands.h"
+#include "apps/common/program_keys.h"
 #include "apps/common/scene_list.h"
 #include "apps/common/timing.h"
-#include "framework/core/error.h"
-#include "framework/report/provenance.h"
 #include "apps/measure/ray_sets.h"
+#include "framework/config/common_keys.h"
+#include "framework/core/error.h"
 #include "framework/render/renderer.h"
+#include "framework/report/provenance.h"
 
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
@@ -30,7 +32,7 @@ namespace {
 // One structure of the contest, with what the rounds measured.
 struct Contender {
     AccelConfig config;
-    Env env;  // the scene's, with the config's overrides and the thread count
+    Env env{programKeys()};  // the scene's, with the config's overrides and the thread count
     std::unique_ptr<Accelerator> accel;
     BuildStats stats;
     std::vector<double> buildMs;                 // one per round
@@ -68,7 +70,7 @@ std::vector<nlohmann::json> measureRounds(const Scene& scene, const RaySets& ray
         k.config = configs[c];
         k.env = sceneEnv;
         for (const std::string& o : k.config.overrides) k.env.setOverride(o);
-        k.env.setOverride(fmt::format("SetRayTracing::threads={}", threads));
+        k.env.set(keys::SetRayTracing::threads, std::to_string(threads), "bvhlab bench --threads");
         k.usPerQuery.resize(std::size(raySets));
         k.counters.resize(std::size(raySets));
     }

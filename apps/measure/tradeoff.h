@@ -11,9 +11,10 @@
 #pragma once
 
 #include "apps/common/accel_config.h"
-#include "framework/render/camera.h"
-#include "framework/config/env.h"
+#include "apps/common/program_keys.h"
 #include "apps/measure/ray_sets.h"
+#include "framework/config/env.h"
+#include "framework/render/camera.h"
 #include "framework/render/renderer.h"
 #include "framework/scene/scene.h"
 
@@ -48,7 +49,7 @@ std::vector<AccelConfig> tradeoffConfigs(const TradeoffSettings& settings);
 // What every configuration of one scene is measured against, made once per scene.
 struct TradeoffScene {
     std::string id;  // the env file's stem
-    Env env;         // the scene's env with the tradeoff's camera sizes and threads applied
+    Env env{programKeys()};  // the scene's env with the tradeoff's camera sizes and threads applied
     Scene scene;
     RaySets rays;                       // at raySize
     std::vector<Hit> referenceHits;     // Embree's closest hits of rays.primary

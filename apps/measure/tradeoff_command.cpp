@@ -2,6 +2,7 @@
 // error for tdbvh, sahbvh with K bins, sweepbvh and embree (see apps/measure/tradeoff.h). Results are kept
 // per configuration in DIR/<scene>/<config>.json; a run skips those already measured with the
 // same settings, so an interrupted run resumes where it stopped.
+#include "apps/common/app_keys.h"
 #include "apps/common/cli_common.h"
 #include "apps/common/commands.h"
 #include "apps/common/scene_list.h"
@@ -46,7 +47,7 @@ json fingerprintOf(const TradeoffSettings& settings, const Env& env) {
     json values = json::object();
     const json resolved = env.toJson();
     for (const auto& [key, entry] : resolved.items())
-        if (key.rfind("Output::", 0) != 0 && key != "Scene::cacheDir" && key.rfind("Batch::", 0) != 0)
+        if (!changesNoFigure(key) && !key.starts_with("Batch::"))
             values[key] = entry["value"];
     return {{"settings", settings.toJson()}, {"env", values}};
 }

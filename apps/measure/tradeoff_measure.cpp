@@ -4,8 +4,10 @@
 #include "apps/common/cli_common.h"
 #include "apps/common/timing.h"
 #include "apps/measure/tradeoff.h"
+#include "framework/config/common_keys.h"
 #include "framework/core/error.h"
 #include "framework/io/image_io.h"
+#include "framework/render/render_keys.h"
 #include "framework/report/provenance.h"
 
 #include <fmt/core.h>
@@ -82,9 +84,9 @@ std::vector<AccelConfig> tradeoffConfigs(const TradeoffSettings& settings) {
 
 Env tradeoffSceneEnv(const Env& sceneEnv, const TradeoffSettings& settings, int width, int height) {
     Env env = sceneEnv;
-    if (width > 0) env.setOverride(fmt::format("Camera::width={}", width));
-    if (height > 0) env.setOverride(fmt::format("Camera::height={}", height));
-    env.setOverride(fmt::format("SetRayTracing::threads={}", settings.threads));
+    if (width > 0) env.set(keys::Camera::width, std::to_string(width), "bvhlab tradeoff");
+    if (height > 0) env.set(keys::Camera::height, std::to_string(height), "bvhlab tradeoff");
+    env.set(keys::SetRayTracing::threads, std::to_string(settings.threads), "bvhlab tradeoff --threads");
     return env;
 }
 
@@ -117,7 +119,7 @@ TradeoffScene prepareTradeoffScene(const std::string& id, const Env& sceneEnv, c
     // Embree, on every hardware thread (nothing here is timed), answers the rays every
     // configuration answers and renders the images every configuration must reproduce.
     Env reference = t.env;
-    reference.setOverride("SetRayTracing::threads=0");
+    reference.set(keys::SetRayTracing::threads, "0", "bvhlab tradeoff (reference)");
     auto embree = createAccelerator("embree", reference);
     embree->build(t.scene.primitives());
 

@@ -1,6 +1,8 @@
 // `bvhlab raycast`: answer a file of rays with the chosen accelerator and write the hits.
+#include "accel/registry.h"
 #include "apps/common/cli_common.h"
 #include "apps/common/commands.h"
+#include "framework/config/common_keys.h"
 #include "framework/io/ray_file.h"
 
 #include <fmt/core.h>
@@ -36,13 +38,13 @@ void addRaycastCommand(CLI::App& app) {
             Progress progress;
             progress.phase("loading the scene");
             const Scene scene = loadSceneFor(env);
-            progress.phase(fmt::format("building {}", env.getString("ASDS::type")));
+            progress.phase(fmt::format("building {}", env.get(keys::ASDS::type)));
             const BuiltAccelerator built = buildAccelerator(scene, env);
             const std::vector<Ray> rays = readRayFile(options->rays);
             constexpr size_t kRaysPerStep = 1024;
             progress.phase(fmt::format("tracing {} rays", rays.size()), (rays.size() + kRaysPerStep - 1) / kRaysPerStep);
             std::vector<Hit> hits(rays.size());
-            const int threads = env.getInt("SetRayTracing::threads");
+            const int threads = env.get(keys::SetRayTracing::threads);
             tbb::enumerable_thread_specific<QueryCounters> perThread;
 
             const auto start = std::chrono::steady_clock::now();

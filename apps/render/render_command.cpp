@@ -1,13 +1,15 @@
 // `bvhlab render`: load, build, render, write PATH.exr/.png/.json and print the statistics row.
 #include "apps/common/commands.h"
 
+#include "accel/registry.h"
+#include "apps/common/app_keys.h"
 #include "apps/common/cli_common.h"
 #include "apps/common/run_record.h"
-#include "framework/render/camera.h"
 #include "framework/io/heatmap.h"
 #include "framework/io/image_io.h"
-#include "framework/report/provenance.h"
+#include "framework/render/camera.h"
 #include "framework/render/renderer.h"
+#include "framework/report/provenance.h"
 #include "framework/report/statistics.h"
 
 #include <fmt/core.h>
@@ -42,7 +44,7 @@ void addRenderCommand(CLI::App& app) {
             Progress progress;
             progress.phase("loading the scene");
             const Scene scene = loadSceneFor(env);
-            progress.phase(fmt::format("building {}", env.getString("ASDS::type")));
+            progress.phase(fmt::format("building {}", env.get(keys::ASDS::type)));
             const BuiltAccelerator built = buildAccelerator(scene, env);
             progress.finish();
             const Camera camera(resolveCamera(scene, env));
@@ -51,11 +53,11 @@ void addRenderCommand(CLI::App& app) {
             const RenderStats stats = renderWithProgress(scene, *built.accel, camera, settings, fb, progress,
                                                          fmt::format("rendering {}x{}", fb.width, fb.height));
 
-            if (env.getBool("Output::exr")) writeExr(out.string() + ".exr", fb);
-            if (env.getBool("Output::png")) writePng(out.string() + ".png", fb);
+            if (env.get(keys::Output::exr)) writeExr(out.string() + ".exr", fb);
+            if (env.get(keys::Output::png)) writePng(out.string() + ".png", fb);
             nlohmann::json heatmap;  // for the JSON: the heat map's file and scale, or why there is none
-            if (env.getBool("Output::heatmap")) {
-                const HeatmapScale scale = chooseHeatmapScale(env.getFloat("Output::heatmapScale"),
+            if (env.get(keys::Output::heatmap)) {
+                const HeatmapScale scale = chooseHeatmapScale(env.get(keys::Output::heatmapScale),
                                                               heatmapPercentile99(fb.traversalSteps),
                                                               "99th percentile of this image");
                 heatmap = writeHeatmap(out.string() + ".heatmap.png", out.string() + ".heatmap.png", fb.traversalSteps,

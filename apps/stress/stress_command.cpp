@@ -12,17 +12,20 @@
 // accelerators (not Embree, which is reported only) fails a check.
 #include "accel/registry.h"
 #include "apps/common/accel_config.h"
+#include "apps/common/app_keys.h"
 #include "apps/common/cli_common.h"
 #include "apps/common/commands.h"
+#include "apps/common/program_keys.h"
 #include "apps/common/scene_list.h"
-#include "framework/render/camera.h"
+#include "framework/config/common_keys.h"
 #include "framework/core/error.h"
-#include "framework/report/provenance.h"
+#include "framework/render/camera.h"
 #include "framework/render/renderer.h"
-#include "framework/scene/scene_loader.h"
+#include "framework/report/provenance.h"
 #include "framework/robustness/stress_checks.h"
 #include "framework/robustness/stress_scenes.h"
 #include "framework/robustness/watertight_probe.h"
+#include "framework/scene/scene_loader.h"
 
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
@@ -97,7 +100,7 @@ public:
 private:
     Env configured(const AccelConfig& config) const {
         Env env = env_;
-        env.setOverride(fmt::format("SetRayTracing::threads={}", options_.threads));
+        env.set(keys::SetRayTracing::threads, std::to_string(options_.threads), "bvhlab stress --threads");
         for (const std::string& o : config.overrides) env.setOverride(o);
         return env;
     }
@@ -137,14 +140,14 @@ private:
             } else if (name.ends_with(".env") || name.ends_with(".list")) {
                 for (const SceneArgument& scene : expandSceneList({name}, options_.env)) {
                     const Env env = scene.load(options_.env);
-                    const std::filesystem::path path = env.getPath("Scene::dir") / env.getString("Scene::file");
+                    const std::filesystem::path path = env.get(keys::Scene::dir) / env.get(keys::Scene::file);
                     list.push_back([path]() -> std::optional<Scene> { return loadScene(path); });
                 }
             } else {
                 const std::filesystem::path given(name);
                 const std::filesystem::path path = given.is_absolute() || std::filesystem::exists(given)
                                                        ? given
-                                                       : env_.getPath("Scene::dir") / given;
+                                                       : env_.get(keys::Scene::dir) / given;
                 list.push_back([path]() -> std::optional<Scene> {
                     if (!std::filesystem::exists(path)) {
                         fmt::print(stderr, "skipping {}: not found (set -DScene::dir=...)\n", path.string());
@@ -431,7 +434,7 @@ private:
     }
 
     const StressOptions& options_;
-    Env env_;
+    Env env_{programKeys()};
     std::vector<AccelConfig> configs_;
     nlohmann::json results_;
 };

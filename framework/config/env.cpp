@@ -203,31 +203,29 @@ void Env::loadFile(const std::filesystem::path& file) {
     }
 }
 
-const Env::Value& Env::value(const std::string& name, EnvType expected) const {
+const Env::Value& Env::value(std::string_view keyName, EnvType expected) const {
+    const std::string name(keyName);
     const EnvKey* key = registry_->find(name);
-    // Asking for an unregistered key or with the wrong type is a programming error.
+    // Reading a key the registry does not hold, or with another type, is a programming error.
     if (!key || key->type != expected)
         throw std::logic_error(fmt::format("env key '{}' is not registered as {}", name, typeName(expected)));
     return values_.at(name);
 }
 
-bool Env::getBool(const std::string& key) const { return value(key, EnvType::Bool).text == "true"; }
-int Env::getInt(const std::string& key) const { return *parseNumber<int>(value(key, EnvType::Int).text); }
+bool Env::get(const BoolKey& key) const { return value(key.name(), EnvType::Bool).text == "true"; }
+int Env::get(const IntKey& key) const { return *parseNumber<int>(value(key.name(), EnvType::Int).text); }
 // Validated as a double in the key's range; a value too small for a float (1e-50) becomes 0 or a
 // subnormal here instead of failing to parse as one.
-float Env::getFloat(const std::string& key) const { return float(*parseNumber<double>(value(key, EnvType::Float).text)); }
-
-std::string Env::getString(const std::string& name) const {
-    const EnvKey* key = registry_->find(name);
-    return value(name, key && key->type == EnvType::Choice ? EnvType::Choice : EnvType::String).text;
+float Env::get(const FloatKey& key) const {
+    return float(*parseNumber<double>(value(key.name(), EnvType::Float).text));
 }
+std::string Env::get(const TextKey& key) const { return value(key.name(), EnvType::String).text; }
+std::string Env::get(const ChoiceKey& key) const { return value(key.name(), EnvType::Choice).text; }
+std::filesystem::path Env::get(const PathKey& key) const { return value(key.name(), EnvType::Path).text; }
+std::optional<Vec3> Env::get(const Vec3Key& key) const { return parseVec3(value(key.name(), EnvType::Vec3).text); }
 
-std::filesystem::path Env::getPath(const std::string& key) const { return value(key, EnvType::Path).text; }
-
-std::optional<Vec3> Env::getVec3(const std::string& key) const { return parseVec3(value(key, EnvType::Vec3).text); }
-
-std::vector<Vec3> Env::getVec3List(const std::string& key) const {
-    const std::string& text = value(key, EnvType::Vec3List).text;
+std::vector<Vec3> Env::get(const Vec3ListKey& key) const {
+    const std::string& text = value(key.name(), EnvType::Vec3List).text;
     std::vector<Vec3> list;
     if (text.empty()) return list;
     for (const std::string& item : splitList(text)) list.push_back(*parseVec3(item));

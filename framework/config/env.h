@@ -3,7 +3,7 @@
 // validated when set, so a typo fails at load time with the file, the line and the key.
 #pragma once
 
-#include "framework/core/math.h"
+#include "framework/config/env_key.h"
 
 #include <nlohmann/json_fwd.hpp>
 
@@ -15,30 +15,13 @@
 
 namespace bvhlab {
 
-enum class EnvType {
-    Bool,      // true/false, on/off, yes/no, 1/0
-    Int,       // with an inclusive range
-    Float,     // with an inclusive range
-    String,    // free text
-    Choice,    // one of a fixed list of words
-    Path,      // relative paths resolve against the folder of the env file that set them
-    Vec3,      // "x y z", or empty for "not given"
-    Vec3List,  // "x y z, x y z, ...", possibly empty
-};
-
-struct EnvKey {
-    std::string name;  // Section::key
-    EnvType type = EnvType::String;
-    std::string defaultValue;
-    std::string description;
-    double min = 0.0, max = 0.0;       // Int and Float
-    std::vector<std::string> choices;  // Choice
-};
-
-// The set of known keys. The framework and every accelerator register theirs at start-up.
+// The set of known keys. Each component registers its own (the program's registry is put
+// together in apps/common/program_keys.cpp) and every Env is made against one.
 class EnvRegistry {
 public:
     void add(EnvKey key);
+    template <EnvType Type>
+    void add(const Key<Type>& key) { add(key.declaration()); }
     const EnvKey* find(const std::string& name) const;
     const std::map<std::string, EnvKey>& keys() const { return keys_; }
     // The known keys closest in edit distance to a misspelt one.
@@ -48,13 +31,11 @@ private:
     std::map<std::string, EnvKey> keys_;
 };
 
-// The full registry: framework keys plus every accelerator's (defined in accel/registry.cpp).
-const EnvRegistry& envRegistry();
-
 // Resolved configuration: defaults, then env files in order, then -D overrides.
 class Env {
 public:
-    explicit Env(const EnvRegistry& registry = envRegistry());
+    // The registry must outlive the Env.
+    explicit Env(const EnvRegistry& registry);
 
     // Throws InputError naming the file, the line and the key.
     void loadFile(const std::filesystem::path& file);
@@ -65,14 +46,23 @@ public:
     // "Section::key=value", as given on the command line after -D.
     void setOverride(const std::string& assignment);
 
-    bool getBool(const std::string& key) const;
-    int getInt(const std::string& key) const;
-    float getFloat(const std::string& key) const;
-    std::string getString(const std::string& key) const;  // String and Choice
-    std::filesystem::path getPath(const std::string& key) const;  // empty when not given
-    std::optional<Vec3> getVec3(const std::string& key) const;
-    std::vector<Vec3> getVec3List(const std::string& key) const;
-    bool isExplicit(const std::string& key) const;  // set by a file or -D, not a default
+    template <EnvType Type>
+    void set(const Key<Type>& key, const std::string& value, const std::string& origin) {
+        set(std::string(key.name()), value, origin);
+    }
+
+    bool get(const BoolKey& key) const;
+    int get(const IntKey& key) const;
+    float get(const FloatKey& key) const;
+    std::string get(const TextKey& key) const;
+    std::string get(const ChoiceKey& key) const;
+    std::filesystem::path get(const PathKey& key) const;  // empty when not given
+    std::optional<Vec3> get(const Vec3Key& key) const;
+    std::vector<Vec3> get(const Vec3ListKey& key) const;
+    // Set by a file or -D, not a default.
+    template <EnvType Type>
+    bool isExplicit(const Key<Type>& key) const { return isExplicit(std::string(key.name())); }
+    bool isExplicit(const std::string& name) const;
 
     const EnvRegistry& registry() const { return *registry_; }
     // Every key with its resolved value and where it came from.
@@ -83,7 +73,7 @@ private:
         std::string text;    // validated; paths already resolved
         std::string origin;  // "default", "file:line" or "-D"
     };
-    const Value& value(const std::string& key, EnvType expected) const;
+    const Value& value(std::string_view key, EnvType expected) const;
 
     const EnvRegistry* registry_;
     std::map<std::string, Value> values_;

@@ -1,8 +1,8 @@
 #include "framework/io/heatmap.h"
 
+#include "framework/core/math.h"
 #include "framework/io/image_io.h"
 #include "framework/io/image_text.h"
-#include "framework/core/math.h"
 
 #include <fmt/core.h>
 

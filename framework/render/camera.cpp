@@ -1,6 +1,7 @@
 #include "framework/render/camera.h"
 
 #include "framework/core/error.h"
+#include "framework/render/render_keys.h"
 
 namespace bvhlab {
 
@@ -39,15 +40,15 @@ CameraSpec framingCamera(const Bounds3& bounds, float fovyDegrees, int width, in
 }
 
 CameraSpec resolveCamera(const Scene& scene, const Env& env) {
-    const float fovy = env.getFloat("Camera::fovy");
-    const int width = env.getInt("Camera::width"), height = env.getInt("Camera::height");
+    const float fovy = env.get(keys::Camera::fovy);
+    const int width = env.get(keys::Camera::width), height = env.get(keys::Camera::height);
     CameraSpec spec = scene.camera ? *scene.camera : framingCamera(scene.bounds, fovy > 0 ? fovy : 45.0f, 512, 512);
     if (fovy > 0) spec.fovyDegrees = fovy;
     if (width > 0) spec.width = width;
     if (height > 0) spec.height = height;
-    if (const auto from = env.getVec3("Camera::from")) spec.from = *from;
-    if (const auto at = env.getVec3("Camera::at")) spec.at = *at;
-    if (const auto up = env.getVec3("Camera::up")) spec.up = *up;
+    if (const auto from = env.get(keys::Camera::from)) spec.from = *from;
+    if (const auto at = env.get(keys::Camera::at)) spec.at = *at;
+    if (const auto up = env.get(keys::Camera::up)) spec.up = *up;
     // The one gate every render passes: a camera from a reader or a forged scene cache entry
     // is checked here as strictly as one from env.
     if (!isFinite(spec.from) || !isFinite(spec.at) || !isFinite(spec.up))

@@ -1,7 +1,9 @@
 #include "framework/render/renderer.h"
 
-#include "framework/render/pixel_sampler.h"
+#include "framework/config/common_keys.h"
 #include "framework/core/ray_offset.h"
+#include "framework/render/pixel_sampler.h"
+#include "framework/render/render_keys.h"
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/info.h>
@@ -176,17 +178,17 @@ private:
 
 RenderSettings RenderSettings::fromEnv(const Env& env, const Scene& scene, const CameraSpec& camera) {
     RenderSettings s;
-    s.samples = env.getInt("SetRayTracing::cntSamples");
-    s.depthLimit = env.getInt("SetRayTracing::depthLimit");
-    s.shadows = env.getBool("SetRayTracing::shadows");
-    s.threads = env.getInt("SetRayTracing::threads");
-    s.ambient = env.getFloat("Render::ambient");
-    if (const auto bg = env.getVec3("Scene::background")) s.background = *bg;
+    s.samples = env.get(keys::SetRayTracing::cntSamples);
+    s.depthLimit = env.get(keys::SetRayTracing::depthLimit);
+    s.shadows = env.get(keys::SetRayTracing::shadows);
+    s.threads = env.get(keys::SetRayTracing::threads);
+    s.ambient = env.get(keys::Render::ambient);
+    if (const auto bg = env.get(keys::Scene::background)) s.background = *bg;
     else if (scene.background) s.background = *scene.background;
 
-    const std::vector<Vec3> positions = env.getVec3List("Lights::positions");
+    const std::vector<Vec3> positions = env.get(keys::Lights::positions);
     if (!positions.empty()) {
-        for (const Vec3& p : positions) s.lights.push_back({p, Vec3(env.getFloat("Lights::intensity"))});
+        for (const Vec3& p : positions) s.lights.push_back({p, Vec3(env.get(keys::Lights::intensity))});
     } else if (!scene.lights.empty()) {
         s.lights = scene.lights;
     } else {

@@ -2,9 +2,9 @@
 // light, mirror bounces. Counts every query by kind and times the queries alone.
 #pragma once
 
+#include "framework/config/env.h"
 #include "framework/core/accelerator.h"
 #include "framework/render/camera.h"
-#include "framework/config/env.h"
 #include "framework/render/framebuffer.h"
 
 #include <functional>

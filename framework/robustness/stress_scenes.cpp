@@ -1,7 +1,7 @@
 #include "framework/robustness/stress_scenes.h"
 
-#include "framework/scene/procedural.h"
 #include "framework/robustness/stress_rng.h"
+#include "framework/scene/procedural.h"
 
 #include <fmt/format.h>
 

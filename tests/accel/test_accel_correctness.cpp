@@ -11,9 +11,10 @@
 // probes (every ray aimed exactly at an edge or a vertex) see externalVariants() below.
 #include "accel/naive/naive_accelerator.h"
 #include "accel/registry.h"
+#include "apps/common/program_keys.h"
+#include "framework/core/triangle.h"
 #include "framework/scene/procedural.h"
 #include "framework/scene/scene_loader.h"
-#include "framework/core/triangle.h"
 #include "tests/support/oracle.h"
 
 #include <fmt/format.h>
@@ -81,7 +82,7 @@ SceneCase& sceneCase(const std::string& key, const std::function<Scene()>& make,
 
 class AccelCorrectness : public ::testing::TestWithParam<std::string> {
 protected:
-    std::unique_ptr<Accelerator> make() const { return createAccelerator(GetParam(), Env()); }
+    std::unique_ptr<Accelerator> make() const { return createAccelerator(GetParam(), Env(programKeys())); }
     bool external() const { return isExternal(GetParam()); }
 
     // Checks one comparison report against the failure policy.
@@ -290,7 +291,7 @@ TEST_P(AccelCorrectness, ClosedMeshesAreWatertight) {
         ASSERT_GT(probes.size(), 500u);
         for (const ExternalVariant& variant : variants) {
             SCOPED_TRACE(variant.label);
-            Env env;
+            Env env(programKeys());
             for (const auto& [key, value] : variant.env) env.set(key, value, "test");
             const auto accel = createAccelerator(GetParam(), env);
             accel->build(mesh.scene.primitives());

@@ -2,6 +2,7 @@
 // also given as a -D override, and then every registered key is read back with its getter and
 // through the consumers of the env (BVH and Embree configuration, camera, render settings).
 // Bad input must end in an InputError; anything else is a finding. Built with -DBVHLAB_FUZZ=ON.
+#include "apps/common/program_keys.h"
 #include "framework/config/env.h"
 #include "framework/core/error.h"
 #include "tests/fuzz/read_every_env_key.h"
@@ -26,14 +27,14 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const std::string text(reinterpret_cast<const char*>(data), size);
     std::ofstream(path, std::ios::binary | std::ios::trunc) << text;
 
-    bvhlab::Env env;
+    bvhlab::Env env(bvhlab::programKeys());
     try {
         env.loadFile(path);
     } catch (const bvhlab::InputError&) {
     }
     bvhlab::readEveryEnvKey(env);
 
-    bvhlab::Env overridden;
+    bvhlab::Env overridden(bvhlab::programKeys());
     std::istringstream lines(text);
     for (std::string line; std::getline(lines, line);) {
         try {

@@ -5,8 +5,8 @@
 
 #include "accel/bvh/bvh_env.h"
 #include "accel/embree/embree_accelerator.h"
-#include "framework/render/camera.h"
 #include "framework/config/env.h"
+#include "framework/render/camera.h"
 #include "framework/render/renderer.h"
 
 #include <nlohmann/json.hpp>
@@ -15,15 +15,16 @@ namespace bvhlab {
 
 inline void readEveryEnvKey(const Env& env) {
     for (const auto& [name, key] : env.registry().keys()) {
+        // A handle made from the registered name reads like a declared key.
         switch (key.type) {
-        case EnvType::Bool: (void)env.getBool(name); break;
-        case EnvType::Int: (void)env.getInt(name); break;
-        case EnvType::Float: (void)env.getFloat(name); break;
-        case EnvType::String:
-        case EnvType::Choice: (void)env.getString(name); break;
-        case EnvType::Path: (void)env.getPath(name); break;
-        case EnvType::Vec3: (void)env.getVec3(name); break;
-        case EnvType::Vec3List: (void)env.getVec3List(name); break;
+        case EnvType::Bool: (void)env.get(BoolKey(name, "", "")); break;
+        case EnvType::Int: (void)env.get(IntKey(name, "", 0, 0, "")); break;
+        case EnvType::Float: (void)env.get(FloatKey(name, "", 0, 0, "")); break;
+        case EnvType::String: (void)env.get(TextKey(name, "", "")); break;
+        case EnvType::Choice: (void)env.get(ChoiceKey(name, "", {}, "")); break;
+        case EnvType::Path: (void)env.get(PathKey(name, "", "")); break;
+        case EnvType::Vec3: (void)env.get(Vec3Key(name, "", "")); break;
+        case EnvType::Vec3List: (void)env.get(Vec3ListKey(name, "", "")); break;
         }
         (void)env.isExplicit(name);
     }

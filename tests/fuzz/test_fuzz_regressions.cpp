@@ -3,9 +3,11 @@
 // embedded. Every one must load or fail with an InputError: no crash, no sanitizer report, no
 // failed libstdc++ assertion (the sanitizer build defines _GLIBCXX_ASSERTIONS).
 #include "accel/bvh/bvh_env.h"
-#include "framework/render/camera.h"
+#include "apps/common/program_keys.h"
 #include "framework/config/env.h"
 #include "framework/core/error.h"
+#include "framework/render/camera.h"
+#include "framework/render/render_keys.h"
 #include "framework/render/renderer.h"
 #include "framework/scene/scene_loader.h"
 #include "tests/fuzz/read_every_env_key.h"
@@ -36,17 +38,17 @@ fs::path writeTemp(const std::string& name, std::string_view bytes) {
 // then dereferenced an empty std::optional (undefined behaviour; an assertion failure in the
 // checked build). Fixed in framework/config/env.cpp: getFloat converts the validated double.
 TEST(FuzzRegressions, EnvFloatBelowTheSmallestFloat) {
-    Env env;
+    Env env(programKeys());
     env.loadFile(writeTemp("tiny.env", "Camera::fovy 1e-50\nRender::ambient 1e-46\nLights::intensity 1e-40\n"));
-    EXPECT_EQ(env.getFloat("Camera::fovy"), 0.0f);
-    EXPECT_EQ(env.getFloat("Render::ambient"), 0.0f);
-    EXPECT_GT(env.getFloat("Lights::intensity"), 0.0f);  // a subnormal float
-    EXPECT_LT(env.getFloat("Lights::intensity"), 1e-37f);
+    EXPECT_EQ(env.get(keys::Camera::fovy), 0.0f);
+    EXPECT_EQ(env.get(keys::Render::ambient), 0.0f);
+    EXPECT_GT(env.get(keys::Lights::intensity), 0.0f);  // a subnormal float
+    EXPECT_LT(env.get(keys::Lights::intensity), 1e-37f);
     readEveryEnvKey(env);
 
-    Env overridden;
+    Env overridden(programKeys());
     overridden.setOverride("BVH::cTraversal=1e-300");
-    EXPECT_EQ(overridden.getFloat("BVH::cTraversal"), 0.0f);
+    EXPECT_EQ(overridden.get(keys::BVH::cTraversal), 0.0f);
     readEveryEnvKey(overridden);
 }
 
@@ -54,7 +56,7 @@ TEST(FuzzRegressions, EnvFloatBelowTheSmallestFloat) {
 // "did you mean" suggestions passed bytes >= 0x80 as negative ints to std::tolower, which is
 // undefined for values other than EOF. Fixed in framework/config/env.cpp (cast to unsigned char).
 TEST(FuzzRegressions, EnvUnknownKeyWithHighBytes) {
-    Env env;
+    Env env(programKeys());
     try {
         env.loadFile(writeTemp("high.env", "\xff\xfe\x80::fovy\xe9 1\n"));
         ADD_FAILURE() << "an unknown key must be an error";

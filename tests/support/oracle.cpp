@@ -1,7 +1,7 @@
 #include "tests/support/oracle.h"
 
-#include "framework/scene/procedural.h"
 #include "framework/core/triangle.h"
+#include "framework/scene/procedural.h"
 
 #include <fmt/format.h>
 

@@ -1,8 +1,8 @@
 #include "accel/bvh/build/bvh_builder.h"
 
 #include "accel/bvh/build/binned_sah_builder.h"
-#include "accel/bvh/build/sweep_sah_builder.h"
 #include "accel/bvh/build/spatial_median_builder.h"
+#include "accel/bvh/build/sweep_sah_builder.h"
 
 #include <fmt/core.h>
 

@@ -4,8 +4,8 @@
 // in place and returns the two halves, or declines (the range becomes a leaf).
 #pragma once
 
-#include "accel/bvh/layout/bvh.h"
 #include "accel/bvh/build/prim_ref.h"
+#include "accel/bvh/layout/bvh.h"
 
 #include <algorithm>
 #include <memory>

@@ -8,6 +8,7 @@
 #include "accel/bvh/layout/wide_bvh.h"
 #include "accel/naive/naive_accelerator.h"
 #include "accel/registry.h"
+#include "apps/common/program_keys.h"
 #include "framework/scene/scene.h"
 
 #include <gtest/gtest.h>
@@ -667,17 +668,17 @@ TEST(Bvh, CountersCountVisitsAndTests) {
 }
 
 TEST(Bvh, RegisteredWithTheirEnvKeys) {
-    const EnvRegistry& registry = envRegistry();
+    const EnvRegistry& registry = programKeys();
     for (const char* name : {"tdbvh", "sahbvh", "sahbvh4", "sweepbvh"}) {
         const auto& infos = acceleratorInfos();
         const auto it = std::find_if(infos.begin(), infos.end(), [&](const AcceleratorInfo& i) { return i.name == name; });
         ASSERT_NE(it, infos.end()) << name;
         for (const std::string& key : it->envKeys) EXPECT_NE(registry.find(key), nullptr) << key;
     }
-    Env env;
-    env.set("BVH::bins", "8", "test");
-    env.set("BVH::maxLeaf", "3", "test");
-    env.set("BVH::tdbvhSplit", "nodebox", "test");
+    Env env(programKeys());
+    env.set(keys::BVH::bins, "8", "test");
+    env.set(keys::BVH::maxLeaf, "3", "test");
+    env.set(keys::BVH::tdbvhSplit, "nodebox", "test");
     const BvhBuildConfig config = bvhConfigFromEnv(env);
     EXPECT_EQ(config.bins, 8);
     EXPECT_EQ(config.maxLeaf, 3);

@@ -5,6 +5,7 @@
 #include "accel/embree/embree_accelerator.h"
 #include "accel/naive/naive_accelerator.h"
 #include "accel/registry.h"
+#include "apps/common/program_keys.h"
 #include "framework/scene/procedural.h"
 
 #include <gtest/gtest.h>
@@ -352,7 +353,7 @@ TEST(Embree, EveryQualityAndRobustBuilds) {
 }
 
 TEST(Embree, ConfigFromEnv) {
-    Env env;
+    Env env(programKeys());
     EmbreeConfig config = EmbreeConfig::fromEnv(env);
     EXPECT_EQ(config.quality, EmbreeQuality::Medium);
     EXPECT_FALSE(config.robust);

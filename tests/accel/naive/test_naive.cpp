@@ -3,6 +3,7 @@
 // counters merged across threads.
 #include "accel/naive/naive_accelerator.h"
 #include "accel/registry.h"
+#include "apps/common/program_keys.h"
 #include "framework/scene/procedural.h"
 #include "tests/support/oracle.h"
 
@@ -209,7 +210,7 @@ TEST(Naive, RebuildReplacesTheScene) {
 }
 
 TEST(Naive, CreatedByTheRegistry) {
-    const auto accel = createAccelerator("naive", Env());
+    const auto accel = createAccelerator("naive", Env(programKeys()));
     ASSERT_NE(accel, nullptr);
     EXPECT_EQ(accel->name(), "naive");
     EXPECT_TRUE(accel->hasCounters());

@@ -12,16 +12,26 @@ using namespace bvhlab;
 
 namespace {
 
+constexpr IntKey kCount{"Set::count", "3", 1, 10, "a count"};
+constexpr FloatKey kScale{"Set::scale", "0.5", 0, 2, "a scale"};
+constexpr BoolKey kFlag{"Set::flag", "false", "a switch"};
+constexpr std::string_view kModes[] = {"fast", "exact"};
+constexpr ChoiceKey kMode{"Set::mode", "fast", kModes, "a mode"};
+constexpr TextKey kName{"Set::name", "", "a name"};
+constexpr PathKey kFile{"Set::file", "", "a file"};
+constexpr Vec3Key kPoint{"Set::point", "", "a point"};
+constexpr Vec3ListKey kPoints{"Set::points", "", "points"};
+
 EnvRegistry testRegistry() {
     EnvRegistry r;
-    r.add({"Set::count", EnvType::Int, "3", "a count", 1, 10, {}});
-    r.add({"Set::scale", EnvType::Float, "0.5", "a scale", 0, 2, {}});
-    r.add({"Set::flag", EnvType::Bool, "false", "a switch", 0, 0, {}});
-    r.add({"Set::mode", EnvType::Choice, "fast", "a mode", 0, 0, {"fast", "exact"}});
-    r.add({"Set::name", EnvType::String, "", "a name", 0, 0, {}});
-    r.add({"Set::file", EnvType::Path, "", "a file", 0, 0, {}});
-    r.add({"Set::point", EnvType::Vec3, "", "a point", 0, 0, {}});
-    r.add({"Set::points", EnvType::Vec3List, "", "points", 0, 0, {}});
+    r.add(kCount);
+    r.add(kScale);
+    r.add(kFlag);
+    r.add(kMode);
+    r.add(kName);
+    r.add(kFile);
+    r.add(kPoint);
+    r.add(kPoints);
     return r;
 }
 
@@ -48,13 +58,13 @@ std::string errorOf(F body) {
 TEST(Env, DefaultsApplyUntilSet) {
     const EnvRegistry r = testRegistry();
     Env env(r);
-    EXPECT_EQ(env.getInt("Set::count"), 3);
-    EXPECT_FLOAT_EQ(env.getFloat("Set::scale"), 0.5f);
-    EXPECT_FALSE(env.getBool("Set::flag"));
-    EXPECT_EQ(env.getString("Set::mode"), "fast");
-    EXPECT_FALSE(env.getVec3("Set::point").has_value());
-    EXPECT_TRUE(env.getVec3List("Set::points").empty());
-    EXPECT_FALSE(env.isExplicit("Set::count"));
+    EXPECT_EQ(env.get(kCount), 3);
+    EXPECT_FLOAT_EQ(env.get(kScale), 0.5f);
+    EXPECT_FALSE(env.get(kFlag));
+    EXPECT_EQ(env.get(kMode), "fast");
+    EXPECT_FALSE(env.get(kPoint).has_value());
+    EXPECT_TRUE(env.get(kPoints).empty());
+    EXPECT_FALSE(env.isExplicit(kCount));
 }
 
 TEST(Env, ParsesFileWithCommentsAndBlankLines) {
@@ -63,16 +73,16 @@ TEST(Env, ParsesFileWithCommentsAndBlankLines) {
     env.loadFile(writeFile("good.env", "# comment\n\nSet::count 7   # trailing comment\n"
                                        "Set::flag on\nSet::mode exact\nSet::name two words\n"
                                        "Set::point 1 2 3\nSet::points 1 2 3, -4 5e-1 6\nSet::file sub/x.obj\n"));
-    EXPECT_EQ(env.getInt("Set::count"), 7);
-    EXPECT_TRUE(env.getBool("Set::flag"));
-    EXPECT_EQ(env.getString("Set::mode"), "exact");
-    EXPECT_EQ(env.getString("Set::name"), "two words");
-    EXPECT_EQ(*env.getVec3("Set::point"), Vec3(1, 2, 3));
-    ASSERT_EQ(env.getVec3List("Set::points").size(), 2u);
-    EXPECT_EQ(env.getVec3List("Set::points")[1], Vec3(-4, 0.5f, 6));
-    EXPECT_TRUE(env.isExplicit("Set::count"));
+    EXPECT_EQ(env.get(kCount), 7);
+    EXPECT_TRUE(env.get(kFlag));
+    EXPECT_EQ(env.get(kMode), "exact");
+    EXPECT_EQ(env.get(kName), "two words");
+    EXPECT_EQ(*env.get(kPoint), Vec3(1, 2, 3));
+    ASSERT_EQ(env.get(kPoints).size(), 2u);
+    EXPECT_EQ(env.get(kPoints)[1], Vec3(-4, 0.5f, 6));
+    EXPECT_TRUE(env.isExplicit(kCount));
     // Relative paths resolve against the env file's folder.
-    EXPECT_EQ(env.getPath("Set::file"), test::scratchDir("env") / "sub" / "x.obj");
+    EXPECT_EQ(env.get(kFile), test::scratchDir("env") / "sub" / "x.obj");
 }
 
 TEST(Env, LaterFilesAndOverridesWin) {
@@ -80,10 +90,10 @@ TEST(Env, LaterFilesAndOverridesWin) {
     Env env(r);
     env.loadFile(writeFile("a.env", "Set::count 4\nSet::scale 1\n"));
     env.loadFile(writeFile("b.env", "Set::count 5\n"));
-    EXPECT_EQ(env.getInt("Set::count"), 5);
-    EXPECT_FLOAT_EQ(env.getFloat("Set::scale"), 1.0f);
+    EXPECT_EQ(env.get(kCount), 5);
+    EXPECT_FLOAT_EQ(env.get(kScale), 1.0f);
     env.setOverride("Set::count=9");
-    EXPECT_EQ(env.getInt("Set::count"), 9);
+    EXPECT_EQ(env.get(kCount), 9);
 }
 
 TEST(Env, UnknownKeyNamesFileLineAndNearestKeys) {
@@ -132,4 +142,14 @@ TEST(Env, JsonHoldsValueAndOrigin) {
     EXPECT_EQ(j["Set::count"]["value"], "8");
     EXPECT_EQ(j["Set::count"]["from"], "-DSet::count");
     EXPECT_EQ(j["Set::scale"]["from"], "default");
+}
+
+// A handle whose name is not registered, or is registered with another type, is a programming
+// error, not an input error.
+TEST(Env, ReadingThroughAWrongHandleIsALogicError) {
+    const EnvRegistry r = testRegistry();
+    const Env env(r);
+    EXPECT_THROW((void)env.get(IntKey("Set::scale", "0", 0, 1, "")), std::logic_error);
+    EXPECT_THROW((void)env.get(BoolKey("Set::nothing", "false", "")), std::logic_error);
+    EXPECT_NO_THROW((void)env.get(FloatKey("Set::scale", "0", 0, 1, "")));
 }

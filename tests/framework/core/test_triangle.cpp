@@ -1,8 +1,8 @@
 // The shared watertight ray-triangle test (framework/core/triangle.h), float and double: known hits
 // with their t/u/v, misses, windings, edges and vertices, parallel rays, interval ends,
 // watertightness along shared edges, degenerate triangles and NaN rays.
-#include "framework/scene/scene.h"
 #include "framework/core/triangle.h"
+#include "framework/scene/scene.h"
 
 #include <gtest/gtest.h>
 

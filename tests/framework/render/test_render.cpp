@@ -2,8 +2,8 @@
 #include "accel/naive/naive_accelerator.h"
 #include "framework/render/camera.h"
 #include "framework/render/pixel_sampler.h"
-#include "framework/scene/procedural.h"
 #include "framework/render/renderer.h"
+#include "framework/scene/procedural.h"
 
 #include <gtest/gtest.h>
 

@@ -11,9 +11,11 @@
 //  - rays starting on a surface, axis-parallel rays in the planes of faces, very short and very
 //    long rays, rays with NaN.
 // Embree is known to leak: its numbers are printed and recorded (RecordProperty), not failed.
+#include "accel/bvh/bvh_env.h"
 #include "accel/bvh/layout/bvh_node.h"
 #include "accel/naive/naive_accelerator.h"
 #include "accel/registry.h"
+#include "apps/common/program_keys.h"
 #include "framework/core/ray_offset.h"
 #include "framework/robustness/stress_checks.h"
 #include "framework/robustness/stress_rng.h"
@@ -71,7 +73,7 @@ protected:
     bool isNaive() const { return variant().name == "naive"; }
 
     std::unique_ptr<Accelerator> build(const Scene& scene, BuildStats* stats = nullptr) const {
-        Env env;
+        Env env(programKeys());
         for (const auto& [key, value] : variant().env) env.set(key, value, "test");
         auto accel = createAccelerator(variant().name, env);
         const BuildStats s = accel->build(scene.primitives());
@@ -177,8 +179,8 @@ TEST(WatertightProbes, DeterministicForASeed) {
 // sahbvh with BVH::robust=false traverses with Moeller-Trumbore in float, which is not
 // watertight: the probes must catch it (and so the switch must switch).
 TEST(WatertightProbes, CatchANonWatertightTriangleTest) {
-    Env env;
-    env.set("BVH::robust", "false", "test");
+    Env env(programKeys());
+    env.set(keys::BVH::robust, "false", "test");
     size_t leaks = 0, rays = 0;
     for (const ProbedMesh& m : probedMeshes()) {
         auto accel = createAccelerator("sahbvh", env);

@@ -1,0 +1,43 @@
+// The env keys the program itself reads: where the scene comes from (cli_common.cpp), what a
+// render writes (render and batch) and the batch's thread count.
+#pragma once
+
+#include "framework/config/env.h"
+
+namespace bvhlab {
+
+namespace keys::Scene {
+inline constexpr PathKey dir{"Scene::dir", "../shared/scenes", "folder that relative Scene::file names are read from"};
+inline constexpr TextKey file{
+    "Scene::file", "",
+    "scene file (.obj .ply .off .nff, optionally .gz), relative to Scene::dir; empty = the embedded default scene"};
+inline constexpr PathKey cacheDir{
+    "Scene::cacheDir", ".cache/scenes",
+    "binary cache of parsed scenes, keyed by the source file's bytes (bvhlab batch); empty = no cache"};
+}  // namespace keys::Scene
+
+namespace keys::Output {
+inline constexpr BoolKey exr{"Output::exr", "true", "write PATH.exr (RGB, depth, primitive, normal, N_TR, N_IT)"};
+inline constexpr BoolKey png{"Output::png", "true", "write PATH.png (tone-mapped RGB)"};
+inline constexpr BoolKey heatmap{"Output::heatmap", "false",
+                                 "also write PATH.heatmap.png: traversal steps per pixel, with a colour bar"};
+inline constexpr FloatKey heatmapScale{
+    "Output::heatmapScale", "0", 0, 1e30,
+    "heat map full scale in traversal steps per pixel, fixed so heat maps compare; 0 = per image (its 99th "
+    "percentile; bvhlab batch: one per scene)"};
+}  // namespace keys::Output
+
+namespace keys::Batch {
+inline constexpr IntKey threads{
+    "Batch::threads", "1", 0, 1024,
+    "bvhlab batch: render and Embree build threads, replacing SetRayTracing::threads; 1 = the report's setting, 0 = "
+    "all hardware threads"};
+}
+
+// Keys that change no figure of any run: what is written (Output::*) and where parsed scenes
+// are cached. Batch and tradeoff leave them out of what a stored result must match.
+inline bool changesNoFigure(std::string_view name) {
+    return name.starts_with("Output::") || name == keys::Scene::cacheDir.name();
+}
+
+}  // namespace bvhlab

@@ -1,0 +1,95 @@
+// A key declared once, next to the code that reads it: its name, type, default, range or
+// choices and meaning, in a constant that is also the typed handle it is read through
+// (`env.get(kShadows)` is a bool). Components register their keys with an EnvRegistry.
+#pragma once
+
+#include "framework/core/math.h"
+
+#include <filesystem>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace bvhlab {
+
+enum class EnvType {
+    Bool,      // true/false, on/off, yes/no, 1/0
+    Int,       // with an inclusive range
+    Float,     // with an inclusive range
+    String,    // free text
+    Choice,    // one of a fixed list of words
+    Path,      // relative paths resolve against the folder of the env file that set them
+    Vec3,      // "x y z", or empty for "not given"
+    Vec3List,  // "x y z, x y z, ...", possibly empty
+};
+
+// A registered key, as the registry and the docs see it.
+struct EnvKey {
+    std::string name;  // Section::key
+    EnvType type = EnvType::String;
+    std::string defaultValue;
+    std::string description;
+    double min = 0.0, max = 0.0;       // Int and Float
+    std::vector<std::string> choices;  // Choice
+};
+
+// The value a key of each type reads as.
+template <EnvType Type> struct EnvValue;
+template <> struct EnvValue<EnvType::Bool> { using type = bool; };
+template <> struct EnvValue<EnvType::Int> { using type = int; };
+template <> struct EnvValue<EnvType::Float> { using type = float; };
+template <> struct EnvValue<EnvType::String> { using type = std::string; };
+template <> struct EnvValue<EnvType::Choice> { using type = std::string; };
+template <> struct EnvValue<EnvType::Path> { using type = std::filesystem::path; };  // empty when not given
+template <> struct EnvValue<EnvType::Vec3> { using type = std::optional<Vec3>; };    // nullopt when not given
+template <> struct EnvValue<EnvType::Vec3List> { using type = std::vector<Vec3>; };
+
+// The declaration and typed handle. Constant-initialised (string views only), so a key can be
+// read from any static initialiser without an initialisation-order question.
+template <EnvType Type>
+class Key {
+public:
+    using Value = typename EnvValue<Type>::type;
+
+    // Int and Float: the inclusive range.
+    constexpr Key(std::string_view name, std::string_view defaultValue, double min, double max,
+                  std::string_view description)
+        requires(Type == EnvType::Int || Type == EnvType::Float)
+        : name_(name), default_(defaultValue), description_(description), min_(min), max_(max) {}
+    constexpr Key(std::string_view name, std::string_view defaultValue, std::span<const std::string_view> choices,
+                  std::string_view description)
+        requires(Type == EnvType::Choice)
+        : name_(name), default_(defaultValue), description_(description), choices_(choices) {}
+    constexpr Key(std::string_view name, std::string_view defaultValue, std::string_view description)
+        requires(Type != EnvType::Int && Type != EnvType::Float && Type != EnvType::Choice)
+        : name_(name), default_(defaultValue), description_(description) {}
+
+    constexpr std::string_view name() const { return name_; }
+
+    // What the registry holds; a Choice key whose words are known only at run time (ASDS::type:
+    // the accelerators) is given them here.
+    EnvKey declaration(std::vector<std::string> runtimeChoices = {}) const {
+        EnvKey key{std::string(name_), Type, std::string(default_), std::string(description_), min_, max_, {}};
+        for (std::string_view c : choices_) key.choices.emplace_back(c);
+        for (std::string& c : runtimeChoices) key.choices.push_back(std::move(c));
+        return key;
+    }
+
+private:
+    std::string_view name_, default_, description_;
+    double min_ = 0.0, max_ = 0.0;
+    std::span<const std::string_view> choices_;
+};
+
+using BoolKey = Key<EnvType::Bool>;
+using IntKey = Key<EnvType::Int>;
+using FloatKey = Key<EnvType::Float>;
+using TextKey = Key<EnvType::String>;
+using ChoiceKey = Key<EnvType::Choice>;
+using PathKey = Key<EnvType::Path>;
+using Vec3Key = Key<EnvType::Vec3>;
+using Vec3ListKey = Key<EnvType::Vec3List>;
+
+}  // namespace bvhlab
