@@ -13,6 +13,7 @@
 #include "apps/common/scene_list.h"
 #include "framework/config/common_keys.h"
 #include "framework/core/error.h"
+#include "framework/core/parse_number.h"
 #include "framework/io/heatmap.h"
 #include "framework/io/image_io.h"
 #include "framework/render/camera.h"
@@ -27,7 +28,6 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
-#include <charconv>
 #include <chrono>
 #include <fstream>
 #include <map>
@@ -48,12 +48,9 @@ struct Shard {
 Shard parseShard(const std::string& text) {
     const size_t slash = text.find('/');
     Shard s;
-    auto parse = [](std::string_view part, int& value) {
-        const auto [end, ec] = std::from_chars(part.data(), part.data() + part.size(), value);
-        return ec == std::errc() && end == part.data() + part.size() && !part.empty();
-    };
     const std::string_view view = text;
-    if (slash == std::string::npos || !parse(view.substr(0, slash), s.index) || !parse(view.substr(slash + 1), s.count) ||
+    if (slash == std::string::npos || !parseNumber(view.substr(0, slash), s.index) ||
+        !parseNumber(view.substr(slash + 1), s.count) ||
         s.count < 1 || s.index < 0 || s.index >= s.count)
         throw InputError(fmt::format("--shard {}: expected i/n with n >= 1 and 0 <= i < n (i is 0-based, as "
                                      "$SLURM_ARRAY_TASK_ID), e.g. --shard 0/10",

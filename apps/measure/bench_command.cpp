@@ -11,6 +11,7 @@
 #include "apps/measure/ray_sets.h"
 #include "framework/config/common_keys.h"
 #include "framework/core/error.h"
+#include "framework/core/parse_number.h"
 #include "framework/render/renderer.h"
 #include "framework/report/provenance.h"
 
@@ -20,7 +21,6 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
-#include <charconv>
 #include <chrono>
 #include <fstream>
 #include <map>
@@ -214,8 +214,7 @@ void addBenchCommand(CLI::App& app) {
             std::vector<int> threadCounts;
             for (const std::string& item : splitCommaList(options->threads)) {
                 int t = -1;
-                const auto [end, ec] = std::from_chars(item.data(), item.data() + item.size(), t);
-                if (ec != std::errc() || end != item.data() + item.size() || t < 0 || t > 1024)
+                if (!parseNumber(item, t) || t < 0 || t > 1024)
                     throw InputError(fmt::format("--threads {}: '{}' is not a thread count 0..1024 (0 = all)",
                                                  options->threads, item));
                 threadCounts.push_back(t > 0 ? t : tbb::info::default_concurrency());

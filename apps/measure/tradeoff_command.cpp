@@ -8,6 +8,7 @@
 #include "apps/common/scene_list.h"
 #include "apps/measure/tradeoff.h"
 #include "framework/core/error.h"
+#include "framework/core/parse_number.h"
 
 #include <fmt/core.h>
 #include <tbb/info.h>
@@ -24,16 +25,9 @@ using Clock = std::chrono::steady_clock;
 
 std::vector<int> parseBins(const std::string& text) {
     std::vector<int> bins;
-    std::string item;
-    for (std::stringstream in(text); std::getline(in, item, ',');) {
-        size_t used = 0;
+    for (const std::string& item : splitCommaList(text)) {
         int k = 0;
-        try {
-            k = std::stoi(item, &used);
-        } catch (const std::exception&) {
-            used = 0;
-        }
-        if (used != item.size() || k < 2 || k > 256)
+        if (!parseNumber(item, k) || k < 2 || k > 256)
             throw InputError(fmt::format("--bins: '{}' is not a bin count in 2..256", item));
         bins.push_back(k);
     }

@@ -1,12 +1,12 @@
 #include "framework/config/env.h"
 
 #include "framework/core/error.h"
+#include "framework/core/parse_number.h"
 
 #include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <charconv>
 #include <fstream>
 #include <sstream>
 
@@ -46,10 +46,9 @@ std::optional<bool> parseBool(const std::string& s) {
 }
 
 template <typename T>
-std::optional<T> parseNumber(std::string_view s) {
+std::optional<T> numberIn(std::string_view s) {
     T v{};
-    const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
-    if (ec != std::errc() || end != s.data() + s.size()) return std::nullopt;
+    if (!parseNumber(s, v)) return std::nullopt;
     return v;
 }
 
@@ -57,7 +56,7 @@ std::optional<Vec3> parseVec3(const std::string& s) {
     std::istringstream in(s);
     std::string a, b, c, extra;
     if (!(in >> a >> b >> c) || (in >> extra)) return std::nullopt;
-    const auto x = parseNumber<float>(a), y = parseNumber<float>(b), z = parseNumber<float>(c);
+    const auto x = numberIn<float>(a), y = numberIn<float>(b), z = numberIn<float>(c);
     if (!x || !y || !z || !std::isfinite(*x) || !std::isfinite(*y) || !std::isfinite(*z)) return std::nullopt;
     return Vec3(*x, *y, *z);
 }
@@ -98,13 +97,13 @@ std::string validate(const EnvKey& key, const std::string& text, const std::file
         return *b ? "true" : "false";
     }
     case EnvType::Int: {
-        const auto v = parseNumber<long long>(text);
+        const auto v = numberIn<long long>(text);
         if (!v) return fail("expected an integer");
         if (*v < key.min || *v > key.max) return fail(fmt::format("expected {} to {}", key.min, key.max));
         return text;
     }
     case EnvType::Float: {
-        const auto v = parseNumber<double>(text);
+        const auto v = numberIn<double>(text);
         if (!v || !std::isfinite(*v)) return fail("expected a finite number");
         if (*v < key.min || *v > key.max) return fail(fmt::format("expected {} to {}", key.min, key.max));
         return text;
@@ -213,11 +212,11 @@ const Env::Value& Env::value(std::string_view keyName, EnvType expected) const {
 }
 
 bool Env::get(const BoolKey& key) const { return value(key.name(), EnvType::Bool).text == "true"; }
-int Env::get(const IntKey& key) const { return *parseNumber<int>(value(key.name(), EnvType::Int).text); }
+int Env::get(const IntKey& key) const { return *numberIn<int>(value(key.name(), EnvType::Int).text); }
 // Validated as a double in the key's range; a value too small for a float (1e-50) becomes 0 or a
 // subnormal here instead of failing to parse as one.
 float Env::get(const FloatKey& key) const {
-    return float(*parseNumber<double>(value(key.name(), EnvType::Float).text));
+    return float(*numberIn<double>(value(key.name(), EnvType::Float).text));
 }
 std::string Env::get(const TextKey& key) const { return value(key.name(), EnvType::String).text; }
 std::string Env::get(const ChoiceKey& key) const { return value(key.name(), EnvType::Choice).text; }

@@ -1,5 +1,7 @@
 #include "framework/report/provenance.h"
 
+#include <bvhlab_git_commit.h>  // generated at every build: BVHLAB_GIT_COMMIT
+
 #include <nlohmann/json.hpp>
 
 #include <fstream>
