@@ -6,6 +6,7 @@
 #include "framework/io/image_io.h"
 #include "tests/support/cli_run.h"
 #include "tests/support/scratch_dir.h"
+#include "tests/support/text_count.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -78,12 +79,6 @@ nlohmann::json readJson(const fs::path& file) {
     return nlohmann::json::parse(in);
 }
 
-size_t count(const std::string& text, const std::string& what) {
-    size_t n = 0;
-    for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
-    return n;
-}
-
 }  // namespace
 
 TEST(Batch, RunWritesTablesImagesAndContactSheet) {
@@ -106,7 +101,7 @@ TEST(Batch, RunWritesTablesImagesAndContactSheet) {
     const std::string md = readText(out / "results.md");
     EXPECT_NE(md.find("| #Prims | #Leaves | #Nodes | SAH | T_B [ms] | T_R [µs] | N_IT | N_TR | N_Q | render [ms] |"),
               std::string::npos) << md;
-    EXPECT_EQ(count(md, "| + shadows |"), 4u) << md;
+    EXPECT_EQ(test::occurrences(md, "| + shadows |"), 4u) << md;
     EXPECT_LT(md.find("| first | naive |"), md.find("| first | sahbvh |"));
     EXPECT_LT(md.find("| first | sahbvh |"), md.find("| second | naive |"));
     EXPECT_NE(r.output.find("| second | sahbvh |"), std::string::npos) << r.output;  // the table on stdout
@@ -153,7 +148,7 @@ TEST(Batch, SecondRunReadsScenesFromCache) {
     ASSERT_EQ(first.exitCode, 0) << first.output;
     const Result second = run(batchArgs(dir, "out2"));
     ASSERT_EQ(second.exitCode, 0) << second.output;
-    EXPECT_EQ(count(second.output, "read from cache"), 2u) << second.output;
+    EXPECT_EQ(test::occurrences(second.output, "read from cache"), 2u) << second.output;
     EXPECT_NE(second.output.find("2 read from the cache, 0 parsed"), std::string::npos) << second.output;
     EXPECT_NE(readText(dir / "out2" / "results.md").find("from the scene cache in 4 of them"), std::string::npos);
     std::ifstream in(dir / "out2" / "jobs" / "second__naive.json");
@@ -204,7 +199,7 @@ TEST(Batch, CorruptCacheEntryIsIgnoredAndRewritten) {
 
     const Result r = run(batchArgs(dir, "out2"));
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    EXPECT_EQ(count(r.output, "ignored cache entry"), 2u) << r.output;
+    EXPECT_EQ(test::occurrences(r.output, "ignored cache entry"), 2u) << r.output;
     EXPECT_NE(r.output.find("0 read from the cache, 2 parsed"), std::string::npos) << r.output;
     EXPECT_EQ(csvWithoutTimings(dir / "out1" / "results.csv"), csvWithoutTimings(dir / "out2" / "results.csv"));
 

@@ -1,6 +1,7 @@
 // The progress line (apps/common/progress.h) on a memory stream with a clock the test moves: the
 // phase line and the 10 s rate off a terminal, the 2 s silence and the redraws on one, --quiet.
 #include "apps/common/progress.h"
+#include "tests/support/text_count.h"
 
 #include <gtest/gtest.h>
 
@@ -28,12 +29,6 @@ struct ProgressUnderTest {
     }
 };
 
-size_t countOf(const std::string& text, const std::string& what) {
-    size_t count = 0;
-    for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++count;
-    return count;
-}
-
 }  // namespace
 
 TEST(Progress, LinesStyleWritesAPhaseLineThenAtMostOneEveryTenSeconds) {
@@ -48,7 +43,7 @@ TEST(Progress, LinesStyleWritesAPhaseLineThenAtMostOneEveryTenSeconds) {
     }
     const std::string text = t.text();
     EXPECT_EQ(text.find("rendering\n"), 0u) << text;
-    EXPECT_EQ(countOf(text, "\n"), 1u + 3u + 1u) << text;  // the phase, at 10, 20, 30 s, done
+    EXPECT_EQ(test::occurrences(text, "\n"), 1u + 3u + 1u) << text;  // the phase, at 10, 20, 30 s, done
     EXPECT_NE(text.find("rendering:  20%, ETA 40s (elapsed 10s), 5120 rays/s\n"), std::string::npos) << text;
     EXPECT_NE(text.find("rendering: done in 35s"), std::string::npos) << text;
     EXPECT_EQ(text.find('\r'), std::string::npos) << text;
@@ -69,8 +64,8 @@ TEST(Progress, LiveStyleStaysSilentForTwoSecondsThenRedrawsOneLine) {
     progress.advance(1);
     progress.finish();
     const std::string text = t.text();
-    EXPECT_EQ(countOf(text, "\r\033[K"), 3u) << text;  // two redraws and the final line
-    EXPECT_EQ(countOf(text, "\n"), 1u) << text;
+    EXPECT_EQ(test::occurrences(text, "\r\033[K"), 3u) << text;  // two redraws and the final line
+    EXPECT_EQ(test::occurrences(text, "\n"), 1u) << text;
     EXPECT_NE(text.find("building:  40%"), std::string::npos) << text;
 }
 
