@@ -2,7 +2,6 @@
 
 #include "accel/bvh/bvh_accelerator.h"
 #include "accel/bvh/bvh_env.h"
-#include "accel/bvh/wide_bvh_accelerator.h"
 #include "accel/embree/embree_accelerator.h"
 #include "accel/embree/embree_env.h"
 #include "accel/naive/naive_accelerator.h"
@@ -22,17 +21,29 @@ const std::vector<AcceleratorInfo>& acceleratorInfos() {
          [](const Env& env) { return std::make_unique<EmbreeAccelerator>(env); }},
         {"tdbvh", "BVH by spatial median: the middle of the longest axis (BVH::tdbvhSplit), object median fallback",
          bvhEnvKeys(BvhKind::SpatialMedian),
-         [](const Env& env) { return std::make_unique<BvhAccelerator>(BvhKind::SpatialMedian, bvhConfigFromEnv(env)); }},
+         [](const Env& env) {
+             return std::make_unique<BvhAccelerator<Bvh>>(BvhKind::SpatialMedian, bvhConfigFromEnv(env),
+                                                          traversalConfigFromEnv(env));
+         }},
         {"sahbvh", "BVH by binned SAH (Wald 2007): BVH::bins bins along the widest centre axis, SSE binning",
          bvhEnvKeys(BvhKind::BinnedSah),
-         [](const Env& env) { return std::make_unique<BvhAccelerator>(BvhKind::BinnedSah, bvhConfigFromEnv(env)); }},
+         [](const Env& env) {
+             return std::make_unique<BvhAccelerator<Bvh>>(BvhKind::BinnedSah, bvhConfigFromEnv(env),
+                                                          traversalConfigFromEnv(env));
+         }},
         {"sahbvh4",
          "sahbvh's tree collapsed into 4-wide nodes, four child boxes tested at once (SSE); N_TR counts wide steps",
          bvhEnvKeys(BvhKind::BinnedSah),
-         [](const Env& env) { return std::make_unique<WideBvhAccelerator>(BvhKind::BinnedSah, bvhConfigFromEnv(env)); }},
+         [](const Env& env) {
+             return std::make_unique<BvhAccelerator<WideBvh<4>>>(BvhKind::BinnedSah, bvhConfigFromEnv(env),
+                                                                 traversalConfigFromEnv(env));
+         }},
         {"sweepbvh", "BVH by full-sweep SAH over all N-1 planes per axis: the exact reference for sahbvh; slow build",
          bvhEnvKeys(BvhKind::SweepSah),
-         [](const Env& env) { return std::make_unique<BvhAccelerator>(BvhKind::SweepSah, bvhConfigFromEnv(env)); }},
+         [](const Env& env) {
+             return std::make_unique<BvhAccelerator<Bvh>>(BvhKind::SweepSah, bvhConfigFromEnv(env),
+                                                          traversalConfigFromEnv(env));
+         }},
     };
     return infos;
 }

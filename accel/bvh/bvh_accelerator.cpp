@@ -1,13 +1,17 @@
 #include "accel/bvh/bvh_accelerator.h"
 
 #include "accel/bvh/traverse/bvh_traversal.h"
+#include "accel/bvh/traverse/wide_bvh_traversal.h"
 
 #include <chrono>
+#include <type_traits>
 
 namespace bvhlab {
 
-std::string_view BvhAccelerator::name() const {
-    switch (kind_) {
+namespace {
+
+const char* builderName(BvhKind kind) {
+    switch (kind) {
     case BvhKind::SpatialMedian: return "tdbvh";
     case BvhKind::BinnedSah: return "sahbvh";
     case BvhKind::SweepSah: return "sweepbvh";
@@ -15,28 +19,60 @@ std::string_view BvhAccelerator::name() const {
     return "bvh";
 }
 
-BuildStats BvhAccelerator::build(const PrimitiveSet& prims) {
+template <typename Layout>
+struct LayoutWidth {
+    static constexpr int value = 2;
+};
+template <int N>
+struct LayoutWidth<WideBvh<N>> {
+    static constexpr int value = N;
+};
+
+}  // namespace
+
+template <typename Layout>
+BvhAccelerator<Layout>::BvhAccelerator(BvhKind kind, const BvhBuildConfig& build, const TraversalConfig& traversal)
+    : kind_(kind), build_(build), traversal_(traversal), name_(builderName(kind)) {
+    if constexpr (LayoutWidth<Layout>::value > 2) name_ += std::to_string(LayoutWidth<Layout>::value);
+}
+
+template <typename Layout>
+BuildStats BvhAccelerator<Layout>::build(const PrimitiveSet& prims) {
     // Build time: from the first read of the triangles (PrimRef preparation: boxes and centre
     // bounds) to the finished node array and leaf arrays (primitive indices and the triangles
-    // copied in leaf order). The statistics below are not part of it.
-    bvh_ = Bvh();
+    // copied in leaf order), including a collapse. The statistics are not part of it.
+    tree_ = Layout();
     const auto start = std::chrono::steady_clock::now();
-    bvh_ = buildBvh(kind_, config_, prims);
+    Bvh binary = buildBvh(kind_, build_, prims);
+    const auto built = std::chrono::steady_clock::now();
+    BuildStats stats;
+    fillTreeStats(binary, build_.cTraversal, build_.cIntersect, stats);
+    const auto statsEnd = std::chrono::steady_clock::now();
+    if constexpr (std::is_same_v<Layout, Bvh>) {
+        tree_ = std::move(binary);
+    } else {
+        tree_ = collapseToWide<LayoutWidth<Layout>::value>(std::move(binary));
+    }
     const auto end = std::chrono::steady_clock::now();
 
-    BuildStats stats;
-    stats.buildMs = std::chrono::duration<double, std::milli>(end - start).count();
+    stats.buildMs = std::chrono::duration<double, std::milli>((built - start) + (end - statsEnd)).count();
     stats.primitives = prims.valid.size();
-    fillTreeStats(bvh_, config_.cTraversal, config_.cIntersect, stats);
+    stats.bytes = tree_.bytes();
     return stats;
 }
 
-bool BvhAccelerator::findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const {
-    return bvhFindNearest(bvh_, ray, hit, counters, config_.robust);
+template <typename Layout>
+bool BvhAccelerator<Layout>::findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const {
+    return bvhlab::findNearest(tree_, ray, hit, counters, traversal_);
 }
 
-bool BvhAccelerator::isOccluded(const Ray& ray, QueryCounters& counters) const {
-    return bvhIsOccluded(bvh_, ray, counters, config_.robust);
+template <typename Layout>
+bool BvhAccelerator<Layout>::isOccluded(const Ray& ray, QueryCounters& counters) const {
+    return bvhlab::isOccluded(tree_, ray, counters, traversal_);
 }
+
+template class BvhAccelerator<Bvh>;
+template class BvhAccelerator<WideBvh<4>>;
+template class BvhAccelerator<WideBvh<8>>;
 
 }  // namespace bvhlab

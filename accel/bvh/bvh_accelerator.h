@@ -1,28 +1,43 @@
-// The BVH accelerators behind our interface: one class, one node layout and one traversal,
-// parameterised by the builder (tdbvh, sahbvh, sweepbvh).
+// The BVH accelerators behind our interface: one class over a node layout, parameterised by the
+// builder (tdbvh, sahbvh, sweepbvh) and the traversal setting. Layout = Bvh is the binary tree
+// the builders emit; Layout = WideBvh<N> collapses it into N-wide nodes (sahbvh4: N = 4), with
+// the same leaves and env keys, so the two measure what the node width buys.
 #pragma once
 
 #include "accel/bvh/build/bvh_builder.h"
+#include "accel/bvh/layout/wide_bvh.h"
+#include "accel/bvh/traverse/traversal_config.h"
 #include "framework/core/accelerator.h"
+
+#include <string>
 
 namespace bvhlab {
 
+template <typename Layout>
 class BvhAccelerator final : public Accelerator {
 public:
-    BvhAccelerator(BvhKind kind, const BvhBuildConfig& config) : kind_(kind), config_(config) {}
+    BvhAccelerator(BvhKind kind, const BvhBuildConfig& build, const TraversalConfig& traversal = {});
 
-    std::string_view name() const override;
+    std::string_view name() const override { return name_; }
+    // Build time includes a collapse to wide nodes. #Nodes, #Leaves, depth and SAH are the
+    // binary tree's (the same formula for every builder); memory is the layout's.
     BuildStats build(const PrimitiveSet& prims) override;
     bool findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const override;
     bool isOccluded(const Ray& ray, QueryCounters& counters) const override;
 
-    const Bvh& bvh() const { return bvh_; }
-    const BvhBuildConfig& config() const { return config_; }
+    const Layout& bvh() const { return tree_; }
 
 private:
     BvhKind kind_;
-    BvhBuildConfig config_;
-    Bvh bvh_;
+    BvhBuildConfig build_;
+    TraversalConfig traversal_;
+    std::string name_;  // the builder's name, with the width of a wide layout: sahbvh, sahbvh4
+    Layout tree_;
 };
+
+// Instantiated for these layouts.
+extern template class BvhAccelerator<Bvh>;
+extern template class BvhAccelerator<WideBvh<4>>;
+extern template class BvhAccelerator<WideBvh<8>>;
 
 }  // namespace bvhlab

@@ -5,7 +5,7 @@ namespace bvhlab {
 void registerBvhKeys(EnvRegistry& r) {
     using namespace keys::BVH;
     for (const IntKey& key : {maxLeaf, leafCap, bins}) r.add(key);
-    for (const BoolKey& key : {sahTermination, allAxes, simd, robust}) r.add(key);
+    for (const BoolKey& key : {sahTermination, allAxes, keys::BVH::simd, robust}) r.add(key);
     for (const FloatKey& key : {cTraversal, cIntersect}) r.add(key);
     r.add(tdbvhSplit);
 }
@@ -13,7 +13,7 @@ void registerBvhKeys(EnvRegistry& r) {
 std::vector<std::string> bvhEnvKeys(BvhKind kind) {
     using namespace keys::BVH;
     std::vector<std::string_view> read = {maxLeaf.name(), leafCap.name(), cTraversal.name(),
-                                          cIntersect.name(), simd.name(), robust.name()};
+                                          cIntersect.name(), keys::BVH::simd.name(), robust.name()};
     switch (kind) {
     case BvhKind::SpatialMedian: read.push_back(tdbvhSplit.name()); break;
     case BvhKind::BinnedSah: read.insert(read.end(), {sahTermination.name(), bins.name(), allAxes.name()}); break;
@@ -32,9 +32,14 @@ BvhBuildConfig bvhConfigFromEnv(const Env& env) {
     c.cIntersect = env.get(cIntersect);
     c.bins = env.get(bins);
     c.allAxes = env.get(allAxes);
-    c.simd = env.get(simd);
-    c.robust = env.get(robust);
+    c.simd = env.get(keys::BVH::simd);
     c.medianSplitBox = env.get(tdbvhSplit) == "nodebox" ? MedianSplitBox::NodeBox : MedianSplitBox::CentroidBox;
+    return c;
+}
+
+TraversalConfig traversalConfigFromEnv(const Env& env) {
+    TraversalConfig c;
+    c.robust = env.get(keys::BVH::robust);
     return c;
 }
 

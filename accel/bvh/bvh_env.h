@@ -2,6 +2,7 @@
 #pragma once
 
 #include "accel/bvh/build/bvh_builder.h"
+#include "accel/bvh/traverse/traversal_config.h"
 #include "framework/config/env.h"
 
 #include <string>
@@ -44,5 +45,6 @@ void registerBvhKeys(EnvRegistry& registry);
 std::vector<std::string> bvhEnvKeys(BvhKind kind);
 
 BvhBuildConfig bvhConfigFromEnv(const Env& env);
+TraversalConfig traversalConfigFromEnv(const Env& env);
 
 }  // namespace bvhlab

@@ -13,11 +13,11 @@ constexpr float kBinEpsilon = 1e-5f;
 // Wald's binID = k1 * (c - k0), computed on doubled coordinates: c2 = lower + upper is twice
 // the box centre (k0 and k1 are set up for it), and c2 - k0 leaves no multiply-add for the
 // compiler to fuse. That matters: the index must come out bit for bit the same in binning and
-// in partitioning, in scalar and in SSE code, or a primitive would change sides. Centres are
+// in partitioning, in every SIMD backend, or a primitive would change sides. Centres are
 // never below k0 (their minimum): the clamp at 0 only keeps a bug from writing out of bounds.
 inline uint32_t binOf(const PrimRef& r, int axis, float k0, float k1, float maxBin) {
     const float c2 = r.lower[axis] + r.upper[axis];
-    return uint32_t(int(minSse(maxSse((c2 - k0) * k1, 0.0f), maxBin)));
+    return uint32_t(int(simd::min(simd::max((c2 - k0) * k1, 0.0f), maxBin)));
 }
 
 inline float halfArea(const float* lower, const float* upper) {
@@ -25,31 +25,28 @@ inline float halfArea(const float* lower, const float* upper) {
     return dx * dy + dy * dz + dz * dx;
 }
 
-}  // namespace
-
-// The box of the bins swept so far, grown bin by bin (SSE or scalar, the same result); its
-// half area is computed by the same scalar code on both paths.
-struct BinnedSahBuilder::GrowingBox {
+// The box of the bins swept so far, grown bin by bin in lanes of F; its half area is computed
+// by the same scalar code for every backend.
+template <typename F>
+struct GrowingBox {
     alignas(16) float lower[4] = {kInfinity, kInfinity, kInfinity, kInfinity};
     alignas(16) float upper[4] = {-kInfinity, -kInfinity, -kInfinity, -kInfinity};
-    bool simd;
 
-    explicit GrowingBox(bool simd) : simd(simd) {}
-    float grow(const Bin& bin) {
-#if BVHLAB_BVH_SSE
-        if (simd) {
-            _mm_store_ps(lower, _mm_min_ps(_mm_load_ps(lower), _mm_load_ps(bin.lower)));
-            _mm_store_ps(upper, _mm_max_ps(_mm_load_ps(upper), _mm_load_ps(bin.upper)));
-            return halfArea(lower, upper);
-        }
-#endif
-        for (int a = 0; a < 3; ++a) {
-            lower[a] = minSse(lower[a], bin.lower[a]);
-            upper[a] = maxSse(upper[a], bin.upper[a]);
-        }
+    float grow(const float* binLower, const float* binUpper) {
+        min(F::load(lower), F::load(binLower)).store(lower);
+        max(F::load(upper), F::load(binUpper)).store(upper);
         return halfArea(lower, upper);
     }
 };
+
+// Adds a primitive's box to a bin's.
+template <typename F>
+inline void growBin(float* binLower, float* binUpper, F lo, F hi) {
+    min(F::load(binLower), lo).store(binLower);
+    max(F::load(binUpper), hi).store(binUpper);
+}
+
+}  // namespace
 
 BinnedSahBuilder::BinnedSahBuilder(const BvhBuildConfig& config)
     : TopDownBuilder(config),
@@ -60,81 +57,39 @@ BinnedSahBuilder::BinnedSahBuilder(const BvhBuildConfig& config)
       rightArea_(binCount_),
       rightCount_(binCount_) {}
 
+template <typename F>
 void BinnedSahBuilder::binOneAxis(const BuildRange& range, const AxisBinning& b) {
     Bin* const bins = binsOf(b.axis);
     uint32_t* const counts = countsOf(b.axis);
     const PrimRef* refs = refs_.data();
     const float maxBin = maxBin_;
-#if BVHLAB_BVH_SSE
-    if (config_.simd) {
-        for (uint32_t i = range.begin; i < range.end; ++i) {
-            const PrimRef& r = refs[i];
-            const uint32_t k = binOf(r, b.axis, b.k0, b.k1, maxBin);
-            Bin& bin = bins[k];
-            _mm_store_ps(bin.lower, _mm_min_ps(_mm_load_ps(bin.lower), _mm_load_ps(r.lower)));
-            _mm_store_ps(bin.upper, _mm_max_ps(_mm_load_ps(bin.upper), _mm_load_ps(r.upper)));
-            ++counts[k];
-        }
-        return;
-    }
-#endif
     for (uint32_t i = range.begin; i < range.end; ++i) {
         const PrimRef& r = refs[i];
         const uint32_t k = binOf(r, b.axis, b.k0, b.k1, maxBin);
-        Bin& bin = bins[k];
-        for (int a = 0; a < 3; ++a) {
-            bin.lower[a] = minSse(bin.lower[a], r.lower[a]);
-            bin.upper[a] = maxSse(bin.upper[a], r.upper[a]);
-        }
+        growBin(bins[k].lower, bins[k].upper, F::load(r.lower), F::load(r.upper));
         ++counts[k];
     }
 }
 
+template <typename F>
 void BinnedSahBuilder::binAllAxes(const BuildRange& range, const AxisBinning (&b)[3]) {
     const PrimRef* refs = refs_.data();
     // Local pointers: the stores into the bins could otherwise alias this builder's members.
     Bin* const bins[3] = {binsOf(0), binsOf(1), binsOf(2)};
     uint32_t* const counts[3] = {countsOf(0), countsOf(1), countsOf(2)};
-    const float maxBinScalar = maxBin_;
-#if BVHLAB_BVH_SSE
-    if (config_.simd) {
-        // All three bin indices at once, lane by lane the operations of binOf.
-        const __m128 k0 = _mm_setr_ps(b[0].k0, b[1].k0, b[2].k0, 0.0f);
-        const __m128 k1 = _mm_setr_ps(b[0].k1, b[1].k1, b[2].k1, 0.0f);
-        const __m128 maxBin = _mm_set1_ps(maxBinScalar), zero = _mm_setzero_ps();
-        for (uint32_t i = range.begin; i < range.end; ++i) {
-            const __m128 lo = _mm_load_ps(refs[i].lower), hi = _mm_load_ps(refs[i].upper);
-            const __m128 scaled = _mm_max_ps(_mm_mul_ps(_mm_sub_ps(_mm_add_ps(lo, hi), k0), k1), zero);
-            const __m128i k = _mm_cvttps_epi32(_mm_min_ps(scaled, maxBin));
-            const uint32_t kx = uint32_t(_mm_cvtsi128_si32(k));
-            const uint32_t ky = uint32_t(_mm_cvtsi128_si32(_mm_shuffle_epi32(k, 1)));
-            const uint32_t kz = uint32_t(_mm_cvtsi128_si32(_mm_shuffle_epi32(k, 2)));
-            Bin& bx = bins[0][kx];
-            Bin& by = bins[1][ky];
-            Bin& bz = bins[2][kz];
-            _mm_store_ps(bx.lower, _mm_min_ps(_mm_load_ps(bx.lower), lo));
-            _mm_store_ps(bx.upper, _mm_max_ps(_mm_load_ps(bx.upper), hi));
-            _mm_store_ps(by.lower, _mm_min_ps(_mm_load_ps(by.lower), lo));
-            _mm_store_ps(by.upper, _mm_max_ps(_mm_load_ps(by.upper), hi));
-            _mm_store_ps(bz.lower, _mm_min_ps(_mm_load_ps(bz.lower), lo));
-            _mm_store_ps(bz.upper, _mm_max_ps(_mm_load_ps(bz.upper), hi));
-            ++counts[0][kx];
-            ++counts[1][ky];
-            ++counts[2][kz];
-        }
-        return;
-    }
-#endif
+    // All three bin indices at once, lane by lane the operations of binOf.
+    alignas(16) const float k0s[4] = {b[0].k0, b[1].k0, b[2].k0, 0.0f};
+    alignas(16) const float k1s[4] = {b[0].k1, b[1].k1, b[2].k1, 0.0f};
+    const F k0 = F::load(k0s), k1 = F::load(k1s);
+    const F maxBin = F::broadcast(maxBin_), zero = F::broadcast(0.0f);
     for (uint32_t i = range.begin; i < range.end; ++i) {
-        const PrimRef& r = refs[i];
+        const F lo = F::load(refs[i].lower), hi = F::load(refs[i].upper);
+        int32_t k[4];
+        min(max((lo + hi - k0) * k1, zero), maxBin).truncateToInt(k);
         for (int axis = 0; axis < 3; ++axis) {
-            const uint32_t k = binOf(r, axis, b[axis].k0, b[axis].k1, maxBinScalar);
-            Bin& bin = bins[axis][k];
-            for (int a = 0; a < 3; ++a) {
-                bin.lower[a] = minSse(bin.lower[a], r.lower[a]);
-                bin.upper[a] = maxSse(bin.upper[a], r.upper[a]);
-            }
-            ++counts[axis][k];
+            Bin& bin = bins[axis][k[axis]];
+            growBin(bin.lower, bin.upper, lo, hi);
+            ++counts[axis][k[axis]];
         }
     }
 }
@@ -142,27 +97,28 @@ void BinnedSahBuilder::binAllAxes(const BuildRange& range, const AxisBinning (&b
 // Suffix sweep from the right stores A_R and N_R per plane; the prefix sweep from the left
 // then prices every plane. Plane p separates bins [0, p) from [p, K). Empty bins change
 // nothing (deep in the tree most of them are empty), so they are skipped.
+template <typename F>
 void BinnedSahBuilder::sweep(int axis, PlaneChoice& best) {
     const Bin* bins = binsOf(axis);
     const uint32_t* counts = countsOf(axis);
-    GrowingBox box(config_.simd);
+    GrowingBox<F> box;
     uint32_t count = 0;
     float area = 0.0f;
     for (uint32_t p = binCount_ - 1; p > 0; --p) {
         if (counts[p] != 0) {
             count += counts[p];
-            area = box.grow(bins[p]);
+            area = box.grow(bins[p].lower, bins[p].upper);
         }
         rightArea_[p] = area;
         rightCount_[p] = count;
     }
-    box = GrowingBox(config_.simd);
+    box = GrowingBox<F>();
     count = 0;
     area = 0.0f;
     for (uint32_t p = 1; p < binCount_; ++p) {
         if (counts[p - 1] != 0) {
             count += counts[p - 1];
-            area = box.grow(bins[p - 1]);
+            area = box.grow(bins[p - 1].lower, bins[p - 1].upper);
         }
         if (count == 0 || rightCount_[p] == 0) continue;
         const float cost = area * float(count) + rightArea_[p] * float(rightCount_[p]);
@@ -171,6 +127,11 @@ void BinnedSahBuilder::sweep(int axis, PlaneChoice& best) {
 }
 
 std::optional<Split> BinnedSahBuilder::trySplit(const BuildRange& range, bool mayBeLeaf) {
+    return simd::withFloats4(config_.simd, [&](auto f) { return trySplitWith<decltype(f)>(range, mayBeLeaf); });
+}
+
+template <typename F>
+std::optional<Split> BinnedSahBuilder::trySplitWith(const BuildRange& range, bool mayBeLeaf) {
     const Bounds3& cb = range.centroidBounds;
     const uint32_t K = binCount_;
 
@@ -198,14 +159,14 @@ std::optional<Split> BinnedSahBuilder::trySplit(const BuildRange& range, bool ma
         std::fill_n(countsOf(axis), K, 0u);
     }
     if (config_.allAxes) {
-        binAllAxes(range, binning);
+        binAllAxes<F>(range, binning);
     } else {
-        binOneAxis(range, binning[widest]);
+        binOneAxis<F>(range, binning[widest]);
     }
 
     PlaneChoice best{kInfinity, -1, 0};
     for (int axis = 0; axis < 3; ++axis) {
-        if (active[axis]) sweep(axis, best);
+        if (active[axis]) sweep<F>(axis, best);
     }
     if (best.axis < 0) return std::nullopt;
     if (mayBeLeaf && config_.sahTermination && sahPrefersLeaf(range, best.cost)) return std::nullopt;

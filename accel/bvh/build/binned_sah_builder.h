@@ -3,8 +3,8 @@
 //   binID = k1 * (c - k0),  k0 = cb_min,  k1 = K * (1 - eps) / (cb_max - cb_min);
 // each bin keeps the box and the count of its primitives. Sweeps from both ends over the K-1
 // planes between bins give A_L, N_L, A_R, N_R; the cheapest plane by A_L*N_L + A_R*N_R wins,
-// and the range is partitioned in place around it. Binning and partition run in SSE or in
-// scalar code (config.simd) with identical results.
+// and the range is partitioned in place around it. Binning and partition run with the SIMD
+// layer's vector or scalar backend (config.simd), with identical results.
 #pragma once
 
 #include "accel/bvh/build/bvh_builder.h"
@@ -36,10 +36,14 @@ private:
         uint32_t plane;  // bins [0, plane) go left
     };
 
-    struct GrowingBox;
-
+    // The split in lanes of F (simd::Floats<4> or simd::Scalar<4>, per config.simd).
+    template <typename F>
+    std::optional<Split> trySplitWith(const BuildRange& range, bool mayBeLeaf);
+    template <typename F>
     void binOneAxis(const BuildRange& range, const AxisBinning& binning);
+    template <typename F>
     void binAllAxes(const BuildRange& range, const AxisBinning (&binning)[3]);
+    template <typename F>
     void sweep(int axis, PlaneChoice& best);
 
     Bin* binsOf(int axis) { return bins_.data() + uint32_t(axis) * binCount_; }

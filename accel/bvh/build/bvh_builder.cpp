@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cassert>
 #include <stdexcept>
 
 namespace bvhlab {
@@ -32,12 +33,10 @@ bool TopDownBuilder::sahPrefersLeaf(const BuildRange& range, float splitCost) co
 
 Split TopDownBuilder::splitAtIndex(const BuildRange& range, uint32_t mid) {
     const PrimRef* refs = refs_.data();
-    if (config_.simd) {
-        return {boundsOf<SseBoundsAccumulator>(refs, range.begin, mid),
-                boundsOf<SseBoundsAccumulator>(refs, mid, range.end)};
-    }
-    return {boundsOf<ScalarBoundsAccumulator>(refs, range.begin, mid),
-            boundsOf<ScalarBoundsAccumulator>(refs, mid, range.end)};
+    return simd::withFloats4(config_.simd, [&](auto f) {
+        using Accumulator = BoundsAccumulator<decltype(f)>;
+        return Split{boundsOf<Accumulator>(refs, range.begin, mid), boundsOf<Accumulator>(refs, mid, range.end)};
+    });
 }
 
 Split TopDownBuilder::objectMedianSplit(const BuildRange& range, int axis) {
@@ -95,6 +94,7 @@ std::vector<BvhNode, TraversalAllocator<BvhNode>> TopDownBuilder::build(std::spa
         node.setBox(item.range.bounds);
         const std::optional<Split> split = chooseSplit(item.range, item.depth);
         if (!split) {
+            assert(item.range.size() > 0);  // an empty leaf would read as an inner node (count == 0)
             node.index = item.range.begin;
             node.count = item.range.size();
             continue;
@@ -117,43 +117,22 @@ std::vector<BvhNode, TraversalAllocator<BvhNode>> TopDownBuilder::build(std::spa
 
 namespace {
 
-// Step one of buildBvh: one PrimRef per valid triangle, and their boxes.
-BuildRange preparePrimRefs(const PrimitiveSet& prims, bool simd, PrimRef* out) {
+// Step one of buildBvh: one PrimRef per valid triangle, and their boxes, in lanes of F.
+template <typename F>
+BuildRange preparePrimRefs(const PrimitiveSet& prims, PrimRef* out) {
     const uint32_t n = uint32_t(prims.valid.size());
     const Triangle* triangles = prims.triangles.data();
     const uint32_t* valid = prims.valid.data();
-#if BVHLAB_BVH_SSE
-    if (simd) {
-        SseBoundsAccumulator acc;
-        for (uint32_t i = 0; i < n; ++i) {
-            const uint32_t prim = valid[i];
-            const Triangle& t = triangles[prim];
-            // Unaligned 4-float loads; v2 is loaded from v1.z onwards and shifted down, so that
-            // no load reads past the triangle (the last one may end the array).
-            const __m128 v0 = _mm_loadu_ps(&t.v0.x);
-            const __m128 v1 = _mm_loadu_ps(&t.v1.x);
-            const __m128 v2s = _mm_loadu_ps(&t.v1.z);
-            const __m128 v2 = _mm_shuffle_ps(v2s, v2s, _MM_SHUFFLE(3, 3, 2, 1));
-            PrimRef& ref = out[i];
-            _mm_store_ps(ref.lower, _mm_min_ps(_mm_min_ps(v0, v1), v2));
-            _mm_store_ps(ref.upper, _mm_max_ps(_mm_max_ps(v0, v1), v2));
-            ref.prim = prim;
-            ref.pad = 0;
-            acc.add(ref);
-        }
-        return {0, n, acc.bounds(), acc.centroidBounds()};
-    }
-#endif
-    (void)simd;
-    ScalarBoundsAccumulator acc;
+    BoundsAccumulator<F> acc;
     for (uint32_t i = 0; i < n; ++i) {
         const uint32_t prim = valid[i];
         const Triangle& t = triangles[prim];
+        // Unaligned 4-float loads (lane 3 is ignored); none reads past the triangle, which may
+        // end the array.
+        const F v0 = F::loadu(&t.v0.x), v1 = F::loadu(&t.v1.x), v2 = F::loadLast3(&t.v2.x);
         PrimRef& ref = out[i];
-        for (int a = 0; a < 3; ++a) {
-            ref.lower[a] = minSse(minSse(t.v0[a], t.v1[a]), t.v2[a]);
-            ref.upper[a] = maxSse(maxSse(t.v0[a], t.v1[a]), t.v2[a]);
-        }
+        min(min(v0, v1), v2).store(ref.lower);
+        max(max(v0, v1), v2).store(ref.upper);
         ref.prim = prim;
         ref.pad = 0;
         acc.add(ref);
@@ -177,7 +156,8 @@ Bvh buildBvh(BvhKind kind, const BvhBuildConfig& config, const PrimitiveSet& pri
     const size_t n = prims.valid.size();
     // Uninitialised storage: every PrimRef is written by preparePrimRefs.
     const std::unique_ptr<PrimRef[]> refs = std::make_unique_for_overwrite<PrimRef[]>(n);
-    const BuildRange root = preparePrimRefs(prims, config.simd, refs.get());
+    const BuildRange root = simd::withFloats4(
+        config.simd, [&](auto f) { return preparePrimRefs<decltype(f)>(prims, refs.get()); });
 
     Bvh bvh;
     bvh.nodes = makeBvhBuilder(kind, config)->build({refs.get(), n}, root);

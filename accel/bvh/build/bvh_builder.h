@@ -35,10 +35,9 @@ struct BvhBuildConfig {
     float cIntersect = 1.0f;     // ... the cost of one ray-triangle test
     int bins = 16;               // binned SAH: bins per axis; more bins approach the sweep, slower
     bool allAxes = false;        // binned SAH: bin all three axes and take the best, not the widest
-    bool simd = true;            // SSE in the hot loops (prep, binning, partition); false = scalar
+    bool simd = true;            // SIMD in the hot loops (prep, binning, partition); false = the
+                                 // scalar backend of the same code, the same tree
     MedianSplitBox medianSplitBox = MedianSplitBox::CentroidBox;  // tdbvh: which box's longest axis is halved
-    bool robust = true;  // traversal, not build: watertight triangles and conservative boxes;
-                         // false = Moeller-Trumbore and plain boxes, to measure what robustness costs
 
     uint32_t effectiveLeafCap() const { return uint32_t(std::max(maxLeaf, leafCap)); }
 };
@@ -77,7 +76,7 @@ protected:
     bool sahPrefersLeaf(const BuildRange& range, float splitCost) const;
 
     // Moves the primitives for which isLeft(ref) holds to the front; computes both halves' boxes
-    // in the same pass (SIMD or scalar per config). Halves may be empty.
+    // in the same pass (SIMD backend per config). Halves may be empty.
     template <typename IsLeft>
     Split partition(const BuildRange& range, IsLeft isLeft);
     // Splits at refs index `mid` as they lie, computing both halves' boxes.
@@ -121,8 +120,10 @@ Split TopDownBuilder::partition(const BuildRange& range, IsLeft isLeft) {
         return Split{{range.begin, l, leftAcc.bounds(), leftAcc.centroidBounds()},
                      {l, range.end, rightAcc.bounds(), rightAcc.centroidBounds()}};
     };
-    if (config_.simd) return run(SseBoundsAccumulator{}, SseBoundsAccumulator{});
-    return run(ScalarBoundsAccumulator{}, ScalarBoundsAccumulator{});
+    return simd::withFloats4(config_.simd, [&](auto f) {
+        using Accumulator = BoundsAccumulator<decltype(f)>;
+        return run(Accumulator{}, Accumulator{});
+    });
 }
 
 // The whole build: PrimRefs from the valid triangles (SIMD or scalar), the recursion of the

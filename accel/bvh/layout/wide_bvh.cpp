@@ -7,21 +7,23 @@ namespace bvhlab {
 
 namespace {
 
-WideNode emptyWideNode() {
-    WideNode n;
+template <int N>
+WideNode<N> emptyWideNode() {
+    WideNode<N> n;
     for (int a = 0; a < 3; ++a) {
-        std::fill_n(n.lower[a], WideNode::kWidth, kInfinity);
-        std::fill_n(n.upper[a], WideNode::kWidth, -kInfinity);
+        std::fill_n(n.lower[a], N, kInfinity);
+        std::fill_n(n.upper[a], N, -kInfinity);
     }
-    std::fill_n(n.child, WideNode::kWidth, 0u);
-    std::fill_n(n.count, WideNode::kWidth, 0u);
+    std::fill_n(n.child, N, 0u);
+    std::fill_n(n.count, N, 0u);
     return n;
 }
 
 }  // namespace
 
-WideBvh collapseToWide(Bvh&& bvh) {
-    WideBvh wide;
+template <int N>
+WideBvh<N> collapseToWide(Bvh&& bvh) {
+    WideBvh<N> wide;
     wide.primIndices = std::move(bvh.primIndices);
     wide.leafTriangles = std::move(bvh.leafTriangles);
     if (bvh.empty()) return wide;
@@ -34,9 +36,9 @@ WideBvh collapseToWide(Bvh&& bvh) {
         uint32_t slot;
     };
     std::vector<Work> stack;
-    wide.nodes.push_back(emptyWideNode());
+    wide.nodes.push_back(emptyWideNode<N>());
     if (binary[0].isLeaf()) {
-        WideNode& root = wide.nodes[0];
+        WideNode<N>& root = wide.nodes[0];
         const Bounds3 b = binary[0].box();
         for (int a = 0; a < 3; ++a) root.lower[a][0] = b.lower[a], root.upper[a][0] = b.upper[a];
         root.child[0] = binary[0].index;
@@ -48,10 +50,10 @@ WideBvh collapseToWide(Bvh&& bvh) {
         const Work work = stack.back();
         stack.pop_back();
         // The children to gather: start with the binary node's two, open the largest inner one
-        // until there are four or only leaves remain.
-        uint32_t children[WideNode::kWidth] = {binary[work.binary].index, binary[work.binary].index + 1};
+        // until there are N or only leaves remain.
+        uint32_t children[N] = {binary[work.binary].index, binary[work.binary].index + 1};
         int n = 2;
-        while (n < WideNode::kWidth) {
+        while (n < N) {
             int open = -1;
             float largest = -1.0f;
             for (int i = 0; i < n; ++i) {
@@ -64,7 +66,7 @@ WideBvh collapseToWide(Bvh&& bvh) {
             children[open] = first;
             children[n++] = first + 1;
         }
-        WideNode node = emptyWideNode();
+        WideNode<N> node = emptyWideNode<N>();
         for (int i = 0; i < n; ++i) {
             const BvhNode& c = binary[children[i]];
             const Bounds3 b = c.box();
@@ -75,7 +77,7 @@ WideBvh collapseToWide(Bvh&& bvh) {
         for (int i = 0; i < n; ++i) {
             if (node.count[i] != 0) continue;
             node.child[i] = uint32_t(wide.nodes.size());
-            wide.nodes.push_back(emptyWideNode());
+            wide.nodes.push_back(emptyWideNode<N>());
             stack.push_back({children[i], node.child[i]});
         }
         wide.nodes[work.slot] = node;
@@ -83,5 +85,8 @@ WideBvh collapseToWide(Bvh&& bvh) {
     bvh = Bvh();
     return wide;
 }
+
+template WideBvh<4> collapseToWide<4>(Bvh&&);
+template WideBvh<8> collapseToWide<8>(Bvh&&);
 
 }  // namespace bvhlab

@@ -1,17 +1,102 @@
-// The traversal of the 4-wide BVH: per step one SSE test of a node's four child boxes (a
-// scalar loop where SSE is missing), the children hit pushed far to near, so the nearest is
-// visited first. The same box-test robustness (Ize's far-plane margin, NaN-free axis-parallel
-// rays) and the same leaf triangle test as the binary traversal.
-//
-// Counters: N_TR counts the steps, i.e. wide nodes and leaves visited (the root always);
-// N_IT the ray-triangle tests. N_TR is therefore not comparable with a binary tree's.
+// The traversal skeleton of the N-wide layout (wide_bvh.h), for either query: per step one SIMD
+// test of a node's N child boxes (box_test.h), the children hit pushed far to near, so that the
+// nearest is visited first. N_TR counts the steps, i.e. wide nodes and leaves visited.
 #pragma once
 
 #include "accel/bvh/layout/wide_bvh.h"
+#include "accel/bvh/traverse/box_test.h"
+#include "accel/bvh/traverse/traversal.h"
+
+#include <cassert>
 
 namespace bvhlab {
 
-bool wideBvhFindNearest(const WideBvh& bvh, const Ray& ray, Hit& hit, QueryCounters& counters, bool robust);
-bool wideBvhIsOccluded(const WideBvh& bvh, const Ray& ray, QueryCounters& counters, bool robust);
+namespace wide_traversal {
+
+// A child to visit: a wide node (count 0) or a leaf, and where the ray enters its box.
+struct StackEntry {
+    uint32_t child;
+    uint32_t count;
+    float entry;
+};
+
+// Each step pops one entry and pushes at most N: the stack never holds more than N - 1 per
+// level plus one (the wide tree is no deeper than the binary one).
+template <int N>
+inline constexpr int kStackSize = (N - 1) * kBvhMaxDepth + 1;
+
+// The next child to visit among the lanes in `mask` (not 0): the nearest. The others are
+// pushed far to near, so that the next nearest is popped first; what they will read starts
+// loading now.
+template <int N>
+inline StackEntry nextChild(const WideNode<N>& node, int mask, const float entry[N], StackEntry* stack, int& size,
+                            const WideNode<N>* nodes, const Triangle* triangles) {
+    const int first = __builtin_ctz(unsigned(mask));
+    mask &= mask - 1;
+    StackEntry nearest{node.child[first], node.count[first], entry[first]};
+    if (mask == 0) return nearest;  // the common case: one child hit
+    StackEntry hits[N];
+    int k = 0;
+    hits[k++] = nearest;
+    while (mask != 0) {
+        const int i = __builtin_ctz(unsigned(mask));
+        mask &= mask - 1;
+        const StackEntry e{node.child[i], node.count[i], entry[i]};
+        int j = k++;
+        for (; j > 0 && hits[j - 1].entry < e.entry; --j) hits[j] = hits[j - 1];
+        hits[j] = e;
+    }
+    assert(size + k - 1 <= kStackSize<N>);
+    for (int i = 0; i < k - 1; ++i) {
+        const StackEntry& e = hits[i];
+        __builtin_prefetch(e.count != 0 ? static_cast<const void*>(triangles + e.child)
+                                        : static_cast<const void*>(nodes + e.child));
+        stack[size++] = e;
+    }
+    return hits[k - 1];
+}
+
+}  // namespace wide_traversal
+
+template <typename Query, bool NegativeT, bool Robust, int N>
+Query traverse(const WideBvh<N>& bvh, const Ray& ray, QueryCounters& counters) {
+    using namespace wide_traversal;
+    const WideBoxTest<N, NegativeT, Robust> boxTest(ray);
+    const LeafTriangleTest<Robust> triangleTest(ray);
+    const WideNode<N>* nodes = bvh.nodes.data();
+    const Triangle* triangles = bvh.leafTriangles.data();
+    Query query(ray);
+
+    uint64_t steps = 0, tests = 0;
+    StackEntry stack[kStackSize<N>];
+    int size = 0;
+    StackEntry current{0, 0, ray.tmin};  // the root
+    for (;;) {
+        ++steps;
+        if (current.count == 0) {
+            const WideNode<N>& node = nodes[current.child];
+            float entry[N];
+            const int mask = boxTest.intersect(node, query.tmax, entry);
+            if (mask != 0) {
+                // Nearer first, for an any-hit query too: an occluder near the origin is found
+                // sooner.
+                current = nextChild(node, mask, entry, stack, size, nodes, triangles);
+                continue;
+            }
+        } else {
+            if (testLeaf(query, triangleTest, triangles, current.child, current.count, ray.tmin, tests)) break;
+        }
+        // Pop the next child the ray enters before the closest hit so far (an any-hit query
+        // never shortens its interval: nothing to skip).
+        if constexpr (!Query::kStopsAtFirstHit) {
+            while (size > 0 && stack[size - 1].entry > query.tmax) --size;
+        }
+        if (size == 0) break;
+        current = stack[--size];
+    }
+    counters.traversalSteps += steps;
+    counters.intersectionTests += tests;
+    return query;
+}
 
 }  // namespace bvhlab

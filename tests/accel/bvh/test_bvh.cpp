@@ -155,7 +155,7 @@ TreeFacts checkTree(const Bvh& bvh, const Soup& soup) {
 }
 
 // Builds, checks the tree and that BuildStats reports what the walk found.
-TreeFacts buildAndCheck(BvhAccelerator& accel, const Soup& soup) {
+TreeFacts buildAndCheck(BvhAccelerator<Bvh>& accel, const Soup& soup) {
     const BuildStats stats = accel.build(soup.prims());
     const TreeFacts facts = checkTree(accel.bvh(), soup);
     EXPECT_EQ(stats.primitives, soup.valid.size());
@@ -180,7 +180,7 @@ Ray randomRay(std::mt19937& rng, float extent) {
 }
 
 // Both queries against brute force on `count` rays.
-void expectAgreesWithNaive(const BvhAccelerator& accel, const Soup& soup, int count, float extent, uint32_t seed) {
+void expectAgreesWithNaive(const Accelerator& accel, const Soup& soup, int count, float extent, uint32_t seed) {
     NaiveAccelerator naive;
     naive.build(soup.prims());
     std::mt19937 rng(seed);
@@ -224,7 +224,7 @@ TEST(Bvh, InvariantsOnRandomScenes) {
             SCOPED_TRACE(std::string(kindName(kind)) + (simd ? " simd" : " scalar"));
             BvhBuildConfig config;
             config.simd = simd;
-            BvhAccelerator accel(kind, config);
+            BvhAccelerator<Bvh> accel(kind, config);
             buildAndCheck(accel, soup);
         }
     }
@@ -238,7 +238,7 @@ TEST(Bvh, InvariantsOnRandomScenes) {
     manyBins.bins = 256;
     for (const auto& [kind, config] : {std::pair{BvhKind::BinnedSah, allAxes}, std::pair{BvhKind::SpatialMedian, nodeBox},
                                        std::pair{BvhKind::BinnedSah, manyBins}}) {
-        BvhAccelerator accel(kind, config);
+        BvhAccelerator<Bvh> accel(kind, config);
         buildAndCheck(accel, soup);
     }
 }
@@ -247,9 +247,9 @@ TEST(Bvh, InvariantsOnRandomScenes) {
 // them it must give the same answers: it is a baseline for timing, not a different ray tracer.
 TEST(Bvh, NonRobustTraversalAgreesAwayFromEdges) {
     const Soup soup = randomSoup(3000, 5);
-    BvhBuildConfig config;
-    config.robust = false;
-    BvhAccelerator accel(BvhKind::BinnedSah, config);
+    TraversalConfig traversal;
+    traversal.robust = false;
+    BvhAccelerator<Bvh> accel(BvhKind::BinnedSah, defaultConfig(), traversal);
     buildAndCheck(accel, soup);
     expectAgreesWithNaive(accel, soup, 3000, 2.0f, 11);
 }
@@ -262,7 +262,7 @@ TEST(Bvh, TinyScenes) {
             BvhBuildConfig config;
             config.maxLeaf = 1;
             config.sahTermination = false;
-            BvhAccelerator accel(kind, config);
+            BvhAccelerator<Bvh> accel(kind, config);
             const TreeFacts facts = buildAndCheck(accel, soup);
             EXPECT_EQ(facts.leaves, n);
             // A ray at each triangle's centroid finds it (or one equally near).
@@ -298,7 +298,7 @@ TEST(Bvh, DegeneratePrimitivesAreNotBuiltOver) {
     Soup soup = randomSoup(50, 3);
     soup.valid = {4, 9, 10, 31, 49};
     for (BvhKind kind : kAllKinds) {
-        BvhAccelerator accel(kind, defaultConfig());
+        BvhAccelerator<Bvh> accel(kind, defaultConfig());
         buildAndCheck(accel, soup);
         expectAgreesWithNaive(accel, soup, 300, 10.0f, 5);
     }
@@ -309,7 +309,7 @@ TEST(Bvh, HundredThousandCoincidentTriangles) {
     for (int i = 0; i < 100000; ++i) soup.add({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
     for (BvhKind kind : kAllKinds) {
         SCOPED_TRACE(kindName(kind));
-        BvhAccelerator accel(kind, defaultConfig());
+        BvhAccelerator<Bvh> accel(kind, defaultConfig());
         const BuildStats stats = accel.build(soup.prims());
         EXPECT_LT(stats.buildMs, 2000.0);
         const TreeFacts facts = checkTree(accel.bvh(), soup);
@@ -330,7 +330,7 @@ TEST(Bvh, HundredThousandCoincidentTriangles) {
     strict.maxLeaf = 1;
     strict.leafCap = 1;
     strict.sahTermination = false;
-    BvhAccelerator accel(BvhKind::BinnedSah, strict);
+    BvhAccelerator<Bvh> accel(BvhKind::BinnedSah, strict);
     accel.build(soup.prims());
     EXPECT_EQ(checkTree(accel.bvh(), soup).maxLeaf, 1u);
 }
@@ -352,7 +352,7 @@ TEST(Bvh, CentresOnALineOnAPlaneAndClustered) {
                 if (kind != BvhKind::SpatialMedian && box == MedianSplitBox::NodeBox) continue;
                 BvhBuildConfig config;
                 config.medianSplitBox = box;
-                BvhAccelerator accel(kind, config);
+                BvhAccelerator<Bvh> accel(kind, config);
                 buildAndCheck(accel, *soup);
                 expectAgreesWithNaive(accel, *soup, 200, 100.0f, 13);
             }
@@ -375,7 +375,7 @@ TEST(Bvh, DepthStaysBoundedOnGeometricSpacing) {
             config.maxLeaf = 1;
             config.sahTermination = false;
             config.medianSplitBox = box;
-            BvhAccelerator accel(kind, config);
+            BvhAccelerator<Bvh> accel(kind, config);
             const TreeFacts facts = buildAndCheck(accel, soup);
             EXPECT_EQ(facts.leaves, soup.valid.size());
             EXPECT_LT(facts.maxDepth, kBvhMaxDepth);
@@ -389,7 +389,7 @@ TEST(Bvh, DepthStaysBoundedOnGeometricSpacing) {
 TEST(Bvh, SizesFromMicrometresToKilometres) {
     const Soup soup = mixedScaleSoup(3000, 17);
     for (BvhKind kind : kAllKinds) {
-        BvhAccelerator accel(kind, defaultConfig());
+        BvhAccelerator<Bvh> accel(kind, defaultConfig());
         buildAndCheck(accel, soup);
         expectAgreesWithNaive(accel, soup, 1000, 1000.0f, 19);
     }
@@ -401,7 +401,7 @@ TEST(Bvh, AgreesWithNaiveOnRandomRays) {
         for (int maxLeaf : {1, 4}) {
             BvhBuildConfig config;
             config.maxLeaf = maxLeaf;
-            BvhAccelerator accel(kind, config);
+            BvhAccelerator<Bvh> accel(kind, config);
             accel.build(soup.prims());
             expectAgreesWithNaive(accel, soup, 3000, 10.0f, 29);
         }
@@ -432,7 +432,7 @@ TEST(Bvh, AxisParallelRaysAlongBoxFaces) {
     for (BvhKind kind : kAllKinds) {
         BvhBuildConfig config;
         config.maxLeaf = 1;
-        BvhAccelerator accel(kind, config);
+        BvhAccelerator<Bvh> accel(kind, config);
         accel.build(soup.prims());
         int hits = 0;
         for (int axis = 0; axis < 3; ++axis) {
@@ -474,7 +474,7 @@ TEST(Bvh, FlatBoxesBehindTheOrigin) {
     std::mt19937 rng(53);
     std::uniform_real_distribution<float> u(-1.0f, 1.0f);
     for (BvhKind kind : kAllKinds) {
-        BvhAccelerator accel(kind, defaultConfig());
+        BvhAccelerator<Bvh> accel(kind, defaultConfig());
         accel.build(soup.prims());
         int hits = 0;
         for (int i = 0; i < 500; ++i) {
@@ -502,7 +502,7 @@ TEST(Bvh, NegativeTminCullsAxisParallelRaysLikeTminZero) {
     const Soup soup = randomSoup(3000, 29);  // in [-1, 11]^3
     std::mt19937 rng(31);
     std::uniform_real_distribution<float> across(0.0f, 10.0f);
-    BvhAccelerator accel(BvhKind::BinnedSah, defaultConfig());
+    BvhAccelerator<Bvh> accel(BvhKind::BinnedSah, defaultConfig());
     accel.build(soup.prims());
     for (int i = 0; i < 300; ++i) {
         const int axis = i % 3;
@@ -523,7 +523,7 @@ TEST(Bvh, NegativeTminCullsAxisParallelRaysLikeTminZero) {
 
 TEST(Bvh, InvalidRaysMissAndCountAQuery) {
     const Soup soup = randomSoup(100, 31);
-    BvhAccelerator accel(BvhKind::BinnedSah, defaultConfig());
+    BvhAccelerator<Bvh> accel(BvhKind::BinnedSah, defaultConfig());
     accel.build(soup.prims());
     Ray zero;
     zero.dir = Vec3(0.0f);
@@ -543,7 +543,7 @@ TEST(Bvh, InvalidRaysMissAndCountAQuery) {
 }
 
 double sahOf(BvhKind kind, const BvhBuildConfig& config, const Soup& soup) {
-    BvhAccelerator accel(kind, config);
+    BvhAccelerator<Bvh> accel(kind, config);
     return accel.build(soup.prims()).sah->cost;
 }
 
@@ -569,14 +569,14 @@ TEST(Bvh, SahTerminationMakesMultiPrimitiveLeaves) {
         BvhBuildConfig config;
         config.maxLeaf = 1;
         config.cTraversal = 2.0f;
-        BvhAccelerator accel(kind, config);
+        BvhAccelerator<Bvh> accel(kind, config);
         const BuildStats stats = accel.build(soup.prims());
         EXPECT_GT(*stats.avgLeafPrimitives, 1.5) << kindName(kind);
         EXPECT_LE(*stats.maxLeafPrimitives, size_t(config.leafCap));
         checkTree(accel.bvh(), soup);
 
         config.sahTermination = false;
-        BvhAccelerator single(kind, config);
+        BvhAccelerator<Bvh> single(kind, config);
         const BuildStats one = single.build(soup.prims());
         EXPECT_EQ(*one.leaves, soup.valid.size());
         EXPECT_EQ(*one.maxLeafPrimitives, 1u);
@@ -594,9 +594,9 @@ TEST(Bvh, SimdAndScalarBuildTheSameTree) {
                 if (allAxes && kind != BvhKind::BinnedSah) continue;
                 BvhBuildConfig config;
                 config.allAxes = allAxes;
-                BvhAccelerator simd(kind, config);
+                BvhAccelerator<Bvh> simd(kind, config);
                 config.simd = false;
-                BvhAccelerator scalar(kind, config);
+                BvhAccelerator<Bvh> scalar(kind, config);
                 simd.build(soup.prims());
                 scalar.build(soup.prims());
                 const Bvh &a = simd.bvh(), &b = scalar.bvh();
@@ -618,7 +618,7 @@ TEST(Bvh, SahCostFollowsTheStatedFormula) {
     config.maxLeaf = 1;
     config.cTraversal = 2.0f;
     config.cIntersect = 3.0f;
-    BvhAccelerator accel(BvhKind::BinnedSah, config);
+    BvhAccelerator<Bvh> accel(BvhKind::BinnedSah, config);
     const BuildStats stats = accel.build(soup.prims());
     ASSERT_EQ(*stats.nodes, 3u);
     const double rootArea = Bounds3({0, 0, 0}, {10, 10, 9}).halfArea();
@@ -639,7 +639,7 @@ TEST(Bvh, CountersCountVisitsAndTests) {
     BvhBuildConfig config;
     config.maxLeaf = 1;
     config.sahTermination = false;
-    BvhAccelerator accel(BvhKind::BinnedSah, config);
+    BvhAccelerator<Bvh> accel(BvhKind::BinnedSah, config);
     accel.build(soup.prims());
     QueryCounters counters;
     Hit hit;
@@ -701,15 +701,15 @@ TEST(WideBvh, CollapseKeepsEveryLeafOnce) {
             if (i != 1 && binary.nodes[i].isLeaf()) binaryLeaves.insert({binary.nodes[i].index, binary.nodes[i].count});
         }
         const std::vector<uint32_t> primIndices = binary.primIndices;
-        const WideBvh wide = collapseToWide(std::move(binary));
+        const WideBvh<4> wide = collapseToWide<4>(std::move(binary));
         EXPECT_EQ(wide.primIndices, primIndices);
         ASSERT_EQ(wide.leafTriangles.size(), n);
 
         std::multiset<std::pair<uint32_t, uint32_t>> wideLeaves;
         std::vector<int> parents(wide.nodes.size(), 0);
-        for (const WideNode& node : wide.nodes) {
+        for (const WideNode<4>& node : wide.nodes) {
             int used = 0;
-            for (int i = 0; i < WideNode::kWidth; ++i) {
+            for (int i = 0; i < WideNode<4>::kWidth; ++i) {
                 const bool empty = node.lower[0][i] > node.upper[0][i];
                 if (empty) {
                     EXPECT_EQ(node.count[i], 0u);
@@ -735,6 +735,25 @@ TEST(WideBvh, CollapseKeepsEveryLeafOnce) {
         EXPECT_EQ(wideLeaves, binaryLeaves);
         EXPECT_EQ(parents[0], 0);
         for (size_t i = 1; i < parents.size(); ++i) EXPECT_EQ(parents[i], 1) << "wide node " << i;
+    }
+}
+
+// The width is a template parameter: 4 (sahbvh4) and 8 are the same skeleton, robust or not.
+TEST(WideBvh, FourAndEightWideAgreeWithNaive) {
+    const Soup soup = randomSoup(3000, 53);
+    for (bool robust : {true, false}) {
+        SCOPED_TRACE(robust ? "robust" : "not robust");
+        TraversalConfig traversal;
+        traversal.robust = robust;
+        BvhAccelerator<WideBvh<4>> four(BvhKind::BinnedSah, defaultConfig(), traversal);
+        BvhAccelerator<WideBvh<8>> eight(BvhKind::BinnedSah, defaultConfig(), traversal);
+        four.build(soup.prims());
+        const BuildStats stats = eight.build(soup.prims());
+        EXPECT_EQ(four.name(), "sahbvh4");
+        EXPECT_EQ(eight.name(), "sahbvh8");
+        EXPECT_EQ(*stats.bytes, eight.bvh().bytes());
+        expectAgreesWithNaive(four, soup, 2000, 2.0f, 59);
+        expectAgreesWithNaive(eight, soup, 2000, 2.0f, 59);
     }
 }
 

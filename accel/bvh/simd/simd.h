@@ -1,0 +1,175 @@
+// The one SIMD layer of the BVH build and traversal: a few float operations on N lanes, in
+// three backends of the same API:
+//   Scalar<N>  plain C++, any N, any target: the reference, and what BVH::simd=false runs;
+//   Sse        4 lanes of SSE2, which every x86-64 CPU has;
+//   Avx        8 lanes of AVX2 (only where __AVX2__, e.g. -march=native on this machine).
+// Floats<N> is the best backend for N lanes on this target (Scalar<N> where there is none).
+// Every operation is one IEEE operation per lane, so the backends agree bit for bit (a test
+// runs them side by side, NaN and inf included): no tree and no hit depends on the backend.
+#pragma once
+
+#include <cstdint>
+
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
+
+namespace bvhlab::simd {
+
+// The NaN rule of every min and max in the BVH, that of SSE's minps/maxps: the second operand
+// unless the first compares less (greater). So min(NaN, b) = b, min(a, NaN) = NaN and
+// min(+0, -0) = -0. The box tests rely on it to drop NaN slab distances (box_test.h).
+inline float min(float a, float b) { return a < b ? a : b; }
+inline float max(float a, float b) { return a > b ? a : b; }
+
+template <int N>
+struct Scalar {
+    static constexpr int kLanes = N;
+    struct Mask {
+        uint32_t bits;  // lane i in bit i
+    };
+    float lane[N];
+
+    static Scalar load(const float* p) { return loadu(p); }
+    static Scalar loadu(const float* p) {
+        Scalar v;
+        for (int i = 0; i < N; ++i) v.lane[i] = p[i];
+        return v;
+    }
+    static Scalar broadcast(float x) {
+        Scalar v;
+        for (int i = 0; i < N; ++i) v.lane[i] = x;
+        return v;
+    }
+    // Lanes 0-2 = p[0..2], lane 3 = p[2]; may read p[-1], never past p[2]: the last vertex
+    // of a triangle that may end its array.
+    static Scalar loadLast3(const float* p)
+        requires(N == 4)
+    {
+        return {{p[0], p[1], p[2], p[2]}};
+    }
+    void store(float* p) const { storeu(p); }
+    void storeu(float* p) const {
+        for (int i = 0; i < N; ++i) p[i] = lane[i];
+    }
+    // Truncation towards zero; lanes must lie in int32's range (no NaN).
+    void truncateToInt(int32_t* out) const {
+        for (int i = 0; i < N; ++i) out[i] = int32_t(lane[i]);
+    }
+
+    template <typename Op>
+    friend Scalar zipWith(Scalar a, Scalar b, Op op) {
+        for (int i = 0; i < N; ++i) a.lane[i] = op(a.lane[i], b.lane[i]);
+        return a;
+    }
+    friend Scalar operator+(Scalar a, Scalar b) { return zipWith(a, b, [](float x, float y) { return x + y; }); }
+    friend Scalar operator-(Scalar a, Scalar b) { return zipWith(a, b, [](float x, float y) { return x - y; }); }
+    friend Scalar operator*(Scalar a, Scalar b) { return zipWith(a, b, [](float x, float y) { return x * y; }); }
+    friend Scalar min(Scalar a, Scalar b) { return zipWith(a, b, [](float x, float y) { return simd::min(x, y); }); }
+    friend Scalar max(Scalar a, Scalar b) { return zipWith(a, b, [](float x, float y) { return simd::max(x, y); }); }
+    friend Mask operator<=(Scalar a, Scalar b) {
+        Mask m{0};
+        for (int i = 0; i < N; ++i) m.bits |= uint32_t(a.lane[i] <= b.lane[i]) << i;
+        return m;
+    }
+    friend Mask operator>=(Scalar a, Scalar b) { return b <= a; }
+    friend int movemask(Mask m) { return int(m.bits); }
+    // Lane by lane: a where the mask is set, else b.
+    friend Scalar select(Mask m, Scalar a, Scalar b) {
+        for (int i = 0; i < N; ++i) a.lane[i] = (m.bits >> i & 1) ? a.lane[i] : b.lane[i];
+        return a;
+    }
+};
+
+#if defined(__SSE2__)
+struct Sse {
+    static constexpr int kLanes = 4;
+    struct Mask {
+        __m128 m;
+    };
+    __m128 v;
+
+    static Sse load(const float* p) { return {_mm_load_ps(p)}; }  // p 16-byte aligned
+    static Sse loadu(const float* p) { return {_mm_loadu_ps(p)}; }
+    static Sse broadcast(float x) { return {_mm_set1_ps(x)}; }
+    static Sse loadLast3(const float* p) {
+        const __m128 shifted = _mm_loadu_ps(p - 1);
+        return {_mm_shuffle_ps(shifted, shifted, _MM_SHUFFLE(3, 3, 2, 1))};
+    }
+    void store(float* p) const { _mm_store_ps(p, v); }
+    void storeu(float* p) const { _mm_storeu_ps(p, v); }
+    void truncateToInt(int32_t* out) const { _mm_storeu_si128(reinterpret_cast<__m128i*>(out), _mm_cvttps_epi32(v)); }
+
+    friend Sse operator+(Sse a, Sse b) { return {_mm_add_ps(a.v, b.v)}; }
+    friend Sse operator-(Sse a, Sse b) { return {_mm_sub_ps(a.v, b.v)}; }
+    friend Sse operator*(Sse a, Sse b) { return {_mm_mul_ps(a.v, b.v)}; }
+    friend Sse min(Sse a, Sse b) { return {_mm_min_ps(a.v, b.v)}; }
+    friend Sse max(Sse a, Sse b) { return {_mm_max_ps(a.v, b.v)}; }
+    friend Mask operator<=(Sse a, Sse b) { return {_mm_cmple_ps(a.v, b.v)}; }
+    friend Mask operator>=(Sse a, Sse b) { return {_mm_cmpge_ps(a.v, b.v)}; }
+    friend int movemask(Mask m) { return _mm_movemask_ps(m.m); }
+    friend Sse select(Mask m, Sse a, Sse b) { return {_mm_or_ps(_mm_and_ps(m.m, a.v), _mm_andnot_ps(m.m, b.v))}; }
+};
+#endif
+
+#if defined(__AVX2__)
+struct Avx {
+    static constexpr int kLanes = 8;
+    struct Mask {
+        __m256 m;
+    };
+    __m256 v;
+
+    static Avx load(const float* p) { return {_mm256_load_ps(p)}; }  // p 32-byte aligned
+    static Avx loadu(const float* p) { return {_mm256_loadu_ps(p)}; }
+    static Avx broadcast(float x) { return {_mm256_set1_ps(x)}; }
+    void store(float* p) const { _mm256_store_ps(p, v); }
+    void storeu(float* p) const { _mm256_storeu_ps(p, v); }
+    void truncateToInt(int32_t* out) const {
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(out), _mm256_cvttps_epi32(v));
+    }
+
+    friend Avx operator+(Avx a, Avx b) { return {_mm256_add_ps(a.v, b.v)}; }
+    friend Avx operator-(Avx a, Avx b) { return {_mm256_sub_ps(a.v, b.v)}; }
+    friend Avx operator*(Avx a, Avx b) { return {_mm256_mul_ps(a.v, b.v)}; }
+    friend Avx min(Avx a, Avx b) { return {_mm256_min_ps(a.v, b.v)}; }
+    friend Avx max(Avx a, Avx b) { return {_mm256_max_ps(a.v, b.v)}; }
+    // Ordered predicates: false on NaN, as the scalar <= and SSE's cmpleps.
+    friend Mask operator<=(Avx a, Avx b) { return {_mm256_cmp_ps(a.v, b.v, _CMP_LE_OQ)}; }
+    friend Mask operator>=(Avx a, Avx b) { return {_mm256_cmp_ps(a.v, b.v, _CMP_GE_OQ)}; }
+    friend int movemask(Mask m) { return _mm256_movemask_ps(m.m); }
+    friend Avx select(Mask m, Avx a, Avx b) { return {_mm256_blendv_ps(b.v, a.v, m.m)}; }
+};
+#endif
+
+namespace detail {
+template <int N>
+struct Best {
+    using type = Scalar<N>;
+};
+#if defined(__SSE2__)
+template <>
+struct Best<4> {
+    using type = Sse;
+};
+#endif
+#if defined(__AVX2__)
+template <>
+struct Best<8> {
+    using type = Avx;
+};
+#endif
+}  // namespace detail
+
+template <int N>
+using Floats = typename detail::Best<N>::type;
+
+// Runs f(Floats<4>{}) or, with vector = false (BVH::simd=false), f(Scalar<4>{}): code written
+// once against the API, its backend chosen at run time.
+template <typename F>
+decltype(auto) withFloats4(bool vector, F&& f) {
+    if (vector) return f(Floats<4>{});
+    return f(Scalar<4>{});
+}
+
+}  // namespace bvhlab::simd

@@ -1,0 +1,109 @@
+// What the traversal skeletons of every layout share: the two queries (closest hit, any hit),
+// the leaves' triangle test, and the entry that picks the skeleton's variant for a ray. Each
+// layout has one skeleton, `traverse<Query, NegativeT, Robust>(tree, ray, counters)`
+// (bvh_traversal.h, wide_bvh_traversal.h), with a fixed-size stack and no allocation.
+//
+// What the counters count (QueryCounters, Havran's terms):
+//   N_TR (traversalSteps): nodes visited. The root is visited by every valid query; any other
+//     node is visited when the ray enters its box before the current closest hit. A node
+//     pushed on the stack and dropped on pop because a closer hit was found meanwhile is not
+//     counted (it costs one comparison). A binary tree's inner visit tests two boxes, so its
+//     box tests = 1 + 2 * (inner nodes visited); a wide tree's steps are wide nodes and
+//     leaves, not comparable with a binary tree's.
+//   N_IT (intersectionTests): ray-triangle tests, i.e. the sizes of the leaves visited (an
+//     any-hit query stops counting at the triangle that occludes).
+//   queries: +1 per call, valid ray or not.
+#pragma once
+
+#include "accel/bvh/traverse/traversal_config.h"
+#include "framework/core/accelerator.h"
+#include "framework/core/triangle.h"
+#include "framework/core/triangle_moller_trumbore.h"
+
+namespace bvhlab {
+
+// The leaves' triangle test: the shared watertight one, or Moeller-Trumbore when robustness
+// is switched off (BVH::robust=false).
+template <bool Robust>
+struct LeafTriangleTest {
+    ShearedRay sheared;
+    explicit LeafTriangleTest(const Ray& ray) : sheared(ray) {}
+    bool operator()(const Triangle& tri, float tmin, float tmax, TriangleHitT<float>& h) const {
+        return intersectTriangle(sheared, tri, tmin, tmax, h);
+    }
+};
+template <>
+struct LeafTriangleTest<false> {
+    const Ray& ray;
+    explicit LeafTriangleTest(const Ray& ray) : ray(ray) {}
+    bool operator()(const Triangle& tri, float tmin, float tmax, TriangleHitT<float>& h) const {
+        return intersectTriangleMollerTrumbore(ray, tri, tmin, tmax, h);
+    }
+};
+
+// Closest hit in [ray.tmin, ray.tmax]: every hit shortens the interval, and the skeleton
+// skips nodes the ray enters behind it.
+struct ClosestHitQuery {
+    static constexpr bool kStopsAtFirstHit = false;
+    float tmax;
+    uint32_t found = kInvalidPrimitive;  // position in leaf order of the closest hit so far
+    TriangleHitT<float> best{};
+
+    explicit ClosestHitQuery(const Ray& ray) : tmax(ray.tmax) {}
+    void record(const TriangleHitT<float>& h, uint32_t position) { tmax = h.t, best = h, found = position; }
+};
+
+// Any hit in [ray.tmin, ray.tmax], stopping at the first one found.
+struct AnyHitQuery {
+    static constexpr bool kStopsAtFirstHit = true;
+    float tmax;
+    bool occluded = false;
+
+    explicit AnyHitQuery(const Ray& ray) : tmax(ray.tmax) {}
+    void record(const TriangleHitT<float>&, uint32_t) { occluded = true; }
+};
+
+// Tests the triangles [first, first + count) of leaf order; true when the query is answered.
+template <typename Query, bool Robust>
+inline bool testLeaf(Query& query, const LeafTriangleTest<Robust>& test, const Triangle* triangles, uint32_t first,
+                     uint32_t count, float tmin, uint64_t& tests) {
+    for (uint32_t i = first, end = first + count; i < end; ++i) {
+        ++tests;
+        TriangleHitT<float> h;
+        if (test(triangles[i], tmin, query.tmax, h)) {
+            query.record(h, i);
+            if constexpr (Query::kStopsAtFirstHit) return true;
+        }
+    }
+    return false;
+}
+
+// The entry of every query: it counts, answers invalid rays and empty trees with a miss, and
+// runs the skeleton variant the ray needs: NegativeT when the interval reaches below t = 0
+// (the box test's far margin must then be sign-aware), Robust per BVH::robust.
+template <typename Query, typename Tree>
+Query runQuery(const Tree& tree, const Ray& ray, const TraversalConfig& config, QueryCounters& counters) {
+    ++counters.queries;
+    if (tree.empty() || !ray.isValid()) return Query(ray);
+    const bool negativeT = ray.tmin < 0.0f;
+    if (config.robust) {
+        return negativeT ? traverse<Query, true, true>(tree, ray, counters) : traverse<Query, false, true>(tree, ray, counters);
+    }
+    return negativeT ? traverse<Query, true, false>(tree, ray, counters) : traverse<Query, false, false>(tree, ray, counters);
+}
+
+// Closest hit; on a miss returns false and leaves `hit` unchanged.
+template <typename Tree>
+bool findNearest(const Tree& tree, const Ray& ray, Hit& hit, QueryCounters& counters, const TraversalConfig& config) {
+    const ClosestHitQuery query = runQuery<ClosestHitQuery>(tree, ray, config, counters);
+    if (query.found == kInvalidPrimitive) return false;
+    hit = {query.best.t, tree.primIndices[query.found], query.best.u, query.best.v};
+    return true;
+}
+
+template <typename Tree>
+bool isOccluded(const Tree& tree, const Ray& ray, QueryCounters& counters, const TraversalConfig& config) {
+    return runQuery<AnyHitQuery>(tree, ray, config, counters).occluded;
+}
+
+}  // namespace bvhlab

@@ -1,0 +1,14 @@
+// How a BVH is traversed, apart from how it is built (BvhBuildConfig): the same tree serves
+// either setting.
+#pragma once
+
+namespace bvhlab {
+
+struct TraversalConfig {
+    // BVH::robust. true: the watertight triangle test and the conservative box test (box_test.h);
+    // false: Moeller-Trumbore and plain boxes (not watertight), only to measure what
+    // robustness costs.
+    bool robust = true;
+};
+
+}  // namespace bvhlab
