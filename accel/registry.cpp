@@ -11,6 +11,18 @@
 
 namespace bvhlab {
 
+namespace {
+
+// A BVH accelerator: the builder `kind` over the node layout `Layout`.
+template <typename Layout>
+AcceleratorInfo bvhInfo(std::string name, std::string description, BvhKind kind) {
+    return {std::move(name), std::move(description), bvhEnvKeys(kind), [kind](const Env& env) {
+                return std::make_unique<BvhAccelerator<Layout>>(kind, bvhConfigFromEnv(env), traversalConfigFromEnv(env));
+            }};
+}
+
+}  // namespace
+
 const std::vector<AcceleratorInfo>& acceleratorInfos() {
     static const std::vector<AcceleratorInfo> infos = {
         {"naive", "brute force: tests every triangle; the reference the others are tested against", {},
@@ -19,31 +31,15 @@ const std::vector<AcceleratorInfo>& acceleratorInfos() {
          {std::string(keys::Embree::quality.name()), std::string(keys::Embree::robust.name()),
           std::string(keys::Embree::threads.name())},
          [](const Env& env) { return std::make_unique<EmbreeAccelerator>(env); }},
-        {"tdbvh", "BVH by spatial median: the middle of the longest axis (BVH::tdbvhSplit), object median fallback",
-         bvhEnvKeys(BvhKind::SpatialMedian),
-         [](const Env& env) {
-             return std::make_unique<BvhAccelerator<Bvh>>(BvhKind::SpatialMedian, bvhConfigFromEnv(env),
-                                                          traversalConfigFromEnv(env));
-         }},
-        {"sahbvh", "BVH by binned SAH (Wald 2007): BVH::bins bins along the widest centre axis, SSE binning",
-         bvhEnvKeys(BvhKind::BinnedSah),
-         [](const Env& env) {
-             return std::make_unique<BvhAccelerator<Bvh>>(BvhKind::BinnedSah, bvhConfigFromEnv(env),
-                                                          traversalConfigFromEnv(env));
-         }},
-        {"sahbvh4",
-         "sahbvh's tree collapsed into 4-wide nodes, four child boxes tested at once (SSE); N_TR counts wide steps",
-         bvhEnvKeys(BvhKind::BinnedSah),
-         [](const Env& env) {
-             return std::make_unique<BvhAccelerator<WideBvh<4>>>(BvhKind::BinnedSah, bvhConfigFromEnv(env),
-                                                                 traversalConfigFromEnv(env));
-         }},
-        {"sweepbvh", "BVH by full-sweep SAH over all N-1 planes per axis: the exact reference for sahbvh; slow build",
-         bvhEnvKeys(BvhKind::SweepSah),
-         [](const Env& env) {
-             return std::make_unique<BvhAccelerator<Bvh>>(BvhKind::SweepSah, bvhConfigFromEnv(env),
-                                                          traversalConfigFromEnv(env));
-         }},
+        bvhInfo<Bvh>("tdbvh", "BVH by spatial median: the middle of the longest axis (BVH::tdbvhSplit), object median fallback",
+                     BvhKind::SpatialMedian),
+        bvhInfo<Bvh>("sahbvh", "BVH by binned SAH (Wald 2007): BVH::bins bins along the widest centre axis, SSE binning",
+                     BvhKind::BinnedSah),
+        bvhInfo<WideBvh<4>>(
+            "sahbvh4", "sahbvh's tree collapsed into 4-wide nodes, four child boxes tested at once (SSE); N_TR counts wide steps",
+            BvhKind::BinnedSah),
+        bvhInfo<Bvh>("sweepbvh", "BVH by full-sweep SAH over all N-1 planes per axis: the exact reference for sahbvh; slow build",
+                     BvhKind::SweepSah),
     };
     return infos;
 }

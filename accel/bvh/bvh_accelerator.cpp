@@ -10,15 +10,6 @@ namespace bvhlab {
 
 namespace {
 
-const char* builderName(BvhKind kind) {
-    switch (kind) {
-    case BvhKind::SpatialMedian: return "tdbvh";
-    case BvhKind::BinnedSah: return "sahbvh";
-    case BvhKind::SweepSah: return "sweepbvh";
-    }
-    return "bvh";
-}
-
 template <typename Layout>
 struct LayoutWidth {
     static constexpr int value = 2;
@@ -32,7 +23,7 @@ struct LayoutWidth<WideBvh<N>> {
 
 template <typename Layout>
 BvhAccelerator<Layout>::BvhAccelerator(BvhKind kind, const BvhBuildConfig& build, const TraversalConfig& traversal)
-    : kind_(kind), build_(build), traversal_(traversal), name_(builderName(kind)) {
+    : kind_(kind), build_(build), traversal_(traversal), name_(bvhKindName(kind)) {
     if constexpr (LayoutWidth<Layout>::value > 2) name_ += std::to_string(LayoutWidth<Layout>::value);
 }
 

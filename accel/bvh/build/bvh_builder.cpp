@@ -142,6 +142,15 @@ BuildRange preparePrimRefs(const PrimitiveSet& prims, PrimRef* out) {
 
 }  // namespace
 
+const char* bvhKindName(BvhKind kind) {
+    switch (kind) {
+    case BvhKind::SpatialMedian: return "tdbvh";
+    case BvhKind::BinnedSah: return "sahbvh";
+    case BvhKind::SweepSah: return "sweepbvh";
+    }
+    return "bvh";
+}
+
 std::unique_ptr<TopDownBuilder> makeBvhBuilder(BvhKind kind, const BvhBuildConfig& config) {
     switch (kind) {
     case BvhKind::SpatialMedian: return std::make_unique<SpatialMedianBuilder>(config);

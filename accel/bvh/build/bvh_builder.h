@@ -20,6 +20,9 @@ enum class BvhKind {
     SweepSah,   // sweepbvh: full-sweep SAH, the exact reference for the binning
 };
 
+// The registered name of a binary BVH by this builder: "tdbvh", "sahbvh", "sweepbvh".
+const char* bvhKindName(BvhKind kind);
+
 enum class MedianSplitBox {
     NodeBox,      // halve the box of the primitives (classic spatial median)
     CentroidBox,  // halve the box of their centres (pbrt's "middle"; never an empty side unless

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <type_traits>
 
 #if defined(__SSE2__)
 #include <immintrin.h>
@@ -21,6 +22,18 @@ namespace bvhlab::simd {
 // min(+0, -0) = -0. The box tests rely on it to drop NaN slab distances (box_test.h).
 inline float min(float a, float b) { return a < b ? a : b; }
 inline float max(float a, float b) { return a > b ? a : b; }
+
+// Plain float as a one-lane backend, so that a formula written once serves the binary
+// traversal's scalar box test and the wide one's lanes (box_test.h).
+template <typename F>
+F broadcast(float x) {
+    if constexpr (std::is_same_v<F, float>) {
+        return x;
+    } else {
+        return F::broadcast(x);
+    }
+}
+inline float select(bool m, float a, float b) { return m ? a : b; }
 
 template <int N>
 struct Scalar {

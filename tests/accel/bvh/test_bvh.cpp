@@ -23,15 +23,6 @@ namespace {
 
 constexpr BvhKind kAllKinds[] = {BvhKind::SpatialMedian, BvhKind::BinnedSah, BvhKind::SweepSah};
 
-const char* kindName(BvhKind kind) {
-    switch (kind) {
-    case BvhKind::SpatialMedian: return "tdbvh";
-    case BvhKind::BinnedSah: return "sahbvh";
-    case BvhKind::SweepSah: return "sweepbvh";
-    }
-    return "?";
-}
-
 // A triangle soup; `valid` lists every triangle unless told otherwise.
 struct Soup {
     std::vector<Triangle> triangles;
@@ -221,7 +212,7 @@ TEST(Bvh, InvariantsOnRandomScenes) {
     const Soup soup = randomSoup(3000, 1);
     for (BvhKind kind : kAllKinds) {
         for (bool simd : {true, false}) {
-            SCOPED_TRACE(std::string(kindName(kind)) + (simd ? " simd" : " scalar"));
+            SCOPED_TRACE(std::string(bvhKindName(kind)) + (simd ? " simd" : " scalar"));
             BvhBuildConfig config;
             config.simd = simd;
             BvhAccelerator<Bvh> accel(kind, config);
@@ -258,7 +249,7 @@ TEST(Bvh, TinyScenes) {
     for (size_t n : {0, 1, 2, 3}) {
         const Soup soup = randomSoup(n, 7 + uint32_t(n));
         for (BvhKind kind : kAllKinds) {
-            SCOPED_TRACE(std::string(kindName(kind)) + " with " + std::to_string(n) + " triangles");
+            SCOPED_TRACE(std::string(bvhKindName(kind)) + " with " + std::to_string(n) + " triangles");
             BvhBuildConfig config;
             config.maxLeaf = 1;
             config.sahTermination = false;
@@ -308,7 +299,7 @@ TEST(Bvh, HundredThousandCoincidentTriangles) {
     Soup soup;
     for (int i = 0; i < 100000; ++i) soup.add({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
     for (BvhKind kind : kAllKinds) {
-        SCOPED_TRACE(kindName(kind));
+        SCOPED_TRACE(bvhKindName(kind));
         BvhAccelerator<Bvh> accel(kind, defaultConfig());
         const BuildStats stats = accel.build(soup.prims());
         EXPECT_LT(stats.buildMs, 2000.0);
@@ -370,7 +361,7 @@ TEST(Bvh, DepthStaysBoundedOnGeometricSpacing) {
     }
     for (BvhKind kind : kAllKinds) {
         for (MedianSplitBox box : {MedianSplitBox::CentroidBox, MedianSplitBox::NodeBox}) {
-            SCOPED_TRACE(kindName(kind));
+            SCOPED_TRACE(bvhKindName(kind));
             BvhBuildConfig config;
             config.maxLeaf = 1;
             config.sahTermination = false;
@@ -450,7 +441,7 @@ TEST(Bvh, AxisParallelRaysAlongBoxFaces) {
                         const bool found = naive.findNearest(ray, expected, counters);
                         hits += found;
                         EXPECT_EQ(found, accel.findNearest(ray, actual, counters))
-                            << kindName(kind) << " axis " << axis << " at " << a << ", " << b << " sign " << sign;
+                            << bvhKindName(kind) << " axis " << axis << " at " << a << ", " << b << " sign " << sign;
                         EXPECT_TRUE(hitsAgree(expected, actual));
                         EXPECT_EQ(naive.isOccluded(ray, counters), accel.isOccluded(ray, counters));
                     }
@@ -487,7 +478,7 @@ TEST(Bvh, FlatBoxesBehindTheOrigin) {
             QueryCounters counters;
             const bool found = naive.findNearest(ray, expected, counters);
             hits += found;
-            ASSERT_EQ(found, accel.findNearest(ray, actual, counters)) << kindName(kind) << " ray " << i;
+            ASSERT_EQ(found, accel.findNearest(ray, actual, counters)) << bvhKindName(kind) << " ray " << i;
             EXPECT_TRUE(hitsAgree(expected, actual));
             EXPECT_EQ(naive.isOccluded(ray, counters), accel.isOccluded(ray, counters));
         }
@@ -571,7 +562,7 @@ TEST(Bvh, SahTerminationMakesMultiPrimitiveLeaves) {
         config.cTraversal = 2.0f;
         BvhAccelerator<Bvh> accel(kind, config);
         const BuildStats stats = accel.build(soup.prims());
-        EXPECT_GT(*stats.avgLeafPrimitives, 1.5) << kindName(kind);
+        EXPECT_GT(*stats.avgLeafPrimitives, 1.5) << bvhKindName(kind);
         EXPECT_LE(*stats.maxLeafPrimitives, size_t(config.leafCap));
         checkTree(accel.bvh(), soup);
 
@@ -600,9 +591,9 @@ TEST(Bvh, SimdAndScalarBuildTheSameTree) {
                 simd.build(soup.prims());
                 scalar.build(soup.prims());
                 const Bvh &a = simd.bvh(), &b = scalar.bvh();
-                ASSERT_EQ(a.nodes.size(), b.nodes.size()) << kindName(kind);
+                ASSERT_EQ(a.nodes.size(), b.nodes.size()) << bvhKindName(kind);
                 EXPECT_EQ(std::memcmp(a.nodes.data(), b.nodes.data(), a.nodes.size() * sizeof(BvhNode)), 0)
-                    << kindName(kind) << (allAxes ? " all axes" : "");
+                    << bvhKindName(kind) << (allAxes ? " all axes" : "");
                 EXPECT_EQ(a.primIndices, b.primIndices);
             }
         }
