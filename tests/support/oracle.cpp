@@ -1,7 +1,7 @@
 #include "tests/support/oracle.h"
 
 #include "framework/core/triangle.h"
-#include "framework/robustness/stress_rng.h"
+#include "framework/robustness/stress_scenes.h"
 #include "framework/scene/procedural.h"
 
 #include <fmt/format.h>
@@ -293,11 +293,12 @@ Ray invalidRay(StressRng& rng, const Bounds3& bounds) {
     return r;
 }
 
-// A random triangle of about `size` around `center`, with vertices summing to 3*center
-// (exactly in double; the float centroid is then within rounding of `center`).
-void addTriangleAround(Scene& scene, StressRng& rng, const D3& center, double size) {
-    const D3 a = rng.unitVector() * size, b = rng.unitVector() * size;
-    addLooseTriangle(scene, Vec3(center + a), Vec3(center + b), Vec3(center - a - b));
+// A soup's triangle: of a log-uniform size in [minSize, maxSize], near a uniform point of `box`.
+void addSoupTriangle(Scene& scene, StressRng& rng, const Bounds3& box, double minSize, double maxSize) {
+    const D3 c(rng.inBox(box));
+    const double size = rng.logUniform(minSize, maxSize);
+    addLooseTriangle(scene, Vec3(c + rng.unitVector() * size), Vec3(c + rng.unitVector() * size),
+                     Vec3(c + rng.unitVector() * size));
 }
 
 }  // namespace
@@ -551,12 +552,7 @@ Scene makeSoupScene(size_t count, uint32_t seed, float minSize, float maxSize, f
     Scene scene;
     scene.name = "soup";
     const Bounds3 box(Vec3(-0.5f * extent), Vec3(0.5f * extent));
-    for (size_t i = 0; i < count; ++i) {
-        const D3 c(rng.inBox(box));
-        const double size = rng.logUniform(minSize, maxSize);
-        addLooseTriangle(scene, Vec3(c + rng.unitVector() * size), Vec3(c + rng.unitVector() * size),
-                           Vec3(c + rng.unitVector() * size));
-    }
+    for (size_t i = 0; i < count; ++i) addSoupTriangle(scene, rng, box, minSize, maxSize);
     scene.finalize();
     return scene;
 }
@@ -619,33 +615,23 @@ Scene makeCoincidentScene(uint32_t seed) {
 }
 
 Scene makeCentroidsOnLineScene(size_t count, uint32_t seed) {
-    StressRng rng(seed);
-    Scene scene;
-    scene.name = "centroids_line";
     // Few distinct positions along x, so that many centroids coincide exactly.
-    for (size_t i = 0; i < count; ++i)
-        addTriangleAround(scene, rng, D3(double(rng.index(25)) * 0.8 - 10.0, 0.0, 0.0), rng.uniform(0.1, 1.0));
-    scene.finalize();
-    return scene;
+    return makeTrianglesAroundScene(
+        "centroids_line", count, seed, [](StressRng& rng) { return D3(double(rng.index(25)) * 0.8 - 10.0, 0.0, 0.0); },
+        [](StressRng& rng) { return rng.uniform(0.1, 1.0); });
 }
 
 Scene makeCentroidsOnPlaneScene(size_t count, uint32_t seed) {
-    StressRng rng(seed);
-    Scene scene;
-    scene.name = "centroids_plane";
-    for (size_t i = 0; i < count; ++i)
-        addTriangleAround(scene, rng, D3(rng.uniform(-10, 10), rng.uniform(-10, 10), 0.0), rng.uniform(0.1, 1.0));
-    scene.finalize();
-    return scene;
+    // Braced, so that x is drawn before y on every compiler.
+    return makeTrianglesAroundScene(
+        "centroids_plane", count, seed, [](StressRng& rng) { return D3{rng.uniform(-10, 10), rng.uniform(-10, 10), 0.0}; },
+        [](StressRng& rng) { return rng.uniform(0.1, 1.0); });
 }
 
 Scene makeCentroidsAtPointScene(size_t count, uint32_t seed) {
-    StressRng rng(seed);
-    Scene scene;
-    scene.name = "centroids_point";
-    for (size_t i = 0; i < count; ++i) addTriangleAround(scene, rng, D3(1.0, 2.0, 3.0), rng.logUniform(1e-2, 10.0));
-    scene.finalize();
-    return scene;
+    return makeTrianglesAroundScene(
+        "centroids_point", count, seed, [](StressRng&) { return D3(1.0, 2.0, 3.0); },
+        [](StressRng& rng) { return rng.logUniform(1e-2, 10.0); });
 }
 
 Scene makeTinyScene(int triangles, uint32_t seed) {
@@ -668,10 +654,7 @@ Scene makeDegenerateMixScene(size_t count, uint32_t seed) {
     const float inf = std::numeric_limits<float>::infinity();
     for (size_t i = 0; i < count; ++i) {
         if (!rng.chance(0.25)) {
-            const D3 c(rng.inBox(box));
-            const double size = rng.logUniform(1e-2, 5.0);
-            addLooseTriangle(scene, Vec3(c + rng.unitVector() * size), Vec3(c + rng.unitVector() * size),
-                               Vec3(c + rng.unitVector() * size));
+            addSoupTriangle(scene, rng, box, 1e-2, 5.0);
             continue;
         }
         const Vec3 p = grid(), q = grid();
