@@ -1,6 +1,7 @@
-// The random numbers of the stress suite (framework/robustness/watertight_probe.cpp, stress_scenes.cpp):
-// SplitMix64, small and fast, and the same sequence on every platform and standard library
-// (std::*_distribution are not), so a seed names the same rays everywhere.
+// The random numbers of the stress suite (framework/robustness/watertight_probe.cpp, stress_scenes.cpp)
+// and of the tests' generated scenes and rays (tests/support/oracle.cpp): SplitMix64, small and
+// fast, and the same sequence on every platform and standard library (std::*_distribution are
+// not), so a seed names the same rays everywhere.
 #pragma once
 
 #include "framework/core/math.h"
@@ -23,6 +24,12 @@ public:
     double uniform(double lo, double hi) { return lo + (hi - lo) * uniform(); }
     double logUniform(double lo, double hi) { return std::exp(uniform(std::log(lo), std::log(hi))); }
     size_t index(size_t n) { return size_t(uniform() * double(n)) % n; }
+    bool chance(double p) { return uniform() < p; }
+    // Braced, so the three coordinates are drawn in order (x, y, z) by every compiler.
+    Vec3 inBox(const Bounds3& b) {
+        return {float(uniform(b.lower.x, b.upper.x)), float(uniform(b.lower.y, b.upper.y)),
+                float(uniform(b.lower.z, b.upper.z))};
+    }
     DVec3 unitVector() {
         for (;;) {
             const DVec3 v(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1));

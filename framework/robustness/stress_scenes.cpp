@@ -1,6 +1,5 @@
 #include "framework/robustness/stress_scenes.h"
 
-#include "framework/robustness/stress_rng.h"
 #include "framework/scene/procedural.h"
 
 #include <fmt/format.h>
@@ -192,21 +191,33 @@ Scene makeIdenticalTrianglesScene(size_t n) {
     return scene;
 }
 
-Scene makeCollinearCentroidsScene(size_t n, uint64_t seed) {
+void addTriangleAround(Scene& scene, StressRng& rng, const DVec3& centre, double size) {
+    const DVec3 a = size * rng.unitVector(), b = size * rng.unitVector();
+    addLooseTriangle(scene, Vec3(centre + a), Vec3(centre + b), Vec3(centre - a - b));
+}
+
+Scene makeTrianglesAroundScene(std::string name, size_t count, uint64_t seed,
+                               const std::function<DVec3(StressRng&)>& centre,
+                               const std::function<double(StressRng&)>& size) {
     StressRng rng(seed);
     Scene scene;
-    scene.name = fmt::format("collinear{}", n);
-    const DVec3 origin(-3.0, 1.0, 2.0), axis = glm::normalize(DVec3(1.0, 2.0, 3.0));
-    scene.positions.reserve(3 * n);
-    scene.indices.reserve(n);
-    for (size_t i = 0; i < n; ++i) {
-        const DVec3 c = origin + rng.uniform(0.0, 100.0) * axis;
-        const double s = rng.logUniform(0.01, 1.0);
-        const DVec3 a = s * rng.unitVector(), b = s * rng.unitVector();
-        addLooseTriangle(scene, Vec3(c + a), Vec3(c + b), Vec3(c - a - b));  // centroid c
+    scene.name = std::move(name);
+    scene.positions.reserve(3 * count);
+    scene.indices.reserve(count);
+    for (size_t i = 0; i < count; ++i) {
+        const DVec3 c = centre(rng);  // the centre first, then the size, on every compiler
+        const double s = size(rng);
+        addTriangleAround(scene, rng, c, s);
     }
     scene.finalize();
     return scene;
+}
+
+Scene makeCollinearCentroidsScene(size_t n, uint64_t seed) {
+    const DVec3 origin(-3.0, 1.0, 2.0), axis = glm::normalize(DVec3(1.0, 2.0, 3.0));
+    return makeTrianglesAroundScene(
+        fmt::format("collinear{}", n), n, seed, [&](StressRng& rng) { return origin + rng.uniform(0.0, 100.0) * axis; },
+        [](StressRng& rng) { return rng.logUniform(0.01, 1.0); });
 }
 
 Scene makeHugeAmongTinyScene(size_t n, uint64_t seed) {

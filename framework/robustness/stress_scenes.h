@@ -1,10 +1,13 @@
 // Scenes and rays for the robustness stress suite (`bvhlab stress`, tests/framework/robustness/test_stress.cpp):
 // closed meshes for the watertightness probes, the scale/translation transform, a lit plane far
-// from the origin for shadow acne, and the builders' edge cases. All deterministic.
+// from the origin for shadow acne, and the builders' edge cases. All deterministic. The random
+// triangles they are made of build the tests' generated scenes too (tests/support/oracle.cpp).
 #pragma once
 
+#include "framework/robustness/stress_rng.h"
 #include "framework/scene/scene.h"
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -42,6 +45,18 @@ Scene makeDistantPlaneScene(double distance, bool tilted, int cells = 32, double
 // y, made of two triangles, seen from above and lit from `elevationDegrees` above the horizon.
 // Finalized.
 Scene makeGroundPlaneScene(double distance, double size, double elevationDegrees);
+
+// A random triangle around `centre`: vertices centre + a, centre + b and centre - a - b for
+// random a, b of length `size`, so that its centroid is `centre` (exactly in double; the float
+// centroid is within rounding of it).
+void addTriangleAround(Scene& scene, StressRng& rng, const DVec3& centre, double size);
+
+// `count` triangles around (addTriangleAround) centres drawn by `centre`, of sizes drawn by
+// `size`, each drawn in that order: scenes whose centroids coincide, or lie on a line or a plane,
+// where a builder finds no split. Finalized.
+Scene makeTrianglesAroundScene(std::string name, size_t count, uint64_t seed,
+                               const std::function<DVec3(StressRng&)>& centre,
+                               const std::function<double(StressRng&)>& size);
 
 // Builders' edge cases (not closed): n copies of one triangle; n small triangles whose
 // centres lie on one line; one huge triangle among n tiny ones.

@@ -22,6 +22,17 @@ std::filesystem::path tempDir() {
     return test::scratchDir("cli");
 }
 
+// A file of `bytes` in the scratch folder: a scene, env or ray file a run reads.
+std::filesystem::path scratchFile(const std::string& name, const std::string& bytes) {
+    const auto path = tempDir() / name;
+    std::ofstream(path, std::ios::binary) << bytes;
+    return path;
+}
+
+// `bvhlab render ARGS`, its images (should it get that far) in a throwaway path: the runs that
+// must fail.
+Result renderToScratch(const std::string& args) { return run("render " + args + " --out " + (tempDir() / "x").string()); }
+
 }  // namespace
 
 TEST(Cli, RenderWritesImagesAndStatistics) {
@@ -43,9 +54,8 @@ TEST(Cli, RenderWritesImagesAndStatistics) {
 }
 
 TEST(Cli, BadEnvFileIsOneLineErrorWithFileAndLine) {
-    const auto env = tempDir() / "bad.env";
-    std::ofstream(env) << "# ok\nSetRayTracing::cntSamples 1\nSetRayTracing::shadowz true\n";
-    const Result r = run("render --env " + env.string() + " --out " + (tempDir() / "x").string());
+    const auto env = scratchFile("bad.env", "# ok\nSetRayTracing::cntSamples 1\nSetRayTracing::shadowz true\n");
+    const Result r = renderToScratch("--env " + env.string());
     EXPECT_EQ(r.exitCode, 1);
     EXPECT_NE(r.output.find("bad.env:3"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("SetRayTracing::shadows"), std::string::npos) << r.output;  // the suggestion
@@ -53,18 +63,17 @@ TEST(Cli, BadEnvFileIsOneLineErrorWithFileAndLine) {
 }
 
 TEST(Cli, BadValueAndUnknownAcceleratorAreErrors) {
-    Result r = run("render -DSetRayTracing::cntSamples=0 --out " + (tempDir() / "x").string());
+    Result r = renderToScratch("-DSetRayTracing::cntSamples=0");
     EXPECT_EQ(r.exitCode, 1);
     EXPECT_NE(r.output.find("cntSamples"), std::string::npos) << r.output;
-    r = run("render -DASDS::type=kdtree --out " + (tempDir() / "x").string());
+    r = renderToScratch("-DASDS::type=kdtree");
     EXPECT_EQ(r.exitCode, 1);
     EXPECT_NE(r.output.find("kdtree"), std::string::npos) << r.output;
 }
 
 TEST(Cli, BrokenSceneIsOneLineErrorWithFileAndLine) {
-    const auto scene = tempDir() / "broken.obj";
-    std::ofstream(scene) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 9\n";
-    const Result r = run("render -DASDS::type=naive --scene " + scene.string() + " --out " + (tempDir() / "x").string());
+    const auto scene = scratchFile("broken.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 2 9\n");
+    const Result r = renderToScratch("-DASDS::type=naive --scene " + scene.string());
     EXPECT_EQ(r.exitCode, 1);
     EXPECT_NE(r.output.find("broken.obj"), std::string::npos) << r.output;
     EXPECT_EQ(r.output.find("Segmentation"), std::string::npos) << r.output;
@@ -81,9 +90,8 @@ TEST(Cli, SceneWithNothingToRenderIsAnErrorNamingTheFile) {
         {"spheres.nff", "s 0 0 0 1\n"},
     };
     for (const auto& [name, bytes] : files) {
-        const auto scene = tempDir() / name;
-        std::ofstream(scene, std::ios::binary) << bytes;
-        const Result r = run("render -DASDS::type=naive --scene " + scene.string() + " --out " + (tempDir() / "x").string());
+        const auto scene = scratchFile(name, bytes);
+        const Result r = renderToScratch("-DASDS::type=naive --scene " + scene.string());
         EXPECT_EQ(r.exitCode, 1) << name << ": " << r.output;
         EXPECT_NE(r.output.find("error: " + scene.string() + ": "), std::string::npos) << r.output;
     }
@@ -91,9 +99,8 @@ TEST(Cli, SceneWithNothingToRenderIsAnErrorNamingTheFile) {
 
 TEST(Cli, SkippedSpheresAndConesAreCountedInTheRowAndJson) {
     // balls.nff in small: a ground quad, three spheres and a cone.
-    const auto scene = tempDir() / "balls.nff";
-    std::ofstream(scene) << "p 4\n-1 -1 0\n1 -1 0\n1 1 0\n-1 1 0\n"
-                            "s 0 0 1 0.5\ns 0 0 2 0.5\ns 0 0 3 0.5\nc 0 0 0 0.2 0 0 1 0.1\n";
+    const auto scene = scratchFile("balls.nff", "p 4\n-1 -1 0\n1 -1 0\n1 1 0\n-1 1 0\n"
+                                                "s 0 0 1 0.5\ns 0 0 2 0.5\ns 0 0 3 0.5\nc 0 0 0 0.2 0 0 1 0.1\n");
     const auto out = tempDir() / "balls";
     const Result r = run("render -DASDS::type=naive -DCamera::width=16 -DCamera::height=16 --scene " + scene.string() +
                          " --out " + out.string());
@@ -108,8 +115,7 @@ TEST(Cli, SkippedSpheresAndConesAreCountedInTheRowAndJson) {
 }
 
 TEST(Cli, RaycastAnswersRayFileWithNaive) {
-    const auto scene = tempDir() / "quad.obj";
-    std::ofstream(scene) << "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n";
+    const auto scene = scratchFile("quad.obj", "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n");
     const std::vector<Ray> rays = {{Vec3(0.5f, -0.5f, 5), Vec3(0, 0, -1), 0.0f, kInfinity},
                                    {Vec3(3, 3, 5), Vec3(0, 0, -1), 0.0f, kInfinity},
                                    {Vec3(0, 0, 5), Vec3(0, 0, -2), 0.0f, 1.0f}};
@@ -138,10 +144,9 @@ TEST(Cli, RaycastAnswersRayFileWithNaive) {
 // `bvhlab bench`, tiny: a row per structure with every round kept; Embree's counters are
 // unavailable (null), not zero; a paired ratio of a series to itself is exactly 1.
 TEST(Cli, BenchMeasuresInRoundsWithPairedRatios) {
-    const auto dir = tempDir();
-    std::ofstream(dir / "tiny.env") << "Camera::width 24\nCamera::height 16\n";
-    const auto out = dir / "bench.json";
-    const Result r = run("bench --scenes " + (dir / "tiny.env").string() +
+    const auto env = scratchFile("tiny.env", "Camera::width 24\nCamera::height 16\n");
+    const auto out = tempDir() / "bench.json";
+    const Result r = run("bench --scenes " + env.string() +
                          " --accel sahbvh,sahbvh:BVH::robust=false --threads 1 --builds 2 --passes 3 --out " + out.string());
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("geometric means"), std::string::npos) << r.output;

@@ -1,6 +1,7 @@
 #include "tests/support/oracle.h"
 
 #include "framework/core/triangle.h"
+#include "framework/robustness/stress_scenes.h"
 #include "framework/scene/procedural.h"
 
 #include <fmt/format.h>
@@ -107,28 +108,7 @@ double minAltitude(const TriangleGeometry& g) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// Random helpers.
-
-struct Rng {
-    std::mt19937 gen;
-    explicit Rng(uint32_t seed) : gen(seed) {}
-
-    double uniform(double lo = 0.0, double hi = 1.0) { return std::uniform_real_distribution<double>(lo, hi)(gen); }
-    float uniformf(float lo, float hi) { return float(uniform(lo, hi)); }
-    double logUniform(double lo, double hi) { return std::exp(uniform(std::log(lo), std::log(hi))); }
-    size_t index(size_t n) { return std::uniform_int_distribution<size_t>(0, n - 1)(gen); }
-    bool chance(double p) { return uniform() < p; }
-    D3 unitVector() {
-        for (;;) {
-            const D3 v(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1));
-            const double l = glm::length(v);
-            if (l > 1e-3 && l <= 1.0) return v / l;
-        }
-    }
-    Vec3 inBox(const Bounds3& b) {
-        return {uniformf(b.lower.x, b.upper.x), uniformf(b.lower.y, b.upper.y), uniformf(b.lower.z, b.upper.z)};
-    }
-};
+// Random helpers (the random numbers are StressRng's, framework/robustness/stress_rng.h).
 
 Bounds3 usableBounds(const Bounds3& b) {
     if (b.isEmpty()) return {Vec3(-1.0f), Vec3(1.0f)};
@@ -141,7 +121,7 @@ double boundsRadius(const Bounds3& b) {
 }
 
 // Direction scaling: rays need not be unit length; t is in multiples of dir.
-Vec3 scaleDirection(Rng& rng, const D3& dir) {
+Vec3 scaleDirection(StressRng& rng, const D3& dir) {
     const double l = glm::length(dir);
     if (!(l > 0)) return Vec3(dir);
     switch (rng.index(3)) {
@@ -151,13 +131,13 @@ Vec3 scaleDirection(Rng& rng, const D3& dir) {
     }
 }
 
-const Triangle& randomValidTriangle(Rng& rng, const PrimitiveSet& prims) {
+const Triangle& randomValidTriangle(StressRng& rng, const PrimitiveSet& prims) {
     return prims.triangles[prims.valid[rng.index(prims.valid.size())]];
 }
 
 const Vec3& vertexOf(const Triangle& tri, size_t i) { return i == 0 ? tri.v0 : (i == 1 ? tri.v1 : tri.v2); }
 
-Ray outsideRay(Rng& rng, const Bounds3& bounds) {
+Ray outsideRay(StressRng& rng, const Bounds3& bounds) {
     const D3 center(bounds.center());
     const double radius = boundsRadius(bounds);
     const Vec3 org = Vec3(center + rng.unitVector() * radius * rng.uniform(1.05, 4.0));
@@ -165,34 +145,34 @@ Ray outsideRay(Rng& rng, const Bounds3& bounds) {
     return Ray(org, scaleDirection(rng, D3(target) - D3(org)));
 }
 
-Ray insideRay(Rng& rng, const Bounds3& bounds) {
+Ray insideRay(StressRng& rng, const Bounds3& bounds) {
     return Ray(rng.inBox(bounds), scaleDirection(rng, rng.unitVector()));
 }
 
 // A ray towards `target` from a random direction and distance (t ~ 1 at the target when the
 // direction is not rescaled).
-Ray aimedRay(Rng& rng, const Vec3& target, double radius) {
+Ray aimedRay(StressRng& rng, const Vec3& target, double radius) {
     const double dist = radius * rng.logUniform(1e-3, 10.0);
     const Vec3 org = Vec3(D3(target) + rng.unitVector() * dist);
     return Ray(org, scaleDirection(rng, D3(target) - D3(org)));
 }
 
-Ray edgeRay(Rng& rng, const PrimitiveSet& prims, double radius) {
+Ray edgeRay(StressRng& rng, const PrimitiveSet& prims, double radius) {
     const Triangle& tri = randomValidTriangle(rng, prims);
     const size_t e = rng.index(3);
     const Vec3 &a = vertexOf(tri, e), &b = vertexOf(tri, (e + 1) % 3);
-    const float s = rng.chance(0.2) ? 0.5f : rng.uniformf(0.0f, 1.0f);
+    const float s = rng.chance(0.2) ? 0.5f : float(rng.uniform(0.0, 1.0));
     return aimedRay(rng, a + s * (b - a), radius);
 }
 
-Ray vertexRay(Rng& rng, const PrimitiveSet& prims, double radius) {
+Ray vertexRay(StressRng& rng, const PrimitiveSet& prims, double radius) {
     const Triangle& tri = randomValidTriangle(rng, prims);
     return aimedRay(rng, vertexOf(tri, rng.index(3)), radius);
 }
 
-Ray axisRay(Rng& rng, const PrimitiveSet& prims, const Bounds3& bounds) {
+Ray axisRay(StressRng& rng, const PrimitiveSet& prims, const Bounds3& bounds) {
     const int axis = int(rng.index(3));
-    const float scale = rng.chance(0.5) ? 1.0f : rng.uniformf(0.25f, 4.0f);
+    const float scale = rng.chance(0.5) ? 1.0f : float(rng.uniform(0.25, 4.0));
     const Vec3 lo = bounds.lower, hi = bounds.upper;
     const Vec3 margin = 0.1f * bounds.diagonal() + Vec3(1e-3f);
     Vec3 org;
@@ -220,7 +200,7 @@ Ray axisRay(Rng& rng, const PrimitiveSet& prims, const Bounds3& bounds) {
     return Ray(org, dir);
 }
 
-Ray grazingRay(Rng& rng, const PrimitiveSet& prims, double radius) {
+Ray grazingRay(StressRng& rng, const PrimitiveSet& prims, double radius) {
     const Triangle& tri = randomValidTriangle(rng, prims);
     const D3 v0(tri.v0), v1(tri.v1), v2(tri.v2);
     const D3 n = glm::normalize(glm::cross(v1 - v0, v2 - v0));
@@ -238,7 +218,7 @@ Ray grazingRay(Rng& rng, const PrimitiveSet& prims, double radius) {
     return Ray(Vec3(target - dir * dist), scaleDirection(rng, dir));
 }
 
-Ray intervalRay(Rng& rng, const PrimitiveSet& prims, const Bounds3& bounds) {
+Ray intervalRay(StressRng& rng, const PrimitiveSet& prims, const Bounds3& bounds) {
     const size_t mode = prims.valid.empty() ? 1 + rng.index(4) : rng.index(5);
     switch (mode) {
     case 0: {
@@ -296,7 +276,7 @@ Ray intervalRay(Rng& rng, const PrimitiveSet& prims, const Bounds3& bounds) {
     }
 }
 
-Ray invalidRay(Rng& rng, const Bounds3& bounds) {
+Ray invalidRay(StressRng& rng, const Bounds3& bounds) {
     Ray r = outsideRay(rng, bounds);
     float* fields[8] = {&r.org.x, &r.org.y, &r.org.z, &r.dir.x, &r.dir.y, &r.dir.z, &r.tmin, &r.tmax};
     switch (rng.index(4)) {
@@ -313,11 +293,12 @@ Ray invalidRay(Rng& rng, const Bounds3& bounds) {
     return r;
 }
 
-// A random triangle of about `size` around `center`, with vertices summing to 3*center
-// (exactly in double; the float centroid is then within rounding of `center`).
-void addTriangleAround(Scene& scene, Rng& rng, const D3& center, double size) {
-    const D3 a = rng.unitVector() * size, b = rng.unitVector() * size;
-    addLooseTriangle(scene, Vec3(center + a), Vec3(center + b), Vec3(center - a - b));
+// A soup's triangle: of a log-uniform size in [minSize, maxSize], near a uniform point of `box`.
+void addSoupTriangle(Scene& scene, StressRng& rng, const Bounds3& box, double minSize, double maxSize) {
+    const D3 c(rng.inBox(box));
+    const double size = rng.logUniform(minSize, maxSize);
+    addLooseTriangle(scene, Vec3(c + rng.unitVector() * size), Vec3(c + rng.unitVector() * size),
+                     Vec3(c + rng.unitVector() * size));
 }
 
 }  // namespace
@@ -448,7 +429,7 @@ Judgement Oracle::judge(const Ray& ray, const Hit& answer, const OracleHit& near
 
 std::vector<Ray> generateRays(RayKind kind, const PrimitiveSet& prims, const Bounds3& sceneBounds, size_t count,
                               uint32_t seed) {
-    Rng rng(seed * 2654435761u + uint32_t(kind) * 40503u + 17u);
+    StressRng rng(seed * 2654435761u + uint32_t(kind) * 40503u + 17u);
     const Bounds3 bounds = usableBounds(sceneBounds);
     const double radius = boundsRadius(bounds);
     const bool haveTriangles = !prims.valid.empty();
@@ -477,7 +458,7 @@ std::vector<Ray> generateRays(RayKind kind, const PrimitiveSet& prims, const Bou
 
 std::vector<WatertightProbe> watertightProbes(const Scene& mesh, const std::function<Vec3(const Vec3&)>& interiorPointNear,
                                               bool convex, size_t perEdge, size_t perVertex, uint32_t seed) {
-    Rng rng(seed);
+    StressRng rng(seed);
     using Key3 = std::array<float, 3>;
     using Key6 = std::array<float, 6>;
     auto key3 = [](const Vec3& v) { return Key3{v.x, v.y, v.z}; };
@@ -539,7 +520,7 @@ std::vector<WatertightProbe> watertightProbes(const Scene& mesh, const std::func
         if (faces.size() != 2) continue;  // boundary or non-manifold edge: nothing to probe
         const Vec3 a(key[0], key[1], key[2]), b(key[3], key[4], key[5]);
         for (size_t i = 0; i < perEdge; ++i) {
-            const float s = rng.uniformf(0.02f, 0.98f);
+            const float s = float(rng.uniform(0.02, 0.98));
             probe(a + s * (b - a), faces, glm::length(D3(b - a)), false, probes);
         }
     }
@@ -567,16 +548,11 @@ Scene sceneFromTriangles(const std::vector<Triangle>& triangles, const std::stri
 }
 
 Scene makeSoupScene(size_t count, uint32_t seed, float minSize, float maxSize, float extent) {
-    Rng rng(seed);
+    StressRng rng(seed);
     Scene scene;
     scene.name = "soup";
     const Bounds3 box(Vec3(-0.5f * extent), Vec3(0.5f * extent));
-    for (size_t i = 0; i < count; ++i) {
-        const D3 c(rng.inBox(box));
-        const double size = rng.logUniform(minSize, maxSize);
-        addLooseTriangle(scene, Vec3(c + rng.unitVector() * size), Vec3(c + rng.unitVector() * size),
-                           Vec3(c + rng.unitVector() * size));
-    }
+    for (size_t i = 0; i < count; ++i) addSoupTriangle(scene, rng, box, minSize, maxSize);
     scene.finalize();
     return scene;
 }
@@ -592,7 +568,7 @@ Scene makeClosedMeshesScene() {
 }
 
 Scene makeTerrainScene(int cells, uint32_t seed) {
-    Rng rng(seed);
+    StressRng rng(seed);
     Scene scene;
     scene.name = "terrain";
     const int n = cells + 1;
@@ -617,7 +593,7 @@ Scene makeTerrainScene(int cells, uint32_t seed) {
 }
 
 Scene makeCoincidentScene(uint32_t seed) {
-    Rng rng(seed);
+    StressRng rng(seed);
     Scene scene;
     scene.name = "coincident";
     const Bounds3 box(Vec3(-5.0f), Vec3(5.0f));
@@ -639,37 +615,27 @@ Scene makeCoincidentScene(uint32_t seed) {
 }
 
 Scene makeCentroidsOnLineScene(size_t count, uint32_t seed) {
-    Rng rng(seed);
-    Scene scene;
-    scene.name = "centroids_line";
     // Few distinct positions along x, so that many centroids coincide exactly.
-    for (size_t i = 0; i < count; ++i)
-        addTriangleAround(scene, rng, D3(double(rng.index(25)) * 0.8 - 10.0, 0.0, 0.0), rng.uniform(0.1, 1.0));
-    scene.finalize();
-    return scene;
+    return makeTrianglesAroundScene(
+        "centroids_line", count, seed, [](StressRng& rng) { return D3(double(rng.index(25)) * 0.8 - 10.0, 0.0, 0.0); },
+        [](StressRng& rng) { return rng.uniform(0.1, 1.0); });
 }
 
 Scene makeCentroidsOnPlaneScene(size_t count, uint32_t seed) {
-    Rng rng(seed);
-    Scene scene;
-    scene.name = "centroids_plane";
-    for (size_t i = 0; i < count; ++i)
-        addTriangleAround(scene, rng, D3(rng.uniform(-10, 10), rng.uniform(-10, 10), 0.0), rng.uniform(0.1, 1.0));
-    scene.finalize();
-    return scene;
+    // Braced, so that x is drawn before y on every compiler.
+    return makeTrianglesAroundScene(
+        "centroids_plane", count, seed, [](StressRng& rng) { return D3{rng.uniform(-10, 10), rng.uniform(-10, 10), 0.0}; },
+        [](StressRng& rng) { return rng.uniform(0.1, 1.0); });
 }
 
 Scene makeCentroidsAtPointScene(size_t count, uint32_t seed) {
-    Rng rng(seed);
-    Scene scene;
-    scene.name = "centroids_point";
-    for (size_t i = 0; i < count; ++i) addTriangleAround(scene, rng, D3(1.0, 2.0, 3.0), rng.logUniform(1e-2, 10.0));
-    scene.finalize();
-    return scene;
+    return makeTrianglesAroundScene(
+        "centroids_point", count, seed, [](StressRng&) { return D3(1.0, 2.0, 3.0); },
+        [](StressRng& rng) { return rng.logUniform(1e-2, 10.0); });
 }
 
 Scene makeTinyScene(int triangles, uint32_t seed) {
-    Rng rng(seed);
+    StressRng rng(seed);
     Scene scene;
     scene.name = fmt::format("tiny{}", triangles);
     const Bounds3 box(Vec3(-1.0f), Vec3(1.0f));
@@ -679,7 +645,7 @@ Scene makeTinyScene(int triangles, uint32_t seed) {
 }
 
 Scene makeDegenerateMixScene(size_t count, uint32_t seed) {
-    Rng rng(seed);
+    StressRng rng(seed);
     Scene scene;
     scene.name = "degenerate_mix";
     const Bounds3 box(Vec3(-10.0f), Vec3(10.0f));
@@ -688,10 +654,7 @@ Scene makeDegenerateMixScene(size_t count, uint32_t seed) {
     const float inf = std::numeric_limits<float>::infinity();
     for (size_t i = 0; i < count; ++i) {
         if (!rng.chance(0.25)) {
-            const D3 c(rng.inBox(box));
-            const double size = rng.logUniform(1e-2, 5.0);
-            addLooseTriangle(scene, Vec3(c + rng.unitVector() * size), Vec3(c + rng.unitVector() * size),
-                               Vec3(c + rng.unitVector() * size));
+            addSoupTriangle(scene, rng, box, 1e-2, 5.0);
             continue;
         }
         const Vec3 p = grid(), q = grid();

@@ -76,7 +76,7 @@ private:
 };
 
 // ---------------------------------------------------------------------------------------------
-// Ray generators. All deterministic for a given seed (std::mt19937).
+// Ray generators. All deterministic for a given seed (StressRng, framework/robustness/stress_rng.h).
 
 enum class RayKind {
     Outside,       // origins outside the scene bounds, aimed at random points inside them

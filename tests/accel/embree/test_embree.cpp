@@ -51,6 +51,17 @@ Vec3 hitPoint(const Triangle& tri, const Hit& hit) {
     return (1.0f - hit.u - hit.v) * tri.v0 + hit.u * tri.v1 + hit.v * tri.v2;
 }
 
+// Embree (default configuration) built over the SkippingScene, and counters for its queries:
+// where the tests of interval ends, negative tmin and untraceable rays start.
+class EmbreeOnSkippingScene : public ::testing::Test {
+protected:
+    EmbreeOnSkippingScene() { accel.build(scene.prims()); }
+
+    const SkippingScene scene;
+    EmbreeAccelerator accel;
+    QueryCounters counters;
+};
+
 TEST(Embree, EmptySceneBuildsAndMisses) {
     // No triangles at all, and triangles none of which is valid.
     const std::vector<Triangle> none;
@@ -119,11 +130,7 @@ TEST(Embree, MapsPrimitivesPastSkippedOnes) {
     EXPECT_NEAR(hit.v, 0.125f, 1e-5f);
 }
 
-TEST(Embree, OccludedWithinTheInterval) {
-    const SkippingScene scene;
-    EmbreeAccelerator accel;
-    accel.build(scene.prims());
-    QueryCounters counters;
+TEST_F(EmbreeOnSkippingScene, OccludedWithinTheInterval) {
     EXPECT_TRUE(accel.isOccluded(rayAlongZ(0.25f, 0.25f), counters));
     EXPECT_TRUE(accel.isOccluded(rayAlongZ(0.25f, 0.25f, 0.0f, 2.5f), counters));   // the first only
     EXPECT_TRUE(accel.isOccluded(rayAlongZ(0.25f, 0.25f, 2.5f), counters));         // the second only
@@ -172,11 +179,7 @@ TEST(Embree, IntervalEnds) {
     }
 }
 
-TEST(Embree, NegativeTminLooksBehindTheOrigin) {
-    const SkippingScene scene;
-    EmbreeAccelerator accel;
-    accel.build(scene.prims());
-    QueryCounters counters;
+TEST_F(EmbreeOnSkippingScene, NegativeTminLooksBehindTheOrigin) {
     Ray ray = rayAlongZ(0.25f, 0.25f, -2.0f);
     ray.org.z = 3.0f;  // between the two triangles: the first is at t = -1, the second at t = 2
     Hit hit;
@@ -204,11 +207,7 @@ TEST(Embree, NegativeTminLooksBehindTheOrigin) {
 
 // Hits ahead of the origin come from the unmoved ray even when tmin < 0: exactly as with
 // tmin = 0, however far behind tmin reaches (moving the origin would cost an ulp of |tmin|).
-TEST(Embree, NegativeTminKeepsHitsAheadExact) {
-    const SkippingScene scene;
-    EmbreeAccelerator accel;
-    accel.build(scene.prims());
-    QueryCounters counters;
+TEST_F(EmbreeOnSkippingScene, NegativeTminKeepsHitsAheadExact) {
     Ray ray;
     ray.org = {0.25f, 0.25f, 1.999f};
     ray.dir = Vec3(0.0123f, -0.0071f, 1.0f);
@@ -229,11 +228,7 @@ TEST(Embree, NegativeTminKeepsHitsAheadExact) {
     }
 }
 
-TEST(Embree, InvalidRaysMissButCount) {
-    const SkippingScene scene;
-    EmbreeAccelerator accel;
-    accel.build(scene.prims());
-    QueryCounters counters;
+TEST_F(EmbreeOnSkippingScene, InvalidRaysMissButCount) {
     std::vector<Ray> invalid(5, rayAlongZ(0.25f, 0.25f));
     invalid[0].org.x = kNaN;
     invalid[1].dir.z = kNaN;
@@ -251,11 +246,7 @@ TEST(Embree, InvalidRaysMissButCount) {
 
 // Debian's Embree asserts (aborts) on rays with coordinates beyond 1.844e18 or infinite, and
 // on tnear < 0: those must never reach it.
-TEST(Embree, RaysEmbreeCannotTraceMissWithoutAborting) {
-    const SkippingScene scene;
-    EmbreeAccelerator accel;
-    accel.build(scene.prims());
-    QueryCounters counters;
+TEST_F(EmbreeOnSkippingScene, RaysEmbreeCannotTraceMissWithoutAborting) {
     std::vector<Ray> rays(5, rayAlongZ(0.25f, 0.25f));
     rays[0].org.z = -kInfinity;
     rays[1].dir.z = kInfinity;

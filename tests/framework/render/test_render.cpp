@@ -14,19 +14,28 @@ using namespace bvhlab;
 
 namespace {
 
+// A scene, a naive accelerator built over it, a camera and render settings: what a test renders.
+struct NaiveRender {
+    Scene scene;
+    NaiveAccelerator accel;
+    CameraSpec camera;
+    RenderSettings settings;
+
+    Framebuffer framebuffer() const { return Framebuffer(camera.width, camera.height); }
+    RenderStats renderInto(Framebuffer& fb) const { return render(scene, accel, Camera(camera), settings, fb); }
+};
+
 // A floor quad (x, z in [-4, 4] at y = 0) and a floating occluder (x, z in [-1, 1] at y = 1),
 // lit from (20, 10, 0), seen from straight above: the occluder's shadow falls on the floor
 // at x in about [-3.3, -1.1].
-struct ShadowScene {
-    Scene scene;
-    CameraSpec camera{Vec3(0, 10, 0), Vec3(0), Vec3(0, 0, -1), 90.0f, 64, 64};
-    RenderSettings settings;
-
+struct ShadowScene : NaiveRender {
     ShadowScene() {
         scene.materials = {{Vec3(0.5f), 0.0f}};
         addQuad(scene, Vec3(-4, 0, -4), Vec3(0, 0, 8), Vec3(8, 0, 0), 0);
         addQuad(scene, Vec3(-1, 1, -1), Vec3(0, 0, 2), Vec3(2, 0, 0), 0);
         scene.finalize();
+        accel.build(scene.primitives());
+        camera = {Vec3(0, 10, 0), Vec3(0), Vec3(0, 0, -1), 90.0f, 64, 64};
         settings.threads = 2;
         settings.ambient = 0.1f;
         settings.background = Vec3(0.25f, 0.5f, 0.75f);
@@ -49,14 +58,25 @@ struct ShadowScene {
     }
 };
 
+// The default scene (procedural.h) at width x height, lit by its own lights: a scene with a
+// mirror in view, small enough to render often.
+struct SmallDefaultScene : NaiveRender {
+    SmallDefaultScene(int width, int height) {
+        scene = makeDefaultScene();
+        accel.build(scene.primitives());
+        camera = *scene.camera;
+        camera.width = width;
+        camera.height = height;
+        settings.lights = scene.lights;
+    }
+};
+
 }  // namespace
 
 TEST(Render, LitShadowedAndBackgroundPixels) {
     ShadowScene s;
-    NaiveAccelerator accel;
-    accel.build(s.scene.primitives());
-    Framebuffer fb(s.camera.width, s.camera.height);
-    const RenderStats stats = render(s.scene, accel, Camera(s.camera), s.settings, fb);
+    Framebuffer fb = s.framebuffer();
+    const RenderStats stats = s.renderInto(fb);
 
     const Vec3 ambientOnly = Vec3(0.5f) * s.settings.ambient;
     const size_t shadowed = s.pixelAt(-2.2f, 0.5f), lit = s.pixelAt(3.0f, 0.5f), background = s.pixelAt(4.8f, 4.8f);
@@ -81,10 +101,8 @@ TEST(Render, LitShadowedAndBackgroundPixels) {
 TEST(Render, ShadowsOffCastsNoShadowRays) {
     ShadowScene s;
     s.settings.shadows = false;
-    NaiveAccelerator accel;
-    accel.build(s.scene.primitives());
-    Framebuffer fb(s.camera.width, s.camera.height);
-    const RenderStats stats = render(s.scene, accel, Camera(s.camera), s.settings, fb);
+    Framebuffer fb = s.framebuffer();
+    const RenderStats stats = s.renderInto(fb);
     EXPECT_EQ(stats.shadow.counters.queries, 0u);
     EXPECT_GT(stats.shadowRaysSkippedDisabled, 0u);
     // Without shadow rays the formerly shadowed floor is lit.
@@ -94,50 +112,34 @@ TEST(Render, ShadowsOffCastsNoShadowRays) {
 TEST(Render, LightBelowSurfaceSkipsShadowRays) {
     ShadowScene s;
     s.settings.lights = {{Vec3(0, -5, 0), Vec3(1.0f)}};
-    NaiveAccelerator accel;
-    accel.build(s.scene.primitives());
-    Framebuffer fb(s.camera.width, s.camera.height);
-    const RenderStats stats = render(s.scene, accel, Camera(s.camera), s.settings, fb);
+    Framebuffer fb = s.framebuffer();
+    const RenderStats stats = s.renderInto(fb);
     EXPECT_EQ(stats.shadow.counters.queries, 0u);
     EXPECT_GT(stats.shadowRaysSkippedBackfacing, 0u);
 }
 
 TEST(Render, MirrorBouncesOnlyWithDepthLimit) {
-    Scene scene = makeDefaultScene();
-    NaiveAccelerator accel;
-    accel.build(scene.primitives());
-    CameraSpec spec = *scene.camera;
-    spec.width = 48;
-    spec.height = 36;
-    RenderSettings settings;
-    settings.lights = scene.lights;
-    settings.depthLimit = 1;
-    Framebuffer fb1(spec.width, spec.height);
-    const RenderStats one = render(scene, accel, Camera(spec), settings, fb1);
+    SmallDefaultScene s(48, 36);
+    s.settings.depthLimit = 1;
+    Framebuffer fb1 = s.framebuffer();
+    const RenderStats one = s.renderInto(fb1);
     EXPECT_EQ(one.primary.counters.queries, uint64_t(48 * 36));
     EXPECT_GT(one.bouncesSkipped, 0u);  // the default scene has a mirror in view
 
-    settings.depthLimit = 2;
-    Framebuffer fb2(spec.width, spec.height);
-    const RenderStats two = render(scene, accel, Camera(spec), settings, fb2);
+    s.settings.depthLimit = 2;
+    Framebuffer fb2 = s.framebuffer();
+    const RenderStats two = s.renderInto(fb2);
     EXPECT_EQ(two.primary.counters.queries, uint64_t(48 * 36) + one.bouncesSkipped);
 }
 
 TEST(Render, ImageDoesNotDependOnThreadCount) {
-    Scene scene = makeDefaultScene();
-    NaiveAccelerator accel;
-    accel.build(scene.primitives());
-    CameraSpec spec = *scene.camera;
-    spec.width = 40;
-    spec.height = 30;
-    RenderSettings settings;
-    settings.lights = scene.lights;
-    settings.samples = 4;
-    settings.threads = 1;
-    Framebuffer a(spec.width, spec.height), b(spec.width, spec.height);
-    render(scene, accel, Camera(spec), settings, a);
-    settings.threads = 2;
-    render(scene, accel, Camera(spec), settings, b);
+    SmallDefaultScene s(40, 30);
+    s.settings.samples = 4;
+    s.settings.threads = 1;
+    Framebuffer a = s.framebuffer(), b = s.framebuffer();
+    s.renderInto(a);
+    s.settings.threads = 2;
+    s.renderInto(b);
     EXPECT_EQ(a.color, b.color);
 }
 
