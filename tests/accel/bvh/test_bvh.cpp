@@ -35,6 +35,15 @@ struct Soup {
     PrimitiveSet prims() const { return {triangles, valid}; }
 };
 
+// The unit right triangle at the origin and a copy moved by `shift`: the smallest two-leaf tree.
+Soup triangleAndCopy(Vec3 shift) {
+    const Triangle unit{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    Soup soup;
+    soup.add(unit);
+    soup.add({unit.v0 + shift, unit.v1 + shift, unit.v2 + shift});
+    return soup;
+}
+
 // Triangles with corners in [0, extent)^3 and edge lengths up to `size`.
 Soup randomSoup(size_t n, uint32_t seed, float extent = 10.0f, float size = 1.0f) {
     std::mt19937 rng(seed);
@@ -602,9 +611,7 @@ TEST(Bvh, SimdAndScalarBuildTheSameTree) {
 
 TEST(Bvh, SahCostFollowsTheStatedFormula) {
     // Two unit triangles far apart, one per leaf: the root is the only inner node.
-    Soup soup;
-    soup.add({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
-    soup.add({{9, 9, 9}, {10, 9, 9}, {9, 10, 9}});
+    const Soup soup = triangleAndCopy({9, 9, 9});
     BvhBuildConfig config;
     config.maxLeaf = 1;
     config.cTraversal = 2.0f;
@@ -624,9 +631,7 @@ TEST(Bvh, SahCostFollowsTheStatedFormula) {
 TEST(Bvh, CountersCountVisitsAndTests) {
     // Traversal steps: the root, then every node entered. A ray missing the scene box costs
     // one step and no test; a ray through one leaf of a 2-leaf tree costs root + leaf.
-    Soup soup;
-    soup.add({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
-    soup.add({{0, 0, 5}, {1, 0, 5}, {0, 1, 5}});
+    const Soup soup = triangleAndCopy({0, 0, 5});
     BvhBuildConfig config;
     config.maxLeaf = 1;
     config.sahTermination = false;
