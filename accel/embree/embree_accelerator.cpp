@@ -12,6 +12,7 @@
 #include <cstring>
 #include <limits>
 #include <mutex>
+#include <stdexcept>
 #include <type_traits>
 
 static_assert(std::is_same_v<RTCDevice, RTCDeviceTy*>, "Embree's handle types differ from the forward declarations");
@@ -305,6 +306,66 @@ bool EmbreeAccelerator::isOccluded(const Ray& ray, QueryCounters& counters) cons
         if (r.tfar == -std::numeric_limits<float>::infinity()) return true;  // Embree's mark of a hit
     }
     return false;
+}
+
+namespace {
+
+// Embree as its users call it: the rays converted once (prepare and reset are not timed), then
+// one rtcIntersect1 / rtcOccluded1 per ray with one context per range, no checks and no mapping
+// of the answer back to our primitives. rtcOccluded1 needs an RTCRay, which an RTCRayHit starts
+// with, so one array serves both queries.
+class EmbreeRayBatch final : public NativeRayBatch {
+public:
+    EmbreeRayBatch(RTCScene scene, std::vector<RTCRayHit> prepared)
+        : scene_(scene), prepared_(std::move(prepared)), rays_(prepared_) {}
+
+    size_t size() const override { return rays_.size(); }
+    void reset() override { std::copy(prepared_.begin(), prepared_.end(), rays_.begin()); }
+
+    size_t trace(size_t begin, size_t end, bool anyHit) override {
+        RTCIntersectContext context;
+        rtcInitIntersectContext(&context);
+        size_t hits = 0;
+        if (anyHit) {
+            for (size_t i = begin; i < end; ++i) {
+                rtcOccluded1(scene_, &context, &rays_[i].ray);
+                hits += rays_[i].ray.tfar == -std::numeric_limits<float>::infinity();
+            }
+        } else {
+            for (size_t i = begin; i < end; ++i) {
+                rtcIntersect1(scene_, &context, &rays_[i]);
+                hits += rays_[i].hit.geomID != RTC_INVALID_GEOMETRY_ID;
+            }
+        }
+        return hits;
+    }
+
+private:
+    RTCScene scene_;
+    std::vector<RTCRayHit> prepared_;
+    std::vector<RTCRayHit> rays_;
+};
+
+}  // namespace
+
+// A user of Embree hands it rays it accepts; the two-segment form of findNearest for a negative
+// tmin is ours, so such a ray (or one Embree would assert on) is refused, not traced differently.
+std::unique_ptr<NativeRayBatch> EmbreeAccelerator::prepareNativeBatch(const std::vector<Ray>& rays) const {
+    if (!scene_) throw std::logic_error("EmbreeAccelerator::prepareNativeBatch before build()");
+    std::vector<RTCRayHit> prepared(rays.size());
+    for (size_t i = 0; i < rays.size(); ++i) {
+        const Segments segments = segmentsOf(rays[i]);
+        if (!rays[i].isValid() || segments.count != 1 || segments.part[0].shift != 0.0f)
+            throw std::invalid_argument(fmt::format(
+                "Embree's bare loop: ray {} (tmin {}, tmax {}) is not one Embree takes as it is: a valid interval "
+                "with tmin >= 0 and coordinates within +-{}",
+                i, rays[i].tmin, rays[i].tmax, kEmbreeLarge));
+        toRtc(segments.part[0], rays[i].dir, prepared[i].ray);
+        prepared[i].hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        prepared[i].hit.primID = RTC_INVALID_GEOMETRY_ID;
+        prepared[i].hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    }
+    return std::make_unique<EmbreeRayBatch>(scene_.get(), std::move(prepared));
 }
 
 }  // namespace bvhlab

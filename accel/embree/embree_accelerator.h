@@ -68,6 +68,8 @@ public:
     bool findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const override;
     bool isOccluded(const Ray& ray, QueryCounters& counters) const override;
     bool hasCounters() const override { return false; }
+    // Rays with tmin >= 0 and coordinates within Embree's range, as RTCRayHit; see the .cpp.
+    std::unique_ptr<NativeRayBatch> prepareNativeBatch(const std::vector<Ray>& rays) const override;
 
     const EmbreeConfig& config() const { return config_; }
     // The device's configuration string, e.g. "threads=1".

@@ -22,34 +22,58 @@ double processCpuMs() {
     return double(t.tv_sec) * 1e3 + double(t.tv_nsec) * 1e-6;
 }
 
-PassResult tracePasses(const Accelerator& accel, const std::vector<Ray>& rays, bool anyHit, int threads, int passes) {
+namespace {
+
+// Times `passes` passes over n rays with `threads` threads, in ranges of 4096 handed to
+// traceRange(begin, end, counters); beforePass runs outside the timing. The first pass's
+// counters are kept.
+template <typename BeforePass, typename TraceRange>
+PassResult timePasses(size_t n, int threads, int passes, BeforePass&& beforePass, TraceRange&& traceRange) {
     PassResult result;
-    if (rays.empty()) return result;
+    if (n == 0) return result;
     std::vector<double> times, cpuTimes;
     tbb::task_arena arena(threads);
     for (int pass = 0; pass < passes; ++pass) {
+        beforePass();
         tbb::enumerable_thread_specific<QueryCounters> counters;
         const auto start = std::chrono::steady_clock::now();
         const double cpuStart = processCpuMs();
         arena.execute([&] {
-            tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), 4096), [&](const auto& range) {
-                QueryCounters& local = counters.local();
-                Hit hit;
-                for (size_t i = range.begin(); i < range.end(); ++i) {
-                    if (anyHit) accel.isOccluded(rays[i], local);
-                    else accel.findNearest(rays[i], hit, local);
-                }
-            });
+            tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096),
+                              [&](const auto& range) { traceRange(range.begin(), range.end(), counters.local()); });
         });
         times.push_back(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count() /
-                        double(rays.size()));
-        cpuTimes.push_back((processCpuMs() - cpuStart) * 1e3 / double(rays.size()));
+                        double(n));
+        cpuTimes.push_back((processCpuMs() - cpuStart) * 1e3 / double(n));
         if (pass == 0)
             for (const QueryCounters& c : counters) result.counters += c;
     }
     result.usPerQuery = median(times);
     result.cpuUsPerQuery = median(cpuTimes);
     return result;
+}
+
+}  // namespace
+
+PassResult tracePasses(const Accelerator& accel, const std::vector<Ray>& rays, bool anyHit, int threads, int passes) {
+    return timePasses(
+        rays.size(), threads, passes, [] {},
+        [&](size_t begin, size_t end, QueryCounters& local) {
+            Hit hit;
+            for (size_t i = begin; i < end; ++i) {
+                if (anyHit) accel.isOccluded(rays[i], local);
+                else accel.findNearest(rays[i], hit, local);
+            }
+        });
+}
+
+PassResult traceNativePasses(NativeRayBatch& batch, bool anyHit, int threads, int passes) {
+    return timePasses(
+        batch.size(), threads, passes, [&] { batch.reset(); },
+        [&](size_t begin, size_t end, QueryCounters& local) {
+            batch.trace(begin, end, anyHit);
+            local.queries += end - begin;
+        });
 }
 
 }  // namespace bvhlab

@@ -23,4 +23,7 @@ struct PassResult {
 // Answers every ray `passes` times with `threads` threads; the first pass also counts.
 PassResult tracePasses(const Accelerator& accel, const std::vector<Ray>& rays, bool anyHit, int threads, int passes);
 
+// The same passes over a native batch (reset before each pass, untimed); counts queries only.
+PassResult traceNativePasses(NativeRayBatch& batch, bool anyHit, int threads, int passes);
+
 }  // namespace bvhlab

@@ -2,12 +2,14 @@
 // scene's triangles, then answer closest-hit and any-hit queries, counting its work.
 #pragma once
 
+#include "framework/core/native_ray_batch.h"
 #include "framework/core/primitive_set.h"
 
 #include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace bvhlab {
 
@@ -68,6 +70,13 @@ public:
 
     // False when the structure cannot count N_IT and N_TR (they are then reported as unavailable).
     virtual bool hasCounters() const { return true; }
+
+    // The rays in the structure's own format, for a bare loop of its native call after build();
+    // nullptr when it has no other API than this interface (ours). Throws std::invalid_argument
+    // naming the first ray the native call cannot take as it is.
+    virtual std::unique_ptr<NativeRayBatch> prepareNativeBatch(const std::vector<Ray>& /*rays*/) const {
+        return nullptr;
+    }
 };
 
 }  // namespace bvhlab
