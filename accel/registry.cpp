@@ -38,6 +38,10 @@ const std::vector<AcceleratorInfo>& acceleratorInfos() {
         bvhInfo<WideBvh<4>>(
             "sahbvh4", "sahbvh's tree collapsed into 4-wide nodes, four child boxes tested at once (SSE); N_TR counts wide steps",
             BvhKind::BinnedSah),
+        bvhInfo<WideBvh<8>>("sahbvh8",
+                            "sahbvh's tree collapsed into 8-wide nodes, eight child boxes tested at once (AVX2; scalar lanes "
+                            "on a machine without it); N_TR counts wide steps",
+                            BvhKind::BinnedSah),
         bvhInfo<Bvh>("sweepbvh", "BVH by full-sweep SAH over all N-1 planes per axis: the exact reference for sahbvh; slow build",
                      BvhKind::SweepSah),
     };

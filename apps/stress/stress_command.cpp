@@ -48,7 +48,7 @@ double secondsSince(Clock::time_point start) { return std::chrono::duration<doub
 struct StressOptions {
     EnvOptions env;
     size_t rays = 1000000;
-    std::string accels = "naive,tdbvh,sahbvh,sahbvh4,sweepbvh,embree,embree:Embree::robust=true";
+    std::string accels = "naive,tdbvh,sahbvh,sahbvh4,sahbvh8,sweepbvh,embree,embree:Embree::robust=true";
     std::string scenes = "icosphere,cube,torus,igea.ply,a10.obj";
     std::string parts = "watertight,sweep,acne,builders";
     size_t sweepRays = 100000;

@@ -665,7 +665,7 @@ TEST(Bvh, CountersCountVisitsAndTests) {
 
 TEST(Bvh, RegisteredWithTheirEnvKeys) {
     const EnvRegistry& registry = programKeys();
-    for (const char* name : {"tdbvh", "sahbvh", "sahbvh4", "sweepbvh"}) {
+    for (const char* name : {"tdbvh", "sahbvh", "sahbvh4", "sahbvh8", "sweepbvh"}) {
         const auto& infos = acceleratorInfos();
         const auto it = std::find_if(infos.begin(), infos.end(), [&](const AcceleratorInfo& i) { return i.name == name; });
         ASSERT_NE(it, infos.end()) << name;
