@@ -1,5 +1,6 @@
-// What every BVH layout stores besides its nodes: the leaves' primitives, in leaf order. A
-// leaf of any layout names a range [first, first + count) of these arrays.
+// What the binary layout stores besides its nodes: the leaves' triangles, in leaf order. A
+// leaf names a range [first, first + count) of these arrays. (The wide layouts store theirs
+// in SIMD blocks: triangle_blocks.h.)
 #pragma once
 
 #include "accel/bvh/layout/traversal_allocator.h"
@@ -20,13 +21,13 @@ struct LeafArrays {
 };
 
 // A finished tree of one node layout: its nodes (root at 0; none when there is nothing to
-// build over) and its leaf arrays.
-template <typename Node>
-struct NodeTree : LeafArrays {
+// build over) and its leaves' arrays.
+template <typename Node, typename Leaves = LeafArrays>
+struct NodeTree : Leaves {
     std::vector<Node, TraversalAllocator<Node>> nodes;
 
     bool empty() const { return nodes.empty(); }
-    size_t bytes() const { return nodes.size() * sizeof(Node) + leafBytes(); }
+    size_t bytes() const { return nodes.size() * sizeof(Node) + this->leafBytes(); }
 };
 
 }  // namespace bvhlab

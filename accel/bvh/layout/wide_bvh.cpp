@@ -24,11 +24,16 @@ WideNode<N> emptyWideNode() {
 template <int N>
 WideBvh<N> collapseToWide(Bvh&& bvh) {
     WideBvh<N> wide;
-    wide.primIndices = std::move(bvh.primIndices);
-    wide.leafTriangles = std::move(bvh.leafTriangles);
     if (bvh.empty()) return wide;
     const std::vector<BvhNode, TraversalAllocator<BvhNode>>& binary = bvh.nodes;
     wide.nodes.reserve(binary.size() / 2 + 1);
+    size_t blocks = 0;
+    for (const BvhNode& n : binary) blocks += n.isLeaf() ? blocksFor(n.count) : 0;
+    wide.blocks.reserve(blocks);
+    wide.primIndices.reserve(blocks * TriangleBlock::kLanes);
+    const auto appendLeaf = [&](const BvhNode& leaf) {
+        return wide.appendLeaf(&bvh.leafTriangles[leaf.index], &bvh.primIndices[leaf.index], leaf.count);
+    };
 
     // Work: a binary node whose children fill the wide node at `slot`.
     struct Work {
@@ -41,8 +46,9 @@ WideBvh<N> collapseToWide(Bvh&& bvh) {
         WideNode<N>& root = wide.nodes[0];
         const Bounds3 b = binary[0].box();
         for (int a = 0; a < 3; ++a) root.lower[a][0] = b.lower[a], root.upper[a][0] = b.upper[a];
-        root.child[0] = binary[0].index;
+        root.child[0] = appendLeaf(binary[0]);
         root.count[0] = binary[0].count;
+        bvh = Bvh();
         return wide;
     }
     stack.push_back({0, 0});
@@ -71,7 +77,7 @@ WideBvh<N> collapseToWide(Bvh&& bvh) {
             const BvhNode& c = binary[children[i]];
             const Bounds3 b = c.box();
             for (int a = 0; a < 3; ++a) node.lower[a][i] = b.lower[a], node.upper[a][i] = b.upper[a];
-            if (c.isLeaf()) node.child[i] = c.index, node.count[i] = c.count;
+            if (c.isLeaf()) node.child[i] = appendLeaf(c), node.count[i] = c.count;
         }
         // Inner children (count 0) get wide nodes of their own, in lane order.
         for (int i = 0; i < n; ++i) {

@@ -40,6 +40,8 @@ struct Scalar {
     static constexpr int kLanes = N;
     struct Mask {
         uint32_t bits;  // lane i in bit i
+        friend Mask operator&(Mask a, Mask b) { return {a.bits & b.bits}; }
+        friend Mask operator|(Mask a, Mask b) { return {a.bits | b.bits}; }
     };
     float lane[N];
 
@@ -78,6 +80,14 @@ struct Scalar {
     friend Scalar operator+(Scalar a, Scalar b) { return zipWith(a, b, [](float x, float y) { return x + y; }); }
     friend Scalar operator-(Scalar a, Scalar b) { return zipWith(a, b, [](float x, float y) { return x - y; }); }
     friend Scalar operator*(Scalar a, Scalar b) { return zipWith(a, b, [](float x, float y) { return x * y; }); }
+    friend Scalar operator/(Scalar a, Scalar b) { return zipWith(a, b, [](float x, float y) { return x / y; }); }
+    // float(double(a) * double(b) - double(c) * double(d)): both products are exact in double,
+    // so the result's sign is that of the exact difference, and 0 only when it is 0.
+    friend Scalar differenceOfProducts(Scalar a, Scalar b, Scalar c, Scalar d) {
+        for (int i = 0; i < N; ++i)
+            a.lane[i] = float(double(a.lane[i]) * double(b.lane[i]) - double(c.lane[i]) * double(d.lane[i]));
+        return a;
+    }
     friend Scalar min(Scalar a, Scalar b) { return zipWith(a, b, [](float x, float y) { return simd::min(x, y); }); }
     friend Scalar max(Scalar a, Scalar b) { return zipWith(a, b, [](float x, float y) { return simd::max(x, y); }); }
     friend Mask operator<=(Scalar a, Scalar b) {
@@ -86,6 +96,18 @@ struct Scalar {
         return m;
     }
     friend Mask operator>=(Scalar a, Scalar b) { return b <= a; }
+    friend Mask operator<(Scalar a, Scalar b) {
+        Mask m{0};
+        for (int i = 0; i < N; ++i) m.bits |= uint32_t(a.lane[i] < b.lane[i]) << i;
+        return m;
+    }
+    friend Mask operator>(Scalar a, Scalar b) { return b < a; }
+    // Unordered: true on NaN, as the scalar !=.
+    friend Mask operator!=(Scalar a, Scalar b) {
+        Mask m{0};
+        for (int i = 0; i < N; ++i) m.bits |= uint32_t(a.lane[i] != b.lane[i]) << i;
+        return m;
+    }
     friend int movemask(Mask m) { return int(m.bits); }
     // Lane by lane: a where the mask is set, else b.
     friend Scalar select(Mask m, Scalar a, Scalar b) {
@@ -99,6 +121,8 @@ struct Sse {
     static constexpr int kLanes = 4;
     struct Mask {
         __m128 m;
+        friend Mask operator&(Mask a, Mask b) { return {_mm_and_ps(a.m, b.m)}; }
+        friend Mask operator|(Mask a, Mask b) { return {_mm_or_ps(a.m, b.m)}; }
     };
     __m128 v;
 
@@ -116,10 +140,28 @@ struct Sse {
     friend Sse operator+(Sse a, Sse b) { return {_mm_add_ps(a.v, b.v)}; }
     friend Sse operator-(Sse a, Sse b) { return {_mm_sub_ps(a.v, b.v)}; }
     friend Sse operator*(Sse a, Sse b) { return {_mm_mul_ps(a.v, b.v)}; }
+    friend Sse operator/(Sse a, Sse b) { return {_mm_div_ps(a.v, b.v)}; }
+    friend Sse differenceOfProducts(Sse a, Sse b, Sse c, Sse d) {
+#if defined(__AVX__)
+        const __m256d ab = _mm256_mul_pd(_mm256_cvtps_pd(a.v), _mm256_cvtps_pd(b.v));
+        const __m256d cd = _mm256_mul_pd(_mm256_cvtps_pd(c.v), _mm256_cvtps_pd(d.v));
+        return {_mm256_cvtpd_ps(_mm256_sub_pd(ab, cd))};
+#else
+        const auto half = [](__m128 a, __m128 b, __m128 c, __m128 d) {
+            return _mm_cvtpd_ps(_mm_sub_pd(_mm_mul_pd(_mm_cvtps_pd(a), _mm_cvtps_pd(b)),
+                                           _mm_mul_pd(_mm_cvtps_pd(c), _mm_cvtps_pd(d))));
+        };
+        const auto high = [](__m128 x) { return _mm_movehl_ps(x, x); };
+        return {_mm_movelh_ps(half(a.v, b.v, c.v, d.v), half(high(a.v), high(b.v), high(c.v), high(d.v)))};
+#endif
+    }
     friend Sse min(Sse a, Sse b) { return {_mm_min_ps(a.v, b.v)}; }
     friend Sse max(Sse a, Sse b) { return {_mm_max_ps(a.v, b.v)}; }
     friend Mask operator<=(Sse a, Sse b) { return {_mm_cmple_ps(a.v, b.v)}; }
     friend Mask operator>=(Sse a, Sse b) { return {_mm_cmpge_ps(a.v, b.v)}; }
+    friend Mask operator<(Sse a, Sse b) { return {_mm_cmplt_ps(a.v, b.v)}; }
+    friend Mask operator>(Sse a, Sse b) { return {_mm_cmpgt_ps(a.v, b.v)}; }
+    friend Mask operator!=(Sse a, Sse b) { return {_mm_cmpneq_ps(a.v, b.v)}; }  // true on NaN
     friend int movemask(Mask m) { return _mm_movemask_ps(m.m); }
     friend Sse select(Mask m, Sse a, Sse b) { return {_mm_or_ps(_mm_and_ps(m.m, a.v), _mm_andnot_ps(m.m, b.v))}; }
 };
@@ -130,6 +172,8 @@ struct Avx {
     static constexpr int kLanes = 8;
     struct Mask {
         __m256 m;
+        friend Mask operator&(Mask a, Mask b) { return {_mm256_and_ps(a.m, b.m)}; }
+        friend Mask operator|(Mask a, Mask b) { return {_mm256_or_ps(a.m, b.m)}; }
     };
     __m256 v;
 
@@ -145,11 +189,24 @@ struct Avx {
     friend Avx operator+(Avx a, Avx b) { return {_mm256_add_ps(a.v, b.v)}; }
     friend Avx operator-(Avx a, Avx b) { return {_mm256_sub_ps(a.v, b.v)}; }
     friend Avx operator*(Avx a, Avx b) { return {_mm256_mul_ps(a.v, b.v)}; }
+    friend Avx operator/(Avx a, Avx b) { return {_mm256_div_ps(a.v, b.v)}; }
+    friend Avx differenceOfProducts(Avx a, Avx b, Avx c, Avx d) {
+        const auto half = [](__m128 a, __m128 b, __m128 c, __m128 d) {
+            return _mm256_cvtpd_ps(_mm256_sub_pd(_mm256_mul_pd(_mm256_cvtps_pd(a), _mm256_cvtps_pd(b)),
+                                                 _mm256_mul_pd(_mm256_cvtps_pd(c), _mm256_cvtps_pd(d))));
+        };
+        const auto lo = [](__m256 x) { return _mm256_castps256_ps128(x); };
+        const auto hi = [](__m256 x) { return _mm256_extractf128_ps(x, 1); };
+        return {_mm256_set_m128(half(hi(a.v), hi(b.v), hi(c.v), hi(d.v)), half(lo(a.v), lo(b.v), lo(c.v), lo(d.v)))};
+    }
     friend Avx min(Avx a, Avx b) { return {_mm256_min_ps(a.v, b.v)}; }
     friend Avx max(Avx a, Avx b) { return {_mm256_max_ps(a.v, b.v)}; }
     // Ordered predicates: false on NaN, as the scalar <= and SSE's cmpleps.
     friend Mask operator<=(Avx a, Avx b) { return {_mm256_cmp_ps(a.v, b.v, _CMP_LE_OQ)}; }
     friend Mask operator>=(Avx a, Avx b) { return {_mm256_cmp_ps(a.v, b.v, _CMP_GE_OQ)}; }
+    friend Mask operator<(Avx a, Avx b) { return {_mm256_cmp_ps(a.v, b.v, _CMP_LT_OQ)}; }
+    friend Mask operator>(Avx a, Avx b) { return {_mm256_cmp_ps(a.v, b.v, _CMP_GT_OQ)}; }
+    friend Mask operator!=(Avx a, Avx b) { return {_mm256_cmp_ps(a.v, b.v, _CMP_NEQ_UQ)}; }  // true on NaN
     friend int movemask(Mask m) { return _mm256_movemask_ps(m.m); }
     friend Avx select(Mask m, Avx a, Avx b) { return {_mm256_blendv_ps(b.v, a.v, m.m)}; }
 };

@@ -6,6 +6,7 @@
 #include "accel/bvh/layout/wide_bvh.h"
 #include "accel/bvh/traverse/box_test.h"
 #include "accel/bvh/traverse/traversal.h"
+#include "accel/bvh/traverse/triangle_block_test.h"
 
 #include <cassert>
 
@@ -13,7 +14,8 @@ namespace bvhlab {
 
 namespace wide_traversal {
 
-// A child to visit: a wide node (count 0) or a leaf, and where the ray enters its box.
+// A child to visit: a wide node (count 0) or a leaf (its first block and triangle count), and
+// where the ray enters its box.
 struct StackEntry {
     uint32_t child;
     uint32_t count;
@@ -30,7 +32,7 @@ inline constexpr int kStackSize = (N - 1) * kBvhMaxDepth + 1;
 // loading now.
 template <int N>
 inline StackEntry nextChild(const WideNode<N>& node, int mask, const float entry[N], StackEntry* stack, int& size,
-                            const WideNode<N>* nodes, const Triangle* triangles) {
+                            const WideNode<N>* nodes, const TriangleBlock* blocks) {
     const int first = __builtin_ctz(unsigned(mask));
     mask &= mask - 1;
     StackEntry nearest{node.child[first], node.count[first], entry[first]};
@@ -49,7 +51,7 @@ inline StackEntry nextChild(const WideNode<N>& node, int mask, const float entry
     assert(size + k - 1 <= kStackSize<N>);
     for (int i = 0; i < k - 1; ++i) {
         const StackEntry& e = hits[i];
-        __builtin_prefetch(e.count != 0 ? static_cast<const void*>(triangles + e.child)
+        __builtin_prefetch(e.count != 0 ? static_cast<const void*>(blocks + e.child)
                                         : static_cast<const void*>(nodes + e.child));
         stack[size++] = e;
     }
@@ -62,9 +64,9 @@ template <typename Query, bool NegativeT, bool Robust, int N>
 Query traverse(const WideBvh<N>& bvh, const Ray& ray, QueryCounters& counters) {
     using namespace wide_traversal;
     const WideBoxTest<N, NegativeT, Robust> boxTest(ray);
-    const LeafTriangleTest<Robust> triangleTest(ray);
+    const BlockTriangleTest<Robust> triangleTest(ray);
     const WideNode<N>* nodes = bvh.nodes.data();
-    const Triangle* triangles = bvh.leafTriangles.data();
+    const TriangleBlock* blocks = bvh.blocks.data();
     Query query(ray);
 
     uint64_t steps = 0, tests = 0;
@@ -80,11 +82,11 @@ Query traverse(const WideBvh<N>& bvh, const Ray& ray, QueryCounters& counters) {
             if (mask != 0) {
                 // Nearer first, for an any-hit query too: an occluder near the origin is found
                 // sooner.
-                current = nextChild(node, mask, entry, stack, size, nodes, triangles);
+                current = nextChild(node, mask, entry, stack, size, nodes, blocks);
                 continue;
             }
         } else {
-            if (testLeaf(query, triangleTest, triangles, current.child, current.count, ray.tmin, tests)) break;
+            if (testLeafBlocks(query, triangleTest, blocks, current.child, current.count, ray.tmin, tests)) break;
         }
         // Pop the next child the ray enters before the closest hit so far (an any-hit query
         // never shortens its interval: nothing to skip).

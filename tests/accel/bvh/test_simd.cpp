@@ -45,12 +45,20 @@ void expectBackendsAgree(uint32_t seed) {
         (ra + rb).storeu(r), expectLanes(va + vb, r, "+");
         (ra - rb).storeu(r), expectLanes(va - vb, r, "-");
         (ra * rb).storeu(r), expectLanes(va * vb, r, "*");
+        (ra / rb).storeu(r), expectLanes(va / vb, r, "/");
+        differenceOfProducts(ra, rb, rb, rb * ra).storeu(r);
+        expectLanes(differenceOfProducts(va, vb, vb, vb * va), r, "differenceOfProducts");
         min(ra, rb).storeu(r), expectLanes(min(va, vb), r, "min");
         max(ra, rb).storeu(r), expectLanes(max(va, vb), r, "max");
         select(ra >= rb, ra, rb).storeu(r), expectLanes(select(va >= vb, va, vb), r, "select");
         Reference::broadcast(a[0]).storeu(r), expectLanes(Vector::broadcast(a[0]), r, "broadcast");
         EXPECT_EQ(movemask(va <= vb), movemask(ra <= rb));
         EXPECT_EQ(movemask(va >= vb), movemask(ra >= rb));
+        EXPECT_EQ(movemask(va < vb), movemask(ra < rb));
+        EXPECT_EQ(movemask(va > vb), movemask(ra > rb));
+        EXPECT_EQ(movemask(va != vb), movemask(ra != rb));
+        EXPECT_EQ(movemask((va < vb) & (va != vb)), movemask((ra < rb) & (ra != rb)));
+        EXPECT_EQ(movemask((va < vb) | (va > vb)), movemask((ra < rb) | (ra > rb)));
         // Truncation only where it is defined: finite values in int32's range.
         alignas(32) float c[N];
         for (int i = 0; i < N; ++i) c[i] = std::uniform_real_distribution<float>(-1e6f, 1e6f)(rng);
@@ -73,6 +81,21 @@ TEST(Simd, TheNanRuleIsMinpsMaxps) {
     EXPECT_TRUE(std::isnan(simd::max(1.0f, nan)));
     EXPECT_TRUE(std::signbit(simd::min(0.0f, -0.0f)));
     EXPECT_FALSE(std::signbit(simd::max(-0.0f, 0.0f)));
+}
+
+// Where a*b and c*d are equal in exact arithmetic, the difference is exactly 0 (a float
+// difference of rounded products need not be), and its sign is the exact one elsewhere.
+TEST(Simd, DifferenceOfProductsHasTheExactSign) {
+    using F = simd::Floats<4>;
+    // 3 * (1/3 rounded) vs 1 * (3 * (1/3 rounded)) rounded: exact products differ by a tiny amount.
+    const float third = 1.0f / 3.0f;
+    alignas(16) float r[4];
+    differenceOfProducts(F::broadcast(3.0f), F::broadcast(third), F::broadcast(1.0f), F::broadcast(3.0f * third)).storeu(r);
+    const double exact = 3.0 * double(third) - double(3.0f * third);
+    EXPECT_EQ(r[0] < 0.0f, exact < 0.0) << r[0] << " exact " << exact;
+    EXPECT_EQ(r[0] == 0.0f, exact == 0.0) << r[0] << " exact " << exact;
+    differenceOfProducts(F::broadcast(0.1f), F::broadcast(0.7f), F::broadcast(0.7f), F::broadcast(0.1f)).storeu(r);
+    EXPECT_EQ(std::bit_cast<uint32_t>(r[0]), 0u);
 }
 
 TEST(Simd, FourLaneBackendsAgreeBitForBit) { expectBackendsAgree<simd::Floats<4>>(1); }

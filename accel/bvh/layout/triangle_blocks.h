@@ -1,0 +1,60 @@
+// The leaves of the wide layouts: their triangles in blocks of four, stored lane by lane (SoA,
+// as Embree's triangle4v), so that one SIMD test (traverse/triangle_block_test.h) checks four
+// triangles of a leaf at once. A leaf of n triangles takes ceil(n / 4) blocks of its own; the
+// lanes past its last triangle hold a point triangle (three equal vertices), which the
+// watertight test never hits (its edge functions are exactly 0), and kInvalidPrimitive.
+#pragma once
+
+#include "accel/bvh/layout/traversal_allocator.h"
+#include "framework/core/triangle.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace bvhlab {
+
+struct alignas(16) TriangleBlock {
+    static constexpr int kLanes = 4;
+    float vertex[3][3][kLanes];  // [vertex 0-2][axis x-z][lane]
+
+    Triangle triangle(int lane) const {
+        const auto v = [&](int k) { return Vec3(vertex[k][0][lane], vertex[k][1][lane], vertex[k][2][lane]); };
+        return {v(0), v(1), v(2)};
+    }
+    void set(int lane, const Triangle& tri) {
+        const Vec3* v[3] = {&tri.v0, &tri.v1, &tri.v2};
+        for (int k = 0; k < 3; ++k)
+            for (int a = 0; a < 3; ++a) vertex[k][a][lane] = (*v[k])[a];
+    }
+};
+static_assert(sizeof(TriangleBlock) == 144);
+
+inline constexpr uint32_t blocksFor(uint32_t triangles) {
+    return (triangles + TriangleBlock::kLanes - 1) / TriangleBlock::kLanes;
+}
+
+// A leaf of these arrays names its first block and its triangle count; the triangle in lane l
+// of block b is at position 4b + l of primIndices.
+struct TriangleBlockLeaves {
+    // The primitive index of each lane, reported in Hit::primitive (kInvalidPrimitive: padding).
+    std::vector<uint32_t> primIndices;
+    std::vector<TriangleBlock, TraversalAllocator<TriangleBlock>> blocks;
+
+    // Appends a leaf of `count` triangles (primitive indices `prims`); returns its first block.
+    uint32_t appendLeaf(const Triangle* triangles, const uint32_t* prims, uint32_t count) {
+        const uint32_t first = uint32_t(blocks.size());
+        for (uint32_t i = 0; i < blocksFor(count) * TriangleBlock::kLanes; ++i) {
+            const int lane = int(i % TriangleBlock::kLanes);
+            if (lane == 0) blocks.emplace_back();
+            const bool real = i < count;
+            const Triangle& last = triangles[count - 1];
+            blocks.back().set(lane, real ? triangles[i] : Triangle{last.v0, last.v0, last.v0});
+            primIndices.push_back(real ? prims[i] : kInvalidPrimitive);
+        }
+        return first;
+    }
+
+    size_t leafBytes() const { return primIndices.size() * sizeof(uint32_t) + blocks.size() * sizeof(TriangleBlock); }
+};
+
+}  // namespace bvhlab

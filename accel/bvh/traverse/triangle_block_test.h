@@ -1,0 +1,109 @@
+// The leaves' triangle test of the wide layouts: the watertight test of framework/core/
+// triangle.h on the four triangles of a TriangleBlock at once, in lanes of simd::Floats<4>.
+// Every lane performs the scalar test's operations in its order (the edge functions' products
+// in double, simd::differenceOfProducts), so a lane's answer is the scalar test's bit for bit:
+// the wide layouts are as watertight as the binary one, and agree with it hit for hit.
+#pragma once
+
+#include "accel/bvh/layout/triangle_blocks.h"
+#include "accel/bvh/simd/simd.h"
+#include "framework/core/triangle.h"
+#include "framework/core/triangle_moller_trumbore.h"
+
+namespace bvhlab {
+
+// The hits of one block: a lane mask and each lane's t, u, v.
+struct BlockHits {
+    int mask = 0;
+    alignas(16) float t[TriangleBlock::kLanes], u[TriangleBlock::kLanes], v[TriangleBlock::kLanes];
+};
+
+template <bool Robust>
+struct BlockTriangleTest {
+    using F = simd::Floats<TriangleBlock::kLanes>;
+    ShearedRay sheared;
+
+    explicit BlockTriangleTest(const Ray& ray) : sheared(ray) {}
+
+    // The hits at t in [tmin, tmax] of the block's lanes (padding lanes never hit).
+    BlockHits intersect(const TriangleBlock& block, float tmin, float tmax) const {
+        const ShearedRay& r = sheared;
+        const F sx = F::broadcast(r.sx), sy = F::broadcast(r.sy), sz = F::broadcast(r.sz);
+        F x[3], y[3], z[3];  // the vertices in the sheared frame (z not yet scaled)
+        for (int k = 0; k < 3; ++k) {
+            const F ax = F::load(block.vertex[k][r.kx]) - F::broadcast(r.org[r.kx]);
+            const F ay = F::load(block.vertex[k][r.ky]) - F::broadcast(r.org[r.ky]);
+            z[k] = F::load(block.vertex[k][r.kz]) - F::broadcast(r.org[r.kz]);
+            x[k] = ax - sx * z[k];
+            y[k] = ay - sy * z[k];
+        }
+        const F e0 = differenceOfProducts(x[2], y[1], y[2], x[1]);  // edge v1-v2: weight of v0
+        const F e1 = differenceOfProducts(x[0], y[2], y[0], x[2]);  // edge v2-v0: weight of v1
+        const F e2 = differenceOfProducts(x[1], y[0], y[1], x[0]);  // edge v0-v1: weight of v2
+        const F zero = F::broadcast(0.0f);
+        const auto negative = (e0 < zero) | (e1 < zero) | (e2 < zero);
+        const auto positive = (e0 > zero) | (e1 > zero) | (e2 > zero);
+        const F det = e0 + e1 + e2;
+        BlockHits hits;
+        // Lanes with edge functions of both signs miss; so does a zero determinant.
+        if ((movemask(negative) & movemask(positive)) == 0xF || movemask(det != zero) == 0) return hits;
+        const F invDet = F::broadcast(1.0f) / det;
+        const F t = (e0 * (sz * z[0]) + e1 * (sz * z[1]) + e2 * (sz * z[2])) * invDet;
+        const auto inRange = (t >= F::broadcast(tmin)) & (t <= F::broadcast(tmax)) & (det != zero);
+        hits.mask = movemask(inRange) & ~(movemask(negative) & movemask(positive));
+        if (hits.mask == 0) return hits;
+        t.store(hits.t);
+        (e1 * invDet).store(hits.u);
+        (e2 * invDet).store(hits.v);
+        return hits;
+    }
+};
+
+// With robustness off (BVH::robust=false): Moeller-Trumbore lane by lane, as the binary
+// layout's leaves do then (only to measure what the watertight test costs).
+template <>
+struct BlockTriangleTest<false> {
+    const Ray& ray;
+    explicit BlockTriangleTest(const Ray& ray) : ray(ray) {}
+
+    BlockHits intersect(const TriangleBlock& block, float tmin, float tmax) const {
+        BlockHits hits;
+        for (int lane = 0; lane < TriangleBlock::kLanes; ++lane) {
+            TriangleHitT<float> h;
+            if (!intersectTriangleMollerTrumbore(ray, block.triangle(lane), tmin, tmax, h)) continue;
+            hits.mask |= 1 << lane;
+            hits.t[lane] = h.t, hits.u[lane] = h.u, hits.v[lane] = h.v;
+        }
+        return hits;
+    }
+};
+
+// Tests the `count` triangles of the leaf whose blocks start at `first`; true when the query
+// is answered. N_IT counts triangles as the binary layout does: an any-hit query up to the
+// one that occludes, padding never. Of equal t in one block the last lane wins, as in the
+// binary layout's loop, which takes a later triangle at t == tmax.
+template <typename Query, bool Robust>
+inline bool testLeafBlocks(Query& query, const BlockTriangleTest<Robust>& test, const TriangleBlock* blocks,
+                           uint32_t first, uint32_t count, float tmin, uint64_t& tests) {
+    constexpr int W = TriangleBlock::kLanes;
+    for (uint32_t b = 0; b < blocksFor(count); ++b) {
+        const BlockHits hits = test.intersect(blocks[first + b], tmin, query.tmax);
+        if (hits.mask == 0) continue;
+        int lane = __builtin_ctz(unsigned(hits.mask));
+        if constexpr (Query::kStopsAtFirstHit) {
+            tests += uint64_t(b) * W + lane + 1;
+            query.record({hits.t[lane], hits.u[lane], hits.v[lane]}, (first + b) * W + lane);
+            return true;
+        } else {
+            for (int m = hits.mask & (hits.mask - 1); m != 0; m &= m - 1) {
+                const int i = __builtin_ctz(unsigned(m));
+                if (hits.t[i] <= hits.t[lane]) lane = i;
+            }
+            query.record({hits.t[lane], hits.u[lane], hits.v[lane]}, (first + b) * W + lane);
+        }
+    }
+    tests += count;
+    return false;
+}
+
+}  // namespace bvhlab

@@ -1,0 +1,129 @@
+// The wide layouts' leaf test (traverse/triangle_block_test.h) answers as the shared scalar
+// watertight test, lane for lane and bit for bit: random rays, rays aimed at vertices and edge
+// points (where rounding decides), axis-parallel rays, and the padding lanes of short leaves.
+#include "accel/bvh/traverse/triangle_block_test.h"
+#include "accel/bvh/traverse/traversal.h"
+#include "framework/robustness/stress_rng.h"
+
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <vector>
+
+namespace bvhlab {
+namespace {
+
+// A fan of triangles around a shared vertex, so that rays at the vertex and along the shared
+// edges probe the cases the exact edge functions exist for.
+std::vector<Triangle> fanAround(StressRng& rng, Vec3 centre, int count) {
+    std::vector<Triangle> fan;
+    const Vec3 u(1.0f, 0.3f, -0.2f), v(-0.1f, 0.4f, 1.0f);
+    for (int i = 0; i < count; ++i) {
+        const float a0 = 6.2831853f * float(i) / float(count), a1 = 6.2831853f * float(i + 1) / float(count);
+        const float r = float(rng.uniform(0.5, 2.0));
+        fan.push_back({centre, centre + r * (std::cos(a0) * u + std::sin(a0) * v), centre + r * (std::cos(a1) * u + std::sin(a1) * v)});
+    }
+    return fan;
+}
+
+std::vector<Ray> probeRays(StressRng& rng, const std::vector<Triangle>& tris, int count) {
+    std::vector<Ray> rays;
+    for (int i = 0; i < count; ++i) {
+        const Triangle& tri = tris[rng.index(tris.size())];
+        Vec3 target;
+        switch (i % 4) {
+            case 0: target = tri.v0; break;                                       // a vertex
+            case 1: target = tri.v1 + float(rng.uniform()) * (tri.v2 - tri.v1); break;  // an edge point
+            case 2: target = tri.v0 + float(rng.uniform()) * (tri.v1 - tri.v0); break;
+            default: target = (tri.v0 + tri.v1 + tri.v2) * (1.0f / 3.0f) + Vec3(rng.uniform(-1, 1), rng.uniform(-1, 1), 0.0f);
+        }
+        Ray ray;
+        ray.org = target + Vec3(rng.unitVector()) * float(rng.logUniform(0.1, 100.0));
+        ray.dir = target - ray.org;
+        if (i % 16 == 5) ray.dir = Vec3(0.0f, 0.0f, ray.dir.z);  // axis-parallel
+        if (i % 8 == 3) ray.tmax = float(rng.uniform(0.5, 1.5));
+        rays.push_back(ray);
+    }
+    return rays;
+}
+
+TriangleBlock blockOf(const std::vector<Triangle>& tris, size_t first, int lanes) {
+    TriangleBlockLeaves leaves;
+    std::vector<uint32_t> prims(lanes);
+    leaves.appendLeaf(&tris[first], prims.data(), uint32_t(lanes));
+    return leaves.blocks[0];
+}
+
+TEST(TriangleBlock, LanesAnswerAsTheScalarWatertightTest) {
+    StressRng rng(11);
+    std::vector<Triangle> tris = fanAround(rng, Vec3(0.3f, -1.7f, 2.9f), 8);
+    for (int i = 0; i < 8; ++i) tris.push_back({rng.inBox({Vec3(-3), Vec3(3)}), rng.inBox({Vec3(-3), Vec3(3)}), rng.inBox({Vec3(-3), Vec3(3)})});
+    size_t hits = 0;
+    for (const Ray& ray : probeRays(rng, tris, 4000)) {
+        const ShearedRay sheared(ray);
+        const BlockTriangleTest<true> test(ray);
+        for (size_t first = 0; first + 4 <= tris.size(); first += 4) {
+            const BlockHits block = test.intersect(blockOf(tris, first, 4), ray.tmin, ray.tmax);
+            for (int lane = 0; lane < 4; ++lane) {
+                TriangleHitT<float> h;
+                const bool hit = intersectTriangle(sheared, tris[first + lane], ray.tmin, ray.tmax, h);
+                ASSERT_EQ(bool(block.mask >> lane & 1), hit) << "triangle " << first + lane;
+                if (!hit) continue;
+                ++hits;
+                EXPECT_EQ(std::bit_cast<uint32_t>(block.t[lane]), std::bit_cast<uint32_t>(h.t));
+                EXPECT_EQ(std::bit_cast<uint32_t>(block.u[lane]), std::bit_cast<uint32_t>(h.u));
+                EXPECT_EQ(std::bit_cast<uint32_t>(block.v[lane]), std::bit_cast<uint32_t>(h.v));
+            }
+        }
+    }
+    EXPECT_GT(hits, 1000u);  // the probes do reach the triangles
+}
+
+// A leaf of 1-3 triangles pads its block with a point; rays through that point miss it.
+TEST(TriangleBlock, PaddingLanesNeverHit) {
+    StressRng rng(12);
+    const std::vector<Triangle> tris = fanAround(rng, Vec3(1.0f, 2.0f, 3.0f), 3);
+    for (int lanes = 1; lanes <= 3; ++lanes) {
+        const TriangleBlock block = blockOf(tris, 0, lanes);
+        const Vec3 point = tris[lanes - 1].v0;
+        for (int i = 0; i < 200; ++i) {
+            Ray ray;
+            ray.org = point + Vec3(rng.unitVector()) * 3.0f;
+            ray.dir = point - ray.org;
+            const int mask = BlockTriangleTest<true>(ray).intersect(block, 0.0f, kInfinity).mask;
+            EXPECT_EQ(mask >> lanes, 0) << lanes << " lanes";
+            EXPECT_EQ(BlockTriangleTest<false>(ray).intersect(block, 0.0f, kInfinity).mask >> lanes, 0);
+        }
+    }
+}
+
+// A leaf of blocks counts and chooses as the binary layout's loop over the same triangles.
+TEST(TriangleBlock, LeafCountsAndChoosesAsTheScalarLoop) {
+    StressRng rng(13);
+    std::vector<Triangle> tris = fanAround(rng, Vec3(0.0f), 7);
+    tris.push_back(tris[2]);  // a duplicate: equal t in two lanes
+    for (uint32_t count : {1u, 3u, 4u, 5u, 8u}) {
+        TriangleBlockLeaves leaves;
+        std::vector<uint32_t> prims(count);
+        leaves.appendLeaf(tris.data(), prims.data(), count);
+        for (const Ray& ray : probeRays(rng, std::vector<Triangle>(tris.begin(), tris.begin() + count), 300)) {
+            const LeafTriangleTest<true> scalar(ray);
+            const BlockTriangleTest<true> block(ray);
+            ClosestHitQuery nearA(ray), nearB(ray);
+            uint64_t testsA = 0, testsB = 0;
+            testLeaf(nearA, scalar, tris.data(), 0, count, ray.tmin, testsA);
+            testLeafBlocks(nearB, block, leaves.blocks.data(), 0, count, ray.tmin, testsB);
+            EXPECT_EQ(nearB.found, nearA.found);
+            EXPECT_EQ(testsB, testsA);
+            AnyHitQuery anyA(ray), anyB(ray);
+            testsA = testsB = 0;
+            EXPECT_EQ(testLeafBlocks(anyB, block, leaves.blocks.data(), 0, count, ray.tmin, testsB),
+                      testLeaf(anyA, scalar, tris.data(), 0, count, ray.tmin, testsA));
+            EXPECT_EQ(anyB.occluded, anyA.occluded);
+            EXPECT_EQ(testsB, testsA) << "any hit counts up to the occluder";
+        }
+    }
+}
+
+}  // namespace
+}  // namespace bvhlab
