@@ -24,7 +24,11 @@ struct LayoutWidth<WideBvh<N>> {
 template <typename Layout>
 BvhAccelerator<Layout>::BvhAccelerator(BvhKind kind, const BvhBuildConfig& build, const TraversalConfig& traversal)
     : kind_(kind), build_(build), traversal_(traversal), name_(bvhKindName(kind)) {
-    if constexpr (LayoutWidth<Layout>::value > 2) name_ += std::to_string(LayoutWidth<Layout>::value);
+    if constexpr (LayoutWidth<Layout>::value > 2) {
+        name_ += std::to_string(LayoutWidth<Layout>::value);
+        static_assert(TriangleBlock::kLanes == 4);
+        build_.sahBlockShift = 2;  // the leaves test triangles four at a time
+    }
 }
 
 template <typename Layout>

@@ -121,7 +121,8 @@ void BinnedSahBuilder::sweep(int axis, PlaneChoice& best) {
             area = box.grow(bins[p - 1].lower, bins[p - 1].upper);
         }
         if (count == 0 || rightCount_[p] == 0) continue;
-        const float cost = area * float(count) + rightArea_[p] * float(rightCount_[p]);
+        const float cost =
+            area * float(config_.sahTests(count)) + rightArea_[p] * float(config_.sahTests(rightCount_[p]));
         if (cost < best.cost) best = {cost, axis, p};
     }
 }

@@ -27,7 +27,7 @@ bool allCentresEqual(const BuildRange& range) {
 bool TopDownBuilder::sahPrefersLeaf(const BuildRange& range, float splitCost) const {
     const float area = range.bounds.halfArea();
     if (!(area > 0.0f)) return false;  // no meaningful ratio: keep splitting
-    const float n = float(range.size());
+    const float n = float(config_.sahTests(range.size()));
     return !(config_.cTraversal + config_.cIntersect * splitCost / area < config_.cIntersect * n);
 }
 

@@ -36,6 +36,9 @@ struct BvhBuildConfig {
     bool sahTermination = true;  // SAH builders: leaf when no split beats testing every primitive
     float cTraversal = 1.0f;     // SAH cost of visiting an inner node, in units of ...
     float cIntersect = 1.0f;     // ... the cost of one ray-triangle test
+    int sahBlockShift = 0;       // the SAH builders count a leaf's tests in blocks of 2^shift
+                                 // triangles (ceil(n / 2^shift), Embree's sahBlockSize): 2 for
+                                 // the wide layouts, whose leaves test four at once
     int bins = 16;               // binned SAH: bins per axis; more bins approach the sweep, slower
     bool allAxes = false;        // binned SAH: bin all three axes and take the best, not the widest
     bool simd = true;            // SIMD in the hot loops (prep, binning, partition); false = the
@@ -43,6 +46,8 @@ struct BvhBuildConfig {
     MedianSplitBox medianSplitBox = MedianSplitBox::CentroidBox;  // tdbvh: which box's longest axis is halved
 
     uint32_t effectiveLeafCap() const { return uint32_t(std::max(maxLeaf, leafCap)); }
+    // What the SAH charges for testing n primitives: n, or the blocks they fill.
+    uint32_t sahTests(uint32_t n) const { return (n + (1u << sahBlockShift) - 1) >> sahBlockShift; }
 };
 
 // A node under construction: the primitives refs[begin, end) and their boxes.

@@ -13,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <random>
@@ -687,21 +688,34 @@ TEST(Bvh, RegisteredWithTheirEnvKeys) {
 // The 4-wide collapse keeps the binary tree's leaves: every leaf appears in exactly one lane
 // with its box, inner lanes point at wide nodes, unused lanes are empty boxes, and no wide
 // node has fewer than two children (or one: a root that is a single leaf).
+// Every binary leaf becomes one wide leaf with the same triangles, in the same order, in blocks
+// of its own whose padding lanes are kInvalidPrimitive point triangles.
 TEST(WideBvh, CollapseKeepsEveryLeafOnce) {
+    using Leaf = std::vector<std::pair<uint32_t, std::array<float, 9>>>;  // (primitive, vertices) in order
+    const auto vertices = [](const Triangle& t) {
+        return std::array<float, 9>{t.v0.x, t.v0.y, t.v0.z, t.v1.x, t.v1.y, t.v1.z, t.v2.x, t.v2.y, t.v2.z};
+    };
     for (size_t n : {size_t(1), size_t(2), size_t(7), size_t(3000)}) {  // 1 and 2: the root is a leaf
         SCOPED_TRACE(n);
         const Soup soup = randomSoup(n, 41 + uint32_t(n));
         Bvh binary = buildBvh(BvhKind::BinnedSah, defaultConfig(), soup.prims());
-        std::multiset<std::pair<uint32_t, uint32_t>> binaryLeaves;  // (first triangle, count)
+        std::multiset<Leaf> binaryLeaves;
+        size_t blocks = 0;
         for (size_t i = 0; i < binary.nodes.size(); ++i) {
-            if (i != 1 && binary.nodes[i].isLeaf()) binaryLeaves.insert({binary.nodes[i].index, binary.nodes[i].count});
+            const BvhNode& node = binary.nodes[i];
+            if (i == 1 || !node.isLeaf()) continue;
+            Leaf leaf;
+            for (uint32_t t = node.index; t < node.index + node.count; ++t)
+                leaf.push_back({binary.primIndices[t], vertices(binary.leafTriangles[t])});
+            binaryLeaves.insert(leaf);
+            blocks += blocksFor(node.count);
         }
-        const std::vector<uint32_t> primIndices = binary.primIndices;
         const WideBvh<4> wide = collapseToWide<4>(std::move(binary));
-        EXPECT_EQ(wide.primIndices, primIndices);
-        ASSERT_EQ(wide.leafTriangles.size(), n);
+        ASSERT_EQ(wide.blocks.size(), blocks);
+        ASSERT_EQ(wide.primIndices.size(), blocks * TriangleBlock::kLanes);
 
-        std::multiset<std::pair<uint32_t, uint32_t>> wideLeaves;
+        std::multiset<Leaf> wideLeaves;
+        std::vector<int> blockOwners(blocks, 0);
         std::vector<int> parents(wide.nodes.size(), 0);
         for (const WideNode<4>& node : wide.nodes) {
             int used = 0;
@@ -713,14 +727,25 @@ TEST(WideBvh, CollapseKeepsEveryLeafOnce) {
                 }
                 ++used;
                 if (node.count[i] != 0) {
-                    wideLeaves.insert({node.child[i], node.count[i]});
-                    for (uint32_t t = node.child[i]; t < node.child[i] + node.count[i]; ++t) {
-                        const Bounds3 box = wide.leafTriangles[t].bounds();
+                    Leaf leaf;
+                    const uint32_t first = node.child[i] * TriangleBlock::kLanes;
+                    ASSERT_LE(node.child[i] + blocksFor(node.count[i]), blocks);
+                    for (uint32_t b = node.child[i]; b < node.child[i] + blocksFor(node.count[i]); ++b) ++blockOwners[b];
+                    for (uint32_t p = first; p < first + blocksFor(node.count[i]) * TriangleBlock::kLanes; ++p) {
+                        const Triangle tri = wide.blocks[p / 4].triangle(int(p % 4));
+                        if (p >= first + node.count[i]) {
+                            EXPECT_EQ(wide.primIndices[p], kInvalidPrimitive);
+                            EXPECT_TRUE(tri.v0 == tri.v1 && tri.v1 == tri.v2) << "padding is a point";
+                            continue;
+                        }
+                        leaf.push_back({wide.primIndices[p], vertices(tri)});
+                        const Bounds3 box = tri.bounds();
                         for (int a = 0; a < 3; ++a) {
                             EXPECT_LE(node.lower[a][i], box.lower[a]);
                             EXPECT_GE(node.upper[a][i], box.upper[a]);
                         }
                     }
+                    wideLeaves.insert(leaf);
                 } else {
                     ASSERT_LT(node.child[i], wide.nodes.size());
                     ++parents[node.child[i]];
@@ -729,8 +754,38 @@ TEST(WideBvh, CollapseKeepsEveryLeafOnce) {
             EXPECT_GE(used, binaryLeaves.size() == 1 ? 1 : 2);
         }
         EXPECT_EQ(wideLeaves, binaryLeaves);
+        for (int owners : blockOwners) EXPECT_EQ(owners, 1);
         EXPECT_EQ(parents[0], 0);
         for (size_t i = 1; i < parents.size(); ++i) EXPECT_EQ(parents[i], 1) << "wide node " << i;
+    }
+}
+
+// With leaves charged by blocks of four (the wide layouts' setting), splitting four or fewer
+// triangles never pays: C_trav + (A_L + A_R) / A > 1 block. Charged per triangle (the binary
+// layout), the same builders do split such ranges.
+TEST(Bvh, SahChargedByBlocksKeepsFourTrianglesTogether) {
+    const Soup soup = randomSoup(3000, 61);
+    for (BvhKind kind : {BvhKind::BinnedSah, BvhKind::SweepSah}) {
+        SCOPED_TRACE(bvhKindName(kind));
+        for (int shift : {0, 2}) {
+            BvhBuildConfig config = defaultConfig();
+            config.sahBlockShift = shift;
+            const Bvh bvh = buildBvh(kind, config, soup.prims());
+            // Triangles below each node, children before parents (pairs follow their parent).
+            std::vector<uint32_t> below(bvh.nodes.size(), 0);
+            for (size_t i = bvh.nodes.size(); i-- > 0;) {
+                const BvhNode& n = bvh.nodes[i];
+                if (i == 1) continue;
+                below[i] = n.isLeaf() ? n.count : below[n.index] + below[n.index + 1];
+            }
+            size_t smallInner = 0;
+            for (size_t i = 0; i < bvh.nodes.size(); ++i) smallInner += i != 1 && !bvh.nodes[i].isLeaf() && below[i] <= 4;
+            if (shift == 2) {
+                EXPECT_EQ(smallInner, 0u);
+            } else {
+                EXPECT_GT(smallInner, 0u);
+            }
+        }
     }
 }
 
