@@ -204,7 +204,7 @@ TEST(CliConventions, ProgressLinesOffATerminalAndQuiet) {
     const fs::path out = tempDir() / "progress";
     Result r = run("render" + kTiny + "--out " + out.string());
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    for (const char* phase : {"loading the scene\n", "building sahbvh\n", "rendering 16x12\n"})
+    for (const char* phase : {"loading the scene\n", "building sahbvh8\n", "rendering 16x12\n"})
         EXPECT_NE(r.output.find(phase), std::string::npos) << phase << r.output;
     for (const std::string quiet : {"--quiet render", "render --quiet"}) {
         r = run(quiet + kTiny + "--out " + out.string());
