@@ -4,7 +4,7 @@ namespace bvhlab {
 
 void registerBvhKeys(EnvRegistry& r) {
     using namespace keys::BVH;
-    for (const IntKey& key : {maxLeaf, leafCap, bins}) r.add(key);
+    for (const IntKey& key : {maxLeaf, leafCap, bins, threads}) r.add(key);
     for (const BoolKey& key : {sahTermination, allAxes, keys::BVH::simd, robust}) r.add(key);
     for (const FloatKey& key : {cTraversal, cIntersect}) r.add(key);
     r.add(tdbvhSplit);
@@ -13,7 +13,7 @@ void registerBvhKeys(EnvRegistry& r) {
 std::vector<std::string> bvhEnvKeys(BvhKind kind) {
     using namespace keys::BVH;
     std::vector<std::string_view> read = {maxLeaf.name(), leafCap.name(), cTraversal.name(),
-                                          cIntersect.name(), keys::BVH::simd.name(), robust.name()};
+                                          cIntersect.name(), keys::BVH::simd.name(), robust.name(), threads.name()};
     switch (kind) {
     case BvhKind::SpatialMedian: read.push_back(tdbvhSplit.name()); break;
     case BvhKind::BinnedSah: read.insert(read.end(), {sahTermination.name(), bins.name(), allAxes.name()}); break;
@@ -33,6 +33,8 @@ BvhBuildConfig bvhConfigFromEnv(const Env& env) {
     c.bins = env.get(bins);
     c.allAxes = env.get(allAxes);
     c.simd = env.get(keys::BVH::simd);
+    c.threads = env.get(threads);
+    if (c.threads == 0) c.threads = env.get(keys::SetRayTracing::threads);
     c.medianSplitBox = env.get(tdbvhSplit) == "nodebox" ? MedianSplitBox::NodeBox : MedianSplitBox::CentroidBox;
     return c;
 }

@@ -3,6 +3,7 @@
 
 #include "accel/bvh/build/bvh_builder.h"
 #include "accel/bvh/traverse/traversal_config.h"
+#include "framework/config/common_keys.h"
 #include "framework/config/env.h"
 
 #include <string>
@@ -34,6 +35,9 @@ inline constexpr BoolKey robust{
     "BVH::robust", "true",
     "traversal: watertight triangle test and conservative box test; false = Moeller-Trumbore and plain boxes "
     "(not watertight), only to measure what robustness costs"};
+inline constexpr IntKey threads{"BVH::threads", "0", 0, 1024,
+                                "build threads; 0 = as SetRayTracing::threads (0 there: all hardware threads). The "
+                                "tree is the same whatever the count"};
 inline constexpr std::string_view kMedianSplitBoxes[] = {"centroidbox", "nodebox"};
 inline constexpr ChoiceKey tdbvhSplit{"BVH::tdbvhSplit", "centroidbox", kMedianSplitBoxes,
                                       "tdbvh: halve the longest axis of the box of the centres, or of the node's box"};

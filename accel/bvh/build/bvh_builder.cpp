@@ -5,6 +5,10 @@
 #include "accel/bvh/build/sweep_sah_builder.h"
 
 #include <fmt/core.h>
+#include <tbb/blocked_range.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <bit>
@@ -68,12 +72,14 @@ std::optional<Split> TopDownBuilder::chooseSplit(const BuildRange& range, int de
 }
 
 std::vector<BvhNode, TraversalAllocator<BvhNode>> TopDownBuilder::build(std::span<PrimRef> refs,
-                                                                        const BuildRange& root) {
+                                                                        const BuildRange& root, int depth,
+                                                                        std::vector<DeferredRange>* deferred,
+                                                                        uint32_t deferBelow) {
     refs_ = refs;
     std::vector<BvhNode, TraversalAllocator<BvhNode>> nodes;
-    if (refs.empty()) return nodes;
+    if (root.size() == 0) return nodes;
     // The root, the padding slot that aligns the sibling pairs, and at most N - 1 pairs.
-    nodes.reserve(2 * refs.size());
+    nodes.reserve(2 * size_t(root.size()));
     nodes.resize(2);
     nodes[1] = BvhNode{{0, 0, 0, 0, 0, 0}, 0, 0};
 
@@ -86,10 +92,14 @@ std::vector<BvhNode, TraversalAllocator<BvhNode>> TopDownBuilder::build(std::spa
     // holds at most one pending right sibling per level.
     std::vector<WorkItem> stack;
     stack.reserve(2 * kBvhMaxDepth);
-    stack.push_back({root, 0, 0});
+    stack.push_back({root, 0, depth});
     while (!stack.empty()) {
         const WorkItem item = stack.back();
         stack.pop_back();
+        if (deferred && item.range.size() < deferBelow) {
+            deferred->push_back({item.range, item.node, item.depth});
+            continue;
+        }
         BvhNode& node = nodes[item.node];
         node.setBox(item.range.bounds);
         const std::optional<Split> split = chooseSplit(item.range, item.depth);
@@ -161,6 +171,37 @@ std::unique_ptr<TopDownBuilder> makeBvhBuilder(BvhKind kind, const BvhBuildConfi
     throw std::logic_error(fmt::format("makeBvhBuilder: unknown BvhKind {}", int(kind)));
 }
 
+namespace {
+
+// Subtrees over fewer primitives than this are built as independent jobs, in parallel, after
+// the nodes above them; large enough that a job outweighs its scheduling, small enough that
+// there are many more jobs than threads.
+constexpr uint32_t kJobPrimitives = 4096;
+
+// Runs f() on `threads` TBB threads (0 = all hardware threads).
+template <typename F>
+void onThreads(int threads, F&& f) {
+    if (threads == 1) return f();
+    tbb::task_arena arena(threads == 0 ? tbb::task_arena::automatic : threads);
+    arena.execute(f);
+}
+
+// Puts the subtree built by a job (root at 0, padding slot, pairs) into the tree: its root into
+// its slot, its pairs appended (an even offset: pairs stay on cache lines of their own).
+void appendSubtree(std::vector<BvhNode, TraversalAllocator<BvhNode>>& nodes, uint32_t slot,
+                   const std::vector<BvhNode, TraversalAllocator<BvhNode>>& subtree) {
+    assert(nodes.size() % 2 == 0);
+    const uint32_t shift = uint32_t(nodes.size()) - 2;  // subtree index 2 lands at nodes.size()
+    const auto moved = [shift](BvhNode n) {
+        if (!n.isLeaf()) n.index += shift;
+        return n;
+    };
+    nodes[slot] = moved(subtree[0]);
+    for (size_t i = 2; i < subtree.size(); ++i) nodes.push_back(moved(subtree[i]));
+}
+
+}  // namespace
+
 Bvh buildBvh(BvhKind kind, const BvhBuildConfig& config, const PrimitiveSet& prims) {
     const size_t n = prims.valid.size();
     // Uninitialised storage: every PrimRef is written by preparePrimRefs.
@@ -168,15 +209,32 @@ Bvh buildBvh(BvhKind kind, const BvhBuildConfig& config, const PrimitiveSet& pri
     const BuildRange root = simd::withFloats4(
         config.simd, [&](auto f) { return preparePrimRefs<decltype(f)>(prims, refs.get()); });
 
+    // The nodes above the jobs, then the jobs' subtrees appended in the order they were
+    // deferred: the same tree whatever the thread count and the schedule.
     Bvh bvh;
-    bvh.nodes = makeBvhBuilder(kind, config)->build({refs.get(), n}, root);
+    const std::span<PrimRef> all(refs.get(), n);
+    std::vector<DeferredRange> jobs;
+    bvh.nodes = makeBvhBuilder(kind, config)->build(all, root, 0, &jobs, kJobPrimitives);
+    std::vector<std::vector<BvhNode, TraversalAllocator<BvhNode>>> subtrees(jobs.size());
+    onThreads(config.threads, [&] {
+        tbb::enumerable_thread_specific<std::unique_ptr<TopDownBuilder>> builders(
+            [&] { return makeBvhBuilder(kind, config); });
+        tbb::parallel_for(size_t(0), jobs.size(), [&](size_t j) {
+            subtrees[j] = builders.local()->build(all, jobs[j].range, jobs[j].depth);
+        });
+    });
+    for (size_t j = 0; j < jobs.size(); ++j) appendSubtree(bvh.nodes, jobs[j].node, subtrees[j]);
 
     bvh.primIndices.resize(n);
-    bvh.leafTriangles.reserve(n);
-    for (size_t i = 0; i < n; ++i) {
-        bvh.primIndices[i] = refs[i].prim;
-        bvh.leafTriangles.push_back(prims.triangles[refs[i].prim]);
-    }
+    bvh.leafTriangles.resize(n);
+    onThreads(config.threads, [&] {
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
+            for (size_t i = r.begin(); i < r.end(); ++i) {
+                bvh.primIndices[i] = refs[i].prim;
+                bvh.leafTriangles[i] = prims.triangles[refs[i].prim];
+            }
+        });
+    });
     return bvh;
 }
 

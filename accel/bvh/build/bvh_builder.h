@@ -44,6 +44,8 @@ struct BvhBuildConfig {
     bool simd = true;            // SIMD in the hot loops (prep, binning, partition); false = the
                                  // scalar backend of the same code, the same tree
     MedianSplitBox medianSplitBox = MedianSplitBox::CentroidBox;  // tdbvh: which box's longest axis is halved
+    int threads = 1;             // build threads (TBB; 0 = all hardware threads): the tree does
+                                 // not depend on them
 
     uint32_t effectiveLeafCap() const { return uint32_t(std::max(maxLeaf, leafCap)); }
     // What the SAH charges for testing n primitives: n, or the blocks they fill.
@@ -63,14 +65,27 @@ struct Split {
     BuildRange left, right;
 };
 
+// A range whose subtree is left to be built later (by buildBvh's parallel jobs): its node slot
+// in the partial tree and its depth.
+struct DeferredRange {
+    BuildRange range;
+    uint32_t node;
+    int depth;
+};
+
 class TopDownBuilder {
 public:
     explicit TopDownBuilder(const BvhBuildConfig& config) : config_(config) {}
     virtual ~TopDownBuilder() = default;
 
-    // Builds over `refs`, reordering them: leaves index into the reordered array. `root`
-    // spans all of refs with their boxes. Depth stays below kBvhMaxDepth.
-    std::vector<BvhNode, TraversalAllocator<BvhNode>> build(std::span<PrimRef> refs, const BuildRange& root);
+    // Builds the subtree over `root` (a range of `refs`, which it reorders: leaves index into
+    // the reordered array) at `depth`: its root at 0, a padding slot, then sibling pairs.
+    // Depth stays below kBvhMaxDepth. With `deferred`, ranges of fewer than `deferBelow`
+    // primitives are not built but appended there, their node slots left to the caller.
+    std::vector<BvhNode, TraversalAllocator<BvhNode>> build(std::span<PrimRef> refs, const BuildRange& root,
+                                                            int depth = 0,
+                                                            std::vector<DeferredRange>* deferred = nullptr,
+                                                            uint32_t deferBelow = 0);
 
 protected:
     // The hook: partition `range` in place and return the halves (both non-empty), or nullopt

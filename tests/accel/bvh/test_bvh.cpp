@@ -4,6 +4,7 @@
 // check of both queries against brute force. Hit agreement on whole scenes is tested, for
 // every registered accelerator, in the cross-accelerator suite.
 #include "accel/bvh/bvh_accelerator.h"
+#include "accel/bvh/build/prim_ref.h"
 #include "accel/bvh/bvh_env.h"
 #include "accel/bvh/layout/wide_bvh.h"
 #include "accel/naive/naive_accelerator.h"
@@ -757,6 +758,48 @@ TEST(WideBvh, CollapseKeepsEveryLeafOnce) {
         for (int owners : blockOwners) EXPECT_EQ(owners, 1);
         EXPECT_EQ(parents[0], 0);
         for (size_t i = 1; i < parents.size(); ++i) EXPECT_EQ(parents[i], 1) << "wide node " << i;
+    }
+}
+
+// The build runs the subtrees below a size as parallel jobs: the tree is the same, node for
+// node and bit for bit, at 1, 2 and all threads, and it is the tree of one sequential
+// depth-first build up to the order of its nodes (same node count, leaves and SAH).
+TEST(Bvh, SameTreeWhateverTheThreadCount) {
+    const Soup soup = randomSoup(60000, 67);
+    for (BvhKind kind : {BvhKind::SpatialMedian, BvhKind::BinnedSah}) {
+        SCOPED_TRACE(bvhKindName(kind));
+        std::vector<Bvh> trees;
+        for (int threads : {1, 2, 0}) {
+            BvhBuildConfig config = defaultConfig();
+            config.threads = threads;
+            trees.push_back(buildBvh(kind, config, soup.prims()));
+        }
+        for (size_t t = 1; t < trees.size(); ++t) {
+            ASSERT_EQ(trees[t].nodes.size(), trees[0].nodes.size());
+            EXPECT_EQ(std::memcmp(trees[t].nodes.data(), trees[0].nodes.data(), trees[0].nodes.size() * sizeof(BvhNode)), 0);
+            EXPECT_EQ(trees[t].primIndices, trees[0].primIndices);
+        }
+        BuildStats parallel, sequential;
+        fillTreeStats(trees[0], 1.0, 1.0, parallel);
+        // One builder, nothing deferred: the depth-first tree.
+        PrimitiveSet prims = soup.prims();
+        std::vector<PrimRef> refs(prims.valid.size());
+        BoundsAccumulator<simd::Scalar<4>> acc;
+        for (size_t i = 0; i < refs.size(); ++i) {
+            const Bounds3 b = prims.triangles[prims.valid[i]].bounds();
+            refs[i] = PrimRef{{b.lower.x, b.lower.y, b.lower.z}, prims.valid[i], {b.upper.x, b.upper.y, b.upper.z}, 0};
+            acc.add(refs[i]);
+        }
+        Bvh depthFirst;
+        depthFirst.nodes = makeBvhBuilder(kind, defaultConfig())->build(refs, {0, uint32_t(refs.size()), acc.bounds(), acc.centroidBounds()});
+        depthFirst.primIndices.resize(refs.size());
+        for (size_t i = 0; i < refs.size(); ++i) depthFirst.primIndices[i] = refs[i].prim;
+        depthFirst.leafTriangles.resize(refs.size());
+        fillTreeStats(depthFirst, 1.0, 1.0, sequential);
+        EXPECT_EQ(parallel.nodes, sequential.nodes);
+        EXPECT_EQ(parallel.leaves, sequential.leaves);
+        EXPECT_EQ(parallel.sah->cost, sequential.sah->cost);
+        EXPECT_EQ(trees[0].primIndices, depthFirst.primIndices);
     }
 }
 
