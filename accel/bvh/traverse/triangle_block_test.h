@@ -8,7 +8,6 @@
 #include "accel/bvh/layout/triangle_blocks.h"
 #include "accel/bvh/simd/simd.h"
 #include "framework/core/triangle.h"
-#include "framework/core/triangle_moller_trumbore.h"
 
 namespace bvhlab {
 
@@ -59,21 +58,47 @@ struct BlockTriangleTest {
     }
 };
 
-// With robustness off (BVH::robust=false): Moeller-Trumbore lane by lane, as the binary
-// layout's leaves do then (only to measure what the watertight test costs).
+// With robustness off (BVH::robust=false): Moeller-Trumbore, as the binary layout's leaves do
+// then (only to measure what the watertight test costs), in lanes with the scalar form's
+// operations and tests (triangle_moller_trumbore.h; glm's cross and dot, summed x + y + z).
 template <>
 struct BlockTriangleTest<false> {
-    const Ray& ray;
-    explicit BlockTriangleTest(const Ray& ray) : ray(ray) {}
+    using F = simd::Floats<TriangleBlock::kLanes>;
+    F org[3], dir[3];
+
+    explicit BlockTriangleTest(const Ray& ray) {
+        for (int a = 0; a < 3; ++a) org[a] = F::broadcast(ray.org[a]), dir[a] = F::broadcast(ray.dir[a]);
+    }
 
     BlockHits intersect(const TriangleBlock& block, float tmin, float tmax) const {
-        BlockHits hits;
-        for (int lane = 0; lane < TriangleBlock::kLanes; ++lane) {
-            TriangleHitT<float> h;
-            if (!intersectTriangleMollerTrumbore(ray, block.triangle(lane), tmin, tmax, h)) continue;
-            hits.mask |= 1 << lane;
-            hits.t[lane] = h.t, hits.u[lane] = h.u, hits.v[lane] = h.v;
+        const auto cross = [](const F* a, const F* b, F* out) {
+            out[0] = a[1] * b[2] - b[1] * a[2];
+            out[1] = a[2] * b[0] - b[2] * a[0];
+            out[2] = a[0] * b[1] - b[0] * a[1];
+        };
+        const auto dot = [](const F* a, const F* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
+        F v0[3], e1[3], e2[3], s[3];
+        for (int a = 0; a < 3; ++a) {
+            v0[a] = F::load(block.vertex[0][a]);
+            e1[a] = F::load(block.vertex[1][a]) - v0[a];
+            e2[a] = F::load(block.vertex[2][a]) - v0[a];
+            s[a] = org[a] - v0[a];
         }
+        F p[3], q[3];
+        cross(dir, e2, p);
+        cross(s, e1, q);
+        const F det = dot(e1, p);
+        const F invDet = F::broadcast(1.0f) / det;
+        const F u = dot(s, p) * invDet, v = dot(dir, q) * invDet, t = dot(e2, q) * invDet;
+        const F zero = F::broadcast(0.0f), one = F::broadcast(1.0f);
+        const int outside = movemask((u < zero) | (u > one) | (v < zero) | (u + v > one));
+        const int inRange = movemask((t >= F::broadcast(tmin)) & (t <= F::broadcast(tmax)) & (det != zero));
+        BlockHits hits;
+        hits.mask = inRange & ~outside;
+        if (hits.mask == 0) return hits;
+        t.store(hits.t);
+        u.store(hits.u);
+        v.store(hits.v);
         return hits;
     }
 };

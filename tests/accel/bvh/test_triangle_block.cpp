@@ -3,6 +3,7 @@
 // points (where rounding decides), axis-parallel rays, and the padding lanes of short leaves.
 #include "accel/bvh/traverse/triangle_block_test.h"
 #include "accel/bvh/traverse/traversal.h"
+#include "framework/core/triangle_moller_trumbore.h"
 #include "framework/robustness/stress_rng.h"
 
 #include <gtest/gtest.h>
@@ -54,19 +55,23 @@ TriangleBlock blockOf(const std::vector<Triangle>& tris, size_t first, int lanes
     return leaves.blocks[0];
 }
 
-TEST(TriangleBlock, LanesAnswerAsTheScalarWatertightTest) {
-    StressRng rng(11);
+// Both block tests against their scalar forms: the watertight test (robust) and
+// Moeller-Trumbore (BVH::robust=false).
+template <bool Robust>
+void expectLanesAnswerAsScalar(uint64_t seed) {
+    StressRng rng(seed);
     std::vector<Triangle> tris = fanAround(rng, Vec3(0.3f, -1.7f, 2.9f), 8);
     for (int i = 0; i < 8; ++i) tris.push_back({rng.inBox({Vec3(-3), Vec3(3)}), rng.inBox({Vec3(-3), Vec3(3)}), rng.inBox({Vec3(-3), Vec3(3)})});
     size_t hits = 0;
     for (const Ray& ray : probeRays(rng, tris, 4000)) {
         const ShearedRay sheared(ray);
-        const BlockTriangleTest<true> test(ray);
+        const BlockTriangleTest<Robust> test(ray);
         for (size_t first = 0; first + 4 <= tris.size(); first += 4) {
             const BlockHits block = test.intersect(blockOf(tris, first, 4), ray.tmin, ray.tmax);
             for (int lane = 0; lane < 4; ++lane) {
                 TriangleHitT<float> h;
-                const bool hit = intersectTriangle(sheared, tris[first + lane], ray.tmin, ray.tmax, h);
+                const bool hit = Robust ? intersectTriangle(sheared, tris[first + lane], ray.tmin, ray.tmax, h)
+                                        : intersectTriangleMollerTrumbore(ray, tris[first + lane], ray.tmin, ray.tmax, h);
                 ASSERT_EQ(bool(block.mask >> lane & 1), hit) << "triangle " << first + lane;
                 if (!hit) continue;
                 ++hits;
@@ -78,6 +83,10 @@ TEST(TriangleBlock, LanesAnswerAsTheScalarWatertightTest) {
     }
     EXPECT_GT(hits, 1000u);  // the probes do reach the triangles
 }
+
+TEST(TriangleBlock, LanesAnswerAsTheScalarWatertightTest) { expectLanesAnswerAsScalar<true>(11); }
+
+TEST(TriangleBlock, LanesAnswerAsScalarMollerTrumbore) { expectLanesAnswerAsScalar<false>(14); }
 
 // A leaf of 1-3 triangles pads its block with a point; rays through that point miss it.
 TEST(TriangleBlock, PaddingLanesNeverHit) {
