@@ -43,12 +43,12 @@ struct TriangleBlockLeaves {
     // Appends a leaf of `count` triangles (primitive indices `prims`); returns its first block.
     uint32_t appendLeaf(const Triangle* triangles, const uint32_t* prims, uint32_t count) {
         const uint32_t first = uint32_t(blocks.size());
+        const Vec3 point = triangles[count - 1].v0;  // the padding triangle
         for (uint32_t i = 0; i < blocksFor(count) * TriangleBlock::kLanes; ++i) {
             const int lane = int(i % TriangleBlock::kLanes);
             if (lane == 0) blocks.emplace_back();
             const bool real = i < count;
-            const Triangle& last = triangles[count - 1];
-            blocks.back().set(lane, real ? triangles[i] : Triangle{last.v0, last.v0, last.v0});
+            blocks.back().set(lane, real ? triangles[i] : Triangle{point, point, point});
             primIndices.push_back(real ? prims[i] : kInvalidPrimitive);
         }
         return first;

@@ -40,16 +40,16 @@ struct BlockTriangleTest {
         const F e1 = differenceOfProducts(x[0], y[2], y[0], x[2]);  // edge v2-v0: weight of v1
         const F e2 = differenceOfProducts(x[1], y[0], y[1], x[0]);  // edge v0-v1: weight of v2
         const F zero = F::broadcast(0.0f);
-        const auto negative = (e0 < zero) | (e1 < zero) | (e2 < zero);
-        const auto positive = (e0 > zero) | (e1 > zero) | (e2 > zero);
+        // Lanes with edge functions of both signs miss; so does a zero determinant.
+        const int mixedSigns = movemask((e0 < zero) | (e1 < zero) | (e2 < zero)) &
+                               movemask((e0 > zero) | (e1 > zero) | (e2 > zero));
         const F det = e0 + e1 + e2;
         BlockHits hits;
-        // Lanes with edge functions of both signs miss; so does a zero determinant.
-        if ((movemask(negative) & movemask(positive)) == 0xF || movemask(det != zero) == 0) return hits;
+        if (mixedSigns == 0xF || movemask(det != zero) == 0) return hits;
         const F invDet = F::broadcast(1.0f) / det;
         const F t = (e0 * (sz * z[0]) + e1 * (sz * z[1]) + e2 * (sz * z[2])) * invDet;
         const auto inRange = (t >= F::broadcast(tmin)) & (t <= F::broadcast(tmax)) & (det != zero);
-        hits.mask = movemask(inRange) & ~(movemask(negative) & movemask(positive));
+        hits.mask = movemask(inRange) & ~mixedSigns;
         if (hits.mask == 0) return hits;
         t.store(hits.t);
         (e1 * invDet).store(hits.u);
