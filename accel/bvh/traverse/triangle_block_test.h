@@ -20,19 +20,26 @@ struct BlockHits {
 template <bool Robust>
 struct BlockTriangleTest {
     using F = simd::Floats<TriangleBlock::kLanes>;
-    ShearedRay sheared;
+    // The sheared ray in lanes, with its axes resolved once per ray: the vertex rows to load
+    // (kx, ky, kz) and the origin's coordinates along them. (Indexing the glm origin by a
+    // runtime axis inside the test compiled to two branches per load.)
+    int kx, ky, kz;
+    F orgX, orgY, orgZ, sx, sy, sz;
 
-    explicit BlockTriangleTest(const Ray& ray) : sheared(ray) {}
+    explicit BlockTriangleTest(const Ray& ray) {
+        const ShearedRay r(ray);
+        kx = r.kx, ky = r.ky, kz = r.kz;
+        orgX = F::broadcast(r.org[kx]), orgY = F::broadcast(r.org[ky]), orgZ = F::broadcast(r.org[kz]);
+        sx = F::broadcast(r.sx), sy = F::broadcast(r.sy), sz = F::broadcast(r.sz);
+    }
 
     // The hits at t in [tmin, tmax] of the block's lanes (padding lanes never hit).
     BlockHits intersect(const TriangleBlock& block, float tmin, float tmax) const {
-        const ShearedRay& r = sheared;
-        const F sx = F::broadcast(r.sx), sy = F::broadcast(r.sy), sz = F::broadcast(r.sz);
         F x[3], y[3], z[3];  // the vertices in the sheared frame (z not yet scaled)
         for (int k = 0; k < 3; ++k) {
-            const F ax = F::load(block.vertex[k][r.kx]) - F::broadcast(r.org[r.kx]);
-            const F ay = F::load(block.vertex[k][r.ky]) - F::broadcast(r.org[r.ky]);
-            z[k] = F::load(block.vertex[k][r.kz]) - F::broadcast(r.org[r.kz]);
+            const F ax = F::load(block.vertex[k][kx]) - orgX;
+            const F ay = F::load(block.vertex[k][ky]) - orgY;
+            z[k] = F::load(block.vertex[k][kz]) - orgZ;
             x[k] = ax - sx * z[k];
             y[k] = ay - sy * z[k];
         }
