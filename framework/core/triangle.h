@@ -7,7 +7,6 @@
 #include "framework/core/ray.h"
 
 #include <cmath>
-#include <type_traits>
 
 namespace bvhlab {
 
@@ -52,6 +51,38 @@ struct TriangleHitT {
     Real t, u, v;
 };
 
+// The edge function a*b - c*d of the watertight test. Watertightness needs its sign exact
+// (and 0 only when the exact value is 0): then a shared edge gives opposite signs in the two
+// triangles that share it, and the spokes of a vertex's fan cannot all fall on one side of
+// the ray. Rounded float products do not give that: edge functions in plain float leaked
+// 1 in 1e6 edge probes on a10, rays slipping through a fan whose spokes all rounded the same
+// way. (A compiler's contraction of a*b - c*d into one fma is as bad: -ffp-contract=off.)
+//
+// So float takes a filtered path (Shewchuk's static filter; Woop et al. 2013 fall back only on
+// an exact 0, which is not enough): e = fma(a, b, -fl(c*d)) carries two roundings, of c*d and
+// of the result, so |e - (ab - cd)| <= u|c*d| + u|e| + a tiny absolute term where products
+// are subnormal or flushed to 0. Where |e| exceeds kEdgeErrorScale*|fl(c*d)| + kEdgeErrorFloor
+// (2u plus margin for the bound's own rounding) its sign is the exact one; elsewhere (and on
+// NaN or overflow) e is recomputed in double, where both products are exact (24 + 24 bits <
+// 53): that sign is exact. The SIMD block test (accel/bvh/traverse/triangle_block_test.h)
+// computes the same, lane for lane. double, the oracle's reference, forms both products in
+// long double, rounded alike whatever the compiler contracts (x87 has no fma), so that
+// e(a, b, c, d) == -e(c, d, a, b) exactly and coincident vertices give exactly 0.
+inline constexpr float kEdgeErrorScale = 0x1p-22f;
+inline constexpr float kEdgeErrorFloor = 0x1p-124f;
+
+inline float edgeFunction(float a, float b, float c, float d) {
+    const float cd = c * d;
+    const float e = std::fma(a, b, -cd);
+    if (std::abs(e) > std::fma(std::abs(cd), kEdgeErrorScale, kEdgeErrorFloor)) return e;
+    return float(double(a) * double(b) - double(c) * double(d));
+}
+
+inline double edgeFunction(double a, double b, double c, double d) {
+    using Wide = long double;
+    return double(Wide(a) * Wide(b) - Wide(c) * Wide(d));
+}
+
 // Returns true and fills `out` when the ray hits the triangle at t in [tmin, tmax].
 // Real = double gives the reference used by the oracle tests.
 template <typename Real>
@@ -65,23 +96,10 @@ inline bool intersectTriangle(const ShearedRayT<Real>& r, const Triangle& tri, R
     const Real bx = b[r.kx] - r.sx * b[r.kz], by = b[r.ky] - r.sy * b[r.kz];
     const Real cx = c[r.kx] - r.sx * c[r.kz], cy = c[r.ky] - r.sy * c[r.kz];
 
-    // Edge functions (2D cross products). Watertightness needs a shared edge to give exactly
-    // opposite values in the two triangles that share it, which evaluate it with the two
-    // products' roles exchanged. A compiler that contracts a*b - c*d into fma(a, b, -(c*d))
-    // (GCC does by default for C++ on FMA hardware, e.g. with -march=native) rounds only one
-    // product and breaks that symmetry: rays slip between neighbours, and a triangle whose
-    // vertices coincide gets "hit". So the products are formed in a wider type where both are
-    // rounded alike: double for float (exact: 24 + 24 bits < 53), and long double for double
-    // (x87 on x86-64 has no fused multiply-add; IEEE quad elsewhere holds the exact product).
-    // Then e(a, b) == -e(b, a) exactly and coincident vertices give exactly 0, whatever the
-    // compiler's contraction setting. (Edge functions in float with a double recomputation only
-    // where one is exactly 0, as Woop et al. do, were tried: cheaper, but they leaked 1 in 1e6
-    // edge probes on a10. The orientation of a point against an edge must be decided exactly
-    // for every edge of a vertex's fan to agree; float rounding can make all of them disagree.)
-    using Wide = std::conditional_t<std::is_same_v<Real, float>, double, long double>;
-    const Real e0 = Real(Wide(cx) * Wide(by) - Wide(cy) * Wide(bx));  // edge v1-v2: weight of v0
-    const Real e1 = Real(Wide(ax) * Wide(cy) - Wide(ay) * Wide(cx));  // edge v2-v0: weight of v1
-    const Real e2 = Real(Wide(bx) * Wide(ay) - Wide(by) * Wide(ax));  // edge v0-v1: weight of v2
+    // Edge functions (2D cross products) with exact signs (edgeFunction above).
+    const Real e0 = edgeFunction(cx, by, cy, bx);  // edge v1-v2: weight of v0
+    const Real e1 = edgeFunction(ax, cy, ay, cx);  // edge v2-v0: weight of v1
+    const Real e2 = edgeFunction(bx, ay, by, ax);  // edge v0-v1: weight of v2
     if ((e0 < 0 || e1 < 0 || e2 < 0) && (e0 > 0 || e1 > 0 || e2 > 0)) return false;
     const Real det = e0 + e1 + e2;
     if (det == Real(0)) return false;

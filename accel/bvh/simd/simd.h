@@ -2,12 +2,13 @@
 // three backends of the same API:
 //   Scalar<N>  plain C++, any N, any target: the reference, and what BVH::simd=false runs;
 //   Sse        4 lanes of SSE2, which every x86-64 CPU has;
-//   Avx        8 lanes of AVX2 (only where __AVX2__, e.g. -march=native on this machine).
+//   Avx        8 lanes of AVX2 with FMA (only where __AVX2__ and __FMA__, e.g. -march=native).
 // Floats<N> is the best backend for N lanes on this target (Scalar<N> where there is none).
 // Every operation is one IEEE operation per lane, so the backends agree bit for bit (a test
 // runs them side by side, NaN and inf included): no tree and no hit depends on the backend.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <type_traits>
 
@@ -88,6 +89,19 @@ struct Scalar {
             a.lane[i] = float(double(a.lane[i]) * double(b.lane[i]) - double(c.lane[i]) * double(d.lane[i]));
         return a;
     }
+    // a * b + c and a * b - c, each rounded once (std::fma).
+    friend Scalar fmadd(Scalar a, Scalar b, Scalar c) {
+        for (int i = 0; i < N; ++i) a.lane[i] = std::fma(a.lane[i], b.lane[i], c.lane[i]);
+        return a;
+    }
+    friend Scalar fmsub(Scalar a, Scalar b, Scalar c) {
+        for (int i = 0; i < N; ++i) a.lane[i] = std::fma(a.lane[i], b.lane[i], -c.lane[i]);
+        return a;
+    }
+    friend Scalar abs(Scalar a) {
+        for (int i = 0; i < N; ++i) a.lane[i] = std::abs(a.lane[i]);
+        return a;
+    }
     friend Scalar min(Scalar a, Scalar b) { return zipWith(a, b, [](float x, float y) { return simd::min(x, y); }); }
     friend Scalar max(Scalar a, Scalar b) { return zipWith(a, b, [](float x, float y) { return simd::max(x, y); }); }
     friend Mask operator<=(Scalar a, Scalar b) {
@@ -155,6 +169,20 @@ struct Sse {
         return {_mm_movelh_ps(half(a.v, b.v, c.v, d.v), half(high(a.v), high(b.v), high(c.v), high(d.v)))};
 #endif
     }
+#if defined(__FMA__)
+    friend Sse fmadd(Sse a, Sse b, Sse c) { return {_mm_fmadd_ps(a.v, b.v, c.v)}; }
+    friend Sse fmsub(Sse a, Sse b, Sse c) { return {_mm_fmsub_ps(a.v, b.v, c.v)}; }
+#else  // no fused multiply-add in hardware: std::fma lane by lane, slow but bit for bit the same
+    friend Sse fmadd(Sse a, Sse b, Sse c) { return viaScalar(a, b, c, [](auto x, auto y, auto z) { return fmadd(x, y, z); }); }
+    friend Sse fmsub(Sse a, Sse b, Sse c) { return viaScalar(a, b, c, [](auto x, auto y, auto z) { return fmsub(x, y, z); }); }
+    template <typename Op>
+    static Sse viaScalar(Sse a, Sse b, Sse c, Op op) {
+        Scalar<4> x, y, z;
+        a.storeu(x.lane), b.storeu(y.lane), c.storeu(z.lane);
+        return loadu(op(x, y, z).lane);
+    }
+#endif
+    friend Sse abs(Sse a) { return {_mm_andnot_ps(_mm_set1_ps(-0.0f), a.v)}; }
     friend Sse min(Sse a, Sse b) { return {_mm_min_ps(a.v, b.v)}; }
     friend Sse max(Sse a, Sse b) { return {_mm_max_ps(a.v, b.v)}; }
     friend Mask operator<=(Sse a, Sse b) { return {_mm_cmple_ps(a.v, b.v)}; }
@@ -167,7 +195,7 @@ struct Sse {
 };
 #endif
 
-#if defined(__AVX2__)
+#if defined(__AVX2__) && defined(__FMA__)
 struct Avx {
     static constexpr int kLanes = 8;
     struct Mask {
@@ -199,6 +227,10 @@ struct Avx {
         const auto hi = [](__m256 x) { return _mm256_extractf128_ps(x, 1); };
         return {_mm256_set_m128(half(hi(a.v), hi(b.v), hi(c.v), hi(d.v)), half(lo(a.v), lo(b.v), lo(c.v), lo(d.v)))};
     }
+    // AVX2 machines have FMA (the two came together); -march=native defines both.
+    friend Avx fmadd(Avx a, Avx b, Avx c) { return {_mm256_fmadd_ps(a.v, b.v, c.v)}; }
+    friend Avx fmsub(Avx a, Avx b, Avx c) { return {_mm256_fmsub_ps(a.v, b.v, c.v)}; }
+    friend Avx abs(Avx a) { return {_mm256_andnot_ps(_mm256_set1_ps(-0.0f), a.v)}; }
     friend Avx min(Avx a, Avx b) { return {_mm256_min_ps(a.v, b.v)}; }
     friend Avx max(Avx a, Avx b) { return {_mm256_max_ps(a.v, b.v)}; }
     // Ordered predicates: false on NaN, as the scalar <= and SSE's cmpleps.
@@ -223,7 +255,7 @@ struct Best<4> {
     using type = Sse;
 };
 #endif
-#if defined(__AVX2__)
+#if defined(__AVX2__) && defined(__FMA__)
 template <>
 struct Best<8> {
     using type = Avx;

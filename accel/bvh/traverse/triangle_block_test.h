@@ -1,8 +1,9 @@
 // The leaves' triangle test of the wide layouts: the watertight test of framework/core/
 // triangle.h on the four triangles of a TriangleBlock at once, in lanes of simd::Floats<4>.
-// Every lane performs the scalar test's operations in its order (the edge functions' products
-// in double, simd::differenceOfProducts), so a lane's answer is the scalar test's bit for bit:
-// the wide layouts are as watertight as the binary one, and agree with it hit for hit.
+// Every lane performs the scalar test's operations in its order (the edge functions filtered
+// in float and recomputed in double where their sign is in doubt, as edgeFunction does), so a
+// lane's answer is the scalar test's bit for bit: the wide layouts are as watertight as the
+// binary one, and agree with it hit for hit.
 #pragma once
 
 #include "accel/bvh/layout/triangle_blocks.h"
@@ -33,8 +34,9 @@ struct BlockTriangleTest {
         sx = F::broadcast(r.sx), sy = F::broadcast(r.sy), sz = F::broadcast(r.sz);
     }
 
-    // The hits at t in [tmin, tmax] of the block's lanes (padding lanes never hit).
-    BlockHits intersect(const TriangleBlock& block, float tmin, float tmax) const {
+    // The hits at t in [tmin, tmax] among the block's lanes in `lanes` (a mask: the padding
+    // lanes of a leaf's last block are left out, and never hit).
+    BlockHits intersect(const TriangleBlock& block, int lanes, float tmin, float tmax) const {
         F x[3], y[3], z[3];  // the vertices in the sheared frame (z not yet scaled)
         for (int k = 0; k < 3; ++k) {
             const F ax = F::load(block.vertex[k][kx]) - orgX;
@@ -43,20 +45,30 @@ struct BlockTriangleTest {
             x[k] = ax - sx * z[k];
             y[k] = ay - sy * z[k];
         }
-        const F e0 = differenceOfProducts(x[2], y[1], y[2], x[1]);  // edge v1-v2: weight of v0
-        const F e1 = differenceOfProducts(x[0], y[2], y[0], x[2]);  // edge v2-v0: weight of v1
-        const F e2 = differenceOfProducts(x[1], y[0], y[1], x[0]);  // edge v0-v1: weight of v2
+        // Edge functions as edgeFunction (triangle.h) forms them: fma(a, b, -c*d), its sign
+        // certain where it exceeds the error bound; the doubtful lanes (rare) in double.
+        const F scale = F::broadcast(kEdgeErrorScale), floor = F::broadcast(kEdgeErrorFloor);
+        const auto edge = [&](F a, F b, F c, F d) {
+            const F cd = c * d;
+            const F e = fmsub(a, b, cd);
+            const auto certain = abs(e) > fmadd(abs(cd), scale, floor);
+            if ((~movemask(certain) & lanes) == 0) return e;
+            return select(certain, e, differenceOfProducts(a, b, c, d));
+        };
+        const F e0 = edge(x[2], y[1], y[2], x[1]);  // edge v1-v2: weight of v0
+        const F e1 = edge(x[0], y[2], y[0], x[2]);  // edge v2-v0: weight of v1
+        const F e2 = edge(x[1], y[0], y[1], x[0]);  // edge v0-v1: weight of v2
         const F zero = F::broadcast(0.0f);
         // Lanes with edge functions of both signs miss; so does a zero determinant.
         const int mixedSigns = movemask((e0 < zero) | (e1 < zero) | (e2 < zero)) &
                                movemask((e0 > zero) | (e1 > zero) | (e2 > zero));
         const F det = e0 + e1 + e2;
         BlockHits hits;
-        if (mixedSigns == 0xF || movemask(det != zero) == 0) return hits;
+        if ((~mixedSigns & lanes) == 0 || movemask(det != zero) == 0) return hits;
         const F invDet = F::broadcast(1.0f) / det;
         const F t = (e0 * (sz * z[0]) + e1 * (sz * z[1]) + e2 * (sz * z[2])) * invDet;
         const auto inRange = (t >= F::broadcast(tmin)) & (t <= F::broadcast(tmax)) & (det != zero);
-        hits.mask = movemask(inRange) & ~mixedSigns;
+        hits.mask = movemask(inRange) & ~mixedSigns & lanes;
         if (hits.mask == 0) return hits;
         t.store(hits.t);
         (e1 * invDet).store(hits.u);
@@ -77,7 +89,7 @@ struct BlockTriangleTest<false> {
         for (int a = 0; a < 3; ++a) org[a] = F::broadcast(ray.org[a]), dir[a] = F::broadcast(ray.dir[a]);
     }
 
-    BlockHits intersect(const TriangleBlock& block, float tmin, float tmax) const {
+    BlockHits intersect(const TriangleBlock& block, int lanes, float tmin, float tmax) const {
         const auto cross = [](const F* a, const F* b, F* out) {
             out[0] = a[1] * b[2] - b[1] * a[2];
             out[1] = a[2] * b[0] - b[2] * a[0];
@@ -101,7 +113,7 @@ struct BlockTriangleTest<false> {
         const int outside = movemask((u < zero) | (u > one) | (v < zero) | (u + v > one));
         const int inRange = movemask((t >= F::broadcast(tmin)) & (t <= F::broadcast(tmax)) & (det != zero));
         BlockHits hits;
-        hits.mask = inRange & ~outside;
+        hits.mask = inRange & ~outside & lanes;
         if (hits.mask == 0) return hits;
         t.store(hits.t);
         u.store(hits.u);
@@ -118,8 +130,9 @@ template <typename Query, bool Robust>
 inline bool testLeafBlocks(Query& query, const BlockTriangleTest<Robust>& test, const TriangleBlock* blocks,
                            uint32_t first, uint32_t count, float tmin, uint64_t& tests) {
     constexpr int W = TriangleBlock::kLanes;
-    for (uint32_t b = 0; b < blocksFor(count); ++b) {
-        const BlockHits hits = test.intersect(blocks[first + b], tmin, query.tmax);
+    for (uint32_t b = 0, end = blocksFor(count); b < end; ++b) {
+        const int lanes = b + 1 < end ? (1 << W) - 1 : (1 << (count - b * W)) - 1;
+        const BlockHits hits = test.intersect(blocks[first + b], lanes, tmin, query.tmax);
         if (hits.mask == 0) continue;
         int lane = __builtin_ctz(unsigned(hits.mask));
         if constexpr (Query::kStopsAtFirstHit) {

@@ -48,6 +48,9 @@ void expectBackendsAgree(uint32_t seed) {
         (ra / rb).storeu(r), expectLanes(va / vb, r, "/");
         differenceOfProducts(ra, rb, rb, rb * ra).storeu(r);
         expectLanes(differenceOfProducts(va, vb, vb, vb * va), r, "differenceOfProducts");
+        fmadd(ra, rb, rb * ra).storeu(r), expectLanes(fmadd(va, vb, vb * va), r, "fmadd");
+        fmsub(ra, rb, rb * ra).storeu(r), expectLanes(fmsub(va, vb, vb * va), r, "fmsub");
+        abs(ra).storeu(r), expectLanes(abs(va), r, "abs");
         min(ra, rb).storeu(r), expectLanes(min(va, vb), r, "min");
         max(ra, rb).storeu(r), expectLanes(max(va, vb), r, "max");
         select(ra >= rb, ra, rb).storeu(r), expectLanes(select(va >= vb, va, vb), r, "select");

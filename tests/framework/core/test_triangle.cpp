@@ -330,6 +330,32 @@ TEST(Triangle, WatertightAroundASharedVertex) {
     EXPECT_EQ(leaks, 0) << "of " << rays << " rays through a vertex or a spoke of a closed fan";
 }
 
+// edgeFunction's sign is the exact sign of a*b - c*d (products exact in double, so the double
+// difference has it) on the cases that decide watertightness: differences near 0, where plain
+// float products round to the wrong sign or to 0, tiny and huge magnitudes, and exact zeros.
+TEST(Triangle, EdgeFunctionHasTheExactSign) {
+    std::mt19937 rng(21);
+    std::uniform_real_distribution<float> U(-1.0f, 1.0f);
+    std::uniform_real_distribution<float> E(-40.0f, 40.0f);
+    int plainFloatWrong = 0;
+    for (int i = 0; i < 200000; ++i) {
+        const float scale = std::exp2(E(rng));
+        const float a = U(rng) * scale, b = U(rng) * scale, c = U(rng) * scale;
+        // d so that c*d is a*b to within rounding, nudged by a few ulps either way or not.
+        float d = c != 0.0f ? float(double(a) * double(b) / double(c)) : U(rng);
+        for (int k = int(rng() % 5) - 2; k != 0; k += k > 0 ? -1 : 1) d = std::nextafter(d, k > 0 ? kInfinity : -kInfinity);
+        const double exact = double(a) * double(b) - double(c) * double(d);
+        const float e = edgeFunction(a, b, c, d);
+        ASSERT_EQ((e > 0) - (e < 0), (exact > 0) - (exact < 0)) << a << " " << b << " " << c << " " << d;
+        const volatile float ab = a * b, cd = c * d;  // what plain float would decide
+        const float plain = ab - cd;
+        plainFloatWrong += (plain > 0) - (plain < 0) != (exact > 0) - (exact < 0);
+    }
+    EXPECT_GT(plainFloatWrong, 1000);  // the cases do need more than float
+    EXPECT_EQ(edgeFunction(0.1f, 0.7f, 0.7f, 0.1f), 0.0f);
+    EXPECT_EQ(edgeFunction(3.0f, 1.0f / 3.0f, 1.0f, 3.0f * (1.0f / 3.0f)), edgeFunction(3.0f, 1.0f / 3.0f, 1.0f, 1.0f));
+}
+
 TEST(Triangle, DegenerateTrianglesAreNeverHit) {
     // Coincident vertices (a point, a repeated vertex) and non-finite vertices, hit dead on:
     // rays through the point and the segment's points, from many directions. Their edge
