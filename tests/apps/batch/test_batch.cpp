@@ -4,8 +4,9 @@
 // a folder holds one batch (another is refused, the same one resumed), and its tables count and
 // order what they show; a scene's heat maps share one scale.
 #include "framework/io/image_io.h"
+#include "tests/support/batch_results.h"
+#include "tests/support/batch_scenes.h"
 #include "tests/support/cli_run.h"
-#include "tests/support/scratch_dir.h"
 #include "tests/support/text_count.h"
 
 #include <gtest/gtest.h>
@@ -14,72 +15,17 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
 using namespace bvhlab;
+using test::batchArgs;
+using test::csvWithoutTimings;
+using test::makeScenes;
+using test::readJson;
+using test::readText;
 using test::Result;
 using test::run;
 
-namespace {
-
 namespace fs = std::filesystem;
-
-// A fresh folder holding two small scenes (OBJ + env) and a list of them.
-fs::path makeScenes(const std::string& name) {
-    const fs::path dir = test::scratchDir("batch") / name;
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    // A ground quad and a tetrahedron over it; the second scene adds a box-like wedge.
-    const std::string ground = "v -5 0 -5\nv 5 0 -5\nv 5 0 5\nv -5 0 5\nf 1 3 2\nf 1 4 3\n";
-    const std::string tetra = "v 0 0.5 0\nv 1 0.5 0\nv 0 1.5 0\nv 0 0.5 1\nf 5 6 7\nf 5 8 6\nf 5 7 8\nf 6 8 7\n";
-    std::ofstream(dir / "first.obj") << ground << tetra;
-    std::ofstream(dir / "second.obj") << ground << tetra
-                                      << "v -2 0 -2\nv -1 0 -2\nv -2 1 -2\nf 9 10 11\nf 9 11 10\n";
-    std::ofstream(dir / "first.env") << "Scene::file first.obj\nScene::dir .\nCamera::from 3 3 3\nCamera::at 0 0.5 0\n"
-                                        "Camera::width 24\nCamera::height 18\nLights::positions 2 6 1\n";
-    std::ofstream(dir / "second.env") << "Scene::file second.obj\nScene::dir .\nCamera::from -3 2 3\nCamera::at 0 0.5 0\n"
-                                         "Camera::width 20\nCamera::height 20\nLights::positions -1 5 2, 3 4 3\n";
-    std::ofstream(dir / "scenes.list") << "# two tiny scenes\nfirst.env\nsecond.env\n";
-    return dir;
-}
-
-std::string batchArgs(const fs::path& dir, const std::string& out) {
-    return "batch --scenes " + (dir / "scenes.list").string() + " --accel naive,sahbvh -DScene::cacheDir=" +
-           (dir / "cache").string() + " --out " + (dir / out).string();
-}
-
-std::string readText(const fs::path& file) {
-    std::ifstream in(file);
-    std::stringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
-
-// The CSV without its timing columns (T_B, T_R, render time), which differ from run to run.
-std::vector<std::vector<std::string>> csvWithoutTimings(const fs::path& file) {
-    std::vector<std::vector<std::string>> table;
-    std::vector<bool> keep;
-    std::stringstream in(readText(file));
-    for (std::string line; std::getline(in, line);) {
-        std::vector<std::string> cells;
-        std::stringstream fields(line);
-        for (std::string cell; std::getline(fields, cell, ',');) cells.push_back(cell);
-        if (keep.empty())
-            for (const std::string& c : cells) keep.push_back(c != "t_b_ms" && c != "t_r_us" && c != "render_ms");
-        std::vector<std::string> kept;
-        for (size_t i = 0; i < cells.size(); ++i)
-            if (i < keep.size() && keep[i]) kept.push_back(cells[i]);
-        table.push_back(kept);
-    }
-    return table;
-}
-
-nlohmann::json readJson(const fs::path& file) {
-    std::ifstream in(file);
-    return nlohmann::json::parse(in);
-}
-
-}  // namespace
 
 TEST(Batch, RunWritesTablesImagesAndContactSheet) {
     const fs::path dir = makeScenes("run");

@@ -1,0 +1,38 @@
+// Scene folders for the batch tests, in the test's scratch folder: OBJ files, each with its env
+// file (camera, lights), and a scenes.list of them.
+#pragma once
+
+#include "tests/support/scratch_dir.h"
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace bvhlab::test {
+
+// A fresh folder scratchDir("batch")/NAME holding two tiny scenes (first: a ground quad and a
+// tetrahedron, 6 triangles; second: the same and a wedge, 8) and scenes.list of both.
+inline std::filesystem::path makeScenes(const std::string& name) {
+    const std::filesystem::path dir = scratchDir("batch") / name;
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    const std::string ground = "v -5 0 -5\nv 5 0 -5\nv 5 0 5\nv -5 0 5\nf 1 3 2\nf 1 4 3\n";
+    const std::string tetra = "v 0 0.5 0\nv 1 0.5 0\nv 0 1.5 0\nv 0 0.5 1\nf 5 6 7\nf 5 8 6\nf 5 7 8\nf 6 8 7\n";
+    std::ofstream(dir / "first.obj") << ground << tetra;
+    std::ofstream(dir / "second.obj") << ground << tetra
+                                      << "v -2 0 -2\nv -1 0 -2\nv -2 1 -2\nf 9 10 11\nf 9 11 10\n";
+    std::ofstream(dir / "first.env") << "Scene::file first.obj\nScene::dir .\nCamera::from 3 3 3\nCamera::at 0 0.5 0\n"
+                                        "Camera::width 24\nCamera::height 18\nLights::positions 2 6 1\n";
+    std::ofstream(dir / "second.env") << "Scene::file second.obj\nScene::dir .\nCamera::from -3 2 3\nCamera::at 0 0.5 0\n"
+                                         "Camera::width 20\nCamera::height 20\nLights::positions -1 5 2, 3 4 3\n";
+    std::ofstream(dir / "scenes.list") << "# two tiny scenes\nfirst.env\nsecond.env\n";
+    return dir;
+}
+
+// `bvhlab batch` over makeScenes' folder with naive and sahbvh, its own scene cache, into DIR/OUT.
+inline std::string batchArgs(const std::filesystem::path& dir, const std::string& out) {
+    return "batch --scenes " + (dir / "scenes.list").string() + " --accel naive,sahbvh -DScene::cacheDir=" +
+           (dir / "cache").string() + " --out " + (dir / out).string();
+}
+
+}  // namespace bvhlab::test
