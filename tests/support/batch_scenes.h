@@ -2,6 +2,7 @@
 // file (camera, lights), and a scenes.list of them.
 #pragma once
 
+#include "framework/scene/procedural.h"
 #include "tests/support/scratch_dir.h"
 
 #include <filesystem>
@@ -9,6 +10,13 @@
 #include <string>
 
 namespace bvhlab::test {
+
+// The scene's vertices and triangles as an OBJ file.
+inline void writeObj(const std::filesystem::path& file, const Scene& scene) {
+    std::ofstream out(file);
+    for (const Vec3& p : scene.positions) out << "v " << p.x << ' ' << p.y << ' ' << p.z << '\n';
+    for (const glm::uvec3& t : scene.indices) out << "f " << t.x + 1 << ' ' << t.y + 1 << ' ' << t.z + 1 << '\n';
+}
 
 // A fresh folder scratchDir("batch")/NAME holding two tiny scenes (first: a ground quad and a
 // tetrahedron, 6 triangles; second: the same and a wedge, 8) and scenes.list of both.
@@ -33,6 +41,29 @@ inline std::filesystem::path makeScenes(const std::string& name) {
 inline std::string batchArgs(const std::filesystem::path& dir, const std::string& out) {
     return "batch --scenes " + (dir / "scenes.list").string() + " --accel naive,sahbvh -DScene::cacheDir=" +
            (dir / "cache").string() + " --out " + (dir / out).string();
+}
+
+// A fresh folder scratchDir("batch")/NAME holding three small generated scenes on a floor
+// (spheres: three icospheres of `sphereSubdivisions`, 1280 triangles each at 3; torus: 2304
+// triangles; boxes: 60) and scenes.list of them in that order.
+inline std::filesystem::path makeSolidScenes(const std::string& name, int sphereSubdivisions = 3) {
+    const std::filesystem::path dir = scratchDir("batch") / name;
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    Scene spheres, torus, boxes;
+    for (Scene* scene : {&spheres, &torus, &boxes}) addQuad(*scene, Vec3(-4, 0, -4), Vec3(0, 0, 8), Vec3(8, 0, 0), 0);
+    for (int i = 0; i < 3; ++i) addIcosphere(spheres, Vec3(-2.0f + 2.0f * i, 0.8f, 0.5f * i), 0.8f, sphereSubdivisions, 0);
+    addTorus(torus, Vec3(0, 0.6f, 0), 1.5f, 0.5f, 48, 24, 0);
+    for (int i = 0; i < 5; ++i) addBox(boxes, Vec3(-3.0f + 1.3f * i, 0, -0.5f), Vec3(-2.2f + 1.3f * i, 0.5f + 0.4f * i, 0.5f), 0);
+    writeObj(dir / "spheres.obj", spheres);
+    writeObj(dir / "torus.obj", torus);
+    writeObj(dir / "boxes.obj", boxes);
+    for (const char* scene : {"spheres", "torus", "boxes"})
+        std::ofstream(dir / (std::string(scene) + ".env"))
+            << "Scene::file " << scene << ".obj\nScene::dir .\nCamera::from 4 4 6\nCamera::at 0 0.5 0\n"
+            << "Lights::positions 3 8 4, -5 6 2\n";
+    std::ofstream(dir / "scenes.list") << "# three small generated scenes\nspheres.env\ntorus.env\nboxes.env\n";
+    return dir;
 }
 
 }  // namespace bvhlab::test

@@ -2,13 +2,15 @@
 // are written; a second run reads the scenes from the cache; two shards merged give the table
 // of one run (timings aside); a corrupt cache entry is ignored; bad --shard values are errors;
 // a folder holds one batch (another is refused, the same one resumed), and its tables count and
-// order what they show; a scene's heat maps share one scale.
+// order what they show; a scene's heat maps share one scale; two shards racing on one scene
+// through a shared cache holding a half-written entry each get the whole scene.
 #include "framework/io/image_io.h"
 #include "tests/support/batch_results.h"
 #include "tests/support/batch_scenes.h"
 #include "tests/support/cli_run.h"
 #include "tests/support/text_count.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
@@ -20,6 +22,7 @@ using namespace bvhlab;
 using test::batchArgs;
 using test::csvWithoutTimings;
 using test::makeScenes;
+using test::makeSolidScenes;
 using test::readJson;
 using test::readText;
 using test::Result;
@@ -152,6 +155,49 @@ TEST(Batch, CorruptCacheEntryIsIgnoredAndRewritten) {
     const Result again = run(batchArgs(dir, "out3"));  // rewritten: read from the cache now
     ASSERT_EQ(again.exitCode, 0) << again.output;
     EXPECT_NE(again.output.find("2 read from the cache, 0 parsed"), std::string::npos) << again.output;
+}
+
+TEST(Batch, TwoShardsRacingOnOneSceneNeverReadAHalfWrittenEntry) {
+    // Two shards start at once on one scene (61k triangles, parsed for a while) with a shared
+    // cache holding half of its entry, as a copy in progress leaves one: each either parses for
+    // itself (the entry ignored, then written whole by a rename) or reads the other's whole entry.
+    const fs::path dir = makeSolidScenes("race", 5);
+    const std::string args = "batch --scenes " + (dir / "spheres.env").string() +
+                             " --accel sahbvh,tdbvh -DCamera::width=32 -DCamera::height=24 -DScene::cacheDir=";
+    const Result whole = run(args + (dir / "seed").string() + " --out " + (dir / "whole").string());
+    ASSERT_EQ(whole.exitCode, 0) << whole.output;
+    const fs::path entry = fs::directory_iterator(dir / "seed")->path();
+    const std::string bytes = readText(entry);
+    fs::create_directories(dir / "cache");
+    std::ofstream(dir / "cache" / entry.filename(), std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+
+    std::string both;
+    for (const char* shard : {"0", "1"})
+        both += fmt::format("{} {}{} --shard {}/2 --out {} >{} 2>&1 & pids=\"$pids $!\"; ", BVHLAB_BINARY, args,
+                            (dir / "cache").string(), shard, (dir / "shard").string() + shard,
+                            (dir / "shard").string() + shard + ".log");
+    const Result raced = test::runShell(both + "for pid in $pids; do wait $pid || exit 1; done");
+    const std::string logs = readText(dir / "shard0.log") + readText(dir / "shard1.log");
+    ASSERT_EQ(raced.exitCode, 0) << logs;
+    for (const char* shard : {"shard0.log", "shard1.log"}) {
+        const std::string log = readText(dir / shard);
+        EXPECT_TRUE(log.find("read from cache") != std::string::npos ||
+                    log.find("(truncated); parsing and rewriting it") != std::string::npos)
+            << shard << ":\n" << log;
+    }
+    const Result merged = run("batch --merge " + (dir / "shard0").string() + " " + (dir / "shard1").string() +
+                              " --out " + (dir / "merged").string());
+    ASSERT_EQ(merged.exitCode, 0) << merged.output;
+    EXPECT_EQ(csvWithoutTimings(dir / "merged" / "results.csv"), csvWithoutTimings(dir / "whole" / "results.csv"));
+
+    // One whole entry is left, no temporary file beside it, and the next run reads it.
+    std::vector<std::string> files;
+    for (const auto& e : fs::directory_iterator(dir / "cache")) files.push_back(e.path().filename().string());
+    EXPECT_EQ(files, std::vector<std::string>{entry.filename().string()});
+    EXPECT_EQ(readText(dir / "cache" / entry.filename()), bytes);
+    const Result again = run(args + (dir / "cache").string() + " --out " + (dir / "again").string());
+    ASSERT_EQ(again.exitCode, 0) << again.output;
+    EXPECT_NE(again.output.find("1 read from the cache, 0 parsed"), std::string::npos) << again.output;
 }
 
 TEST(Batch, BadArgumentsAreOneLineErrors) {
