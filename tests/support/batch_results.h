@@ -25,7 +25,7 @@ inline nlohmann::json readJson(const std::filesystem::path& file) {
     return nlohmann::json::parse(in);
 }
 
-// The timing columns of results.csv.
+// The timing columns of results.csv and of the rows of results.json.
 inline constexpr const char* kTimingColumns[] = {"t_b_ms", "t_r_us", "render_ms"};
 
 // results.csv without its timing columns.
@@ -46,6 +46,14 @@ inline std::vector<std::vector<std::string>> csvWithoutTimings(const std::filesy
         table.push_back(kept);
     }
     return table;
+}
+
+// The rows of results.json without their timing columns.
+inline nlohmann::json jsonRowsWithoutTimings(const std::filesystem::path& file) {
+    nlohmann::json rows = readJson(file).at("rows");
+    for (nlohmann::json& row : rows)
+        for (const char* column : kTimingColumns) row.erase(column);
+    return rows;
 }
 
 }  // namespace bvhlab::test
