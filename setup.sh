@@ -7,7 +7,8 @@ cd "$(dirname "$0")"
 packages=(g++ cmake ninja-build pkg-config git
           libembree-dev libopenexr-dev libglm-dev libgtest-dev libtbb-dev libtinyobjloader-dev
           libstb-dev zlib1g-dev libcli11-dev nlohmann-json3-dev libfmt-dev
-          python3-matplotlib)  # docs/plots/plot_tradeoff.py, with /usr/bin/python3
+          python3-matplotlib   # docs/plots/plot_tradeoff.py, with /usr/bin/python3
+          slurmctld slurmd slurm-client munge)  # the SlurmCluster test (tests/slurm/with_local_slurm.sh)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -18,6 +19,11 @@ if ((${#missing[@]})); then
   [ "$(id -u)" -ne 0 ] && sudo="sudo"
   $sudo apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+  # The SlurmCluster test starts a munged of its own; the system's, which the package starts under
+  # systemd (slurmctld and slurmd do not start without /etc/slurm/slurm.conf), is not left running.
+  if [[ " ${missing[*]} " == *" munge "* ]] && [ -d /run/systemd/system ]; then
+    $sudo systemctl disable --now munge.service || echo "setup: munge.service could not be stopped" >&2
+  fi
 fi
 
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release "$@"

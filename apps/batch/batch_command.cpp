@@ -2,10 +2,12 @@
 // the scene (through the scene cache), build once, render without and with shadows, write the
 // images and DIR/jobs/SCENE__ACCEL.json; then make the tables and the contact sheet from the
 // jobs of the folder's one batch (DIR/batch.json; a folder holding another batch is refused).
-// `--shard i/n` runs every n-th job; `--merge DIR...` joins the shards of one batch.
+// `--shard i/n` runs every n-th job; `--merge DIR...` joins the shards of one batch; `--slurm N`
+// submits the batch to Slurm as N shards and their merge (slurm_submission.h).
 #include "accel/registry.h"
 #include "apps/batch/batch_settings.h"
 #include "apps/batch/batch_table.h"
+#include "apps/batch/slurm_submission.h"
 #include "apps/common/app_keys.h"
 #include "apps/common/cli_common.h"
 #include "apps/common/commands.h"
@@ -81,7 +83,15 @@ struct Options {
     bool shardGiven = false;
     std::vector<std::string> merge;
     bool fresh = false;  // delete the folder's batch first
+    int slurm = 0;       // --slurm N: submit N shards and their merge; 0: run here
+    std::string slurmArgs;
 };
+
+// A job's render (and Embree build) threads: --threads, else its scene's Batch::threads (the
+// report's single render thread by default).
+int renderThreads(const Options& options, const Env& sceneEnv) {
+    return options.env.threads >= 0 ? options.env.threads : sceneEnv.get(keys::Batch::threads);
+}
 
 // A job's framebuffer step counts, kept until the scene's heat maps are drawn at one scale.
 struct FinishedJob {
@@ -101,8 +111,7 @@ FinishedJob runJob(const Options& options, const Scene& scene, const SceneLoadIn
 
     Env env = sceneEnv;
     env.set(keys::ASDS::type, accel, "bvhlab batch --accel");
-    // --threads, else Batch::threads (the report's single render thread by default).
-    const int threads = options.env.threads >= 0 ? options.env.threads : env.get(keys::Batch::threads);
+    const int threads = renderThreads(options, env);
     env.set(keys::SetRayTracing::threads, std::to_string(threads), options.env.threads >= 0 ? "--threads" : "Batch::threads");
 
     progress.phase(label + ": building");
@@ -259,78 +268,142 @@ void mergeShards(const std::vector<std::string>& dirs, const std::filesystem::pa
     }
 }
 
+// What a batch runs: its scenes with their layered envs, the accelerators, and its settings.
+struct BatchPlan {
+    std::vector<SceneArgument> scenes;
+    std::vector<Env> sceneEnvs;
+    std::vector<std::string> accels;
+    BatchSettings settings;
+};
+
+// Every env file is read and every scene file looked for up front, so that a typo in the last
+// one fails now, not in an hour (or on the cluster).
+BatchPlan planBatch(const Options& options) {
+    BatchPlan plan;
+    plan.accels = parseAccelList(options.accels);
+    plan.scenes = expandSceneList(options.scenes, options.env);
+    for (const SceneArgument& scene : plan.scenes) {
+        const std::filesystem::path file = scene.envFile.empty() ? scene.sceneFile : scene.envFile;
+        plan.sceneEnvs.push_back(scene.load(options.env));
+        const Env& env = plan.sceneEnvs.back();
+        if (!env.get(keys::Scene::file).empty()) {
+            const std::filesystem::path scenePath = env.get(keys::Scene::dir) / env.get(keys::Scene::file);
+            if (!std::filesystem::exists(scenePath))
+                throw InputError(fmt::format("{}: scene file {} does not exist", file.string(), scenePath.string()));
+        }
+    }
+    std::vector<std::pair<std::string, Env>> idsAndEnvs;
+    for (size_t s = 0; s < plan.scenes.size(); ++s) idsAndEnvs.emplace_back(plan.scenes[s].id, plan.sceneEnvs[s]);
+    plan.settings = makeBatchSettings(idsAndEnvs, plan.accels);
+    return plan;
+}
+
+// Runs this shard's jobs of the batch into `out`.
+void runJobs(const Options& options, const BatchPlan& plan, const Shard& shard, const std::filesystem::path& out) {
+    const std::vector<SceneArgument>& scenes = plan.scenes;
+    const std::vector<Env>& sceneEnvs = plan.sceneEnvs;
+    const std::vector<std::string>& accels = plan.accels;
+    prepareFolder(out, plan.settings, options.fresh);
+
+    // Jobs in table order; this shard takes every n-th.
+    const size_t totalJobs = scenes.size() * accels.size();
+    std::vector<size_t> mine;
+    for (size_t j = 0; j < totalJobs; ++j)
+        if (j % size_t(shard.count) == size_t(shard.index)) mine.push_back(j);
+    fmt::print(stderr, "batch: {} scenes x {} accelerators = {} jobs{}; render threads ({}): {}; into {}\n",
+               scenes.size(), accels.size(), totalJobs,
+               shard.count > 1 ? fmt::format(", shard {}/{} runs {} of them", shard.index, shard.count, mine.size()) : "",
+               options.env.threads >= 0 ? "--threads" : "Batch::threads",
+               sceneEnvs.empty() ? 1 : renderThreads(options, sceneEnvs.front()), out.string());
+
+    const auto start = Progress::Clock::now();
+    Progress progress;
+    size_t jobNumber = 0, scenesFromCache = 0, scenesParsed = 0;
+    for (size_t s = 0; s < scenes.size(); ++s) {
+        std::vector<size_t> sceneJobs;
+        for (size_t j : mine)
+            if (j / accels.size() == s) sceneJobs.push_back(j);
+        if (sceneJobs.empty()) continue;
+        progress.phase(fmt::format("[job {}/{}] {}: loading the scene", jobNumber + 1, mine.size(), scenes[s].id));
+        SceneLoadInfo info;
+        const Scene scene = loadSceneFor(sceneEnvs[s], true, &info);
+        (info.fromCache ? scenesFromCache : scenesParsed) += 1;
+        std::vector<FinishedJob> finished;
+        for (size_t j : sceneJobs) {
+            const size_t a = j % accels.size();
+            const json order = {{"scene", s}, {"accel", a}, {"job", j}, {"jobs", totalJobs}};
+            ++jobNumber;
+            finished.push_back(runJob(options, scene, info, sceneEnvs[s], scenes[s], accels[a], plan.settings, order,
+                                      shard, progress, fmt::format("[job {}/{}]", jobNumber, mine.size())));
+        }
+        if (sceneEnvs[s].get(keys::Output::heatmap))
+            writeSceneHeatmaps(out, scenes[s].id, finished, sceneEnvs[s].get(keys::Output::heatmapScale));
+    }
+    fmt::print(stderr, "batch: {} jobs in {}; scenes: {} read from the cache, {} parsed{}; {} builds, each "
+                       "serving both renders\n",
+               mine.size(),
+               Progress::formatDuration(std::chrono::duration<double>(Progress::Clock::now() - start).count()),
+               scenesFromCache, scenesParsed,
+               scenesParsed && !sceneEnvs.empty() && !sceneEnvs.front().get(keys::Scene::cacheDir).empty()
+                   ? fmt::format(" (and stored in {})", sceneEnvs.front().get(keys::Scene::cacheDir).string())
+                   : "",
+               mine.size());
+}
+
+// The arguments that make a shard's batch this one: the same scenes, accelerators and env layers
+// (relative paths stay valid: the shards run in this working folder).
+std::vector<std::string> shardArguments(const Options& options) {
+    std::vector<std::string> arguments;
+    for (const std::string& scenes : options.scenes) arguments.insert(arguments.end(), {"--scenes", scenes});
+    arguments.insert(arguments.end(), {"--accel", options.accels});
+    for (const std::string& file : options.env.envFiles) arguments.insert(arguments.end(), {"--env", file});
+    for (const std::string& assignment : options.env.overrides) arguments.push_back("-D" + assignment);
+    if (options.env.noGlobalEnv) arguments.push_back("--no-global-env");
+    if (options.env.threads >= 0) arguments.insert(arguments.end(), {"--threads", std::to_string(options.env.threads)});
+    return arguments;
+}
+
+// --slurm N: nothing runs here. The folders are made the batch's first (refused when they hold
+// another batch, cleared with --fresh), so that no shard finds another batch in its folder hours
+// later; then the shards and their merge are submitted.
+void submitToSlurm(const Options& options, const BatchPlan& plan, const std::filesystem::path& out) {
+    if (size_t(options.slurm) > plan.settings.jobCount())
+        throw InputError(fmt::format("--slurm {}: the batch has {} jobs, so at most {} shards", options.slurm,
+                                     plan.settings.jobCount(), plan.settings.jobCount()));
+    const std::filesystem::path sbatch = findSbatch();
+    SlurmBatch batch;
+    batch.out = std::filesystem::absolute(out).lexically_normal();
+    if (!batch.out.has_filename()) batch.out = batch.out.parent_path();  // "out/batch/"
+    batch.shards = options.slurm;
+    batch.program = std::filesystem::read_symlink("/proc/self/exe");
+    batch.workingDir = std::filesystem::current_path();
+    batch.batchArguments = shardArguments(options);
+    // Enough CPUs for the scene with the most render threads; 0 (all the node has) for any.
+    batch.cpusPerShard = 1;
+    for (const Env& env : plan.sceneEnvs) {
+        const int threads = renderThreads(options, env);
+        batch.cpusPerShard = threads == 0 || batch.cpusPerShard == 0 ? 0 : std::max(batch.cpusPerShard, threads);
+    }
+    batch.sbatchArguments = options.slurmArgs;
+    prepareFolder(batch.out, plan.settings, options.fresh);
+    for (int shard = 0; shard < batch.shards; ++shard)
+        prepareFolder(slurmShardFolder(batch.out, shard), plan.settings, options.fresh);
+    fmt::print("{}", slurmSubmissionSummary(batch, submitSlurmBatch(batch, sbatch)));
+}
+
 void runBatch(const Options& options) {
     const std::filesystem::path out = prepareOutputFolder(options.out);
     if (!options.merge.empty()) {
         if (options.shardGiven) throw InputError("--merge and --shard do not go together");
+        if (options.slurm) throw InputError("--merge and --slurm do not go together (--slurm N merges its shards itself)");
         mergeShards(options.merge, out, options.fresh);
     } else {
+        if (options.slurm && options.shardGiven)
+            throw InputError("--slurm and --shard do not go together (--slurm N makes the shards itself)");
         const Shard shard = options.shardGiven ? parseShard(options.shard) : Shard{};
-        const std::vector<std::string> accels = parseAccelList(options.accels);
-        // Every env file is read up front, so a typo in the last one fails now, not in an hour.
-        const std::vector<SceneArgument> scenes = expandSceneList(options.scenes, options.env);
-        std::vector<Env> sceneEnvs;
-        for (const SceneArgument& scene : scenes) {
-            const std::filesystem::path file = scene.envFile.empty() ? scene.sceneFile : scene.envFile;
-            sceneEnvs.push_back(scene.load(options.env));
-            const Env& env = sceneEnvs.back();
-            if (!env.get(keys::Scene::file).empty()) {
-                const std::filesystem::path scenePath = env.get(keys::Scene::dir) / env.get(keys::Scene::file);
-                if (!std::filesystem::exists(scenePath))
-                    throw InputError(fmt::format("{}: scene file {} does not exist", file.string(), scenePath.string()));
-            }
-        }
-        std::vector<std::pair<std::string, Env>> idsAndEnvs;
-        for (size_t s = 0; s < scenes.size(); ++s) idsAndEnvs.emplace_back(scenes[s].id, sceneEnvs[s]);
-        const BatchSettings batch = makeBatchSettings(idsAndEnvs, accels);
-        prepareFolder(out, batch, options.fresh);
-
-        // Jobs in table order; this shard takes every n-th.
-        const size_t totalJobs = scenes.size() * accels.size();
-        std::vector<size_t> mine;
-        for (size_t j = 0; j < totalJobs; ++j)
-            if (j % size_t(shard.count) == size_t(shard.index)) mine.push_back(j);
-        fmt::print(stderr, "batch: {} scenes x {} accelerators = {} jobs{}; render threads ({}): {}; into {}\n",
-                   scenes.size(), accels.size(), totalJobs,
-                   shard.count > 1 ? fmt::format(", shard {}/{} runs {} of them", shard.index, shard.count, mine.size()) : "",
-                   options.env.threads >= 0 ? "--threads" : "Batch::threads",
-                   options.env.threads >= 0 ? options.env.threads
-                   : sceneEnvs.empty()      ? 1
-                                            : sceneEnvs.front().get(keys::Batch::threads),
-                   out.string());
-
-        const auto start = Progress::Clock::now();
-        Progress progress;
-        size_t jobNumber = 0, scenesFromCache = 0, scenesParsed = 0;
-        for (size_t s = 0; s < scenes.size(); ++s) {
-            std::vector<size_t> sceneJobs;
-            for (size_t j : mine)
-                if (j / accels.size() == s) sceneJobs.push_back(j);
-            if (sceneJobs.empty()) continue;
-            progress.phase(fmt::format("[job {}/{}] {}: loading the scene", jobNumber + 1, mine.size(), scenes[s].id));
-            SceneLoadInfo info;
-            const Scene scene = loadSceneFor(sceneEnvs[s], true, &info);
-            (info.fromCache ? scenesFromCache : scenesParsed) += 1;
-            std::vector<FinishedJob> finished;
-            for (size_t j : sceneJobs) {
-                const size_t a = j % accels.size();
-                const json order = {{"scene", s}, {"accel", a}, {"job", j}, {"jobs", totalJobs}};
-                ++jobNumber;
-                finished.push_back(runJob(options, scene, info, sceneEnvs[s], scenes[s], accels[a], batch, order, shard,
-                                          progress, fmt::format("[job {}/{}]", jobNumber, mine.size())));
-            }
-            if (sceneEnvs[s].get(keys::Output::heatmap))
-                writeSceneHeatmaps(out, scenes[s].id, finished, sceneEnvs[s].get(keys::Output::heatmapScale));
-        }
-        fmt::print(stderr, "batch: {} jobs in {}; scenes: {} read from the cache, {} parsed{}; {} builds, each "
-                           "serving both renders\n",
-                   mine.size(),
-                   Progress::formatDuration(std::chrono::duration<double>(Progress::Clock::now() - start).count()),
-                   scenesFromCache, scenesParsed,
-                   scenesParsed && !sceneEnvs.empty() && !sceneEnvs.front().get(keys::Scene::cacheDir).empty()
-                       ? fmt::format(" (and stored in {})", sceneEnvs.front().get(keys::Scene::cacheDir).string())
-                       : "",
-                   mine.size());
+        const BatchPlan plan = planBatch(options);
+        if (options.slurm) return submitToSlurm(options, plan, out);
+        runJobs(options, plan, shard, out);
     }
 
     const BatchTables tables = writeBatchResults(out);
@@ -359,6 +432,15 @@ void addBatchCommand(CLI::App& app) {
     command->add_option("--merge", options->merge, "join the jobs of these batch output folders into --out and make its tables");
     command->add_flag("--fresh", options->fresh,
                       "first delete the batch --out holds (jobs/, images/, tables): needed when its settings differ");
+    CLI::Option* slurm =
+        command->add_option("--slurm", options->slurm,
+                            "N: run nothing here; submit the batch to Slurm (sbatch) as an array of N shards and a "
+                            "merge job after them, into --out (scripts and logs in --out/slurm)")
+            ->check(CLI::Range(1, 100000));
+    command->add_option("--slurm-args", options->slurmArgs,
+                        "sbatch options for the shards and the merge, e.g. \"--partition=short --time=01:00:00 "
+                        "--account=lab\"")
+        ->needs(slurm);
     command->callback([options, shard] {
         options->shardGiven = shard->count() > 0;
         const int code = runGuarded([&] { runBatch(*options); });

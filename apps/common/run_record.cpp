@@ -1,5 +1,6 @@
 #include "apps/common/run_record.h"
 
+#include "apps/common/shell_word.h"
 #include "framework/scene/scene_cache.h"
 
 #include <fmt/core.h>
@@ -12,20 +13,6 @@ namespace {
 
 std::string commandLine;
 std::string started;
-
-// A word as a POSIX shell reads it back: quoted when it holds anything but safe characters.
-std::string shellWord(const std::string& word) {
-    const bool safe = !word.empty() && word.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ"
-                                                             "0123456789_-+=/.,:@%") == std::string::npos;
-    if (safe) return word;
-    std::string quoted = "'";
-    for (char c : word) {
-        if (c == '\'') quoted += "'\\''";
-        else quoted += c;
-    }
-    quoted += '\'';
-    return quoted;
-}
 
 }  // namespace
 

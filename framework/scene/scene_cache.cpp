@@ -136,11 +136,13 @@ std::optional<Scene> readSceneCache(const std::filesystem::path& cacheFile, cons
         if (why) *why = reason;
         return std::nullopt;
     };
-    std::error_code ec;
-    const uint64_t fileSize = std::filesystem::file_size(cacheFile, ec);
-    if (ec) return fail("missing");
-    std::ifstream in(cacheFile, std::ios::binary);
-    if (!in) return fail("cannot open");
+    // The size of the file opened, not of the path: a shard sharing the folder may rename
+    // another (complete) entry over it in between.
+    std::ifstream in(cacheFile, std::ios::binary | std::ios::ate);
+    if (!in) return fail(std::filesystem::exists(cacheFile) ? "cannot open" : "missing");
+    const std::streamoff end = in.tellg();
+    if (end < 0 || !in.seekg(0)) return fail("cannot read");
+    const uint64_t fileSize = uint64_t(end);
     if (fileSize < sizeof(Header) + sizeof(uint32_t)) return fail("truncated");
     Reader r(in, fileSize - sizeof(uint32_t));
     Header h;

@@ -2,84 +2,33 @@
 // are written; a second run reads the scenes from the cache; two shards merged give the table
 // of one run (timings aside); a corrupt cache entry is ignored; bad --shard values are errors;
 // a folder holds one batch (another is refused, the same one resumed), and its tables count and
-// order what they show; a scene's heat maps share one scale.
+// order what they show; a scene's heat maps share one scale; two shards racing on one scene
+// through a shared cache holding a half-written entry each get the whole scene.
 #include "framework/io/image_io.h"
+#include "tests/support/batch_results.h"
+#include "tests/support/batch_scenes.h"
 #include "tests/support/cli_run.h"
-#include "tests/support/scratch_dir.h"
 #include "tests/support/text_count.h"
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 
 using namespace bvhlab;
+using test::batchArgs;
+using test::csvWithoutTimings;
+using test::makeScenes;
+using test::makeSolidScenes;
+using test::readJson;
+using test::readText;
 using test::Result;
 using test::run;
 
-namespace {
-
 namespace fs = std::filesystem;
-
-// A fresh folder holding two small scenes (OBJ + env) and a list of them.
-fs::path makeScenes(const std::string& name) {
-    const fs::path dir = test::scratchDir("batch") / name;
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    // A ground quad and a tetrahedron over it; the second scene adds a box-like wedge.
-    const std::string ground = "v -5 0 -5\nv 5 0 -5\nv 5 0 5\nv -5 0 5\nf 1 3 2\nf 1 4 3\n";
-    const std::string tetra = "v 0 0.5 0\nv 1 0.5 0\nv 0 1.5 0\nv 0 0.5 1\nf 5 6 7\nf 5 8 6\nf 5 7 8\nf 6 8 7\n";
-    std::ofstream(dir / "first.obj") << ground << tetra;
-    std::ofstream(dir / "second.obj") << ground << tetra
-                                      << "v -2 0 -2\nv -1 0 -2\nv -2 1 -2\nf 9 10 11\nf 9 11 10\n";
-    std::ofstream(dir / "first.env") << "Scene::file first.obj\nScene::dir .\nCamera::from 3 3 3\nCamera::at 0 0.5 0\n"
-                                        "Camera::width 24\nCamera::height 18\nLights::positions 2 6 1\n";
-    std::ofstream(dir / "second.env") << "Scene::file second.obj\nScene::dir .\nCamera::from -3 2 3\nCamera::at 0 0.5 0\n"
-                                         "Camera::width 20\nCamera::height 20\nLights::positions -1 5 2, 3 4 3\n";
-    std::ofstream(dir / "scenes.list") << "# two tiny scenes\nfirst.env\nsecond.env\n";
-    return dir;
-}
-
-std::string batchArgs(const fs::path& dir, const std::string& out) {
-    return "batch --scenes " + (dir / "scenes.list").string() + " --accel naive,sahbvh -DScene::cacheDir=" +
-           (dir / "cache").string() + " --out " + (dir / out).string();
-}
-
-std::string readText(const fs::path& file) {
-    std::ifstream in(file);
-    std::stringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
-
-// The CSV without its timing columns (T_B, T_R, render time), which differ from run to run.
-std::vector<std::vector<std::string>> csvWithoutTimings(const fs::path& file) {
-    std::vector<std::vector<std::string>> table;
-    std::vector<bool> keep;
-    std::stringstream in(readText(file));
-    for (std::string line; std::getline(in, line);) {
-        std::vector<std::string> cells;
-        std::stringstream fields(line);
-        for (std::string cell; std::getline(fields, cell, ',');) cells.push_back(cell);
-        if (keep.empty())
-            for (const std::string& c : cells) keep.push_back(c != "t_b_ms" && c != "t_r_us" && c != "render_ms");
-        std::vector<std::string> kept;
-        for (size_t i = 0; i < cells.size(); ++i)
-            if (i < keep.size() && keep[i]) kept.push_back(cells[i]);
-        table.push_back(kept);
-    }
-    return table;
-}
-
-nlohmann::json readJson(const fs::path& file) {
-    std::ifstream in(file);
-    return nlohmann::json::parse(in);
-}
-
-}  // namespace
 
 TEST(Batch, RunWritesTablesImagesAndContactSheet) {
     const fs::path dir = makeScenes("run");
@@ -206,6 +155,49 @@ TEST(Batch, CorruptCacheEntryIsIgnoredAndRewritten) {
     const Result again = run(batchArgs(dir, "out3"));  // rewritten: read from the cache now
     ASSERT_EQ(again.exitCode, 0) << again.output;
     EXPECT_NE(again.output.find("2 read from the cache, 0 parsed"), std::string::npos) << again.output;
+}
+
+TEST(Batch, TwoShardsRacingOnOneSceneNeverReadAHalfWrittenEntry) {
+    // Two shards start at once on one scene (61k triangles, parsed for a while) with a shared
+    // cache holding half of its entry, as a copy in progress leaves one: each either parses for
+    // itself (the entry ignored, then written whole by a rename) or reads the other's whole entry.
+    const fs::path dir = makeSolidScenes("race", 5);
+    const std::string args = "batch --scenes " + (dir / "spheres.env").string() +
+                             " --accel sahbvh,tdbvh -DCamera::width=32 -DCamera::height=24 -DScene::cacheDir=";
+    const Result whole = run(args + (dir / "seed").string() + " --out " + (dir / "whole").string());
+    ASSERT_EQ(whole.exitCode, 0) << whole.output;
+    const fs::path entry = fs::directory_iterator(dir / "seed")->path();
+    const std::string bytes = readText(entry);
+    fs::create_directories(dir / "cache");
+    std::ofstream(dir / "cache" / entry.filename(), std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+
+    std::string both;
+    for (const char* shard : {"0", "1"})
+        both += fmt::format("{} {}{} --shard {}/2 --out {} >{} 2>&1 & pids=\"$pids $!\"; ", BVHLAB_BINARY, args,
+                            (dir / "cache").string(), shard, (dir / "shard").string() + shard,
+                            (dir / "shard").string() + shard + ".log");
+    const Result raced = test::runShell(both + "for pid in $pids; do wait $pid || exit 1; done");
+    const std::string logs = readText(dir / "shard0.log") + readText(dir / "shard1.log");
+    ASSERT_EQ(raced.exitCode, 0) << logs;
+    for (const char* shard : {"shard0.log", "shard1.log"}) {
+        const std::string log = readText(dir / shard);
+        EXPECT_TRUE(log.find("read from cache") != std::string::npos ||
+                    log.find("(truncated); parsing and rewriting it") != std::string::npos)
+            << shard << ":\n" << log;
+    }
+    const Result merged = run("batch --merge " + (dir / "shard0").string() + " " + (dir / "shard1").string() +
+                              " --out " + (dir / "merged").string());
+    ASSERT_EQ(merged.exitCode, 0) << merged.output;
+    EXPECT_EQ(csvWithoutTimings(dir / "merged" / "results.csv"), csvWithoutTimings(dir / "whole" / "results.csv"));
+
+    // One whole entry is left, no temporary file beside it, and the next run reads it.
+    std::vector<std::string> files;
+    for (const auto& e : fs::directory_iterator(dir / "cache")) files.push_back(e.path().filename().string());
+    EXPECT_EQ(files, std::vector<std::string>{entry.filename().string()});
+    EXPECT_EQ(readText(dir / "cache" / entry.filename()), bytes);
+    const Result again = run(args + (dir / "cache").string() + " --out " + (dir / "again").string());
+    ASSERT_EQ(again.exitCode, 0) << again.output;
+    EXPECT_NE(again.output.find("1 read from the cache, 0 parsed"), std::string::npos) << again.output;
 }
 
 TEST(Batch, BadArgumentsAreOneLineErrors) {

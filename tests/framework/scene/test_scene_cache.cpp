@@ -1,5 +1,6 @@
 // The binary scene cache: a scene survives the round trip field by field, the key follows the
-// source's bytes, and damaged or foreign entries are refused with a reason, never trusted.
+// source's bytes, damaged or foreign entries are refused with a reason, never trusted, and
+// readers racing writers of one entry (shards sharing the folder) see it whole or not at all.
 #include "framework/core/error.h"
 #include "framework/scene/procedural.h"
 #include "framework/scene/scene_cache.h"
@@ -7,7 +8,10 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <fstream>
+#include <mutex>
+#include <thread>
 
 using namespace bvhlab;
 namespace fs = std::filesystem;
@@ -167,4 +171,47 @@ TEST(SceneCache, AnEntryWithNothingToRenderIsRefusedAsTheFileWouldBe) {
     } catch (const InputError& e) {
         EXPECT_NE(std::string(e.what()).find("hollow.obj: nothing to render"), std::string::npos) << e.what();
     }
+}
+
+TEST(SceneCache, ReadersRacingWritersOfOneEntrySeeItWholeOrMissing) {
+    // Two writers rewrite the entry over and over (as shards that parsed the same scene store
+    // it) while two readers read it: a read gives the whole scene, or "missing" before the first
+    // rename, never a part of one; no temporary file is left.
+    const Scene scene = richScene();
+    const fs::path source = tempDir() / "raced.obj";
+    std::ofstream(source) << "raced source";
+    const SceneCacheKey key = sceneCacheKey(source);
+    const fs::path dir = tempDir() / "raced_cache";
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    const fs::path file = dir / key.cacheFileName();
+
+    std::atomic<int> writing{2}, whole{0};
+    std::mutex mutex;
+    std::vector<std::string> wrong;
+    auto read = [&] {
+        std::string why;
+        const std::optional<Scene> back = readSceneCache(file, key, source, &why);
+        if (back && back->positions == scene.positions && back->indices == scene.indices) {
+            ++whole;
+        } else if (back || why != "missing") {
+            const std::lock_guard lock(mutex);
+            wrong.push_back(back ? "another scene" : why);
+        }
+    };
+    std::vector<std::thread> threads;
+    for (int w = 0; w < 2; ++w)
+        threads.emplace_back([&] {
+            for (int i = 0; i < 30; ++i) writeSceneCache(file, key, scene);
+            --writing;
+        });
+    for (int r = 0; r < 2; ++r)
+        threads.emplace_back([&] {
+            while (writing > 0) read();
+            read();  // after the last rename
+        });
+    for (std::thread& t : threads) t.join();
+    EXPECT_TRUE(wrong.empty()) << wrong.size() << " bad reads, the first: " << wrong.front();
+    EXPECT_GE(whole, 2);
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
 }
