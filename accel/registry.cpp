@@ -36,12 +36,12 @@ const std::vector<AcceleratorInfo>& acceleratorInfos() {
         bvhInfo<Bvh>("sahbvh", "BVH by binned SAH (Wald 2007): BVH::bins bins along the widest centre axis, SSE binning",
                      BvhKind::BinnedSah),
         bvhInfo<WideBvh<4>>(
-            "sahbvh4", "sahbvh's tree (leaves charged by blocks of four) in 4-wide nodes, four child boxes tested at once (SSE), "
-            "leaves four triangles at once; N_TR counts wide steps",
+            "sahbvh4", "sahbvh's tree (leaves charged by blocks of eight) in 4-wide nodes, four child boxes tested at once (SSE), "
+            "leaves eight triangles at once (AVX2); N_TR counts wide steps",
             BvhKind::BinnedSah),
         bvhInfo<WideBvh<8>>("sahbvh8",
-                            "sahbvh's tree (leaves charged by blocks of four) in 8-wide nodes, eight child boxes tested at "
-                            "once (AVX2; scalar lanes without it), leaves four triangles at once; N_TR counts wide steps",
+                            "sahbvh's tree (leaves charged by blocks of eight) in 8-wide nodes, eight child boxes tested at "
+                            "once (AVX2; scalar lanes without it), leaves eight triangles at once; N_TR counts wide steps",
                             BvhKind::BinnedSah),
         bvhInfo<Bvh>("sweepbvh", "BVH by full-sweep SAH over all N-1 planes per axis: the exact reference for sahbvh; slow build",
                      BvhKind::SweepSah),

@@ -3,6 +3,7 @@
 #include "accel/bvh/traverse/bvh_traversal.h"
 #include "accel/bvh/traverse/wide_bvh_traversal.h"
 
+#include <bit>
 #include <chrono>
 #include <type_traits>
 
@@ -26,8 +27,8 @@ BvhAccelerator<Layout>::BvhAccelerator(BvhKind kind, const BvhBuildConfig& build
     : kind_(kind), build_(build), traversal_(traversal), name_(bvhKindName(kind)) {
     if constexpr (LayoutWidth<Layout>::value > 2) {
         name_ += std::to_string(LayoutWidth<Layout>::value);
-        static_assert(TriangleBlock::kLanes == 4);
-        build_.sahBlockShift = 2;  // the leaves test triangles four at a time
+        // The leaves test a block of triangles at a time: the SAH charges them so.
+        build_.sahBlockShift = std::countr_zero(unsigned(TriangleBlock::kLanes));
     }
 }
 

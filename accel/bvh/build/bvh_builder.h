@@ -38,7 +38,7 @@ struct BvhBuildConfig {
     float cIntersect = 1.0f;     // ... the cost of one ray-triangle test
     int sahBlockShift = 0;       // the SAH builders count a leaf's tests in blocks of 2^shift
                                  // triangles (ceil(n / 2^shift), Embree's sahBlockSize): 2 for
-                                 // the wide layouts, whose leaves test four at once
+                                 // the wide layouts, whose leaves test eight at once
     int bins = 16;               // binned SAH: bins per axis; more bins approach the sweep, slower
     bool allAxes = false;        // binned SAH: bin all three axes and take the best, not the widest
     bool simd = true;            // SIMD in the hot loops (prep, binning, partition); false = the

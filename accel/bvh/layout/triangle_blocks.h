@@ -1,8 +1,11 @@
-// The leaves of the wide layouts: their triangles in blocks of four, stored lane by lane (SoA,
-// as Embree's triangle4v), so that one SIMD test (traverse/triangle_block_test.h) checks four
-// triangles of a leaf at once. A leaf of n triangles takes ceil(n / 4) blocks of its own; the
-// lanes past its last triangle hold a point triangle (three equal vertices), which the
-// watertight test never hits (its edge functions are exactly 0), and kInvalidPrimitive.
+// The leaves of the wide layouts: their triangles in blocks of eight, stored lane by lane (SoA,
+// as Embree's triangle4v, but at AVX's width), so that one SIMD test
+// (traverse/triangle_block_test.h) checks eight triangles of a leaf at once. Eight, not four:
+// a block costs one test either way, and the SAH then charges leaves by eights, which halves
+// the leaves and the build time (measured in docs/performance.md). A leaf of n triangles takes
+// ceil(n / 8) blocks of its own; the lanes past its last triangle hold a point triangle (three
+// equal vertices), which the watertight test never hits (its edge functions are exactly 0),
+// and kInvalidPrimitive; the traversal leaves them out of the test as well.
 #pragma once
 
 #include "accel/bvh/layout/traversal_allocator.h"
@@ -13,8 +16,8 @@
 
 namespace bvhlab {
 
-struct alignas(16) TriangleBlock {
-    static constexpr int kLanes = 4;
+struct alignas(32) TriangleBlock {
+    static constexpr int kLanes = 8;
     float vertex[3][3][kLanes];  // [vertex 0-2][axis x-z][lane]
 
     Triangle triangle(int lane) const {
@@ -27,7 +30,7 @@ struct alignas(16) TriangleBlock {
             for (int a = 0; a < 3; ++a) vertex[k][a][lane] = (*v[k])[a];
     }
 };
-static_assert(sizeof(TriangleBlock) == 144);
+static_assert(sizeof(TriangleBlock) == 288);
 
 inline constexpr uint32_t blocksFor(uint32_t triangles) {
     return (triangles + TriangleBlock::kLanes - 1) / TriangleBlock::kLanes;

@@ -1,5 +1,5 @@
 // The leaves' triangle test of the wide layouts: the watertight test of framework/core/
-// triangle.h on the four triangles of a TriangleBlock at once, in lanes of simd::Floats<4>.
+// triangle.h on the eight triangles of a TriangleBlock at once, in lanes of simd::Floats<8>.
 // Every lane performs the scalar test's operations in its order (the edge functions filtered
 // in float and recomputed in double where their sign is in doubt, as edgeFunction does), so a
 // lane's answer is the scalar test's bit for bit: the wide layouts are as watertight as the
@@ -15,7 +15,7 @@ namespace bvhlab {
 // The hits of one block: a lane mask and each lane's t, u, v.
 struct BlockHits {
     int mask = 0;
-    alignas(16) float t[TriangleBlock::kLanes], u[TriangleBlock::kLanes], v[TriangleBlock::kLanes];
+    alignas(32) float t[TriangleBlock::kLanes], u[TriangleBlock::kLanes], v[TriangleBlock::kLanes];
 };
 
 template <bool Robust>

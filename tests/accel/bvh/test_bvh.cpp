@@ -733,7 +733,7 @@ TEST(WideBvh, CollapseKeepsEveryLeafOnce) {
                     ASSERT_LE(node.child[i] + blocksFor(node.count[i]), blocks);
                     for (uint32_t b = node.child[i]; b < node.child[i] + blocksFor(node.count[i]); ++b) ++blockOwners[b];
                     for (uint32_t p = first; p < first + blocksFor(node.count[i]) * TriangleBlock::kLanes; ++p) {
-                        const Triangle tri = wide.blocks[p / 4].triangle(int(p % 4));
+                        const Triangle tri = wide.blocks[p / TriangleBlock::kLanes].triangle(int(p % TriangleBlock::kLanes));
                         if (p >= first + node.count[i]) {
                             EXPECT_EQ(wide.primIndices[p], kInvalidPrimitive);
                             EXPECT_TRUE(tri.v0 == tri.v1 && tri.v1 == tri.v2) << "padding is a point";
@@ -803,14 +803,14 @@ TEST(Bvh, SameTreeWhateverTheThreadCount) {
     }
 }
 
-// With leaves charged by blocks of four (the wide layouts' setting), splitting four or fewer
-// triangles never pays: C_trav + (A_L + A_R) / A > 1 block. Charged per triangle (the binary
-// layout), the same builders do split such ranges.
-TEST(Bvh, SahChargedByBlocksKeepsFourTrianglesTogether) {
+// With leaves charged by blocks of 2^shift (the wide layouts charge blocks of eight), splitting
+// a block's worth of triangles or fewer never pays: C_trav + (A_L + A_R) / A > 1 block. Charged
+// per triangle (the binary layout), the same builders do split such ranges.
+TEST(Bvh, SahChargedByBlocksKeepsABlockOfTrianglesTogether) {
     const Soup soup = randomSoup(3000, 61);
     for (BvhKind kind : {BvhKind::BinnedSah, BvhKind::SweepSah}) {
         SCOPED_TRACE(bvhKindName(kind));
-        for (int shift : {0, 2}) {
+        for (int shift : {0, 2, 3}) {
             BvhBuildConfig config = defaultConfig();
             config.sahBlockShift = shift;
             const Bvh bvh = buildBvh(kind, config, soup.prims());
@@ -822,8 +822,9 @@ TEST(Bvh, SahChargedByBlocksKeepsFourTrianglesTogether) {
                 below[i] = n.isLeaf() ? n.count : below[n.index] + below[n.index + 1];
             }
             size_t smallInner = 0;
-            for (size_t i = 0; i < bvh.nodes.size(); ++i) smallInner += i != 1 && !bvh.nodes[i].isLeaf() && below[i] <= 4;
-            if (shift == 2) {
+            const uint32_t block = shift == 0 ? 4u : 1u << shift;
+            for (size_t i = 0; i < bvh.nodes.size(); ++i) smallInner += i != 1 && !bvh.nodes[i].isLeaf() && below[i] <= block;
+            if (shift != 0) {
                 EXPECT_EQ(smallInner, 0u);
             } else {
                 EXPECT_GT(smallInner, 0u);

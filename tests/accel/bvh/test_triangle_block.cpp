@@ -14,6 +14,9 @@
 namespace bvhlab {
 namespace {
 
+constexpr int kLanes = TriangleBlock::kLanes;
+constexpr int kAllLanes = (1 << kLanes) - 1;
+
 // A fan of triangles around a shared vertex, so that rays at the vertex and along the shared
 // edges probe the cases the exact edge functions exist for.
 std::vector<Triangle> fanAround(StressRng& rng, Vec3 centre, int count) {
@@ -66,9 +69,9 @@ void expectLanesAnswerAsScalar(uint64_t seed) {
     for (const Ray& ray : probeRays(rng, tris, 4000)) {
         const ShearedRay sheared(ray);
         const BlockTriangleTest<Robust> test(ray);
-        for (size_t first = 0; first + 4 <= tris.size(); first += 4) {
-            const BlockHits block = test.intersect(blockOf(tris, first, 4), 0xF, ray.tmin, ray.tmax);
-            for (int lane = 0; lane < 4; ++lane) {
+        for (size_t first = 0; first + kLanes <= tris.size(); first += kLanes) {
+            const BlockHits block = test.intersect(blockOf(tris, first, kLanes), kAllLanes, ray.tmin, ray.tmax);
+            for (int lane = 0; lane < kLanes; ++lane) {
                 TriangleHitT<float> h;
                 const bool hit = Robust ? intersectTriangle(sheared, tris[first + lane], ray.tmin, ray.tmax, h)
                                         : intersectTriangleMollerTrumbore(ray, tris[first + lane], ray.tmin, ray.tmax, h);
@@ -92,17 +95,17 @@ TEST(TriangleBlock, LanesAnswerAsScalarMollerTrumbore) { expectLanesAnswerAsScal
 // when the padding lanes are tested (the traversal leaves them out).
 TEST(TriangleBlock, PaddingLanesNeverHit) {
     StressRng rng(12);
-    const std::vector<Triangle> tris = fanAround(rng, Vec3(1.0f, 2.0f, 3.0f), 3);
-    for (int lanes = 1; lanes <= 3; ++lanes) {
+    const std::vector<Triangle> tris = fanAround(rng, Vec3(1.0f, 2.0f, 3.0f), kLanes - 1);
+    for (int lanes = 1; lanes < kLanes; ++lanes) {
         const TriangleBlock block = blockOf(tris, 0, lanes);
         const Vec3 point = tris[lanes - 1].v0;
         for (int i = 0; i < 200; ++i) {
             Ray ray;
             ray.org = point + Vec3(rng.unitVector()) * 3.0f;
             ray.dir = point - ray.org;
-            const int mask = BlockTriangleTest<true>(ray).intersect(block, 0xF, 0.0f, kInfinity).mask;
+            const int mask = BlockTriangleTest<true>(ray).intersect(block, kAllLanes, 0.0f, kInfinity).mask;
             EXPECT_EQ(mask >> lanes, 0) << lanes << " lanes";
-            EXPECT_EQ(BlockTriangleTest<false>(ray).intersect(block, 0xF, 0.0f, kInfinity).mask >> lanes, 0);
+            EXPECT_EQ(BlockTriangleTest<false>(ray).intersect(block, kAllLanes, 0.0f, kInfinity).mask >> lanes, 0);
         }
     }
 }
@@ -110,9 +113,9 @@ TEST(TriangleBlock, PaddingLanesNeverHit) {
 // A leaf of blocks counts and chooses as the binary layout's loop over the same triangles.
 TEST(TriangleBlock, LeafCountsAndChoosesAsTheScalarLoop) {
     StressRng rng(13);
-    std::vector<Triangle> tris = fanAround(rng, Vec3(0.0f), 7);
+    std::vector<Triangle> tris = fanAround(rng, Vec3(0.0f), 2 * kLanes - 1);
     tris.push_back(tris[2]);  // a duplicate: equal t in two lanes
-    for (uint32_t count : {1u, 3u, 4u, 5u, 8u}) {
+    for (uint32_t count : {1u, 3u, 4u, 5u, 8u, 9u, 13u, 16u}) {  // one block, and two
         TriangleBlockLeaves leaves;
         std::vector<uint32_t> prims(count);
         leaves.appendLeaf(tris.data(), prims.data(), count);
