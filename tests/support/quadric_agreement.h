@@ -7,6 +7,7 @@
 
 #include "framework/core/quadric.h"
 #include "framework/core/ray.h"
+#include "framework/core/sphere.h"
 
 #include <gtest/gtest.h>
 
@@ -76,11 +77,26 @@ private:
     int ungrazedDisagreements = 0;
 };
 
-// The float or double test through `intersect` over the ray's own interval.
-template <typename Real, typename Intersect>
-bool hitsWithin(const Intersect& intersect, const Ray& ray, QuadricHitT<Real>* out = nullptr) {
+// The ray-quadric tests under one name, for the helpers below.
+template <typename Real>
+bool intersectQuadric(const Ray& ray, const Sphere& sphere, Real tmin, Real tmax, QuadricHitT<Real>& out) {
+    return intersectSphere(ray, sphere, tmin, tmax, out);
+}
+
+// A primitive's float and double tests as one callable, the hit record's type choosing.
+template <typename Primitive>
+auto intersectorOf(const Primitive& primitive) {
+    return [&primitive](const Ray& ray, double tmin, double tmax, auto& hit) {
+        using Real = decltype(hit.t);
+        return intersectQuadric<Real>(ray, primitive, Real(tmin), Real(tmax), hit);
+    };
+}
+
+// The float or double test over the ray's own interval.
+template <typename Real = float, typename Primitive>
+bool hits(const Ray& ray, const Primitive& primitive, QuadricHitT<Real>* out = nullptr) {
     QuadricHitT<Real> h{};
-    const bool hit = intersect(ray, double(ray.tmin), double(ray.tmax), h);
+    const bool hit = intersectorOf(primitive)(ray, double(ray.tmin), double(ray.tmax), h);
     if (hit && out) *out = h;
     return hit;
 }

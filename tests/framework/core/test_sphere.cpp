@@ -15,22 +15,12 @@
 namespace bvhlab {
 namespace {
 
+using test::hits;
+using test::intersectorOf;
 using test::randomUnit;
 using test::widen;
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-
-auto intersectorOf(const Sphere& sphere) {
-    return [&sphere](const Ray& ray, double tmin, double tmax, auto& hit) {
-        using Real = decltype(hit.t);
-        return intersectSphere<Real>(ray, sphere, Real(tmin), Real(tmax), hit);
-    };
-}
-
-template <typename Real = float>
-bool hits(const Ray& ray, const Sphere& sphere, QuadricHitT<Real>* out = nullptr) {
-    return test::hitsWithin<Real>(intersectorOf(sphere), ray, out);
-}
 
 // Independent of sphere.h (long double, the line's distance from the centre by a cross product):
 // how far the ray's line passes from the sphere's surface, relative to the origin's distance
