@@ -8,11 +8,13 @@
 #include "framework/core/quadric.h"
 #include "framework/core/ray.h"
 #include "framework/core/sphere.h"
+#include "tests/support/random_geometry.h"
 
 #include <gtest/gtest.h>
 
 #include <cstdio>
 #include <limits>
+#include <random>
 
 namespace bvhlab::test {
 
@@ -99,6 +101,40 @@ bool hits(const Ray& ray, const Primitive& primitive, QuadricHitT<Real>* out = n
     const bool hit = intersectorOf(primitive)(ray, double(ray.tmin), double(ray.tmax), h);
     if (hit && out) *out = h;
     return hit;
+}
+
+// `count` primitives of sizes log-uniform over [minSize, maxSize] within maxOffset of the origin:
+// compareOne(rng, size, offset, agreement) makes one of `size` around `offset` and a ray, and
+// compares the two tests on them.
+template <typename CompareOne>
+QuadricAgreement agreementOnRandomRays(uint32_t seed, int count, double minSize, double maxSize, double maxOffset,
+                                       const CompareOne& compareOne) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> U(0.0, 1.0);
+    QuadricAgreement agreement;
+    for (int i = 0; i < count; ++i) {
+        const double size = minSize * std::pow(maxSize / minSize, U(rng));
+        compareOne(rng, size, randomPointWithin(rng, maxOffset), agreement);
+    }
+    return agreement;
+}
+
+// 100000 rays passing the surfaces of primitives of 1e-3 to 1e4 at 1e-9 to 1e-2 sizes,
+// alternately inside and out: compareOne(rng, size, miss, agreement) makes a primitive of `size`
+// and a ray passing it at miss * size (inside if negative) and compares the two tests on them.
+template <typename CompareOne>
+void expectTangentRaysAgree(uint32_t seed, const CompareOne& compareOne) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> U(0.0, 1.0);
+    QuadricAgreement agreement;
+    for (int i = 0; i < 100000; ++i) {
+        const double size = randomScale(rng);
+        const double miss = (i % 2 ? 1.0 : -1.0) * std::pow(10.0, -9 + 7 * U(rng));
+        compareOne(rng, size, miss, agreement);
+    }
+    // Any number may be grazing, but float must round differently there: the band is not empty.
+    agreement.expectCounts("tangent rays", 20000, 20000, 100000);
+    EXPECT_GT(agreement.grazingDisagreements, 0) << "no disagreement in the band";
 }
 
 // A ray that hits, with a NaN put in each of its fields in turn, and with a zero direction:

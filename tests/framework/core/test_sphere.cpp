@@ -15,10 +15,7 @@
 namespace bvhlab {
 namespace {
 
-using test::hits;
-using test::intersectorOf;
-using test::randomUnit;
-using test::widen;
+using namespace test;  // the shared helpers of the primitives' tests
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
@@ -154,21 +151,17 @@ TEST(Sphere, ReferenceMatchesAnIndependentSolution) {
 // Random spheres of size `size` around `offset`, rays from 1.5 to 40 radii away (or from
 // inside) aimed near them: about half hit.
 test::QuadricAgreement shootRandomRays(uint32_t seed, int count, double minSize, double maxSize, double maxOffset) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<double> U(0.0, 1.0);
-    test::QuadricAgreement agreement;
-    for (int i = 0; i < count; ++i) {
-        const double size = minSize * std::pow(maxSize / minSize, U(rng));
-        const DVec3 offset = randomUnit(rng) * maxOffset * U(rng);
+    const auto compareOne = [](std::mt19937& rng, double size, const DVec3& offset, test::QuadricAgreement& agreement) {
+        std::uniform_real_distribution<double> U(0.0, 1.0);
         const Sphere sphere{Vec3(offset + randomUnit(rng) * size), float(size * (0.5 + U(rng)))};
         const DVec3 c = widen(sphere.centre);
-        const double distance = i % 8 == 0 ? 0.9 * U(rng) : 1.5 * std::pow(40.0 / 1.5, U(rng));
+        const double distance = rng() % 8 == 0 ? 0.9 * U(rng) : 1.5 * std::pow(40.0 / 1.5, U(rng));
         const Vec3 org = Vec3(c + randomUnit(rng) * distance * double(sphere.radius));
         const DVec3 target = c + randomUnit(rng) * 1.4 * double(sphere.radius);
         const Ray ray = Ray(org, Vec3((target - widen(org)) * std::exp(U(rng) * 4 - 2)));
         agreement.compare(intersectorOf(sphere), ray, double(sphere.radius), grazingDistance(ray, sphere) < kGrazingBand);
-    }
-    return agreement;
+    };
+    return test::agreementOnRandomRays(seed, count, minSize, maxSize, maxOffset, compareOne);
 }
 
 TEST(Sphere, FloatAgreesWithDoubleOnRandomRays) {
@@ -182,31 +175,24 @@ TEST(Sphere, FloatAgreesWithDoubleAtHugeAndTinyScalesFarFromTheOrigin) {
 }
 
 TEST(Sphere, TangentRaysAgreeOutsideANarrowBand) {
-    // Rays passing the surface at 1e-9 to 1e-2 radii, inside or out: never a NaN, and float and
-    // double disagree only within the band, in which all of them are counted.
-    std::mt19937 rng(36);
-    std::uniform_real_distribution<double> U(0.0, 1.0);
-    test::QuadricAgreement a;
-    for (int i = 0; i < 100000; ++i) {
-        const double size = std::pow(10.0, U(rng) * 7 - 3);
-        const Sphere sphere{Vec3(randomUnit(rng) * size * 100.0 * U(rng)), float(size)};
+    // Rays passing the surface at miss radii: never a NaN, and float and double disagree only
+    // within the band, in which all of them are counted.
+    test::expectTangentRaysAgree(36, [](std::mt19937& rng, double size, double miss, test::QuadricAgreement& a) {
+        std::uniform_real_distribution<double> U(0.0, 1.0);
+        const Sphere sphere{Vec3(randomPointWithin(rng, size * 100.0)), float(size)};
         const DVec3 dir = randomUnit(rng);
         const DVec3 across = glm::normalize(glm::cross(dir, randomUnit(rng)));
-        const double miss = (i % 2 ? 1.0 : -1.0) * std::pow(10.0, -9 + 7 * U(rng));
         const DVec3 tangentPoint = widen(sphere.centre) + across * double(sphere.radius) * (1.0 + miss);
         const Ray ray = Ray(Vec3(tangentPoint - dir * double(sphere.radius) * (2.0 + 20.0 * U(rng))), Vec3(dir));
         a.compare(intersectorOf(sphere), ray, double(sphere.radius), grazingDistance(ray, sphere) < kGrazingBand);
-    }
-    a.expectCounts("tangent rays", 20000, 20000, 100000);
-    EXPECT_GT(a.grazingDisagreements, 0);  // the band is not empty: float does round differently there
+    });
 }
 
 TEST(Sphere, BoundsHoldTheSurfaceTightly) {
     std::mt19937 rng(37);
-    std::uniform_real_distribution<double> U(0.0, 1.0);
     for (int i = 0; i < 20000; ++i) {
-        const double size = std::pow(10.0, U(rng) * 7 - 3);
-        const Sphere sphere{Vec3(randomUnit(rng) * size * 1e3 * U(rng)), float(size) * (i % 2 ? 1.0f : -1.0f)};
+        const double size = randomScale(rng);
+        const Sphere sphere{Vec3(randomPointWithin(rng, size * 1e3)), float(size) * (i % 2 ? 1.0f : -1.0f)};
         const Bounds3 b = sphere.bounds();
         for (int axis = 0; axis < 3; ++axis) {
             const double c = widen(sphere.centre)[axis], r = std::abs(double(sphere.radius));
