@@ -5,6 +5,7 @@
 // grazing (within a narrow band of a tangent or of a rim); such rays are counted.
 #pragma once
 
+#include "framework/core/cone.h"
 #include "framework/core/quadric.h"
 #include "framework/core/ray.h"
 #include "framework/core/sphere.h"
@@ -83,6 +84,10 @@ private:
 template <typename Real>
 bool intersectQuadric(const Ray& ray, const Sphere& sphere, Real tmin, Real tmax, QuadricHitT<Real>& out) {
     return intersectSphere(ray, sphere, tmin, tmax, out);
+}
+template <typename Real>
+bool intersectQuadric(const Ray& ray, const Cone& cone, Real tmin, Real tmax, QuadricHitT<Real>& out) {
+    return intersectCone(ray, cone, tmin, tmax, out);
 }
 
 // A primitive's float and double tests as one callable, the hit record's type choosing.

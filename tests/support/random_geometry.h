@@ -25,7 +25,9 @@ inline DVec3 randomPointWithin(std::mt19937& rng, double radius) {
 }
 
 // A size log-uniform over 1e-3 to 1e4: the scales the tests of the primitives cover.
-inline double randomScale(std::mt19937& rng) { return std::pow(10.0, std::uniform_real_distribution<double>(0.0, 1.0)(rng) * 7 - 3); }
+inline double randomScale(std::mt19937& rng) {
+    return std::pow(10.0, std::uniform_real_distribution<double>(0.0, 1.0)(rng) * 7 - 3);
+}
 
 // Float data as double, read back through a call the optimiser does not see into. GCC 12.2 at
 // -O2 folds double(float(x)) back to x once SLP has vectorised both conversions (wrong code,
