@@ -3,6 +3,7 @@
 // watertightness along shared edges, degenerate triangles and NaN rays.
 #include "framework/core/triangle.h"
 #include "framework/scene/scene.h"
+#include "tests/support/random_geometry.h"
 
 #include <gtest/gtest.h>
 
@@ -13,6 +14,9 @@
 
 namespace bvhlab {
 namespace {
+
+using test::randomUnit;
+using test::widen;
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
@@ -27,22 +31,8 @@ bool hits(const Ray& ray, const Triangle& tri, TriangleHitT<Real>* out = nullptr
 bool hitsF(const Ray& ray, const Triangle& tri) { return hits<float>(ray, tri); }
 bool hitsD(const Ray& ray, const Triangle& tri) { return hits<double>(ray, tri); }
 
-// Float data as double, read back through a call the optimiser does not see into. GCC 12.2 at
-// -O2 folds double(float(x)) back to x once SLP has vectorised both conversions (wrong code,
-// seen in FloatAndDoubleAgreeOnRandomCases: the reference then used the unrounded origin).
-[[gnu::noinline]] glm::dvec3 widen(const Vec3& v) { return glm::dvec3(v); }
-
 glm::dvec3 pointAt(const Triangle& tri, double u, double v) {
     return (1.0 - u - v) * glm::dvec3(tri.v0) + u * glm::dvec3(tri.v1) + v * glm::dvec3(tri.v2);
-}
-
-glm::dvec3 randomUnit(std::mt19937& rng) {
-    std::uniform_real_distribution<double> U(-1.0, 1.0);
-    for (;;) {
-        const glm::dvec3 v(U(rng), U(rng), U(rng));
-        const double l = glm::length(v);
-        if (l > 1e-3 && l <= 1.0) return v / l;
-    }
 }
 
 // v0 = (1,1,5), v1 = (3,1,5), v2 = (1,5,5): the hit point (x, y, 5) has u = (x-1)/2, v = (y-1)/4.

@@ -1,0 +1,116 @@
+// The ray-cone test of NFF's `c`: the lateral surface of a truncated cone between its base and
+// apex discs, open at both ends (no caps) and hit from either side. A cylinder is the case of
+// equal radii, a true cone that of an apex radius 0. The ray is moved into the cone's frame (axis
+// along +z from the base), where the surface is x^2 + y^2 = R(z)^2 with R linear in z.
+#pragma once
+
+#include "framework/core/quadric.h"
+#include "framework/core/ray.h"
+
+namespace bvhlab {
+
+// NFF gives negative values to both radii of a cone of which only the inside is visible: the
+// surface is that of |radius|, and the sign is left to shading. NFF calls the smaller radius the
+// apex's; the surface does not depend on which end is which.
+struct Cone {
+    Vec3 base;
+    float baseRadius;
+    Vec3 apex;
+    float apexRadius;
+
+    // The box of the two end discs: a disc of radius r around a unit axis w reaches
+    // r sqrt(1 - w_i^2) from its centre along axis i.
+    Bounds3 bounds() const {
+        const DVec3 b(base), a(apex);
+        const DVec3 w = glm::normalize(a - b);
+        const DVec3 reach = glm::sqrt(glm::max(DVec3(0.0), 1.0 - w * w));
+        const DVec3 baseReach = std::abs(double(baseRadius)) * reach, apexReach = std::abs(double(apexRadius)) * reach;
+        const DVec3 lower = glm::min(b - baseReach, a - apexReach), upper = glm::max(b + baseReach, a + apexReach);
+        const DVec3 extent = glm::max(glm::abs(lower), glm::abs(upper));
+        return boundsRoundedOutward(lower, upper, 0x1p-45 * std::max({extent.x, extent.y, extent.z}));
+    }
+    // The middle of the axis: the builders need a representative point, not a centre of mass.
+    Vec3 centroid() const { return 0.5f * (base + apex); }
+};
+
+// Non-finite data; radii of opposite signs (NFF defines only both negative); a coincident base
+// and apex, or both radii 0; or a squared axis length or radius that is not a normal float
+// (under- or overflows): no test in float could place such a surface.
+inline bool isDegenerate(const Cone& cone) {
+    if (!isFinite(cone.base) || !isFinite(cone.apex) || !std::isfinite(cone.baseRadius) ||
+        !std::isfinite(cone.apexRadius))
+        return true;
+    if ((cone.baseRadius < 0.0f && cone.apexRadius > 0.0f) || (cone.baseRadius > 0.0f && cone.apexRadius < 0.0f))
+        return true;
+    const Vec3 axis = cone.apex - cone.base;
+    const float largerRadius = std::max(std::abs(cone.baseRadius), std::abs(cone.apexRadius));
+    return !std::isnormal(glm::dot(axis, axis)) || !std::isnormal(largerRadius * largerRadius);
+}
+
+// An orthonormal frame with w along the cone's axis (Duff et al., "Building an Orthonormal
+// Basis, Revisited", JCGT 2017): no normalisation and no branch but the sign of w.z.
+template <typename Real>
+struct ConeFrameT {
+    using V = glm::vec<3, Real>;
+    V u, v, w;
+
+    explicit ConeFrameT(const V& unitAxis) : w(unitAxis) {
+        const Real sign = std::copysign(Real(1), w.z);
+        const Real a = Real(-1) / (sign + w.z);
+        const Real b = w.x * w.y * a;
+        u = V(Real(1) + sign * w.x * w.x * a, sign * b, -sign * w.x);
+        v = V(b, sign + w.y * w.y * a, -w.y);
+    }
+    V toLocal(const V& p) const { return V(glm::dot(p, u), glm::dot(p, v), glm::dot(p, w)); }
+    V toWorld(const V& p) const { return p.x * u + p.y * v + p.z * w; }
+};
+
+// Returns true and fills `out` with the nearest hit on the lateral surface at t in [tmin, tmax].
+// The frame is rigid, so t is the same in it as in the world. Real = double gives the reference
+// used by the tests.
+template <typename Real>
+inline bool intersectCone(const Ray& ray, const Cone& cone, Real tmin, Real tmax, QuadricHitT<Real>& out) {
+    using V = glm::vec<3, Real>;
+    using V2 = glm::vec<2, Real>;
+    if (isDegenerate(cone)) return false;
+    const V axis = V(cone.apex) - V(cone.base);
+    const Real height = glm::length(axis);
+    const ConeFrameT<Real> frame(axis / height);
+    const V d = frame.toLocal(V(ray.dir));
+    // The ray restarted at its point nearest the middle of the axis, t measured from there: the
+    // quadratic's terms are then of the cone's size, as sphere.h's distance of the line from the
+    // centre, not of the origin's distance, whose square would swamp the discriminant of hits near
+    // the apex or at a shallow angle.
+    const V fromBase = frame.toLocal(V(ray.org) - V(cone.base));
+    const Real tShift = (Real(0.5) * height * d.z - glm::dot(fromBase, d)) / glm::dot(d, d);
+    const V f = fromBase + tShift * d;
+    const Real baseRadius = std::abs(Real(cone.baseRadius));
+    const Real slope = (std::abs(Real(cone.apexRadius)) - baseRadius) / height;  // R(z) = baseRadius + slope z
+
+    const V2 fxy(f), dxy(d);
+    const Real radiusAtOrigin = baseRadius + slope * f.z;
+    const Real a = glm::dot(dxy, dxy) - (slope * d.z) * (slope * d.z);
+    const Real halfB = glm::dot(fxy, dxy) - slope * d.z * radiusAtOrigin;
+    const Real c = glm::dot(fxy, fxy) - radiusAtOrigin * radiusAtOrigin;
+    // halfB^2 - a c = |m|^2 - cross^2, m = R(f.z) dxy - slope d.z fxy and cross = fxy x dxy (|cross|
+    // / |dxy| is the distance of the projected ray from the axis): as for the sphere, no two large
+    // nearly equal terms are subtracted unless the ray is nearly tangent.
+    const Real m = glm::length(radiusAtOrigin * dxy - (slope * d.z) * fxy);
+    const Real cross = std::abs(fxy.x * dxy.y - fxy.y * dxy.x);
+    Real roots[2];
+    if (!quadraticRoots(a, halfB, c, (m - cross) * (m + cross), roots[0], roots[1])) return false;
+    for (const Real tFromShift : roots) {
+        const Real t = tShift + tFromShift;
+        const V p = f + tFromShift * d;
+        if (!(t >= tmin && t <= tmax && p.z >= Real(0) && p.z <= height)) continue;
+        // The gradient of x^2 + y^2 - R(z)^2; at the tip of a true cone (R = 0) it vanishes, and
+        // the axis away from the cone stands in for it.
+        const V gradient(p.x, p.y, -slope * (baseRadius + slope * p.z));
+        const V normal = gradient == V(Real(0)) ? V(Real(0), Real(0), -slope) : gradient;
+        out = {t, glm::normalize(frame.toWorld(normal))};
+        return true;
+    }
+    return false;
+}
+
+}  // namespace bvhlab
