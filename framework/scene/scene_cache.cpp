@@ -138,8 +138,11 @@ std::optional<Scene> readSceneCache(const std::filesystem::path& cacheFile, cons
     };
     // The size of the file opened, not of the path: a shard sharing the folder may rename
     // another (complete) entry over it in between.
+    // Missing is decided before opening: checked after a failed open, an entry that another
+    // shard renamed into place in between would read as "cannot open".
+    if (!std::filesystem::exists(cacheFile)) return fail("missing");
     std::ifstream in(cacheFile, std::ios::binary | std::ios::ate);
-    if (!in) return fail(std::filesystem::exists(cacheFile) ? "cannot open" : "missing");
+    if (!in) return fail("cannot open");
     const std::streamoff end = in.tellg();
     if (end < 0 || !in.seekg(0)) return fail("cannot read");
     const uint64_t fileSize = uint64_t(end);

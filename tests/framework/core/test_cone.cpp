@@ -72,7 +72,7 @@ double referenceHit(const Ray& ray, const Cone& cone, double size, bool* grazing
     }
     const L maxRadius = std::max(r0, std::abs(L(cone.apexRadius)));
     const L bound = band * slant * (2 * maxRadius + 3 * band * slant);
-    const L tangent = a != 0 ? std::clamp(-halfB / a, tLow, tHigh) : tLow;
+    const L tangent = a != 0 && tLow <= tHigh ? std::clamp(-halfB / a, tLow, tHigh) : tLow;  // clamp needs lo <= hi
     bool nearEdge = tLow <= tHigh && std::abs((a * tangent + 2 * halfB) * tangent + c) < bound;
     double nearest = std::numeric_limits<double>::quiet_NaN();
     if (disc >= 0 && a != 0) {
