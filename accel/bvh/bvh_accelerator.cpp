@@ -34,37 +34,65 @@ BvhAccelerator<Layout>::BvhAccelerator(BvhKind kind, const BvhBuildConfig& build
 
 template <typename Layout>
 BuildStats BvhAccelerator<Layout>::build(const PrimitiveSet& prims) {
-    // Build time: from the first read of the triangles (PrimRef preparation: boxes and centre
-    // bounds) to the finished node array and leaf arrays (primitive indices and the triangles
-    // copied in leaf order), including a collapse. The statistics are not part of it.
+    // Build time: from the first read of the primitives (PrimRef preparation: boxes and centre
+    // bounds) to the finished node arrays and leaf arrays (primitive indices and the primitives
+    // copied in leaf order), including a collapse and the quadric tree. The statistics are not
+    // part of it.
     tree_ = Layout();
+    quadrics_ = QuadricBvh();
     const auto start = std::chrono::steady_clock::now();
     Bvh binary = buildBvh(kind_, build_, prims);
     const auto built = std::chrono::steady_clock::now();
     BuildStats stats;
     fillTreeStats(binary, build_.cTraversal, build_.cIntersect, stats);
+    const Bounds3 triangleRoot = binary.empty() ? Bounds3() : binary.nodes[0].box();
     const auto statsEnd = std::chrono::steady_clock::now();
     if constexpr (std::is_same_v<Layout, Bvh>) {
         tree_ = std::move(binary);
     } else {
         tree_ = collapseToWide<LayoutWidth<Layout>::value>(std::move(binary));
     }
+    if (prims.hasQuadrics()) {
+        BvhBuildConfig config = build_;
+        config.sahBlockShift = 0;  // quadrics are tested one at a time
+        quadrics_ = buildQuadricBvh(kind_, config, prims);
+    }
     const auto end = std::chrono::steady_clock::now();
 
     stats.buildMs = std::chrono::duration<double, std::milli>((built - start) + (end - statsEnd)).count();
-    stats.primitives = prims.valid.size();
+    stats.primitives = prims.validTriangles().size();
     stats.bytes = tree_.bytes();
+    if (!quadrics_.empty()) {
+        BuildStats quadricStats;
+        fillTreeStats(quadrics_, build_.cTraversal, build_.cIntersect, quadricStats);
+        quadricStats.primitives = quadrics_.primIndices.size();
+        combineTreeStats(stats, triangleRoot, quadricStats, quadrics_.nodes[0].box());
+    }
     return stats;
 }
 
+// The triangles' tree first, then the quadrics' up to the closest hit found so far. One query
+// for the counters, the work of both.
 template <typename Layout>
 bool BvhAccelerator<Layout>::findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const {
-    return bvhlab::findNearest(tree_, ray, hit, counters, traversal_);
+    bool found = bvhlab::findNearest(tree_, ray, hit, counters, traversal_);
+    if (quadrics_.empty()) return found;
+    Ray rest = ray;
+    if (found) rest.tmax = hit.t;
+    QueryCounters work;
+    found |= bvhlab::findNearest(quadrics_, rest, hit, work, traversal_);
+    counters.addWork(work);
+    return found;
 }
 
 template <typename Layout>
 bool BvhAccelerator<Layout>::isOccluded(const Ray& ray, QueryCounters& counters) const {
-    return bvhlab::isOccluded(tree_, ray, counters, traversal_);
+    if (bvhlab::isOccluded(tree_, ray, counters, traversal_)) return true;
+    if (quadrics_.empty()) return false;
+    QueryCounters work;
+    const bool occluded = bvhlab::isOccluded(quadrics_, ray, work, traversal_);
+    counters.addWork(work);
+    return occluded;
 }
 
 template class BvhAccelerator<Bvh>;

@@ -3,7 +3,8 @@
 // the builders emit; Layout = WideBvh<N> collapses it into N-wide nodes (sahbvh4, sahbvh8) whose
 // leaves hold their triangles in SIMD blocks of eight. For them the SAH builders charge a leaf
 // by the blocks it fills (BvhBuildConfig::sahBlockShift), so their binary tree is built for
-// that leaf test; the env keys are the same.
+// that leaf test; the env keys are the same. Spheres and cones get a binary tree of their own
+// by the same builder (layout/quadric_leaves.h), traversed after the triangles'.
 #pragma once
 
 #include "accel/bvh/build/bvh_builder.h"
@@ -22,7 +23,8 @@ public:
 
     std::string_view name() const override { return name_; }
     // Build time includes a collapse to wide nodes. #Nodes, #Leaves, depth and SAH are the
-    // binary tree's (the same formula for every builder); memory is the layout's.
+    // binary tree's (the same formula for every builder), with the quadric tree's added
+    // (combineTreeStats); memory is the layouts'.
     BuildStats build(const PrimitiveSet& prims) override;
     bool findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const override;
     bool isOccluded(const Ray& ray, QueryCounters& counters) const override;
@@ -35,6 +37,7 @@ private:
     TraversalConfig traversal_;
     std::string name_;  // the builder's name, with the width of a wide layout: sahbvh, sahbvh4
     Layout tree_;
+    QuadricBvh quadrics_;  // the spheres and cones, when the scene has any (quadric_leaves.h)
 };
 
 // Instantiated for these layouts.

@@ -53,6 +53,48 @@ struct GeometryDeleter {
     void operator()(RTCGeometryTy* geometry) const { rtcReleaseGeometry(geometry); }
 };
 
+// Our geometries' IDs in Embree's scene, one per primitive kind (EmbreeAccelerator::primitiveOf_).
+constexpr unsigned kTriangleGeometry = 0, kSphereGeometry = 1, kConeGeometry = 2;
+
+// The cones as Embree's user geometry: bounds and the two queries by our own test (Embree has
+// no cone; its round curves are swept spheres, not NFF's open truncated cones).
+struct ConeGeometry {
+    static void bounds(const RTCBoundsFunctionArguments* args) {
+        const Bounds3 b = static_cast<const Cone*>(args->geometryUserPtr)[args->primID].bounds();
+        *args->bounds_o = {b.lower.x, b.lower.y, b.lower.z, 0.0f, b.upper.x, b.upper.y, b.upper.z, 0.0f};
+    }
+    static Ray rayOf(RTCRayN* ray, unsigned n, unsigned i) {
+        return {{RTCRayN_org_x(ray, n, i), RTCRayN_org_y(ray, n, i), RTCRayN_org_z(ray, n, i)},
+                {RTCRayN_dir_x(ray, n, i), RTCRayN_dir_y(ray, n, i), RTCRayN_dir_z(ray, n, i)},
+                RTCRayN_tnear(ray, n, i),
+                RTCRayN_tfar(ray, n, i)};
+    }
+    static void intersect(const RTCIntersectFunctionNArguments* args) {
+        const Cone& cone = static_cast<const Cone*>(args->geometryUserPtr)[args->primID];
+        RTCRayN* ray = RTCRayHitN_RayN(args->rayhit, args->N);
+        RTCHitN* hit = RTCRayHitN_HitN(args->rayhit, args->N);
+        for (unsigned i = 0; i < args->N; ++i) {
+            if (args->valid[i] == 0) continue;
+            const Ray r = rayOf(ray, args->N, i);
+            QuadricHitT<float> h;
+            if (!intersectCone(r, cone, r.tmin, r.tmax, h)) continue;
+            RTCRayN_tfar(ray, args->N, i) = h.t;
+            const RTCHit rtcHit{h.normal.x, h.normal.y, h.normal.z, 0.0f, 0.0f, args->primID, args->geomID,
+                                {args->context->instID[0]}};
+            rtcCopyHitToHitN(hit, &rtcHit, args->N, i);
+        }
+    }
+    static void occluded(const RTCOccludedFunctionNArguments* args) {
+        const Cone& cone = static_cast<const Cone*>(args->geometryUserPtr)[args->primID];
+        for (unsigned i = 0; i < args->N; ++i) {
+            if (args->valid[i] == 0) continue;
+            const Ray r = rayOf(args->ray, args->N, i);
+            QuadricHitT<float> h;
+            if (intersectCone(r, cone, r.tmin, r.tmax, h)) RTCRayN_tfar(args->ray, args->N, i) = -kInfinity;
+        }
+    }
+};
+
 // Largest coordinate Embree accepts in a ray (its FLT_LARGE). Debian's libembree3 is built
 // with assertions enabled, and rtcIntersect1/rtcOccluded1 assert ray.valid() (|org|, |dir|
 // components <= 1.844e18, so no infinities) and tnear >= 0: a ray breaking either aborts the
@@ -200,14 +242,29 @@ EmbreeAccelerator::~EmbreeAccelerator() = default;
 
 BuildStats EmbreeAccelerator::build(const PrimitiveSet& prims) {
     RTCDevice device = device_.get();
-    const size_t count = prims.valid.size();
+    const std::span<const uint32_t> validTriangles = prims.validTriangles();
+    const size_t count = validTriangles.size();
     if (count > kMaxPrimitives)
         throw EmbreeError(fmt::format("Embree: {} primitives exceed the {} this binding can index", count,
                                       kMaxPrimitives));
 
     // Drop the previous structure first: a failed build leaves an empty (always missing) one.
     scene_.reset();
-    primitiveOf_.assign(prims.valid.begin(), prims.valid.end());
+    for (auto& map : primitiveOf_) map.clear();
+    primitiveOf_[kTriangleGeometry].assign(validTriangles.begin(), validTriangles.end());
+    cones_.clear();
+    std::vector<float> spheres;  // x y z radius per sphere
+    for (uint32_t prim : prims.validQuadrics()) {
+        if (prims.kind(prim) == PrimitiveKind::Sphere) {
+            const Sphere& s = prims.spheres[prim - prims.sphereBase()];
+            // NFF's negative radius marks an inside-visible sphere; the surface is |radius|'s.
+            spheres.insert(spheres.end(), {s.centre.x, s.centre.y, s.centre.z, std::abs(s.radius)});
+            primitiveOf_[kSphereGeometry].push_back(prim);
+        } else {
+            cones_.push_back(prims.cones[prim - prims.coneBase()]);
+            primitiveOf_[kConeGeometry].push_back(prim);
+        }
+    }
     const RTCBuildQuality quality = toRtc(config_.quality);
 
     const auto start = std::chrono::steady_clock::now();
@@ -235,15 +292,40 @@ BuildStats EmbreeAccelerator::build(const PrimitiveSet& prims) {
         // Embree's primID i is our primitive valid[i]; its vertices are copied in order, so
         // Embree's u, v are the weights of v1 and v2 as in our Hit convention.
         for (size_t i = 0; i < count; ++i) {
-            std::memcpy(vertices + 9 * i, &prims.triangles[prims.valid[i]], sizeof(Triangle));
+            std::memcpy(vertices + 9 * i, &prims.triangles[validTriangles[i]], sizeof(Triangle));
             indices[3 * i + 0] = uint32_t(3 * i + 0);
             indices[3 * i + 1] = uint32_t(3 * i + 1);
             indices[3 * i + 2] = uint32_t(3 * i + 2);
         }
         rtcCommitGeometry(geometry.get());
         check(*state_, device, "rtcCommitGeometry");
-        rtcAttachGeometry(scene.get(), geometry.get());  // the scene now holds a reference
+        rtcAttachGeometryByID(scene.get(), geometry.get(), kTriangleGeometry);  // the scene holds a reference
         check(*state_, device, "rtcAttachGeometry");
+    }
+    if (!spheres.empty()) {
+        std::unique_ptr<RTCGeometryTy, GeometryDeleter> geometry(rtcNewGeometry(device, RTC_GEOMETRY_TYPE_SPHERE_POINT));
+        check(*state_, device, "rtcNewGeometry(sphere)");
+        rtcSetGeometryBuildQuality(geometry.get(), quality);
+        auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+            geometry.get(), RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), spheres.size() / 4));
+        check(*state_, device, "rtcSetNewGeometryBuffer(sphere)");
+        std::copy(spheres.begin(), spheres.end(), vertices);
+        rtcCommitGeometry(geometry.get());
+        rtcAttachGeometryByID(scene.get(), geometry.get(), kSphereGeometry);
+        check(*state_, device, "rtcAttachGeometry(sphere)");
+    }
+    if (!cones_.empty()) {
+        std::unique_ptr<RTCGeometryTy, GeometryDeleter> geometry(rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER));
+        check(*state_, device, "rtcNewGeometry(user)");
+        rtcSetGeometryBuildQuality(geometry.get(), quality);
+        rtcSetGeometryUserPrimitiveCount(geometry.get(), unsigned(cones_.size()));
+        rtcSetGeometryUserData(geometry.get(), cones_.data());
+        rtcSetGeometryBoundsFunction(geometry.get(), &ConeGeometry::bounds, nullptr);
+        rtcSetGeometryIntersectFunction(geometry.get(), &ConeGeometry::intersect);
+        rtcSetGeometryOccludedFunction(geometry.get(), &ConeGeometry::occluded);
+        rtcCommitGeometry(geometry.get());
+        rtcAttachGeometryByID(scene.get(), geometry.get(), kConeGeometry);
+        check(*state_, device, "rtcAttachGeometry(user)");
     }
     const int64_t bytesBefore = state_->bytes.load();
     // Embree silently skips primitives with a coordinate beyond 1.844e18 (finite ones of
@@ -256,7 +338,7 @@ BuildStats EmbreeAccelerator::build(const PrimitiveSet& prims) {
 
     BuildStats stats;
     stats.buildMs = std::chrono::duration<double, std::milli>(end - start).count();
-    stats.primitives = count;
+    stats.primitives = prims.valid.size();
     // nodes, leaves, depth, SAH: Embree's tree is not visible. bytes: what Embree's memory
     // monitor saw rtcCommitScene keep (allocated minus freed): BVH nodes and Embree's own
     // copies of the triangles in its leaves, in whole allocator blocks; not our vertex and
@@ -285,8 +367,10 @@ bool EmbreeAccelerator::findNearest(const Ray& ray, Hit& hit, QueryCounters& cou
         rtcInitIntersectContext(&context);
         rtcIntersect1(scene_.get(), &context, &rayhit);
         if (rayhit.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
-            hit = {rayhit.ray.tfar + segments.part[i].shift, primitiveOf_[rayhit.hit.primID], rayhit.hit.u,
-                   rayhit.hit.v};
+            // u, v are barycentrics on a triangle only (our Hit convention).
+            const bool triangle = rayhit.hit.geomID == kTriangleGeometry;
+            hit = {rayhit.ray.tfar + segments.part[i].shift, primitiveOf_[rayhit.hit.geomID][rayhit.hit.primID],
+                   triangle ? rayhit.hit.u : 0.0f, triangle ? rayhit.hit.v : 0.0f};
             return true;
         }
     }

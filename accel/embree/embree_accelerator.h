@@ -1,5 +1,6 @@
-// Intel Embree 3 behind our interface: the speed reference. One triangle geometry over the
-// valid primitives, queried with rtcIntersect1 / rtcOccluded1.
+// Intel Embree 3 behind our interface: the speed reference. One geometry per primitive kind
+// over the valid primitives (triangles; spheres as its sphere points; cones as a user geometry
+// with our own test), queried with rtcIntersect1 / rtcOccluded1.
 //
 // Embree has no counters and no visible tree: N_IT, N_TR, the node statistics and the SAH
 // cost are unavailable (hasCounters() is false, those optional BuildStats fields stay empty);
@@ -24,6 +25,7 @@
 #include "framework/config/env.h"
 #include "framework/core/accelerator.h"
 
+#include <array>
 #include <memory>
 #include <stdexcept>
 #include <vector>
@@ -89,7 +91,9 @@ private:
     std::unique_ptr<DeviceState> state_;
     std::unique_ptr<RTCDeviceTy, DeviceDeleter> device_;  // declared after state_, before scene_:
     std::unique_ptr<RTCSceneTy, SceneDeleter> scene_;     // released scene first, then device
-    std::vector<uint32_t> primitiveOf_;                   // Embree primID -> our primitive index
+    // Per Embree geometry (triangles, spheres, cones): its primID -> our primitive index.
+    std::array<std::vector<uint32_t>, 3> primitiveOf_;
+    std::vector<Cone> cones_;  // the user geometry's primitives, read by its callbacks
 };
 
 }  // namespace bvhlab

@@ -24,10 +24,12 @@ BuildStats NaiveAccelerator::build(const PrimitiveSet& prims) {
 bool NaiveAccelerator::findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const {
     ++counters.queries;
     if (!ray.isValid()) return false;
+    counters.traversalSteps += 1;
     const ShearedRay sheared(ray);
     float tmax = ray.tmax;
     bool found = false;
-    for (uint32_t prim : prims_.valid) {
+    const std::span<const uint32_t> triangles = prims_.validTriangles();
+    for (uint32_t prim : triangles) {
         TriangleHitT<float> h;
         if (intersectTriangle(sheared, prims_.triangles[prim], ray.tmin, tmax, h)) {
             tmax = h.t;
@@ -35,8 +37,17 @@ bool NaiveAccelerator::findNearest(const Ray& ray, Hit& hit, QueryCounters& coun
             found = true;
         }
     }
-    counters.intersectionTests += prims_.valid.size();
-    counters.traversalSteps += 1;
+    counters.intersectionTests += triangles.size();
+    for (uint32_t prim : prims_.validQuadrics()) {
+        const QuadricShape shape = prims_.quadric(prim);
+        counters.countQuadricTest(shape);
+        QuadricHitT<float> h;
+        if (intersectQuadric(ray, shape, ray.tmin, tmax, h)) {
+            tmax = h.t;
+            hit = {h.t, prim, 0.0f, 0.0f};
+            found = true;
+        }
+    }
     return found;
 }
 
@@ -46,9 +57,15 @@ bool NaiveAccelerator::isOccluded(const Ray& ray, QueryCounters& counters) const
     counters.traversalSteps += 1;
     const ShearedRay sheared(ray);
     TriangleHitT<float> h;
-    for (uint32_t prim : prims_.valid) {
+    for (uint32_t prim : prims_.validTriangles()) {
         ++counters.intersectionTests;
         if (intersectTriangle(sheared, prims_.triangles[prim], ray.tmin, ray.tmax, h)) return true;
+    }
+    QuadricHitT<float> q;
+    for (uint32_t prim : prims_.validQuadrics()) {
+        const QuadricShape shape = prims_.quadric(prim);
+        counters.countQuadricTest(shape);
+        if (intersectQuadric(ray, shape, ray.tmin, ray.tmax, q)) return true;
     }
     return false;
 }

@@ -1,4 +1,4 @@
-// Brute force: every query tests every valid triangle. Slow and obviously right, it is the
+// Brute force: every query tests every valid primitive. Slow and obviously right, it is the
 // reference every other accelerator is tested against.
 #pragma once
 

@@ -138,7 +138,7 @@ FinishedJob runJob(const Options& options, const Scene& scene, const SceneLoadIn
         if (env.get(keys::Output::exr)) writeExr(out / (base + ".exr"), fb), images["exr"] = base + ".exr";
         if (env.get(keys::Output::heatmap)) finished.steps[shadows] = std::move(fb.traversalSteps);
 
-        const StatsRow row{scene.name, accel, scene.triangleCount(), scene.report,
+        const StatsRow row{scene.name, accel, scene.primitiveCount(), scene.report,
                            built.accel->hasCounters(), built.stats, stats};
         json run = statsJson(row);
         run["shadows"] = shadows;

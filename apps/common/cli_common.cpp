@@ -130,9 +130,10 @@ Scene loadSceneFor(const Env& env, bool useCache, SceneLoadInfo* info) {
     fmt::print(stderr, "scene {}: {} triangles ({} degenerate, not built over) {} in {:.0f} ms\n", scene.name,
                scene.triangleCount(), scene.report.degenerateTriangles,
                loaded.fromCache ? "read from cache " + loaded.cacheFile.string() : std::string("loaded"), loaded.ms);
-    if (scene.report.unsupportedSpheres || scene.report.unsupportedCones)
-        fmt::print(stderr, "scene {}: not yet supported and not rendered: {} spheres, {} cones/cylinders\n",
-                   scene.name, scene.report.unsupportedSpheres, scene.report.unsupportedCones);
+    if (!scene.spheres.empty() || !scene.cones.empty())
+        fmt::print(stderr, "scene {}: {} spheres ({} degenerate), {} cones/cylinders ({} degenerate)\n", scene.name,
+                   scene.spheres.size(), scene.report.degenerateSpheres, scene.cones.size(),
+                   scene.report.degenerateCones);
     for (const std::string& warning : scene.report.warnings) fmt::print(stderr, "warning: {}\n", warning);
     if (info) *info = loaded;
     return scene;

@@ -62,7 +62,7 @@ struct SceneLoadInfo {
 };
 
 // The scene of Scene::file (in Scene::dir; --scene sets it absolute), else the embedded default; load problems
-// (degenerate triangles, unsupported NFF primitives, warnings) are reported on stderr. With `useCache`
+// (degenerate primitives, NFF spheres and cones, warnings) are reported on stderr. With `useCache`
 // a scene file is read from / stored into the binary cache in Scene::cacheDir (empty = no cache; see
 // framework/scene/scene_cache.h); `bvhlab batch` uses it, render, raycast and bench parse every time.
 Scene loadSceneFor(const Env& env, bool useCache = false, SceneLoadInfo* info = nullptr);

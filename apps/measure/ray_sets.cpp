@@ -1,6 +1,6 @@
 #include "apps/measure/ray_sets.h"
 
-#include "framework/core/ray_offset.h"
+#include "framework/scene/surface_point.h"
 
 #include <glm/gtc/constants.hpp>
 #include <tbb/parallel_for.h>
@@ -38,11 +38,10 @@ RaySets makeRaySets(const Scene& scene, const Camera& camera, const std::vector<
     std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
     for (size_t i = 0; i < hits.size(); ++i) {
         if (!hits[i].found()) continue;
-        const Triangle& tri = scene.triangles[hits[i].primitive];
-        const Vec3 p = (1.0f - hits[i].u - hits[i].v) * tri.v0 + hits[i].u * tri.v1 + hits[i].v * tri.v2;
-        Vec3 n = glm::normalize(tri.geometricNormal());
-        if (glm::dot(n, sets.primary[i].dir) > 0.0f) n = -n;
-        const Vec3 origin = offsetRayOrigin(p, n, tri);
+        const SurfacePoint surface = surfaceAt(scene, sets.primary[i], hits[i]);
+        const Vec3& p = surface.position;
+        const Vec3& n = surface.geometricNormal;
+        const Vec3 origin = surface.originAbove();
         for (const PointLight& light : lights)
             if (glm::dot(n, light.position - p) > 0.0f)
                 sets.shadow.push_back({origin, light.position - origin, 0.0f, 1.0f - 1e-5f});

@@ -64,7 +64,7 @@ void addRenderCommand(CLI::App& app) {
                                        fb.width, fb.height, built.accel->hasCounters(), built.accel->name(), scale);
                 fmt::print(stderr, "{}\n", heatmapNote(heatmap));
             }
-            const StatsRow row{scene.name, std::string(built.accel->name()), scene.triangleCount(),
+            const StatsRow row{scene.name, std::string(built.accel->name()), scene.primitiveCount(),
                                scene.report, built.accel->hasCounters(), built.stats, stats};
             nlohmann::json json = statsJson(row);
             json["image"] = {{"width", fb.width}, {"height", fb.height}, {"samples", settings.samples}};

@@ -1,5 +1,6 @@
 // The interface every acceleration structure implements (nanoGolem style): build over the
-// scene's triangles, then answer closest-hit and any-hit queries, counting its work.
+// scene's primitives (triangles, spheres, cones), then answer closest-hit and any-hit
+// queries, counting its work.
 #pragma once
 
 #include "framework/core/native_ray_batch.h"
@@ -17,14 +18,28 @@ namespace bvhlab {
 // query, merged after the run: no atomics, no sharing on the hot path.
 struct QueryCounters {
     uint64_t queries = 0;
-    uint64_t intersectionTests = 0;  // N_IT: ray-primitive tests
+    uint64_t intersectionTests = 0;  // N_IT: ray-primitive tests, every kind
     uint64_t traversalSteps = 0;     // N_TR: nodes visited
+    uint64_t sphereTests = 0;        // the part of N_IT that tested spheres ...
+    uint64_t coneTests = 0;          // ... and cones (the rest tested triangles)
 
-    QueryCounters& operator+=(const QueryCounters& o) {
-        queries += o.queries;
+    // Adds o's work, not its queries: for a query answered by several structures.
+    void addWork(const QueryCounters& o) {
         intersectionTests += o.intersectionTests;
         traversalSteps += o.traversalSteps;
+        sphereTests += o.sphereTests;
+        coneTests += o.coneTests;
+    }
+    QueryCounters& operator+=(const QueryCounters& o) {
+        queries += o.queries;
+        addWork(o);
         return *this;
+    }
+    uint64_t triangleTests() const { return intersectionTests - sphereTests - coneTests; }
+    // One ray-quadric test, counted in N_IT and by its kind.
+    void countQuadricTest(const QuadricShape& shape) {
+        ++intersectionTests;
+        ++(std::holds_alternative<Sphere>(shape) ? sphereTests : coneTests);
     }
 };
 
@@ -59,7 +74,7 @@ public:
 
     virtual std::string_view name() const = 0;
 
-    // Builds over prims.valid; keeps a view of prims.triangles, which must outlive it.
+    // Builds over prims.valid; keeps views of prims' arrays, which must outlive it.
     virtual BuildStats build(const PrimitiveSet& prims) = 0;
 
     // Closest hit in [ray.tmin, ray.tmax]; on a miss returns false and leaves `hit` unchanged.

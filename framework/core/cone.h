@@ -31,6 +31,20 @@ struct Cone {
     }
     // The middle of the axis: the builders need a representative point, not a centre of mass.
     Vec3 centroid() const { return 0.5f * (base + apex); }
+    // The unit normal at a point p on the lateral surface, as intersectCone gives it: the
+    // gradient of x^2 + y^2 - R(z)^2, with R read off p itself (its distance from the axis).
+    Vec3 normalAt(const Vec3& p) const {
+        const Vec3 axis = apex - base;
+        const float height = glm::length(axis);
+        const Vec3 w = axis / height;
+        const Vec3 fromBase = p - base;
+        const Vec3 radial = fromBase - glm::dot(fromBase, w) * w;
+        const float slope = (std::abs(apexRadius) - std::abs(baseRadius)) / height;
+        const Vec3 gradient = radial - (slope * glm::length(radial)) * w;
+        // At the tip of a true cone the gradient vanishes: the axis away from the cone stands in.
+        if (gradient == Vec3(0.0f)) return slope > 0.0f ? -w : w;
+        return glm::normalize(gradient);
+    }
 };
 
 // Non-finite data; radii of opposite signs (NFF defines only both negative); a coincident base

@@ -24,7 +24,8 @@ struct Ray {
 };
 
 // Hit convention (fixed for every accelerator, Embree's): the hit point is
-// (1-u-v)*v0 + u*v1 + v*v2 of triangle `primitive`, which is its index in load order.
+// (1-u-v)*v0 + u*v1 + v*v2 of triangle `primitive`, which is its index in load order. On a
+// sphere or cone (PrimitiveSet's index space) the point is org + t*dir and u = v = 0.
 struct Hit {
     float t = kInfinity;
     uint32_t primitive = kInvalidPrimitive;

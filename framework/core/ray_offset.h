@@ -13,8 +13,8 @@
 
 namespace bvhlab {
 
-// `p` lies on the triangle `leaving`; `n` is its geometric normal on the side the new ray
-// leaves to (it need not be unit length but should be roughly so).
+// `p` lies on the surface left; `n` is its geometric normal on the side the new ray leaves to
+// (it need not be unit length but should be roughly so).
 //
 // Wächter and Binder bound the rounding error of p, coordinate by coordinate. A ray that
 // leaves a triangle also meets that triangle's own rounding in the ray-triangle test, which
@@ -23,7 +23,9 @@ namespace bvhlab {
 // the ground it leaves (shadow acne; Stress.NoShadowAcneOnAGroundFarFromTheOrigin). So the
 // origin also moves along n by 2^-18 of the vertices' largest coordinate (32 to 64 of its
 // ulps): 0.4 mm on a 1 km scene.
-inline Vec3 offsetRayOrigin(const Vec3& p, const Vec3& n, const Triangle& leaving) {
+//
+// `magnitude` is the largest coordinate of the surface left (its own rounding grows with it).
+inline Vec3 offsetRayOrigin(const Vec3& p, const Vec3& n, float magnitude) {
     constexpr float kOrigin = 1.0f / 32.0f;
     constexpr float kFloatScale = 1.0f / 65536.0f;
     constexpr float kIntScale = 256.0f;
@@ -35,9 +37,12 @@ inline Vec3 offsetRayOrigin(const Vec3& p, const Vec3& n, const Triangle& leavin
         const float moved = std::bit_cast<float>(bits + (p[i] < 0.0f ? -offset : offset));
         result[i] = std::abs(p[i]) < kOrigin ? p[i] + kFloatScale * n[i] : moved;
     }
-    const Vec3 largest = glm::max(glm::max(glm::abs(leaving.v0), glm::abs(leaving.v1)), glm::abs(leaving.v2));
-    const float magnitude = std::max(std::max(largest.x, largest.y), largest.z);
     return result + n * (kVertexScale * magnitude);
+}
+
+inline Vec3 offsetRayOrigin(const Vec3& p, const Vec3& n, const Triangle& leaving) {
+    const Vec3 largest = glm::max(glm::max(glm::abs(leaving.v0), glm::abs(leaving.v1)), glm::abs(leaving.v2));
+    return offsetRayOrigin(p, n, std::max(std::max(largest.x, largest.y), largest.z));
 }
 
 }  // namespace bvhlab

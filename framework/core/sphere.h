@@ -21,6 +21,8 @@ struct Sphere {
         return boundsRoundedOutward(c - r, c + r, 0x1p-45 * magnitude);
     }
     Vec3 centroid() const { return centre; }
+    // The unit normal at a point p on the surface, away from the centre.
+    Vec3 normalAt(const Vec3& p) const { return glm::normalize(p - centre); }
 };
 
 // A non-finite centre or radius, or a radius whose square is not a normal float (0, or so

@@ -1,7 +1,7 @@
 #include "framework/render/renderer.h"
 
 #include "framework/config/common_keys.h"
-#include "framework/core/ray_offset.h"
+#include "framework/scene/surface_point.h"
 #include "framework/render/pixel_sampler.h"
 #include "framework/render/render_keys.h"
 
@@ -102,18 +102,10 @@ private:
             fb_.color[path.pixel] += path.throughput * settings_.background;
             return;
         }
-        const Triangle& tri = scene_.triangles[hit.primitive];
-        // The hit point from barycentrics is more accurate than org + t*dir far from the origin.
-        const Vec3 p = (1.0f - hit.u - hit.v) * tri.v0 + hit.u * tri.v1 + hit.v * tri.v2;
-        Vec3 ng = glm::normalize(tri.geometricNormal());
-        if (glm::dot(ng, path.ray.dir) > 0.0f) ng = -ng;
-        Vec3 ns = ng;
-        if (!scene_.normals.empty()) {
-            const glm::uvec3 idx = scene_.indices[hit.primitive];
-            const Vec3 n = (1.0f - hit.u - hit.v) * scene_.normals[idx.x] + hit.u * scene_.normals[idx.y] +
-                           hit.v * scene_.normals[idx.z];
-            if (glm::dot(n, n) > 0.0f) ns = glm::faceforward(glm::normalize(n), -ng, ng);
-        }
+        const SurfacePoint surface = surfaceAt(scene_, path.ray, hit);
+        const Vec3& p = surface.position;
+        const Vec3& ng = surface.geometricNormal;
+        const Vec3& ns = surface.shadingNormal;
         if (depth == 0 && firstSample) {
             fb_.depth[path.pixel] = hit.t * glm::length(path.ray.dir);
             fb_.primitive[path.pixel] = hit.primitive;
@@ -123,7 +115,7 @@ private:
         const Material& material = scene_.materials[scene_.materialOf(hit.primitive)];
         const Vec3 diffuse = path.throughput * material.diffuse * (1.0f - material.mirror);
         fb_.color[path.pixel] += diffuse * settings_.ambient;
-        const Vec3 origin = offsetRayOrigin(p, ng, scene_.triangles[hit.primitive]);
+        const Vec3 origin = surface.originAbove();
         for (const ShadingLight& light : lights_) {
             const Vec3 toLight = light.position - p;
             const float distance2 = glm::dot(toLight, toLight);

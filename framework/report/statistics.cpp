@@ -21,6 +21,11 @@ nlohmann::json queryJson(const QueryStats& q, bool hasCounters) {
                                       : nlohmann::json();
     j["n_tr"] = traced && hasCounters ? nlohmann::json(perQuery(q.counters.traversalSteps, q.counters.queries))
                                       : nlohmann::json();
+    // N_IT by primitive kind, as the SPD's README reports tests.
+    j["n_it_sphere"] = traced && hasCounters ? nlohmann::json(perQuery(q.counters.sphereTests, q.counters.queries))
+                                             : nlohmann::json();
+    j["n_it_cone"] = traced && hasCounters ? nlohmann::json(perQuery(q.counters.coneTests, q.counters.queries))
+                                           : nlohmann::json();
     return j;
 }
 
@@ -53,10 +58,10 @@ std::string formatStatsTable(const StatsRow& row) {
     // the shadow rays alone (any-hit queries toward the lights), as the report's rows.
     line("primary", row.render.primary, true);
     line("  shadow rays", row.render.shadow, false);
-    out += fmt::format("degenerate triangles skipped: {}; not supported, skipped: {} spheres, {} cones/cylinders; "
+    out += fmt::format("degenerate, skipped: {} triangles, {} spheres, {} cones/cylinders; "
                        "shadow rays skipped: {} (shadows off), {} (light behind surface); bounces cut by depthLimit: "
                        "{}; threads: {}",
-                       row.load.degenerateTriangles, row.load.unsupportedSpheres, row.load.unsupportedCones,
+                       row.load.degenerateTriangles, row.load.degenerateSpheres, row.load.degenerateCones,
                        row.render.shadowRaysSkippedDisabled, row.render.shadowRaysSkippedBackfacing,
                        row.render.bouncesSkipped, row.render.threads);
     if (b.sah) out += fmt::format("; SAH with C_trav={} C_isect={}", b.sah->cTraversal, b.sah->cIntersect);
@@ -70,8 +75,8 @@ nlohmann::json statsJson(const StatsRow& row) {
         {"accel", row.accel},
         {"prims", row.prims},
         {"degenerate", row.load.degenerateTriangles},
-        {"unsupported_spheres", row.load.unsupportedSpheres},
-        {"unsupported_cones", row.load.unsupportedCones},
+        {"degenerate_spheres", row.load.degenerateSpheres},
+        {"degenerate_cones", row.load.degenerateCones},
         {"nodes", optionalJson(b.nodes)},
         {"leaves", optionalJson(b.leaves)},
         {"avg_leaf_prims", optionalJson(b.avgLeafPrimitives)},

@@ -15,7 +15,7 @@ namespace bvhlab {
 struct StatsRow {
     std::string scene;
     std::string accel;
-    size_t prims = 0;            // triangles in the scene, degenerate ones included
+    size_t prims = 0;            // primitives in the scene (every kind), degenerate ones included
     LoadReport load;             // what loading skipped: degenerate triangles, spheres, cones
     bool hasCounters = true;     // false: N_IT and N_TR unavailable
     BuildStats build;
@@ -25,9 +25,9 @@ struct StatsRow {
 // The table printed after a render (two lines: primary, shadow).
 std::string formatStatsTable(const StatsRow& row);
 
-// JSON with keys scene, accel, prims, degenerate, unsupported_spheres, unsupported_cones,
+// JSON with keys scene, accel, prims, degenerate, degenerate_spheres, degenerate_cones,
 // nodes, leaves, sah, build_ms, render_ms, threads and objects primary/shadow {queries, n_it,
-// n_tr, t_r_us}; unavailable values are null.
+// n_it_sphere, n_it_cone, n_tr, t_r_us}; unavailable values are null.
 nlohmann::json statsJson(const StatsRow& row);
 
 }  // namespace bvhlab

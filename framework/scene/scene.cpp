@@ -16,7 +16,7 @@ bool isDegenerate(const Triangle& tri) {
 void Scene::finalize() {
     triangles.resize(indices.size());
     validPrimitives.clear();
-    validPrimitives.reserve(indices.size());
+    validPrimitives.reserve(indices.size() + spheres.size() + cones.size());
     bounds = Bounds3();
     for (size_t i = 0; i < indices.size(); ++i) {
         const glm::uvec3 idx = indices[i];
@@ -26,6 +26,25 @@ void Scene::finalize() {
         bounds.extend(triangles[i].bounds());
     }
     report.degenerateTriangles = indices.size() - validPrimitives.size();
+    // The quadrics follow the triangles in the index space (PrimitiveSet); a scene built in
+    // code may leave their materials out (material 0).
+    sphereMaterialIds.resize(spheres.size(), 0);
+    coneMaterialIds.resize(cones.size(), 0);
+    uint32_t prim = uint32_t(indices.size());
+    const auto addQuadrics = [&](const auto& shapes, size_t& degenerate) {
+        degenerate = 0;
+        for (const auto& shape : shapes) {
+            if (isDegenerate(shape)) {
+                ++degenerate;
+            } else {
+                validPrimitives.push_back(prim);
+                bounds.extend(shape.bounds());
+            }
+            ++prim;
+        }
+    };
+    addQuadrics(spheres, report.degenerateSpheres);
+    addQuadrics(cones, report.degenerateCones);
     if (materials.empty()) materials.push_back(Material{});
 }
 

@@ -1,5 +1,5 @@
 // The scene model every reader fills and every accelerator builds over: triangle meshes in
-// one flat list, materials, point lights and an optional camera.
+// one flat list, NFF's spheres and cones, materials, point lights and an optional camera.
 #pragma once
 
 #include "framework/core/primitive_set.h"
@@ -15,7 +15,10 @@ namespace bvhlab {
 
 struct Material {
     Vec3 diffuse{0.8f};
-    float mirror = 0.0f;  // reflectance of a perfect mirror, used when depthLimit > 1
+    float mirror = 0.0f;        // reflectance of a perfect mirror, used when depthLimit > 1 (NFF Ks)
+    float shine = 0.0f;         // Phong exponent of the highlight (NFF Shine)
+    float transmission = 0.0f;  // transmittance of a refracting surface (NFF T)
+    float ior = 1.0f;           // its index of refraction
 };
 
 struct PointLight {
@@ -37,11 +40,11 @@ struct CameraSpec {
     int height = 512;
 };
 
-// What a reader met and did not turn into triangles, reported after loading.
+// What loading kept but will not build over, reported after loading.
 struct LoadReport {
-    size_t degenerateTriangles = 0;  // see isDegenerate: kept, never built over
-    size_t unsupportedSpheres = 0;   // NFF `s`
-    size_t unsupportedCones = 0;     // NFF `c`
+    size_t degenerateTriangles = 0;  // see isDegenerate (scene.h, sphere.h, cone.h): kept,
+    size_t degenerateSpheres = 0;    // never built over
+    size_t degenerateCones = 0;
     std::vector<std::string> warnings;
 };
 
@@ -55,6 +58,12 @@ struct Scene {
     std::vector<Vec3> normals;  // per vertex; empty when the file has none
     std::vector<glm::uvec3> indices;
     std::vector<uint32_t> materialIds;  // per triangle; empty means material 0 everywhere
+    // NFF's native quadrics, each with its material: primitives triangleCount() + j (spheres)
+    // and triangleCount() + spheres.size() + k (cones), PrimitiveSet's index space.
+    std::vector<Sphere> spheres;
+    std::vector<uint32_t> sphereMaterialIds;
+    std::vector<Cone> cones;
+    std::vector<uint32_t> coneMaterialIds;
     std::vector<Material> materials{Material{}};
 
     std::optional<CameraSpec> camera;
@@ -64,14 +73,19 @@ struct Scene {
 
     // Derived by finalize().
     std::vector<Triangle> triangles;
-    std::vector<uint32_t> validPrimitives;
-    Bounds3 bounds;  // of the valid triangles
+    std::vector<uint32_t> validPrimitives;  // of every kind, ascending (PrimitiveSet::valid)
+    Bounds3 bounds;  // of the valid primitives
 
-    // Builds the derived arrays and counts degenerate triangles; readers call it last.
+    // Builds the derived arrays and counts degenerate primitives; readers call it last.
     void finalize();
-    PrimitiveSet primitives() const { return {triangles, validPrimitives}; }
-    uint32_t materialOf(uint32_t prim) const { return materialIds.empty() ? 0 : materialIds[prim]; }
+    PrimitiveSet primitives() const { return {triangles, validPrimitives, spheres, cones}; }
+    uint32_t materialOf(uint32_t prim) const {
+        if (prim < triangleCount()) return materialIds.empty() ? 0 : materialIds[prim];
+        if (prim < triangleCount() + spheres.size()) return sphereMaterialIds[prim - triangleCount()];
+        return coneMaterialIds[prim - triangleCount() - spheres.size()];
+    }
     size_t triangleCount() const { return indices.size(); }
+    size_t primitiveCount() const { return indices.size() + spheres.size() + cones.size(); }
 };
 
 // Zero area, a NaN or infinite vertex, or a normal that cannot be normalised in float (its

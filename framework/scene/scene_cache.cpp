@@ -19,6 +19,8 @@ constexpr uint32_t kEndianMarker = 0x01020304u;
 
 static_assert(sizeof(Vec3) == 12 && std::is_trivially_copyable_v<Vec3>);
 static_assert(sizeof(glm::uvec3) == 12 && std::is_trivially_copyable_v<glm::uvec3>);
+static_assert(sizeof(Sphere) == 16 && std::is_trivially_copyable_v<Sphere>);
+static_assert(sizeof(Cone) == 32 && std::is_trivially_copyable_v<Cone>);
 
 // The fixed-size part at the start of a cache file; all counts are element counts.
 struct Header {
@@ -29,7 +31,7 @@ struct Header {
     uint32_t sourceCrc32;
     uint32_t sourceAdler32;
     uint64_t nameBytes, positions, normals, indices, materialIds, materials, lights, warnings;
-    uint64_t degenerate, unsupportedSpheres, unsupportedCones;
+    uint64_t degenerate, spheres, cones;  // triangles degenerate; spheres and cones stored
     uint32_t hasCamera, hasBackground;
     float camera[10];  // from, at, up, fovy
     int32_t cameraWidth, cameraHeight;
@@ -97,7 +99,7 @@ private:
 
 struct PackedMaterial {
     float diffuse[3];
-    float mirror;
+    float mirror, shine, transmission, ior;
 };
 struct PackedLight {
     float position[3];
@@ -162,7 +164,9 @@ std::optional<Scene> readSceneCache(const std::filesystem::path& cacheFile, cons
     std::vector<PackedLight> lights;
     if (h.nameBytes > r.left() || !r.bytes(name.data(), name.size()) || !r.array(scene.positions, h.positions) ||
         !r.array(scene.normals, h.normals) || !r.array(scene.indices, h.indices) ||
-        !r.array(scene.materialIds, h.materialIds) || !r.array(materials, h.materials) || !r.array(lights, h.lights))
+        !r.array(scene.materialIds, h.materialIds) || !r.array(scene.spheres, h.spheres) ||
+        !r.array(scene.sphereMaterialIds, h.spheres) || !r.array(scene.cones, h.cones) ||
+        !r.array(scene.coneMaterialIds, h.cones) || !r.array(materials, h.materials) || !r.array(lights, h.lights))
         return fail("truncated");
     for (uint64_t w = 0; w < h.warnings; ++w) {
         uint64_t length = 0;
@@ -185,14 +189,15 @@ std::optional<Scene> readSceneCache(const std::filesystem::path& cacheFile, cons
             return fail("vertex index out of range");
     if (!scene.materialIds.empty() && scene.materialIds.size() != scene.indices.size())
         return fail("material ids do not match the triangles");
-    for (uint32_t id : scene.materialIds)
-        if (id >= std::max<size_t>(materials.size(), 1)) return fail("material id out of range");
+    for (const auto* ids : {&scene.materialIds, &scene.sphereMaterialIds, &scene.coneMaterialIds})
+        for (uint32_t id : *ids)
+            if (id >= std::max<size_t>(materials.size(), 1)) return fail("material id out of range");
 
     scene.name = std::move(name);
     scene.source = source;
     scene.materials.clear();
     for (const PackedMaterial& m : materials)
-        scene.materials.push_back({Vec3(m.diffuse[0], m.diffuse[1], m.diffuse[2]), m.mirror});
+        scene.materials.push_back({Vec3(m.diffuse[0], m.diffuse[1], m.diffuse[2]), m.mirror, m.shine, m.transmission, m.ior});
     for (const PackedLight& l : lights)
         scene.lights.push_back({Vec3(l.position[0], l.position[1], l.position[2]),
                                 Vec3(l.intensity[0], l.intensity[1], l.intensity[2])});
@@ -202,8 +207,6 @@ std::optional<Scene> readSceneCache(const std::filesystem::path& cacheFile, cons
                                   h.cameraWidth, h.cameraHeight};
     }
     if (h.hasBackground) scene.background = Vec3(h.background[0], h.background[1], h.background[2]);
-    scene.report.unsupportedSpheres = h.unsupportedSpheres;
-    scene.report.unsupportedCones = h.unsupportedCones;
     scene.finalize();  // derives triangles, valid primitives, bounds and the degenerate count
     if (scene.report.degenerateTriangles != h.degenerate) return fail("degenerate count differs");
     return scene;
@@ -226,8 +229,8 @@ void writeSceneCache(const std::filesystem::path& cacheFile, const SceneCacheKey
     h.lights = scene.lights.size();
     h.warnings = scene.report.warnings.size();
     h.degenerate = scene.report.degenerateTriangles;
-    h.unsupportedSpheres = scene.report.unsupportedSpheres;
-    h.unsupportedCones = scene.report.unsupportedCones;
+    h.spheres = scene.spheres.size();
+    h.cones = scene.cones.size();
     h.hasCamera = scene.camera.has_value();
     if (scene.camera) {
         const CameraSpec& c = *scene.camera;
@@ -240,7 +243,8 @@ void writeSceneCache(const std::filesystem::path& cacheFile, const SceneCacheKey
     if (scene.background)
         for (int k = 0; k < 3; ++k) h.background[k] = (*scene.background)[k];
     std::vector<PackedMaterial> materials;
-    for (const Material& m : scene.materials) materials.push_back({{m.diffuse.x, m.diffuse.y, m.diffuse.z}, m.mirror});
+    for (const Material& m : scene.materials)
+        materials.push_back({{m.diffuse.x, m.diffuse.y, m.diffuse.z}, m.mirror, m.shine, m.transmission, m.ior});
     std::vector<PackedLight> lights;
     for (const PointLight& l : scene.lights)
         lights.push_back({{l.position.x, l.position.y, l.position.z}, {l.intensity.x, l.intensity.y, l.intensity.z}});
@@ -257,6 +261,10 @@ void writeSceneCache(const std::filesystem::path& cacheFile, const SceneCacheKey
         w.array(scene.normals);
         w.array(scene.indices);
         w.array(scene.materialIds);
+        w.array(scene.spheres);
+        w.array(scene.sphereMaterialIds);
+        w.array(scene.cones);
+        w.array(scene.coneMaterialIds);
         w.array(materials);
         w.array(lights);
         for (const std::string& text : scene.report.warnings) {

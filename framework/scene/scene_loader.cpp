@@ -107,9 +107,10 @@ void requireSomethingToRender(const Scene& scene) {
     } else {
         why = fmt::format("no primitives ({} vertices but no faces)", scene.positions.size());
     }
-    if (r.unsupportedSpheres || r.unsupportedCones) {
-        why = fmt::format("{} spheres and {} cones/cylinders skipped (not supported: only polygons are rendered), and {}",
-                          r.unsupportedSpheres, r.unsupportedCones, scene.triangleCount() > 0 ? why : "no polygons");
+    if (r.degenerateSpheres || r.degenerateCones) {
+        why = fmt::format("{} spheres and {} cones/cylinders are degenerate (a zero, NaN or infinite radius or "
+                          "axis), and {}",
+                          r.degenerateSpheres, r.degenerateCones, scene.triangleCount() > 0 ? why : "no polygons");
     }
     throw inputError(scene.source, 0, "nothing to render: " + why);
 }

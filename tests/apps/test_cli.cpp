@@ -87,7 +87,7 @@ TEST(Cli, SceneWithNothingToRenderIsAnErrorNamingTheFile) {
         {"binary.obj", std::string("\x7f" "ELF\x02\x01\x01\0\0\0", 10)},
         {"notes.obj", "Not a scene, just notes.\n"},
         {"munich.obj", "ply\nformat binary_little_endian 1.0\nelement vertex 0\nend_header\n"},
-        {"spheres.nff", "s 0 0 0 1\n"},
+        {"spheres.nff", "s 0 0 0 0\n"},  // a degenerate sphere only
     };
     for (const auto& [name, bytes] : files) {
         const auto scene = scratchFile(name, bytes);
@@ -97,21 +97,26 @@ TEST(Cli, SceneWithNothingToRenderIsAnErrorNamingTheFile) {
     }
 }
 
-TEST(Cli, SkippedSpheresAndConesAreCountedInTheRowAndJson) {
-    // balls.nff in small: a ground quad, three spheres and a cone.
+TEST(Cli, SpheresAndConesAreRenderedAndTheirDegenerateOnesCounted) {
+    // balls.nff in small: a ground quad, three spheres (one of radius 0) and a cone.
     const auto scene = scratchFile("balls.nff", "p 4\n-1 -1 0\n1 -1 0\n1 1 0\n-1 1 0\n"
-                                                "s 0 0 1 0.5\ns 0 0 2 0.5\ns 0 0 3 0.5\nc 0 0 0 0.2 0 0 1 0.1\n");
+                                                "s 0 0 1 0.5\ns 0 0 2 0\ns 0 0 3 0.5\nc 0 0 0 0.2 0 0 1 0.1\n");
     const auto out = tempDir() / "balls";
     const Result r = run("render -DASDS::type=naive -DCamera::width=16 -DCamera::height=16 --scene " + scene.string() +
                          " --out " + out.string());
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    EXPECT_NE(r.output.find("not supported, skipped: 3 spheres, 1 cones/cylinders"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("degenerate, skipped: 0 triangles, 1 spheres, 0 cones/cylinders"), std::string::npos)
+        << r.output;
     std::ifstream in(out.string() + ".json");
     const nlohmann::json j = nlohmann::json::parse(in);
-    EXPECT_EQ(j["prims"], 2);
+    EXPECT_EQ(j["prims"], 6);
     EXPECT_EQ(j["degenerate"], 0);
-    EXPECT_EQ(j["unsupported_spheres"], 3);
-    EXPECT_EQ(j["unsupported_cones"], 1);
+    EXPECT_EQ(j["degenerate_spheres"], 1);
+    EXPECT_EQ(j["degenerate_cones"], 0);
+    // Naive tests every valid primitive per query: 2 triangles, 2 spheres, 1 cone.
+    EXPECT_EQ(j["primary"]["n_it"], 5.0);
+    EXPECT_EQ(j["primary"]["n_it_sphere"], 2.0);
+    EXPECT_EQ(j["primary"]["n_it_cone"], 1.0);
 }
 
 TEST(Cli, RaycastAnswersRayFileWithNaive) {

@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <stdexcept>
 
 namespace bvhlab::test {
 
@@ -329,6 +330,8 @@ const char* rayKindName(RayKind kind) {
 }
 
 Oracle::Oracle(const PrimitiveSet& prims) : prims_(prims), valid_(prims.triangles.size(), 0) {
+    if (prims.hasQuadrics())
+        throw std::invalid_argument("Oracle: triangles only (scenes with spheres and cones: test_mixed_primitives.cpp)");
     for (uint32_t p : prims.valid) valid_.at(p) = 1;
 }
 

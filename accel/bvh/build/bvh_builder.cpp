@@ -130,9 +130,10 @@ namespace {
 // Step one of buildBvh: one PrimRef per valid triangle, and their boxes, in lanes of F.
 template <typename F>
 BuildRange preparePrimRefs(const PrimitiveSet& prims, PrimRef* out) {
-    const uint32_t n = uint32_t(prims.valid.size());
+    const std::span<const uint32_t> validTriangles = prims.validTriangles();
+    const uint32_t n = uint32_t(validTriangles.size());
     const Triangle* triangles = prims.triangles.data();
-    const uint32_t* valid = prims.valid.data();
+    const uint32_t* valid = validTriangles.data();
     BoundsAccumulator<F> acc;
     for (uint32_t i = 0; i < n; ++i) {
         const uint32_t prim = valid[i];
@@ -200,21 +201,14 @@ void appendSubtree(std::vector<BvhNode, TraversalAllocator<BvhNode>>& nodes, uin
     for (size_t i = 2; i < subtree.size(); ++i) nodes.push_back(moved(subtree[i]));
 }
 
-}  // namespace
-
-Bvh buildBvh(BvhKind kind, const BvhBuildConfig& config, const PrimitiveSet& prims) {
-    const size_t n = prims.valid.size();
-    // Uninitialised storage: every PrimRef is written by preparePrimRefs.
-    const std::unique_ptr<PrimRef[]> refs = std::make_unique_for_overwrite<PrimRef[]>(n);
-    const BuildRange root = simd::withFloats4(
-        config.simd, [&](auto f) { return preparePrimRefs<decltype(f)>(prims, refs.get()); });
-
-    // The nodes above the jobs, then the jobs' subtrees appended in the order they were
-    // deferred: the same tree whatever the thread count and the schedule.
-    Bvh bvh;
-    const std::span<PrimRef> all(refs.get(), n);
+// The nodes over `all` (prepared PrimRefs whose boxes and centres `root` bounds), which it
+// reorders into leaf order: the nodes above the jobs, then the jobs' subtrees appended in the
+// order they were deferred, so the same tree whatever the thread count and the schedule.
+std::vector<BvhNode, TraversalAllocator<BvhNode>> buildNodes(BvhKind kind, const BvhBuildConfig& config,
+                                                            std::span<PrimRef> all, const BuildRange& root) {
     std::vector<DeferredRange> jobs;
-    bvh.nodes = makeBvhBuilder(kind, config)->build(all, root, 0, &jobs, kJobPrimitives);
+    std::vector<BvhNode, TraversalAllocator<BvhNode>> nodes =
+        makeBvhBuilder(kind, config)->build(all, root, 0, &jobs, kJobPrimitives);
     std::vector<std::vector<BvhNode, TraversalAllocator<BvhNode>>> subtrees(jobs.size());
     onThreads(config.threads, [&] {
         tbb::enumerable_thread_specific<std::unique_ptr<TopDownBuilder>> builders(
@@ -223,8 +217,21 @@ Bvh buildBvh(BvhKind kind, const BvhBuildConfig& config, const PrimitiveSet& pri
             subtrees[j] = builders.local()->build(all, jobs[j].range, jobs[j].depth);
         });
     });
-    for (size_t j = 0; j < jobs.size(); ++j) appendSubtree(bvh.nodes, jobs[j].node, subtrees[j]);
+    for (size_t j = 0; j < jobs.size(); ++j) appendSubtree(nodes, jobs[j].node, subtrees[j]);
+    return nodes;
+}
 
+}  // namespace
+
+Bvh buildBvh(BvhKind kind, const BvhBuildConfig& config, const PrimitiveSet& prims) {
+    const size_t n = prims.validTriangles().size();
+    // Uninitialised storage: every PrimRef is written by preparePrimRefs.
+    const std::unique_ptr<PrimRef[]> refs = std::make_unique_for_overwrite<PrimRef[]>(n);
+    const BuildRange root = simd::withFloats4(
+        config.simd, [&](auto f) { return preparePrimRefs<decltype(f)>(prims, refs.get()); });
+
+    Bvh bvh;
+    bvh.nodes = buildNodes(kind, config, std::span<PrimRef>(refs.get(), n), root);
     bvh.primIndices.resize(n);
     bvh.leafTriangles.resize(n);
     onThreads(config.threads, [&] {
@@ -235,6 +242,25 @@ Bvh buildBvh(BvhKind kind, const BvhBuildConfig& config, const PrimitiveSet& pri
             }
         });
     });
+    return bvh;
+}
+
+QuadricBvh buildQuadricBvh(BvhKind kind, const BvhBuildConfig& config, const PrimitiveSet& prims) {
+    // Few primitives as a rule (the SPD scenes have thousands, not millions): plain loops.
+    const std::span<const uint32_t> valid = prims.validQuadrics();
+    std::vector<PrimRef> refs(valid.size());
+    BoundsAccumulator<simd::Scalar<4>> acc;
+    for (size_t i = 0; i < valid.size(); ++i) {
+        const Bounds3 b = boundsOf(prims.quadric(valid[i]));
+        refs[i] = {{b.lower.x, b.lower.y, b.lower.z}, valid[i], {b.upper.x, b.upper.y, b.upper.z}, 0};
+        acc.add(refs[i]);
+    }
+    QuadricBvh bvh;
+    bvh.nodes = buildNodes(kind, config, refs, {0, uint32_t(refs.size()), acc.bounds(), acc.centroidBounds()});
+    for (const PrimRef& ref : refs) {
+        bvh.primIndices.push_back(ref.prim);
+        bvh.leafShapes.push_back(prims.quadric(ref.prim));
+    }
     return bvh;
 }
 

@@ -6,6 +6,7 @@
 
 #include "accel/bvh/build/prim_ref.h"
 #include "accel/bvh/layout/bvh.h"
+#include "accel/bvh/layout/quadric_leaves.h"
 
 #include <algorithm>
 #include <memory>
@@ -152,6 +153,9 @@ Split TopDownBuilder::partition(const BuildRange& range, IsLeft isLeft) {
 // The whole build: PrimRefs from the valid triangles (SIMD or scalar), the recursion of the
 // chosen builder, then the leaf arrays (primitive indices and triangles in leaf order).
 Bvh buildBvh(BvhKind kind, const BvhBuildConfig& config, const PrimitiveSet& prims);
+
+// The same over the valid spheres and cones (their boxes), with their shapes in leaf order.
+QuadricBvh buildQuadricBvh(BvhKind kind, const BvhBuildConfig& config, const PrimitiveSet& prims);
 
 std::unique_ptr<TopDownBuilder> makeBvhBuilder(BvhKind kind, const BvhBuildConfig& config);
 

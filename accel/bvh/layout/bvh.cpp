@@ -4,7 +4,7 @@
 
 namespace bvhlab {
 
-void fillTreeStats(const Bvh& bvh, double cTraversal, double cIntersect, BuildStats& stats) {
+void fillTreeStats(std::span<const BvhNode> tree, double cTraversal, double cIntersect, BuildStats& stats) {
     size_t nodes = 0, leaves = 0, leafPrims = 0, maxLeafPrims = 0;
     int maxDepth = 0;
     double innerArea = 0.0, leafAreaTimesPrims = 0.0;
@@ -14,11 +14,11 @@ void fillTreeStats(const Bvh& bvh, double cTraversal, double cIntersect, BuildSt
         int depth;
     };
     std::vector<Item> stack;
-    if (!bvh.empty()) stack.push_back({0, 0});
+    if (!tree.empty()) stack.push_back({0, 0});
     while (!stack.empty()) {
         const auto [index, depth] = stack.back();
         stack.pop_back();
-        const BvhNode& node = bvh.nodes[index];
+        const BvhNode& node = tree[index];
         const double area = node.box().halfArea();
         ++nodes;
         maxDepth = std::max(maxDepth, depth);
@@ -40,18 +40,41 @@ void fillTreeStats(const Bvh& bvh, double cTraversal, double cIntersect, BuildSt
     stats.maxLeafPrimitives = maxLeafPrims;
     stats.maxDepth = maxDepth;
     stats.depthBound = kBvhMaxDepth;
-    stats.bytes = bvh.bytes();
 
     // A root of zero area (a single axis-aligned segment cannot occur: triangles are
     // non-degenerate, but guard anyway) would divide by zero: count areas as equal then.
-    const double rootArea = bvh.empty() ? 0.0 : double(bvh.nodes[0].box().halfArea());
+    const double rootArea = tree.empty() ? 0.0 : double(tree[0].box().halfArea());
     SahCost sah{0.0, cTraversal, cIntersect};
     if (rootArea > 0.0) {
         sah.cost = (cTraversal * innerArea + cIntersect * leafAreaTimesPrims) / rootArea;
-    } else if (!bvh.empty()) {
+    } else if (!tree.empty()) {
         sah.cost = cTraversal * double(nodes - leaves) + cIntersect * double(leafPrims);
     }
     stats.sah = sah;
+}
+
+void combineTreeStats(BuildStats& first, const Bounds3& firstRoot, const BuildStats& second, const Bounds3& secondRoot) {
+    const auto sum = [](const auto& a, const auto& b) { return a && b ? std::optional(*a + *b) : (a ? a : b); };
+    const size_t leaves = first.leaves.value_or(0) + second.leaves.value_or(0);
+    if (leaves > 0) {
+        first.avgLeafPrimitives = (first.avgLeafPrimitives.value_or(0.0) * double(first.leaves.value_or(0)) +
+                                   second.avgLeafPrimitives.value_or(0.0) * double(second.leaves.value_or(0))) /
+                                  double(leaves);
+    }
+    first.nodes = sum(first.nodes, second.nodes);
+    first.leaves = sum(first.leaves, second.leaves);
+    first.bytes = sum(first.bytes, second.bytes);
+    first.primitives += second.primitives;
+    first.maxLeafPrimitives = std::max(first.maxLeafPrimitives.value_or(0), second.maxLeafPrimitives.value_or(0));
+    first.maxDepth = std::max(first.maxDepth.value_or(0), second.maxDepth.value_or(0));
+    if (first.sah && second.sah) {
+        const double unionArea = unionOf(firstRoot, secondRoot).halfArea();
+        const double a = unionArea > 0.0 ? firstRoot.halfArea() / unionArea : 1.0;
+        const double b = unionArea > 0.0 ? secondRoot.halfArea() / unionArea : 1.0;
+        first.sah->cost = a * first.sah->cost + b * second.sah->cost;
+    } else if (second.sah) {
+        first.sah = second.sah;
+    }
 }
 
 }  // namespace bvhlab

@@ -7,6 +7,8 @@
 #include "accel/bvh/layout/leaf_arrays.h"
 #include "framework/core/accelerator.h"
 
+#include <span>
+
 namespace bvhlab {
 
 // The binary layout. Root at 0, then an unused slot, then sibling pairs from index 2 on: every
@@ -15,9 +17,23 @@ namespace bvhlab {
 // subtree first. Leaf l holds leafTriangles[l.index .. l.index + l.count).
 using Bvh = NodeTree<BvhNode>;
 
-// Fills the tree fields of BuildStats (nodes, leaves, leaf sizes, depth, SAH, bytes; not the
-// build time). The SAH cost, the same formula for every builder, normalised by the root area:
+// Fills the tree fields of BuildStats (nodes, leaves, leaf sizes, depth, SAH; not the build
+// time nor the bytes) from the nodes of a tree laid out as Bvh. The SAH cost, the same formula
+// for every builder, normalised by the root area:
 //   C_trav * sum_inner A(n)/A(root) + C_isect * sum_leaves A(l)/A(root) * N(l).
-void fillTreeStats(const Bvh& bvh, double cTraversal, double cIntersect, BuildStats& stats);
+void fillTreeStats(std::span<const BvhNode> nodes, double cTraversal, double cIntersect, BuildStats& stats);
+
+// The same, and the tree's bytes.
+template <typename Leaves>
+void fillTreeStats(const NodeTree<BvhNode, Leaves>& tree, double cTraversal, double cIntersect, BuildStats& stats) {
+    fillTreeStats(std::span<const BvhNode>(tree.nodes), cTraversal, cIntersect, stats);
+    stats.bytes = tree.bytes();
+}
+
+// The statistics of two trees that every query traverses one after the other (triangles, then
+// quadrics), into `first`: counts and bytes add up, and the SAH of each counts with the
+// probability that a ray through the union of the two root boxes enters its root
+// (A(root) / A(union)), i.e. both costs renormalised to the union's area.
+void combineTreeStats(BuildStats& first, const Bounds3& firstRoot, const BuildStats& second, const Bounds3& secondRoot);
 
 }  // namespace bvhlab

@@ -1,4 +1,5 @@
-// The traversal skeleton of the binary layout (bvh.h), for either query: per inner node the two
+// The traversal skeleton of the binary layout (bvh.h, and the quadric tree of
+// quadric_leaves.h: the leaf test is LeafTester's), for either query: per inner node the two
 // child boxes are tested one after the other (box_test.h), the nearer child hit is visited
 // first (by the entry distances), the other pushed.
 #pragma once
@@ -13,12 +14,13 @@ namespace bvhlab {
 
 namespace binary_traversal {
 
-// Starts loading what visiting `child` will read (its children pair, or its first triangles)
+// Starts loading what visiting `child` will read (its children pair, or its first primitives)
 // while its box is still being tested: a traversal step is bound by memory latency.
 // (Measured: 30 % faster traversal on conference.)
-inline void prefetchBelow(const BvhNode& child, const BvhNode* nodes, const Triangle* triangles) {
+template <typename Leaves>
+inline void prefetchBelow(const BvhNode& child, const BvhNode* nodes, const Leaves& leaves) {
     if (child.isLeaf()) {
-        __builtin_prefetch(triangles + child.index);
+        __builtin_prefetch(leaves.address(child.index));
     } else {
         __builtin_prefetch(nodes + child.index);
     }
@@ -31,13 +33,12 @@ struct StackEntry {
 
 }  // namespace binary_traversal
 
-template <typename Query, bool NegativeT, bool Robust>
-Query traverse(const Bvh& bvh, const Ray& ray, QueryCounters& counters) {
+template <typename Query, bool NegativeT, bool Robust, typename Leaves>
+Query traverse(const NodeTree<BvhNode, Leaves>& bvh, const Ray& ray, QueryCounters& counters) {
     using namespace binary_traversal;
     const RayBoxTest<NegativeT, Robust> boxTest(ray);
-    const LeafTriangleTest<Robust> triangleTest(ray);
+    const LeafTester<Leaves, Robust> leaves(bvh, ray, counters);
     const BvhNode* nodes = bvh.nodes.data();
-    const Triangle* triangles = bvh.leafTriangles.data();
     Query query(ray);
 
     uint64_t steps = 1, tests = 0;
@@ -50,11 +51,11 @@ Query traverse(const Bvh& bvh, const Ray& ray, QueryCounters& counters) {
         for (;;) {
             const BvhNode& node = nodes[current];
             if (node.isLeaf()) {
-                if (testLeaf(query, triangleTest, triangles, node.index, node.count, ray.tmin, tests)) break;
+                if (leaves(query, node.index, node.count, ray.tmin, tests)) break;
             } else {
                 const BvhNode* pair = nodes + node.index;
-                prefetchBelow(pair[0], nodes, triangles);
-                prefetchBelow(pair[1], nodes, triangles);
+                prefetchBelow(pair[0], nodes, leaves);
+                prefetchBelow(pair[1], nodes, leaves);
                 float entryLeft, entryRight;
                 const bool hitLeft = boxTest.intersect(pair[0], query.tmax, entryLeft);
                 const bool hitRight = boxTest.intersect(pair[1], query.tmax, entryRight);

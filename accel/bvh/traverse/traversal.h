@@ -10,11 +10,14 @@
 //     counted (it costs one comparison). A binary tree's inner visit tests two boxes, so its
 //     box tests = 1 + 2 * (inner nodes visited); a wide tree's steps are wide nodes and
 //     leaves, not comparable with a binary tree's.
-//   N_IT (intersectionTests): ray-triangle tests, i.e. the sizes of the leaves visited (an
-//     any-hit query stops counting at the triangle that occludes).
+//   N_IT (intersectionTests): ray-primitive tests, i.e. the sizes of the leaves visited (an
+//     any-hit query stops counting at the primitive that occludes); spheres and cones are
+//     also counted apart (sphereTests, coneTests).
 //   queries: +1 per call, valid ray or not.
 #pragma once
 
+#include "accel/bvh/layout/leaf_arrays.h"
+#include "accel/bvh/layout/quadric_leaves.h"
 #include "accel/bvh/traverse/traversal_config.h"
 #include "framework/core/accelerator.h"
 #include "framework/core/triangle.h"
@@ -77,6 +80,48 @@ inline bool testLeaf(Query& query, const LeafTriangleTest<Robust>& test, const T
     }
     return false;
 }
+
+// How the leaves of a binary tree are tested (bvh_traversal.h): its triangles, or its quadrics.
+template <typename Leaves, bool Robust>
+struct LeafTester;
+
+template <bool Robust>
+struct LeafTester<LeafArrays, Robust> {
+    LeafTriangleTest<Robust> test;
+    const Triangle* triangles;
+
+    LeafTester(const LeafArrays& leaves, const Ray& ray, QueryCounters&)
+        : test(ray), triangles(leaves.leafTriangles.data()) {}
+    const void* address(uint32_t first) const { return triangles + first; }
+    template <typename Query>
+    bool operator()(Query& query, uint32_t first, uint32_t count, float tmin, uint64_t& tests) const {
+        return testLeaf(query, test, triangles, first, count, tmin, tests);
+    }
+};
+
+// Spheres and cones: one test each, counted by kind straight into the counters.
+template <bool Robust>
+struct LeafTester<QuadricLeaves, Robust> {
+    const Ray& ray;
+    const QuadricShape* shapes;
+    QueryCounters& counters;
+
+    LeafTester(const QuadricLeaves& leaves, const Ray& ray, QueryCounters& counters)
+        : ray(ray), shapes(leaves.leafShapes.data()), counters(counters) {}
+    const void* address(uint32_t first) const { return shapes + first; }
+    template <typename Query>
+    bool operator()(Query& query, uint32_t first, uint32_t count, float tmin, uint64_t&) const {
+        for (uint32_t i = first, end = first + count; i < end; ++i) {
+            counters.countQuadricTest(shapes[i]);
+            QuadricHitT<float> h;
+            if (intersectQuadric(ray, shapes[i], tmin, query.tmax, h)) {
+                query.record({h.t, 0.0f, 0.0f}, i);
+                if constexpr (Query::kStopsAtFirstHit) return true;
+            }
+        }
+        return false;
+    }
+};
 
 // The entry of every query: it counts, answers invalid rays and empty trees with a miss, and
 // runs the skeleton variant the ray needs: NegativeT when the interval reaches below t = 0

@@ -1,7 +1,7 @@
 // NFF, Eric Haines' Neutral File Format of the Standard Procedural Databases (SPD): a
 // viewpoint block, background, point lights, materials ("fill colours"), polygons with
-// and without vertex normals, spheres and cones. We build triangles only: spheres and
-// cones are counted in the report so that nobody mistakes what was rendered.
+// and without vertex normals (fan-triangulated), spheres and cones (native primitives;
+// degenerate ones are counted and skipped by Scene::finalize).
 #include "framework/scene/readers/reader_util.h"
 #include "framework/scene/scene_loader.h"
 
@@ -85,25 +85,30 @@ Scene readNff(const std::filesystem::path& file, const std::string& bytes) {
             const Vec3 colour = readVec3(text, "the fill colour");
             const float kd = text.readOnLine<float>("Kd");
             const float ks = text.readOnLine<float>("Ks");
-            text.readOnLine<float>("Shine");  // highlights, transmission and refraction are not ours to render
-            text.readOnLine<float>("T");
-            text.readOnLine<float>("the index of refraction");
-            scene.materials.push_back(Material{.diffuse = kd * colour, .mirror = ks});
+            const float shine = text.readOnLine<float>("Shine");
+            const float transmission = text.readOnLine<float>("T");
+            const float ior = text.readOnLine<float>("the index of refraction");
+            scene.materials.push_back(Material{.diffuse = kd * colour, .mirror = ks, .shine = shine,
+                                               .transmission = transmission, .ior = ior});
             material = uint32_t(scene.materials.size() - 1);
         } else if (keyword == "s") {
-            readVec3(text, "the sphere centre");
-            text.readOnLine<float>("the sphere radius");
-            ++scene.report.unsupportedSpheres;
+            const Vec3 centre = readVec3(text, "the sphere centre");
+            scene.spheres.push_back({centre, text.readOnLine<float>("the sphere radius")});
+            scene.sphereMaterialIds.push_back(material);
         } else if (keyword == "c") {
             // Base and apex, each "x y z radius": on lines of their own as the format says,
             // or on the "c" line as the SPD programs write them; read() takes either.
-            for (const char* part : {"the cone base", "the cone apex"}) {
-                text.read<float>(part);
-                text.readOnLine<float>(part);
-                text.readOnLine<float>(part);
-                text.readOnLine<float>(part);
+            Vec3 ends[2];
+            float radii[2];
+            for (int k = 0; k < 2; ++k) {
+                const char* part = k == 0 ? "the cone base" : "the cone apex";
+                ends[k].x = text.read<float>(part);
+                ends[k].y = text.readOnLine<float>(part);
+                ends[k].z = text.readOnLine<float>(part);
+                radii[k] = text.readOnLine<float>(part);
             }
-            ++scene.report.unsupportedCones;
+            scene.cones.push_back({ends[0], radii[0], ends[1], radii[1]});
+            scene.coneMaterialIds.push_back(material);
         } else if (keyword == "p" || keyword == "pp") {
             const bool withNormals = keyword == "pp";
             const uint64_t corners = text.readOnLine<uint64_t>("the polygon's vertex count");

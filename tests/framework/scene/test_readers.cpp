@@ -425,12 +425,31 @@ TEST(NffReader, EverythingTheFormatHolds) {
     ASSERT_EQ(scene.materials.size(), 2u);
     EXPECT_EQ(scene.materials[1].diffuse, 0.8f * Vec3(1, 0.5f, 0.25f));
     EXPECT_EQ(scene.materials[1].mirror, 0.3f);
+    EXPECT_EQ(scene.materials[1].shine, 10.0f);
+    EXPECT_EQ(scene.materials[1].transmission, 0.0f);
+    EXPECT_EQ(scene.materials[1].ior, 1.0f);
     EXPECT_EQ(scene.materialIds, (std::vector<uint32_t>{0, 1, 1, 1}));
 
     EXPECT_EQ(scene.indices, (std::vector<uvec3>{{0, 1, 2}, {3, 4, 5}, {3, 5, 6}, {7, 8, 9}}));
     EXPECT_EQ(scene.report.degenerateTriangles, 1u);
-    EXPECT_EQ(scene.report.unsupportedSpheres, 1u);
-    EXPECT_EQ(scene.report.unsupportedCones, 2u);
+    // Spheres and cones are native primitives, after the triangles in the index space.
+    ASSERT_EQ(scene.spheres.size(), 1u);
+    EXPECT_EQ(scene.spheres[0].centre, Vec3(0));
+    EXPECT_EQ(scene.spheres[0].radius, 0.5f);
+    ASSERT_EQ(scene.cones.size(), 2u);
+    EXPECT_EQ(scene.cones[0].base, Vec3(0));
+    EXPECT_EQ(scene.cones[0].baseRadius, 0.15f);
+    EXPECT_EQ(scene.cones[0].apex, Vec3(0, 0, 1));
+    EXPECT_EQ(scene.cones[0].apexRadius, 0.1f);
+    EXPECT_EQ(scene.cones[1].apex, Vec3(0, 0, 2));
+    EXPECT_EQ(scene.sphereMaterialIds, (std::vector<uint32_t>{1}));
+    EXPECT_EQ(scene.coneMaterialIds, (std::vector<uint32_t>{1, 1}));
+    EXPECT_EQ(scene.report.degenerateSpheres, 0u);
+    EXPECT_EQ(scene.report.degenerateCones, 0u);
+    EXPECT_EQ(scene.validPrimitives, (std::vector<uint32_t>{0, 1, 2, 4, 5, 6}));
+    EXPECT_EQ(scene.primitives().kind(4), PrimitiveKind::Sphere);
+    EXPECT_EQ(scene.primitives().kind(6), PrimitiveKind::Cone);
+    EXPECT_EQ(scene.materialOf(5), 1u);
 
     // pp normals as given; p polygons get their geometric normal.
     ASSERT_EQ(scene.normals.size(), scene.positions.size());
@@ -533,16 +552,24 @@ TEST(SceneErrors, PlyNamedObj) {
     }
 }
 
-TEST(SceneErrors, NffWithOnlySpheresAndCones) {
-    expectLoadError("spheres.nff", "s 0 0 0 1\ns 2 0 0 0.5\nc 0 0 0 1 0 0 1 0.5\n",
-                    {"spheres.nff:", "nothing to render", "2 spheres and 1 cones/cylinders skipped (not supported",
+TEST(SceneErrors, NffWithOnlyDegenerateSpheresAndCones) {
+    expectLoadError("spheres.nff", "s 0 0 0 0\ns 2 0 0 1e-30\nc 0 0 0 1 0 0 0 0.5\n",
+                    {"spheres.nff:", "nothing to render", "2 spheres and 1 cones/cylinders are degenerate",
                      "no polygons"});
 }
 
-TEST(SceneErrors, NffWithAPolygonAndSpheresLoads) {
-    const Scene scene = loadText("balls.nff", "p 4\n-1 -1 0\n1 -1 0\n1 1 0\n-1 1 0\ns 0 0 1 0.5\ns 0 0 2 0.5\n");
-    EXPECT_EQ(scene.validPrimitives.size(), 2u);
-    EXPECT_EQ(scene.report.unsupportedSpheres, 2u);
+TEST(NffReader, SpheresAndConesAloneLoad) {
+    const Scene scene = loadText("spheres.nff", "s 0 0 0 1\ns 2 0 0 -0.5\nc 0 0 0 1 0 0 1 0.5\n");
+    EXPECT_EQ(scene.validPrimitives, (std::vector<uint32_t>{0, 1, 2}));
+    EXPECT_FALSE(scene.bounds.isEmpty());
+}
+
+TEST(NffReader, DegenerateSpheresAndConesAreCountedAndSkipped) {
+    const Scene scene = loadText("balls.nff", "p 4\n-1 -1 0\n1 -1 0\n1 1 0\n-1 1 0\ns 0 0 1 0.5\ns 0 0 2 0\n"
+                                              "c 0 0 0 1 0 0 0 1\nc 0 0 0 1 0 0 1 -1\nc 0 0 0 1 0 0 1 0\n");
+    EXPECT_EQ(scene.validPrimitives, (std::vector<uint32_t>{0, 1, 2, 6}));
+    EXPECT_EQ(scene.report.degenerateSpheres, 1u);
+    EXPECT_EQ(scene.report.degenerateCones, 2u);
 }
 
 // ---------------------------------------------------------------------------------------------

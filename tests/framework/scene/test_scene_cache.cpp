@@ -27,8 +27,13 @@ Scene richScene() {
     scene.name = "rich";
     scene.normals.assign(scene.positions.size(), Vec3(0, 1, 0));
     scene.background = Vec3(0.1f, 0.2f, 0.3f);
-    scene.report.unsupportedSpheres = 3;
-    scene.report.unsupportedCones = 4;
+    scene.spheres = {{Vec3(1, 2, 3), 0.5f}, {Vec3(0), 0.0f}};  // the second degenerate
+    scene.sphereMaterialIds = {1, 0};
+    scene.cones = {{Vec3(0), 1.0f, Vec3(0, 0, 2), -0.5f}, {Vec3(0), -1.0f, Vec3(0, 1, 0), -0.25f}};
+    scene.coneMaterialIds = {0, 1};
+    scene.materials.back().shine = 20.0f;
+    scene.materials.back().transmission = 0.5f;
+    scene.materials.back().ior = 1.5f;
     scene.report.warnings = {"first warning", "", "third, with a\nnewline"};
     scene.indices.push_back({0, 0, 0});  // one degenerate triangle
     if (!scene.materialIds.empty()) scene.materialIds.push_back(0);
@@ -77,8 +82,20 @@ TEST(SceneCache, RoundTripKeepsEveryField) {
     }
     EXPECT_EQ(back->background, scene.background);
     EXPECT_EQ(back->report.degenerateTriangles, 1u);
-    EXPECT_EQ(back->report.unsupportedSpheres, 3u);
-    EXPECT_EQ(back->report.unsupportedCones, 4u);
+    ASSERT_EQ(back->spheres.size(), 2u);
+    EXPECT_EQ(back->spheres[0].centre, scene.spheres[0].centre);
+    EXPECT_EQ(back->spheres[0].radius, scene.spheres[0].radius);
+    ASSERT_EQ(back->cones.size(), 2u);
+    EXPECT_EQ(back->cones[1].apex, scene.cones[1].apex);
+    EXPECT_EQ(back->cones[1].apexRadius, scene.cones[1].apexRadius);
+    EXPECT_EQ(back->sphereMaterialIds, scene.sphereMaterialIds);
+    EXPECT_EQ(back->coneMaterialIds, scene.coneMaterialIds);
+    EXPECT_EQ(back->report.degenerateSpheres, 1u);
+    EXPECT_EQ(back->report.degenerateCones, 1u);
+    ASSERT_EQ(back->materials.size(), scene.materials.size());
+    EXPECT_EQ(back->materials.back().shine, 20.0f);
+    EXPECT_EQ(back->materials.back().transmission, 0.5f);
+    EXPECT_EQ(back->materials.back().ior, 1.5f);
     EXPECT_EQ(back->report.warnings, scene.report.warnings);
     EXPECT_EQ(back->validPrimitives, scene.validPrimitives);
     EXPECT_EQ(back->triangles.size(), scene.triangles.size());

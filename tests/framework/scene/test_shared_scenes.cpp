@@ -38,8 +38,11 @@ TEST_P(SharedScenes, LoadWithTheirStatedCounts) {
     SKIP_WITHOUT_SCENES();
     const Scene scene = loadScene(scenesDir() / expected.file);
     EXPECT_EQ(scene.triangleCount(), expected.triangles);
-    EXPECT_EQ(scene.report.unsupportedSpheres, expected.spheres);
-    EXPECT_EQ(scene.report.unsupportedCones, expected.cones);
+    EXPECT_EQ(scene.spheres.size(), expected.spheres);
+    EXPECT_EQ(scene.cones.size(), expected.cones);
+    EXPECT_EQ(scene.validPrimitives.size(),
+              scene.primitiveCount() - scene.report.degenerateTriangles - scene.report.degenerateSpheres -
+                  scene.report.degenerateCones);
     EXPECT_EQ(scene.triangles.size(), scene.triangleCount());
     EXPECT_FALSE(scene.bounds.isEmpty());
 }
