@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
     bvhlab::addBatchCommand(app);
     bvhlab::addStressCommand(app);
     bvhlab::addTradeoffCommand(app);
+    bvhlab::addSpdCommand(app);
     bvhlab::addKeysCommand(app);
     CLI11_PARSE(app, argc, argv);
     return 0;

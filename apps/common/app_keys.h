@@ -34,6 +34,17 @@ inline constexpr IntKey threads{
     "all hardware threads"};
 }
 
+namespace keys::Spd {
+inline constexpr IntKey maxDepth{"Spd::maxDepth", "5", 1, 64,
+                                 "bvhlab spd: ray tree depth, the eye ray being depth 1 (the SPD rules: 5)"};
+inline constexpr TextKey twoSidedScenes{
+    "Spd::twoSidedScenes", "teapot",
+    "bvhlab spd: comma-separated scenes whose opaque primitives are seen from both sides (the SPD rules: the "
+    "teapot); the others' are one-sided"};
+inline constexpr PathKey reference{"Spd::reference", "../shared/reference/spd",
+                                   "bvhlab spd: folder of Havran's havran_stats_grids.txt and havran_stats_octrees.txt"};
+}  // namespace keys::Spd
+
 // Keys that change no figure of any run: what is written (Output::*) and where parsed scenes
 // are cached. Batch and tradeoff leave them out of what a stored result must match.
 inline bool changesNoFigure(std::string_view name) {

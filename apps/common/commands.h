@@ -12,5 +12,6 @@ void addBenchCommand(CLI::App& app);
 void addBatchCommand(CLI::App& app);
 void addStressCommand(CLI::App& app);
 void addTradeoffCommand(CLI::App& app);
+void addSpdCommand(CLI::App& app);
 
 }  // namespace bvhlab

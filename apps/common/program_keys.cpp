@@ -17,6 +17,9 @@ void registerAppKeys(EnvRegistry& r) {
     for (const BoolKey& key : {keys::Output::exr, keys::Output::png, keys::Output::heatmap}) r.add(key);
     r.add(keys::Output::heatmapScale);
     r.add(keys::Batch::threads);
+    r.add(keys::Spd::maxDepth);
+    r.add(keys::Spd::reference);
+    r.add(keys::Spd::twoSidedScenes);
 }
 
 std::string typeLabel(const EnvKey& key) {
