@@ -135,15 +135,18 @@ WideBvh<N> collapseToWide(Bvh&& bvh, const CollapseCosts& costs) {
     std::vector<uint32_t> prims, below;
     const auto appendLeaf = [&](uint32_t n) {
         const BvhNode& leaf = binary[n];
-        if (leaf.isLeaf()) return wide.appendLeaf(&bvh.leafTriangles[leaf.index], &bvh.primIndices[leaf.index], leaf.count);
+        if (leaf.isLeaf())
+            return wide.appendLeaf(&bvh.leafTriangles[leaf.index], &bvh.primIndices[leaf.index], leaf.count);
         triangles.clear(), prims.clear();
         below.assign(1, n);
         while (!below.empty()) {
             const BvhNode& node = binary[below.back()];
             below.pop_back();
             if (node.isLeaf()) {
-                triangles.insert(triangles.end(), &bvh.leafTriangles[node.index], &bvh.leafTriangles[node.index] + node.count);
-                prims.insert(prims.end(), &bvh.primIndices[node.index], &bvh.primIndices[node.index] + node.count);
+                const Triangle* t = &bvh.leafTriangles[node.index];
+                const uint32_t* p = &bvh.primIndices[node.index];
+                triangles.insert(triangles.end(), t, t + node.count);
+                prims.insert(prims.end(), p, p + node.count);
             } else {
                 below.push_back(node.index + 1);
                 below.push_back(node.index);
