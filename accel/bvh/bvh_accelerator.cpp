@@ -50,7 +50,8 @@ BuildStats BvhAccelerator<Layout>::build(const PrimitiveSet& prims) {
     if constexpr (std::is_same_v<Layout, Bvh>) {
         tree_ = std::move(binary);
     } else {
-        tree_ = collapseToWide<LayoutWidth<Layout>::value>(std::move(binary));
+        const CollapseCosts costs{build_.cTraversal, build_.cIntersect, build_.effectiveLeafCap()};
+        tree_ = collapseToWide<LayoutWidth<Layout>::value>(std::move(binary), costs);
     }
     if (prims.hasQuadrics()) {
         BvhBuildConfig config = build_;

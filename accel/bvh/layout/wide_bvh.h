@@ -1,8 +1,8 @@
 // An N-wide BVH collapsed from a finished binary one (as Embree's BVH4 and BVH8): each node
 // holds the boxes of up to N children in SoA order, so that one SIMD test checks all of them,
-// and a ray takes fewer, wider steps. The collapse keeps every leaf of the binary tree, with its
-// triangles in the same order, and stores them in SIMD blocks (triangle_blocks.h). sahbvh4 is
-// N = 4, sahbvh8 N = 8.
+// and a ray takes fewer, wider steps. A leaf of the wide tree holds the triangles of a binary
+// subtree (one binary leaf, or small ones merged), stored in SIMD blocks (triangle_blocks.h).
+// sahbvh4 is N = 4, sahbvh8 N = 8.
 #pragma once
 
 #include "accel/bvh/layout/bvh.h"
@@ -29,11 +29,25 @@ static_assert(sizeof(WideNode<8>) == 256, "an 8-wide node fills four cache lines
 template <int N>
 using WideBvh = NodeTree<WideNode<N>, TriangleBlockLeaves>;
 
-// Collapses `bvh` (consumed): every wide node takes the two children of a binary node and opens
-// the child with the largest box until it has N. Leaves get their blocks in lane order.
-// A binary tree that is a single leaf becomes a root with that leaf in lane 0.
+// What the collapse charges, in the build's SAH units: a wide node visited, a block of
+// triangles tested; and the largest leaf it may merge (the build's leaf cap).
+struct CollapseCosts {
+    float cTraversal;
+    float cIntersect;
+    uint32_t leafCap;
+};
+
+// Collapses `bvh` (consumed) by SAH, after Ylitie, Karras and Laine 2017 ("Efficient incoherent
+// ray traversal on GPUs through compressed wide BVHs", section 4.1): bottom up, each binary
+// node's subtree gets its cheapest form as at most 1..N lanes of a wide node, where one lane is
+// the node itself, either a leaf of all its triangles (at most leafCap, charged by blocks) or a
+// wide node whose lanes are drawn from its subtree. Small sibling leaves thus merge when fewer
+// blocks pay, and a wide node opens the descendants that pay, not the largest box. Every lane
+// is a proper descendant of its node's binary node, so the wide tree is no deeper than the
+// binary one; a merged leaf lists its binary leaves' triangles left to right. The root is a
+// wide node (holding a single leaf lane when all triangles are cheapest as one leaf).
 // Instantiated for N = 4 and 8.
 template <int N>
-WideBvh<N> collapseToWide(Bvh&& bvh);
+WideBvh<N> collapseToWide(Bvh&& bvh, const CollapseCosts& costs);
 
 }  // namespace bvhlab

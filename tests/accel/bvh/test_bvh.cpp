@@ -686,79 +686,147 @@ TEST(Bvh, RegisteredWithTheirEnvKeys) {
     EXPECT_TRUE(accel->hasCounters());
 }
 
-// The 4-wide collapse keeps the binary tree's leaves: every leaf appears in exactly one lane
-// with its box, inner lanes point at wide nodes, unused lanes are empty boxes, and no wide
-// node has fewer than two children (or one: a root that is a single leaf).
-// Every binary leaf becomes one wide leaf with the same triangles, in the same order, in blocks
-// of its own whose padding lanes are kInvalidPrimitive point triangles.
-TEST(WideBvh, CollapseKeepsEveryLeafOnce) {
-    using Leaf = std::vector<std::pair<uint32_t, std::array<float, 9>>>;  // (primitive, vertices) in order
-    const auto vertices = [](const Triangle& t) {
-        return std::array<float, 9>{t.v0.x, t.v0.y, t.v0.z, t.v1.x, t.v1.y, t.v1.z, t.v2.x, t.v2.y, t.v2.z};
-    };
+// The collapse keeps every triangle once: each wide leaf holds the triangles of one binary
+// subtree (a binary leaf, or small ones merged, never more than the leaf cap) left to right,
+// each lane naming its primitive and holding that primitive's triangle, in blocks of its own
+// whose padding lanes are kInvalidPrimitive point triangles; merging only ever saves blocks.
+// Inner lanes point at wide nodes (each with one parent), unused lanes are empty boxes, and no
+// wide node has fewer than two lanes (or one: a root that is a single leaf).
+template <int N>
+void expectCollapseKeepsEveryTriangleOnce(size_t n, uint32_t seed) {
+    using Leaf = std::vector<uint32_t>;  // primitives in lane order
+    constexpr uint32_t kLeafCap = 16;
+    const Soup soup = randomSoup(n, seed);
+    Bvh binary = buildBvh(BvhKind::BinnedSah, defaultConfig(), soup.prims());
+    // Every binary subtree's primitives, left to right (children come after their parent).
+    std::vector<Leaf> below(binary.nodes.size());
+    size_t binaryBlocks = 0;
+    for (size_t i = binary.nodes.size(); i-- > 0;) {
+        const BvhNode& node = binary.nodes[i];
+        if (i == 1) continue;
+        if (node.isLeaf()) {
+            below[i].assign(&binary.primIndices[node.index], &binary.primIndices[node.index] + node.count);
+            binaryBlocks += blocksFor(node.count);
+        } else {
+            below[i] = below[node.index];
+            below[i].insert(below[i].end(), below[node.index + 1].begin(), below[node.index + 1].end());
+        }
+    }
+    const std::set<Leaf> subtrees(below.begin(), below.end());
+    const bool rootIsLeaf = binary.nodes[0].isLeaf();
+    const WideBvh<N> wide = collapseToWide<N>(std::move(binary), {1.0f, 1.0f, kLeafCap});
+    ASSERT_LE(wide.blocks.size(), binaryBlocks);
+    ASSERT_EQ(wide.primIndices.size(), wide.blocks.size() * TriangleBlock::kLanes);
+
+    std::vector<int> seen(soup.triangles.size(), 0);
+    std::vector<int> blockOwners(wide.blocks.size(), 0);
+    std::vector<int> parents(wide.nodes.size(), 0);
+    for (const WideNode<N>& node : wide.nodes) {
+        int used = 0;
+        for (int i = 0; i < N; ++i) {
+            const bool empty = node.lower[0][i] > node.upper[0][i];
+            if (empty) {
+                EXPECT_EQ(node.count[i], 0u);
+                continue;
+            }
+            ++used;
+            if (node.count[i] != 0) {
+                EXPECT_LE(node.count[i], kLeafCap);
+                Leaf leaf;
+                const uint32_t first = node.child[i] * TriangleBlock::kLanes;
+                ASSERT_LE(node.child[i] + blocksFor(node.count[i]), wide.blocks.size());
+                for (uint32_t b = node.child[i]; b < node.child[i] + blocksFor(node.count[i]); ++b) ++blockOwners[b];
+                for (uint32_t p = first; p < first + blocksFor(node.count[i]) * TriangleBlock::kLanes; ++p) {
+                    const Triangle tri = wide.blocks[p / TriangleBlock::kLanes].triangle(int(p % TriangleBlock::kLanes));
+                    if (p >= first + node.count[i]) {
+                        EXPECT_EQ(wide.primIndices[p], kInvalidPrimitive);
+                        EXPECT_TRUE(tri.v0 == tri.v1 && tri.v1 == tri.v2) << "padding is a point";
+                        continue;
+                    }
+                    const uint32_t prim = wide.primIndices[p];
+                    ASSERT_LT(prim, soup.triangles.size());
+                    const Triangle& original = soup.triangles[prim];
+                    EXPECT_TRUE(tri.v0 == original.v0 && tri.v1 == original.v1 && tri.v2 == original.v2)
+                        << "lane " << p << " holds primitive " << prim << "'s triangle";
+                    ++seen[prim];
+                    leaf.push_back(prim);
+                    const Bounds3 box = tri.bounds();
+                    for (int a = 0; a < 3; ++a) {
+                        EXPECT_LE(node.lower[a][i], box.lower[a]);
+                        EXPECT_GE(node.upper[a][i], box.upper[a]);
+                    }
+                }
+                EXPECT_EQ(subtrees.count(leaf), 1u) << "a wide leaf is one binary subtree, left to right";
+            } else {
+                ASSERT_LT(node.child[i], wide.nodes.size());
+                ++parents[node.child[i]];
+            }
+        }
+        EXPECT_GE(used, rootIsLeaf ? 1 : 2);
+    }
+    for (uint32_t prim : soup.valid) EXPECT_EQ(seen[prim], 1) << "primitive " << prim;
+    for (int owners : blockOwners) EXPECT_EQ(owners, 1);
+    EXPECT_EQ(parents[0], 0);
+    for (size_t i = 1; i < parents.size(); ++i) EXPECT_EQ(parents[i], 1) << "wide node " << i;
+    // The binary tree here charges single triangles (leaves of one to four): many of its small
+    // sibling leaves share a block once merged.
+    if (n >= 3000) {
+        EXPECT_LT(wide.blocks.size(), binaryBlocks * 3 / 4);
+    }
+}
+
+TEST(WideBvh, CollapseKeepsEveryTriangleOnce) {
     for (size_t n : {size_t(1), size_t(2), size_t(7), size_t(3000)}) {  // 1 and 2: the root is a leaf
         SCOPED_TRACE(n);
-        const Soup soup = randomSoup(n, 41 + uint32_t(n));
-        Bvh binary = buildBvh(BvhKind::BinnedSah, defaultConfig(), soup.prims());
-        std::multiset<Leaf> binaryLeaves;
-        size_t blocks = 0;
-        for (size_t i = 0; i < binary.nodes.size(); ++i) {
-            const BvhNode& node = binary.nodes[i];
-            if (i == 1 || !node.isLeaf()) continue;
-            Leaf leaf;
-            for (uint32_t t = node.index; t < node.index + node.count; ++t)
-                leaf.push_back({binary.primIndices[t], vertices(binary.leafTriangles[t])});
-            binaryLeaves.insert(leaf);
-            blocks += blocksFor(node.count);
-        }
-        const WideBvh<4> wide = collapseToWide<4>(std::move(binary));
-        ASSERT_EQ(wide.blocks.size(), blocks);
-        ASSERT_EQ(wide.primIndices.size(), blocks * TriangleBlock::kLanes);
-
-        std::multiset<Leaf> wideLeaves;
-        std::vector<int> blockOwners(blocks, 0);
-        std::vector<int> parents(wide.nodes.size(), 0);
-        for (const WideNode<4>& node : wide.nodes) {
-            int used = 0;
-            for (int i = 0; i < WideNode<4>::kWidth; ++i) {
-                const bool empty = node.lower[0][i] > node.upper[0][i];
-                if (empty) {
-                    EXPECT_EQ(node.count[i], 0u);
-                    continue;
-                }
-                ++used;
-                if (node.count[i] != 0) {
-                    Leaf leaf;
-                    const uint32_t first = node.child[i] * TriangleBlock::kLanes;
-                    ASSERT_LE(node.child[i] + blocksFor(node.count[i]), blocks);
-                    for (uint32_t b = node.child[i]; b < node.child[i] + blocksFor(node.count[i]); ++b) ++blockOwners[b];
-                    for (uint32_t p = first; p < first + blocksFor(node.count[i]) * TriangleBlock::kLanes; ++p) {
-                        const Triangle tri = wide.blocks[p / TriangleBlock::kLanes].triangle(int(p % TriangleBlock::kLanes));
-                        if (p >= first + node.count[i]) {
-                            EXPECT_EQ(wide.primIndices[p], kInvalidPrimitive);
-                            EXPECT_TRUE(tri.v0 == tri.v1 && tri.v1 == tri.v2) << "padding is a point";
-                            continue;
-                        }
-                        leaf.push_back({wide.primIndices[p], vertices(tri)});
-                        const Bounds3 box = tri.bounds();
-                        for (int a = 0; a < 3; ++a) {
-                            EXPECT_LE(node.lower[a][i], box.lower[a]);
-                            EXPECT_GE(node.upper[a][i], box.upper[a]);
-                        }
-                    }
-                    wideLeaves.insert(leaf);
-                } else {
-                    ASSERT_LT(node.child[i], wide.nodes.size());
-                    ++parents[node.child[i]];
-                }
-            }
-            EXPECT_GE(used, binaryLeaves.size() == 1 ? 1 : 2);
-        }
-        EXPECT_EQ(wideLeaves, binaryLeaves);
-        for (int owners : blockOwners) EXPECT_EQ(owners, 1);
-        EXPECT_EQ(parents[0], 0);
-        for (size_t i = 1; i < parents.size(); ++i) EXPECT_EQ(parents[i], 1) << "wide node " << i;
+        expectCollapseKeepsEveryTriangleOnce<4>(n, 41 + uint32_t(n));
+        expectCollapseKeepsEveryTriangleOnce<8>(n, 41 + uint32_t(n));
     }
+}
+
+// The collapse weighs a merged leaf against its parts by SAH: two leaves of 3 and 4 triangles
+// over the same unit square cost two block tests wherever a ray hits one, so they become one
+// leaf of one block (here the root's only lane); the same leaves 100 units apart are rarely
+// both hit and stay two lanes. A merge never exceeds the leaf cap.
+TEST(WideBvh, CollapseMergesSiblingLeavesWhenOneBlockPays) {
+    const auto twoLeaves = [](Vec3 shift) {
+        Bvh bvh;
+        for (uint32_t i = 0; i < 7; ++i) {
+            const Vec3 s = i < 3 ? Vec3(0.0f) : shift;
+            const float f = 0.1f * float(i);
+            bvh.leafTriangles.push_back({s + Vec3(f, 0, 0), s + Vec3(1, f, 0), s + Vec3(0, 1, f)});
+            bvh.primIndices.push_back(10 + i);
+        }
+        const auto boxOf = [&](uint32_t begin, uint32_t end) {
+            Bounds3 b;
+            for (uint32_t i = begin; i < end; ++i) b.extend(bvh.leafTriangles[i].bounds());
+            return b;
+        };
+        bvh.nodes.resize(4);
+        bvh.nodes[0].setBox(boxOf(0, 7)), bvh.nodes[0].index = 2, bvh.nodes[0].count = 0;
+        bvh.nodes[1] = BvhNode{{0, 0, 0, 0, 0, 0}, 0, 0};
+        bvh.nodes[2].setBox(boxOf(0, 3)), bvh.nodes[2].index = 0, bvh.nodes[2].count = 3;
+        bvh.nodes[3].setBox(boxOf(3, 7)), bvh.nodes[3].index = 3, bvh.nodes[3].count = 4;
+        return bvh;
+    };
+    const CollapseCosts costs{1.0f, 1.0f, 16};
+
+    const WideBvh<8> merged = collapseToWide<8>(twoLeaves(Vec3(0.0f)), costs);
+    ASSERT_EQ(merged.nodes.size(), 1u);
+    EXPECT_EQ(merged.nodes[0].count[0], 7u);
+    EXPECT_GT(merged.nodes[0].lower[0][1], merged.nodes[0].upper[0][1]) << "lane 1 is empty";
+    ASSERT_EQ(merged.blocks.size(), 1u);
+    for (uint32_t lane = 0; lane < 7; ++lane) EXPECT_EQ(merged.primIndices[lane], 10 + lane);
+    EXPECT_EQ(merged.primIndices[7], kInvalidPrimitive);
+
+    const WideBvh<8> apart = collapseToWide<8>(twoLeaves(Vec3(100.0f, 0.0f, 0.0f)), costs);
+    ASSERT_EQ(apart.nodes.size(), 1u);
+    EXPECT_EQ(apart.nodes[0].count[0], 3u);
+    EXPECT_EQ(apart.nodes[0].count[1], 4u);
+    EXPECT_EQ(apart.blocks.size(), 2u);
+
+    const WideBvh<8> capped = collapseToWide<8>(twoLeaves(Vec3(0.0f)), {1.0f, 1.0f, 6});
+    EXPECT_EQ(capped.nodes[0].count[0], 3u);
+    EXPECT_EQ(capped.nodes[0].count[1], 4u);
 }
 
 // The build runs the subtrees below a size as parallel jobs: the tree is the same, node for
