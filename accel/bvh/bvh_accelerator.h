@@ -32,6 +32,10 @@ public:
     const Layout& bvh() const { return tree_; }
 
 private:
+    // The quadric tree's part of a query (after the triangles'), kept out of the hot path.
+    [[gnu::noinline]] bool findNearestQuadric(const Ray& ray, bool found, Hit& hit, QueryCounters& counters) const;
+    [[gnu::noinline]] bool isOccludedQuadric(const Ray& ray, QueryCounters& counters) const;
+
     BvhKind kind_;
     BvhBuildConfig build_;
     TraversalConfig traversal_;

@@ -50,7 +50,7 @@ struct RaySlabs {
     int nearIsUpper[3];
     float tmin;
 
-    explicit RaySlabs(const Ray& ray) : tmin(ray.tmin) {
+    [[gnu::always_inline]] explicit RaySlabs(const Ray& ray) : tmin(ray.tmin) {
         for (int a = 0; a < 3; ++a) {
             org[a] = ray.org[a];
             inv[a] = 1.0f / ray.dir[a];
@@ -62,7 +62,7 @@ struct RaySlabs {
     // The far slab distance of `bound` on axis a, pushed outwards: F is float (the binary
     // test) or SIMD lanes (the wide one).
     template <bool NegativeT, typename F>
-    F farDistance(F bound, int a) const {
+    [[gnu::always_inline]] F farDistance(F bound, int a) const {
         using simd::broadcast, simd::select;
         constexpr float margin = kFarMargin<Robust>;
         if constexpr (NegativeT && Robust) {
@@ -85,7 +85,7 @@ struct RayBoxTest : RaySlabs<Robust> {
     int nearSlab[3];  // index into BvhNode::bounds of the slab the ray enters first
     int farSlab[3];
 
-    explicit RayBoxTest(const Ray& ray) : RaySlabs<Robust>(ray) {
+    [[gnu::always_inline]] explicit RayBoxTest(const Ray& ray) : RaySlabs<Robust>(ray) {
         for (int a = 0; a < 3; ++a) {
             nearSlab[a] = a + 3 * this->nearIsUpper[a];
             farSlab[a] = a + 3 * (1 - this->nearIsUpper[a]);
@@ -93,7 +93,7 @@ struct RayBoxTest : RaySlabs<Robust> {
     }
 
     // True when the ray overlaps the box within [tmin, tmax]; `entry` is where it enters.
-    bool intersect(const BvhNode& node, float tmax, float& entry) const {
+    [[gnu::always_inline]] bool intersect(const BvhNode& node, float tmax, float& entry) const {
         const float* b = node.bounds;
         const float nx = (b[nearSlab[0]] - this->org[0]) * this->inv[0];
         const float ny = (b[nearSlab[1]] - this->org[1]) * this->inv[1];
@@ -115,7 +115,7 @@ struct WideBoxTest : RaySlabs<Robust> {
     // Byte offsets into a node of the near and the far bounds of each axis.
     size_t nearOffset[3], farOffset[3];
 
-    explicit WideBoxTest(const Ray& ray) : RaySlabs<Robust>(ray) {
+    [[gnu::always_inline]] explicit WideBoxTest(const Ray& ray) : RaySlabs<Robust>(ray) {
         for (int a = 0; a < 3; ++a) {
             const size_t lower = offsetof(Node, lower) + size_t(a) * sizeof(float) * N;
             const size_t upper = offsetof(Node, upper) + size_t(a) * sizeof(float) * N;
@@ -130,7 +130,7 @@ struct WideBoxTest : RaySlabs<Robust> {
 
     // The lanes whose box the ray overlaps within [tmin, tmax], as a bit mask; where it enters
     // each box goes to entryOut.
-    int intersect(const Node& node, float tmax, float entryOut[N]) const {
+    [[gnu::always_inline]] int intersect(const Node& node, float tmax, float entryOut[N]) const {
         F nearT[3], farT[3];
         for (int a = 0; a < 3; ++a) {
             nearT[a] = (F::load(bounds(node, nearOffset[a])) - F::broadcast(this->org[a])) * F::broadcast(this->inv[a]);

@@ -27,7 +27,7 @@ struct BlockTriangleTest {
     int kx, ky, kz;
     F orgX, orgY, orgZ, sx, sy, sz;
 
-    explicit BlockTriangleTest(const Ray& ray) {
+    [[gnu::always_inline]] explicit BlockTriangleTest(const Ray& ray) {
         const ShearedRay r(ray);
         kx = r.kx, ky = r.ky, kz = r.kz;
         orgX = F::broadcast(r.org[kx]), orgY = F::broadcast(r.org[ky]), orgZ = F::broadcast(r.org[kz]);
@@ -85,7 +85,7 @@ struct BlockTriangleTest<false> {
     using F = simd::Floats<TriangleBlock::kLanes>;
     F org[3], dir[3];
 
-    explicit BlockTriangleTest(const Ray& ray) {
+    [[gnu::always_inline]] explicit BlockTriangleTest(const Ray& ray) {
         for (int a = 0; a < 3; ++a) org[a] = F::broadcast(ray.org[a]), dir[a] = F::broadcast(ray.dir[a]);
     }
 
@@ -127,8 +127,8 @@ struct BlockTriangleTest<false> {
 // one that occludes, padding never. Of equal t in one block the last lane wins, as in the
 // binary layout's loop, which takes a later triangle at t == tmax.
 template <typename Query, bool Robust>
-inline bool testLeafBlocks(Query& query, const BlockTriangleTest<Robust>& test, const TriangleBlock* blocks,
-                           uint32_t first, uint32_t count, float tmin, uint64_t& tests) {
+[[gnu::always_inline]] inline bool testLeafBlocks(Query& query, const BlockTriangleTest<Robust>& test, const TriangleBlock* blocks,
+                                                 uint32_t first, uint32_t count, float tmin, uint64_t& tests) {
     constexpr int W = TriangleBlock::kLanes;
     for (uint32_t b = 0, end = blocksFor(count); b < end; ++b) {
         const int lanes = b + 1 < end ? (1 << W) - 1 : (1 << (count - b * W)) - 1;

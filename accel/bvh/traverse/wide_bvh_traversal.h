@@ -31,8 +31,8 @@ inline constexpr int kStackSize = (N - 1) * kBvhMaxDepth + 1;
 // pushed far to near, so that the next nearest is popped first; what they will read starts
 // loading now.
 template <int N>
-inline StackEntry nextChild(const WideNode<N>& node, int mask, const float entry[N], StackEntry* stack, int& size,
-                            const WideNode<N>* nodes, const TriangleBlock* blocks) {
+[[gnu::always_inline]] inline StackEntry nextChild(const WideNode<N>& node, int mask, const float entry[N], StackEntry* stack,
+                                                  int& size, const WideNode<N>* nodes, const TriangleBlock* blocks) {
     const int first = __builtin_ctz(unsigned(mask));
     mask &= mask - 1;
     StackEntry nearest{node.child[first], node.count[first], entry[first]};
@@ -61,8 +61,8 @@ inline StackEntry nextChild(const WideNode<N>& node, int mask, const float entry
 // For an any-hit query: the first child hit in lane order is visited next, the others are
 // pushed as they come, their reads started.
 template <int N>
-inline StackEntry anyChild(const WideNode<N>& node, int mask, const float entry[N], StackEntry* stack, int& size,
-                           const WideNode<N>* nodes, const TriangleBlock* blocks) {
+[[gnu::always_inline]] inline StackEntry anyChild(const WideNode<N>& node, int mask, const float entry[N], StackEntry* stack,
+                                                 int& size, const WideNode<N>* nodes, const TriangleBlock* blocks) {
     const int first = __builtin_ctz(unsigned(mask));
     const StackEntry next{node.child[first], node.count[first], entry[first]};
     for (mask &= mask - 1; mask != 0; mask &= mask - 1) {
