@@ -2,6 +2,7 @@
 
 #include "accel/bvh/build/binned_sah_builder.h"
 #include "accel/bvh/build/build_jobs.h"
+#include "accel/bvh/build/sbvh_builder.h"
 #include "accel/bvh/build/spatial_median_builder.h"
 #include "accel/bvh/build/sweep_sah_builder.h"
 
@@ -17,22 +18,18 @@
 
 namespace bvhlab {
 
-namespace {
+bool allCentresEqual(const Bounds3& c) { return c.lower.x == c.upper.x && c.lower.y == c.upper.y && c.lower.z == c.upper.z; }
 
-int ceilLog2(uint32_t n) { return n <= 1 ? 0 : int(std::bit_width(n - 1)); }
-
-bool allCentresEqual(const BuildRange& range) {
-    const Bounds3& c = range.centroidBounds;
-    return c.lower.x == c.upper.x && c.lower.y == c.upper.y && c.lower.z == c.upper.z;
+bool nearDepthBound(int depth, uint32_t n) {
+    const int ceilLog2 = n <= 1 ? 0 : int(std::bit_width(n - 1));
+    return depth + ceilLog2 >= kBvhMaxDepth - 1;
 }
 
-}  // namespace
-
-bool TopDownBuilder::sahPrefersLeaf(const BuildRange& range, float splitCost) const {
-    const float area = range.bounds.halfArea();
+bool sahPrefersLeaf(const BvhBuildConfig& config, const Bounds3& bounds, uint32_t n, float splitCost) {
+    const float area = bounds.halfArea();
     if (!(area > 0.0f)) return false;  // no meaningful ratio: keep splitting
-    const float n = float(config_.sahTests(range.size()));
-    return !(config_.cTraversal + config_.cIntersect * splitCost / area < config_.cIntersect * n);
+    const float tests = float(config.sahTests(n));
+    return !(config.cTraversal + config.cIntersect * splitCost / area < config.cIntersect * tests);
 }
 
 Split TopDownBuilder::splitAtIndex(const BuildRange& range, uint32_t mid) {
@@ -61,11 +58,11 @@ std::optional<Split> TopDownBuilder::chooseSplit(const BuildRange& range, int de
     const uint32_t n = range.size();
     const bool mayBeLeaf = n <= config_.effectiveLeafCap();
     if (n <= uint32_t(config_.maxLeaf)) return std::nullopt;
-    if (allCentresEqual(range)) {
+    if (allCentresEqual(range.centroidBounds)) {
         if (mayBeLeaf) return std::nullopt;
         return splitAtIndex(range, range.begin + n / 2);
     }
-    if (depth + ceilLog2(n) >= kBvhMaxDepth - 1) return objectMedianSplit(range, range.centroidBounds.largestAxis());
+    if (nearDepthBound(depth, n)) return objectMedianSplit(range, range.centroidBounds.largestAxis());
     if (std::optional<Split> split = trySplit(range, mayBeLeaf)) return split;
     if (mayBeLeaf) return std::nullopt;
     return objectMedianSplit(range, range.centroidBounds.largestAxis());
@@ -129,7 +126,7 @@ namespace {
 
 // Step one of buildBvh: one PrimRef per valid triangle, and their boxes, in lanes of F.
 template <typename F>
-BuildRange preparePrimRefs(const PrimitiveSet& prims, PrimRef* out) {
+BuildRange preparePrimRefsWith(const PrimitiveSet& prims, PrimRef* out) {
     const std::span<const uint32_t> validTriangles = prims.validTriangles();
     const uint32_t n = uint32_t(validTriangles.size());
     const Triangle* triangles = prims.triangles.data();
@@ -153,11 +150,16 @@ BuildRange preparePrimRefs(const PrimitiveSet& prims, PrimRef* out) {
 
 }  // namespace
 
+BuildRange preparePrimRefs(const PrimitiveSet& prims, PrimRef* out, bool simd) {
+    return simd::withFloats4(simd, [&](auto f) { return preparePrimRefsWith<decltype(f)>(prims, out); });
+}
+
 const char* bvhKindName(BvhKind kind) {
     switch (kind) {
     case BvhKind::SpatialMedian: return "tdbvh";
     case BvhKind::BinnedSah: return "sahbvh";
     case BvhKind::SweepSah: return "sweepbvh";
+    case BvhKind::Sbvh: return "sbvh";
     }
     return "bvh";
 }
@@ -167,6 +169,9 @@ std::unique_ptr<TopDownBuilder> makeBvhBuilder(BvhKind kind, const BvhBuildConfi
     case BvhKind::SpatialMedian: return std::make_unique<SpatialMedianBuilder>(config);
     case BvhKind::BinnedSah: return std::make_unique<BinnedSahBuilder>(config);
     case BvhKind::SweepSah: return std::make_unique<SweepSahBuilder>(config);
+    // sbvh's own recursion (sbvh_builder.h) builds the triangles' tree; this in-place one
+    // serves its spheres and cones, by binned SAH (object splits only: no triangle to clip).
+    case BvhKind::Sbvh: return std::make_unique<BinnedSahBuilder>(config);
     }
     // Every BvhKind is a case above; a value outside the enum is a programming error.
     throw std::logic_error(fmt::format("makeBvhBuilder: unknown BvhKind {}", int(kind)));
@@ -197,25 +202,28 @@ std::vector<BvhNode, TraversalAllocator<BvhNode>> buildNodes(BvhKind kind, const
 }  // namespace
 
 Bvh buildBvh(BvhKind kind, const BvhBuildConfig& config, const PrimitiveSet& prims) {
+    if (kind == BvhKind::Sbvh) return buildSbvh(config, prims);
     const size_t n = prims.validTriangles().size();
     // Uninitialised storage: every PrimRef is written by preparePrimRefs.
     const std::unique_ptr<PrimRef[]> refs = std::make_unique_for_overwrite<PrimRef[]>(n);
-    const BuildRange root = simd::withFloats4(
-        config.simd, [&](auto f) { return preparePrimRefs<decltype(f)>(prims, refs.get()); });
+    const BuildRange root = preparePrimRefs(prims, refs.get(), config.simd);
 
     Bvh bvh;
     bvh.nodes = buildNodes(kind, config, std::span<PrimRef>(refs.get(), n), root);
     bvh.primIndices.resize(n);
+    for (size_t i = 0; i < n; ++i) bvh.primIndices[i] = refs[i].prim;
+    copyLeafTriangles(prims, config.threads, bvh);
+    return bvh;
+}
+
+void copyLeafTriangles(const PrimitiveSet& prims, int threads, Bvh& bvh) {
+    const size_t n = bvh.primIndices.size();
     bvh.leafTriangles.resize(n);
-    onThreads(config.threads, [&] {
+    onThreads(threads, [&] {
         tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
-            for (size_t i = r.begin(); i < r.end(); ++i) {
-                bvh.primIndices[i] = refs[i].prim;
-                bvh.leafTriangles[i] = prims.triangles[refs[i].prim];
-            }
+            for (size_t i = r.begin(); i < r.end(); ++i) bvh.leafTriangles[i] = prims.triangles[bvh.primIndices[i]];
         });
     });
-    return bvh;
 }
 
 QuadricBvh buildQuadricBvh(BvhKind kind, const BvhBuildConfig& config, const PrimitiveSet& prims) {
