@@ -1,20 +1,31 @@
 #include "accel/bvh/build/reference_split.h"
 
-#include <cmath>
+#include <bit>
+#include <cstdint>
+#include <limits>
 
 namespace bvhlab {
 
 namespace {
 
-// Extends `b` by the float box around a point computed in double.
-void extendOutward(Bounds3& b, const double (&p)[3]) {
+// The neighbours of a float towards -inf and +inf (std::nextafter is a libm call, and this is
+// the split's hottest line); finite arguments only.
+inline float nextDown(float f) {
+    if (f == 0.0f) return -std::numeric_limits<float>::denorm_min();
+    const uint32_t bits = std::bit_cast<uint32_t>(f);
+    return std::bit_cast<float>(f > 0.0f ? bits - 1 : bits + 1);
+}
+inline float nextUp(float f) { return -nextDown(-f); }
+
+// The float box around a point computed in double.
+Bounds3 outwardBox(const double (&p)[3]) {
     Vec3 lo, hi;
     for (int a = 0; a < 3; ++a) {
         const float f = float(p[a]);
-        lo[a] = double(f) > p[a] ? std::nextafter(f, -kInfinity) : f;
-        hi[a] = double(f) < p[a] ? std::nextafter(f, kInfinity) : f;
+        lo[a] = double(f) > p[a] ? nextDown(f) : f;
+        hi[a] = double(f) < p[a] ? nextUp(f) : f;
     }
-    b.extend(Bounds3(lo, hi));
+    return {lo, hi};
 }
 
 }  // namespace
@@ -33,8 +44,9 @@ std::pair<Bounds3, Bounds3> splitReference(const Triangle& triangle, const Bound
             double p[3];
             for (int c = 0; c < 3; ++c) p[c] = double(a[c]) + t * (double(b[c]) - a[c]);
             p[axis] = position;
-            extendOutward(left, p);
-            extendOutward(right, p);
+            const Bounds3 crossing = outwardBox(p);
+            left.extend(crossing);
+            right.extend(crossing);
         }
     }
     left = intersectionOf(left, box);
