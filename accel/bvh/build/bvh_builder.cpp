@@ -5,6 +5,7 @@
 #include "accel/bvh/build/sbvh_builder.h"
 #include "accel/bvh/build/spatial_median_builder.h"
 #include "accel/bvh/build/sweep_sah_builder.h"
+#include "accel/bvh/build/top_down_recursion.h"
 
 #include <fmt/core.h>
 #include <tbb/blocked_range.h>
@@ -73,53 +74,19 @@ std::vector<BvhNode, TraversalAllocator<BvhNode>> TopDownBuilder::build(std::spa
                                                                         std::vector<DeferredRange>* deferred,
                                                                         uint32_t deferBelow) {
     refs_ = refs;
-    std::vector<BvhNode, TraversalAllocator<BvhNode>> nodes;
-    if (root.size() == 0) return nodes;
     // The root, the padding slot that aligns the sibling pairs, and at most N - 1 pairs.
-    nodes.reserve(2 * size_t(root.size()));
-    nodes.resize(2);
-    nodes[1] = BvhNode{{0, 0, 0, 0, 0, 0}, 0, 0};
-
-    struct WorkItem {
-        BuildRange range;
-        uint32_t node;
-        int depth;
-    };
-    // Depth first, left before right: a subtree's nodes are contiguous, and the work stack
-    // holds at most one pending right sibling per level.
-    std::vector<WorkItem> stack;
-    stack.reserve(2 * kBvhMaxDepth);
-    stack.push_back({root, 0, depth});
-    while (!stack.empty()) {
-        const WorkItem item = stack.back();
-        stack.pop_back();
-        if (deferred && item.range.size() < deferBelow) {
-            deferred->push_back({item.range, item.node, item.depth});
-            continue;
-        }
-        BvhNode& node = nodes[item.node];
-        node.setBox(item.range.bounds);
-        const std::optional<Split> split = chooseSplit(item.range, item.depth);
-        if (!split) {
-            assert(item.range.size() > 0);  // an empty leaf would read as an inner node (count == 0)
-            node.index = item.range.begin;
-            node.count = item.range.size();
-            continue;
-        }
-        // A split rule's contract: two non-empty halves (an empty leaf would read as an inner
-        // node, count == 0), and a depth the traversal stacks can hold (kBvhMaxDepth).
-        if (split->left.size() == 0 || split->right.size() == 0 || item.depth + 1 >= kBvhMaxDepth)
-            throw std::logic_error(fmt::format("BVH builder: split of {} primitives at depth {} into {} + {}",
-                                               item.range.size(), item.depth, split->left.size(), split->right.size()));
-        const uint32_t left = uint32_t(nodes.size());
-        node.index = left;  // `node` is still valid: reserve() covers every node there can be
-        node.count = 0;
-        nodes.emplace_back();
-        nodes.emplace_back();
-        stack.push_back({split->right, left + 1, item.depth + 1});
-        stack.push_back({split->left, left, item.depth + 1});
-    }
-    return nodes;
+    return buildTopDown(
+        root, depth, 2 * size_t(root.size()),
+        [&](const BuildRange& range, uint32_t node, int rangeDepth) {
+            if (!deferred || range.size() >= deferBelow) return false;
+            deferred->push_back({range, node, rangeDepth});
+            return true;
+        },
+        [&](const BuildRange& range, int rangeDepth) { return chooseSplit(range, rangeDepth); },
+        [](const BuildRange& range, BvhNode& node) {
+            node.index = range.begin;
+            node.count = range.size();
+        });
 }
 
 namespace {

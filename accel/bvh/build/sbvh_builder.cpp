@@ -1,13 +1,12 @@
 #include "accel/bvh/build/sbvh_builder.h"
 
 #include "accel/bvh/build/reference_split.h"
+#include "accel/bvh/build/top_down_recursion.h"
 
-#include <fmt/core.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cassert>
-#include <stdexcept>
 
 namespace bvhlab {
 
@@ -34,7 +33,7 @@ std::vector<PrimRef> SbvhBuilder::takeVector() {
 }
 
 template <typename Side>
-std::pair<SbvhRange, SbvhRange> SbvhBuilder::partition(SbvhRange& range, Side side) {
+SbvhSplit SbvhBuilder::partition(SbvhRange& range, Side side) {
     return simd::withFloats4(config_.simd, [&](auto f) {
         BoundsAccumulator<decltype(f)> leftAcc, rightAcc;
         std::vector<PrimRef>& refs = range.refs;
@@ -62,15 +61,15 @@ std::pair<SbvhRange, SbvhRange> SbvhBuilder::partition(SbvhRange& range, Side si
         const uint32_t leftBudget = total == 0 ? 0 : uint32_t(uint64_t(rest) * kept / total);
         SbvhRange rightRange{std::move(right), rightAcc.bounds(), rightAcc.centroidBounds(), rest - leftBudget};
         SbvhRange leftRange{std::move(refs), leftAcc.bounds(), leftAcc.centroidBounds(), leftBudget};
-        return std::pair{std::move(leftRange), std::move(rightRange)};
+        return SbvhSplit{std::move(leftRange), std::move(rightRange)};
     });
 }
 
-std::pair<SbvhRange, SbvhRange> SbvhBuilder::splitAtIndex(SbvhRange& range, uint32_t mid) {
+SbvhSplit SbvhBuilder::splitAtIndex(SbvhRange& range, uint32_t mid) {
     return partition(range, [i = 0u, mid](const PrimRef&, PrimRef&, PrimRef&) mutable { return i++ < mid ? kLeft : kRight; });
 }
 
-std::pair<SbvhRange, SbvhRange> SbvhBuilder::objectMedianSplit(SbvhRange& range, int axis) {
+SbvhSplit SbvhBuilder::objectMedianSplit(SbvhRange& range, int axis) {
     const uint32_t mid = range.size() / 2;
     std::nth_element(range.refs.begin(), range.refs.begin() + mid, range.refs.end(), [axis](const PrimRef& a, const PrimRef& b) {
         const float ca = a.center(axis), cb = b.center(axis);
@@ -80,7 +79,7 @@ std::pair<SbvhRange, SbvhRange> SbvhBuilder::objectMedianSplit(SbvhRange& range,
 }
 
 // TopDownBuilder's leaf rules (bvh_builder.cpp), over a range of references.
-std::optional<std::pair<SbvhRange, SbvhRange>> SbvhBuilder::chooseSplit(SbvhRange& range, int depth) {
+std::optional<SbvhSplit> SbvhBuilder::chooseSplit(SbvhRange& range, int depth) {
     const uint32_t n = range.size();
     const bool mayBeLeaf = n <= config_.effectiveLeafCap();
     if (n <= uint32_t(config_.maxLeaf)) return std::nullopt;
@@ -94,7 +93,7 @@ std::optional<std::pair<SbvhRange, SbvhRange>> SbvhBuilder::chooseSplit(SbvhRang
     return objectMedianSplit(range, range.centroidBounds.largestAxis());
 }
 
-std::optional<std::pair<SbvhRange, SbvhRange>> SbvhBuilder::trySplit(SbvhRange& range, bool mayBeLeaf) {
+std::optional<SbvhSplit> SbvhBuilder::trySplit(SbvhRange& range, bool mayBeLeaf) {
     const uint32_t n = range.size();
     const std::optional<ObjectPlane> object =
         objectBinning_.bestPlane(range.refs.data(), {0, n, range.bounds, range.centroidBounds});
@@ -144,59 +143,31 @@ std::optional<std::pair<SbvhRange, SbvhRange>> SbvhBuilder::trySplit(SbvhRange& 
         right = PrimRef::of(rightBox, ref.prim);
         return kBoth;
     });
-    if (split.first.size() != 0 && split.second.size() != 0) return split;
+    if (split.left.size() != 0 && split.right.size() != 0) return split;
     // Every reference went whole to one side (none was cut, so they are the range's own, in
     // order): the object split instead.
-    range = std::move(split.first.size() != 0 ? split.first : split.second);
+    range = std::move(split.left.size() != 0 ? split.left : split.right);
     return partition(range, objectSide);
 }
 
 BvhNodes SbvhBuilder::build(SbvhRange root, int depth, std::vector<Deferred>* deferred, uint32_t deferBelow) {
-    BvhNodes nodes;
-    if (root.size() == 0) return nodes;
     // The root, the padding slot that aligns the sibling pairs, and at most R - 1 pairs over at
     // most R = N + budget references.
-    nodes.reserve(2 * (size_t(root.size()) + root.budget));
-    nodes.resize(2);
-    nodes[1] = BvhNode{{0, 0, 0, 0, 0, 0}, 0, 0};
-
-    struct WorkItem {
-        SbvhRange range;
-        uint32_t node;
-        int depth;
-    };
-    // Depth first, left before right, as TopDownBuilder::build.
-    std::vector<WorkItem> stack;
-    stack.reserve(2 * kBvhMaxDepth);
-    stack.push_back({std::move(root), 0, depth});
-    while (!stack.empty()) {
-        WorkItem item = std::move(stack.back());
-        stack.pop_back();
-        if (deferred && item.range.size() < deferBelow) {
-            deferred->push_back({std::move(item.range), item.node, item.depth});
-            continue;
-        }
-        nodes[item.node].setBox(item.range.bounds);
-        auto split = chooseSplit(item.range, item.depth);
-        if (!split) {
-            nodes[item.node].index = uint32_t(leafPrims_.size());
-            nodes[item.node].count = item.range.size();
-            for (const PrimRef& ref : item.range.refs) leafPrims_.push_back(ref.prim);
-            pool_.push_back(std::move(item.range.refs));
-            continue;
-        }
-        if (split->first.size() == 0 || split->second.size() == 0 || item.depth + 1 >= kBvhMaxDepth)
-            throw std::logic_error(fmt::format("SBVH builder: split of {} references at depth {} into {} + {}",
-                                               item.range.size(), item.depth, split->first.size(), split->second.size()));
-        const uint32_t left = uint32_t(nodes.size());
-        nodes[item.node].index = left;
-        nodes[item.node].count = 0;
-        nodes.emplace_back();
-        nodes.emplace_back();
-        stack.push_back({std::move(split->second), left + 1, item.depth + 1});
-        stack.push_back({std::move(split->first), left, item.depth + 1});
-    }
-    return nodes;
+    const size_t maxNodes = 2 * (size_t(root.size()) + root.budget);
+    return buildTopDown(
+        std::move(root), depth, maxNodes,
+        [&](SbvhRange& range, uint32_t node, int rangeDepth) {
+            if (!deferred || range.size() >= deferBelow) return false;
+            deferred->push_back({std::move(range), node, rangeDepth});
+            return true;
+        },
+        [&](SbvhRange& range, int rangeDepth) { return chooseSplit(range, rangeDepth); },
+        [&](SbvhRange& range, BvhNode& node) {
+            node.index = uint32_t(leafPrims_.size());
+            node.count = range.size();
+            for (const PrimRef& ref : range.refs) leafPrims_.push_back(ref.prim);
+            pool_.push_back(std::move(range.refs));
+        });
 }
 
 Bvh buildSbvh(const BvhBuildConfig& config, const PrimitiveSet& prims) {

@@ -20,7 +20,6 @@
 #include "accel/bvh/build/spatial_binning.h"
 
 #include <span>
-#include <utility>
 #include <vector>
 
 namespace bvhlab {
@@ -33,6 +32,11 @@ struct SbvhRange {
     Bounds3 bounds, centroidBounds;
     uint32_t budget = 0;
     uint32_t size() const { return uint32_t(refs.size()); }
+};
+
+// A node's references shared out between its children (a cut reference in both).
+struct SbvhSplit {
+    SbvhRange left, right;
 };
 
 class SbvhBuilder {
@@ -53,14 +57,14 @@ public:
     std::vector<uint32_t>& leafPrims() { return leafPrims_; }
 
 private:
-    std::optional<std::pair<SbvhRange, SbvhRange>> chooseSplit(SbvhRange& range, int depth);
-    std::optional<std::pair<SbvhRange, SbvhRange>> trySplit(SbvhRange& range, bool mayBeLeaf);
+    std::optional<SbvhSplit> chooseSplit(SbvhRange& range, int depth);
+    std::optional<SbvhSplit> trySplit(SbvhRange& range, bool mayBeLeaf);
     // Moves the references to the children: side(ref, left, right) returns which to keep
     // (1 left, 2 right, 3 both, with the boxes it writes). The left child keeps the storage.
     template <typename Side>
-    std::pair<SbvhRange, SbvhRange> partition(SbvhRange& range, Side side);
-    std::pair<SbvhRange, SbvhRange> splitAtIndex(SbvhRange& range, uint32_t mid);
-    std::pair<SbvhRange, SbvhRange> objectMedianSplit(SbvhRange& range, int axis);
+    SbvhSplit partition(SbvhRange& range, Side side);
+    SbvhSplit splitAtIndex(SbvhRange& range, uint32_t mid);
+    SbvhSplit objectMedianSplit(SbvhRange& range, int axis);
     std::vector<PrimRef> takeVector();
 
     BvhBuildConfig config_;
