@@ -8,6 +8,7 @@
 #include "accel/bvh/bvh_accelerator.h"
 #include "accel/naive/naive_accelerator.h"
 #include "framework/scene/scene.h"
+#include "tests/support/triangle_soup.h"
 
 #include <gtest/gtest.h>
 
@@ -18,16 +19,7 @@
 namespace bvhlab {
 namespace {
 
-struct Soup {
-    std::vector<Triangle> triangles;
-    std::vector<uint32_t> valid;
-
-    void add(const Triangle& t) {
-        valid.push_back(uint32_t(triangles.size()));
-        triangles.push_back(t);
-    }
-    PrimitiveSet prims() const { return {triangles, valid}; }
-};
+using test::Soup;
 
 // Long thin triangles along the diagonals of a cube of side 10: their boxes are large and
 // overlap everywhere, so object splits cannot separate them and spatial splits must.
