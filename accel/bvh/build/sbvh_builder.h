@@ -4,7 +4,7 @@
 // spatial splits (spatial_binning.h), which cut the references a plane crosses into chopped
 // boxes of the triangle's parts (reference_split.h); the cheaper split wins. A cut reference
 // whose whole box on one side costs less than the cut is unsplit (section 4.4). New references
-// come from a budget of sbvhGrowth * N (most 30 % more references than triangles).
+// come from a budget of sbvhGrowth * N (0.3: at most 30 % more references than triangles).
 //
 // Why a recursion of its own and not TopDownBuilder's hook: spatial splits make ranges grow,
 // and TopDownBuilder partitions one array of exactly N PrimRefs in place. Here each node's
