@@ -1,4 +1,4 @@
-// The reference split of the SBVH (Stich et al. 2009, section 4.2): a triangle's reference
+// The reference split of the SBVH (Stich et al. 2009): a triangle's reference
 // (its box, possibly already chopped by earlier splits) cut by an axis-aligned plane into the
 // boxes of the triangle's parts on either side, each intersected with the reference's box.
 // The triangle is clipped, not only its box halved, so the parts' boxes are tight: that is

@@ -101,7 +101,7 @@ std::optional<SbvhSplit> SbvhBuilder::trySplit(SbvhRange& range, bool mayBeLeaf)
     float bestCost = object->cost;
 
     // Spatial splits only where the object split leaves its children overlapping (lambda >
-    // alpha * A(root), section 4.5): elsewhere they rarely win and cost a binning.
+    // alpha * A(root)): elsewhere they rarely win and cost a binning.
     std::optional<SpatialPlane> spatial;
     if (range.budget > 0) {
         const float overlap =
@@ -120,7 +120,7 @@ std::optional<SbvhSplit> SbvhBuilder::trySplit(SbvhRange& range, bool mayBeLeaf)
     };
     if (!spatial) return partition(range, objectSide);
 
-    // The spatial split with reference unsplitting (section 4.4): a cut reference goes whole to
+    // The spatial split with reference unsplitting: a cut reference goes whole to
     // one side when that costs less than the cut, judged against the binning's boxes and counts.
     const SpatialPlane& p = *spatial;
     const float areaLeft = p.left.halfArea(), areaRight = p.right.halfArea();

@@ -3,14 +3,15 @@
 // when its two children overlap by more than alpha * A(root) (BvhBuildConfig::sbvhAlpha), also
 // spatial splits (spatial_binning.h), which cut the references a plane crosses into chopped
 // boxes of the triangle's parts (reference_split.h); the cheaper split wins. A cut reference
-// whose whole box on one side costs less than the cut is unsplit (section 4.4). New references
+// whose whole box on one side costs less than the cut is unsplit. New references
 // come from a budget of sbvhGrowth * N (0.3: at most 30 % more references than triangles).
 //
-// Why a recursion of its own and not TopDownBuilder's hook: spatial splits make ranges grow,
-// and TopDownBuilder partitions one array of exactly N PrimRefs in place. Here each node's
+// Why not TopDownBuilder and its trySplit hook: spatial splits make ranges grow, and
+// TopDownBuilder partitions one array of exactly N PrimRefs in place. Here each node's
 // references are a vector of their own (the left child keeps its parent's storage, the right
-// one takes a vector from a pool), and the leaves write their primitives to an output array,
-// so the result is the same binary Bvh: a cut triangle appears in several leaves, each time
+// one takes a vector from a pool), the leaves write their primitives to an output array, and
+// the nodes come from the same recursion (top_down_recursion.h), so the result is the same
+// binary Bvh: a cut triangle appears in several leaves, each time
 // whole in leafTriangles, so every traversal and the wide collapse read it unchanged.
 #pragma once
 

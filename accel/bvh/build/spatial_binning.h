@@ -1,4 +1,4 @@
-// The spatial split binning of the SBVH (Stich et al. 2009, section 4.3): K equal bins over the
+// The spatial split binning of the SBVH (Stich et al. 2009): K equal bins over the
 // node's box (not its centres) along each axis. A reference enters the bin of its lower bound
 // and exits the bin of its upper bound; in every bin it spans, the bin's box grows by the box
 // of the triangle's part inside that bin (reference_split.h). The plane between bins p-1 and p
