@@ -43,6 +43,13 @@ const std::vector<AcceleratorInfo>& acceleratorInfos() {
                             "sahbvh's tree (leaves charged by blocks of eight) in 8-wide nodes, eight child boxes tested at "
                             "once (AVX2; scalar lanes without it), leaves eight triangles at once; N_TR counts wide steps",
                             BvhKind::BinnedSah),
+        bvhInfo<Bvh>("sbvh",
+                     "split BVH (Stich et al. 2009): sahbvh's object splits and, where their children overlap "
+                     "(BVH::sbvhAlpha), spatial splits that clip triangles to bins, within BVH::sbvhGrowth more references",
+                     BvhKind::Sbvh),
+        bvhInfo<WideBvh<8>>("sbvh8",
+                            "sbvh's tree (leaves charged by blocks of eight) in 8-wide nodes, as sahbvh8; N_TR counts wide steps",
+                            BvhKind::Sbvh),
         bvhInfo<Bvh>("sweepbvh", "BVH by full-sweep SAH over all N-1 planes per axis: the exact reference for sahbvh; slow build",
                      BvhKind::SweepSah),
     };

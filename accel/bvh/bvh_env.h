@@ -1,4 +1,4 @@
-// The env keys of the BVH accelerators (tdbvh, sahbvh, sweepbvh), all in section BVH::.
+// The env keys of the BVH accelerators (tdbvh, sahbvh, sweepbvh, sbvh), all in section BVH::.
 #pragma once
 
 #include "accel/bvh/build/bvh_builder.h"
@@ -29,6 +29,13 @@ inline constexpr FloatKey cIntersect{
 inline constexpr IntKey bins{"BVH::bins", "16", 2, 256, "sahbvh: bins per axis (Wald 2007: 16 suffices)"};
 inline constexpr BoolKey allAxes{"BVH::allAxes", "false",
                                  "sahbvh: bin all three axes and take the best, not only the widest"};
+inline constexpr FloatKey sbvhAlpha{
+    "BVH::sbvhAlpha", "1e-5", 0, 1,
+    "sbvh: try spatial splits only where the object split's children overlap by more than this fraction of the "
+    "root's area (Stich et al. 2009: 1e-5; 0 = everywhere, 1 = never)"};
+inline constexpr FloatKey sbvhGrowth{
+    "BVH::sbvhGrowth", "0.3", 0, 10,
+    "sbvh: spatial splits may add at most this many references per triangle (0.3 = 30 % more); none once spent"};
 inline constexpr BoolKey simd{"BVH::simd", "true",
                               "SSE in the build's hot loops (bounds, centres, binning, partition); false = scalar, same tree"};
 inline constexpr BoolKey robust{

@@ -51,4 +51,9 @@ inline Bounds3 unionOf(const Bounds3& a, const Bounds3& b) {
     return {glm::min(a.lower, b.lower), glm::max(a.upper, b.upper)};
 }
 
+// Empty (isEmpty()) when the boxes do not overlap.
+inline Bounds3 intersectionOf(const Bounds3& a, const Bounds3& b) {
+    return {glm::max(a.lower, b.lower), glm::min(a.upper, b.upper)};
+}
+
 }  // namespace bvhlab

@@ -46,4 +46,6 @@ TEST(Docs, BvhConfigDefaultsAreTheKeysDefaults) {
     EXPECT_EQ(fromKeys.cIntersect, members.cIntersect);
     EXPECT_EQ(fromKeys.simd, members.simd);
     EXPECT_EQ(fromKeys.medianSplitBox, members.medianSplitBox);
+    EXPECT_EQ(fromKeys.sbvhAlpha, members.sbvhAlpha);
+    EXPECT_EQ(fromKeys.sbvhGrowth, members.sbvhGrowth);
 }

@@ -1,14 +1,16 @@
 #include "accel/bvh/build/bvh_builder.h"
 
 #include "accel/bvh/build/binned_sah_builder.h"
+#include "accel/bvh/build/build_jobs.h"
+#include "accel/bvh/build/sbvh_builder.h"
 #include "accel/bvh/build/spatial_median_builder.h"
 #include "accel/bvh/build/sweep_sah_builder.h"
+#include "accel/bvh/build/top_down_recursion.h"
 
 #include <fmt/core.h>
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <bit>
@@ -17,22 +19,18 @@
 
 namespace bvhlab {
 
-namespace {
+bool allCentresEqual(const Bounds3& c) { return c.lower.x == c.upper.x && c.lower.y == c.upper.y && c.lower.z == c.upper.z; }
 
-int ceilLog2(uint32_t n) { return n <= 1 ? 0 : int(std::bit_width(n - 1)); }
-
-bool allCentresEqual(const BuildRange& range) {
-    const Bounds3& c = range.centroidBounds;
-    return c.lower.x == c.upper.x && c.lower.y == c.upper.y && c.lower.z == c.upper.z;
+bool nearDepthBound(int depth, uint32_t n) {
+    const int ceilLog2 = n <= 1 ? 0 : int(std::bit_width(n - 1));
+    return depth + ceilLog2 >= kBvhMaxDepth - 1;
 }
 
-}  // namespace
-
-bool TopDownBuilder::sahPrefersLeaf(const BuildRange& range, float splitCost) const {
-    const float area = range.bounds.halfArea();
+bool sahPrefersLeaf(const BvhBuildConfig& config, const Bounds3& bounds, uint32_t n, float splitCost) {
+    const float area = bounds.halfArea();
     if (!(area > 0.0f)) return false;  // no meaningful ratio: keep splitting
-    const float n = float(config_.sahTests(range.size()));
-    return !(config_.cTraversal + config_.cIntersect * splitCost / area < config_.cIntersect * n);
+    const float tests = float(config.sahTests(n));
+    return !(config.cTraversal + config.cIntersect * splitCost / area < config.cIntersect * tests);
 }
 
 Split TopDownBuilder::splitAtIndex(const BuildRange& range, uint32_t mid) {
@@ -61,11 +59,11 @@ std::optional<Split> TopDownBuilder::chooseSplit(const BuildRange& range, int de
     const uint32_t n = range.size();
     const bool mayBeLeaf = n <= config_.effectiveLeafCap();
     if (n <= uint32_t(config_.maxLeaf)) return std::nullopt;
-    if (allCentresEqual(range)) {
+    if (allCentresEqual(range.centroidBounds)) {
         if (mayBeLeaf) return std::nullopt;
         return splitAtIndex(range, range.begin + n / 2);
     }
-    if (depth + ceilLog2(n) >= kBvhMaxDepth - 1) return objectMedianSplit(range, range.centroidBounds.largestAxis());
+    if (nearDepthBound(depth, n)) return objectMedianSplit(range, range.centroidBounds.largestAxis());
     if (std::optional<Split> split = trySplit(range, mayBeLeaf)) return split;
     if (mayBeLeaf) return std::nullopt;
     return objectMedianSplit(range, range.centroidBounds.largestAxis());
@@ -76,60 +74,26 @@ std::vector<BvhNode, TraversalAllocator<BvhNode>> TopDownBuilder::build(std::spa
                                                                         std::vector<DeferredRange>* deferred,
                                                                         uint32_t deferBelow) {
     refs_ = refs;
-    std::vector<BvhNode, TraversalAllocator<BvhNode>> nodes;
-    if (root.size() == 0) return nodes;
     // The root, the padding slot that aligns the sibling pairs, and at most N - 1 pairs.
-    nodes.reserve(2 * size_t(root.size()));
-    nodes.resize(2);
-    nodes[1] = BvhNode{{0, 0, 0, 0, 0, 0}, 0, 0};
-
-    struct WorkItem {
-        BuildRange range;
-        uint32_t node;
-        int depth;
-    };
-    // Depth first, left before right: a subtree's nodes are contiguous, and the work stack
-    // holds at most one pending right sibling per level.
-    std::vector<WorkItem> stack;
-    stack.reserve(2 * kBvhMaxDepth);
-    stack.push_back({root, 0, depth});
-    while (!stack.empty()) {
-        const WorkItem item = stack.back();
-        stack.pop_back();
-        if (deferred && item.range.size() < deferBelow) {
-            deferred->push_back({item.range, item.node, item.depth});
-            continue;
-        }
-        BvhNode& node = nodes[item.node];
-        node.setBox(item.range.bounds);
-        const std::optional<Split> split = chooseSplit(item.range, item.depth);
-        if (!split) {
-            assert(item.range.size() > 0);  // an empty leaf would read as an inner node (count == 0)
-            node.index = item.range.begin;
-            node.count = item.range.size();
-            continue;
-        }
-        // A split rule's contract: two non-empty halves (an empty leaf would read as an inner
-        // node, count == 0), and a depth the traversal stacks can hold (kBvhMaxDepth).
-        if (split->left.size() == 0 || split->right.size() == 0 || item.depth + 1 >= kBvhMaxDepth)
-            throw std::logic_error(fmt::format("BVH builder: split of {} primitives at depth {} into {} + {}",
-                                               item.range.size(), item.depth, split->left.size(), split->right.size()));
-        const uint32_t left = uint32_t(nodes.size());
-        node.index = left;  // `node` is still valid: reserve() covers every node there can be
-        node.count = 0;
-        nodes.emplace_back();
-        nodes.emplace_back();
-        stack.push_back({split->right, left + 1, item.depth + 1});
-        stack.push_back({split->left, left, item.depth + 1});
-    }
-    return nodes;
+    return buildTopDown(
+        root, depth, 2 * size_t(root.size()),
+        [&](const BuildRange& range, uint32_t node, int rangeDepth) {
+            if (!deferred || range.size() >= deferBelow) return false;
+            deferred->push_back({range, node, rangeDepth});
+            return true;
+        },
+        [&](const BuildRange& range, int rangeDepth) { return chooseSplit(range, rangeDepth); },
+        [](const BuildRange& range, BvhNode& node) {
+            node.index = range.begin;
+            node.count = range.size();
+        });
 }
 
 namespace {
 
 // Step one of buildBvh: one PrimRef per valid triangle, and their boxes, in lanes of F.
 template <typename F>
-BuildRange preparePrimRefs(const PrimitiveSet& prims, PrimRef* out) {
+BuildRange preparePrimRefsWith(const PrimitiveSet& prims, PrimRef* out) {
     const std::span<const uint32_t> validTriangles = prims.validTriangles();
     const uint32_t n = uint32_t(validTriangles.size());
     const Triangle* triangles = prims.triangles.data();
@@ -153,11 +117,16 @@ BuildRange preparePrimRefs(const PrimitiveSet& prims, PrimRef* out) {
 
 }  // namespace
 
+BuildRange preparePrimRefs(const PrimitiveSet& prims, PrimRef* out, bool simd) {
+    return simd::withFloats4(simd, [&](auto f) { return preparePrimRefsWith<decltype(f)>(prims, out); });
+}
+
 const char* bvhKindName(BvhKind kind) {
     switch (kind) {
     case BvhKind::SpatialMedian: return "tdbvh";
     case BvhKind::BinnedSah: return "sahbvh";
     case BvhKind::SweepSah: return "sweepbvh";
+    case BvhKind::Sbvh: return "sbvh";
     }
     return "bvh";
 }
@@ -167,39 +136,15 @@ std::unique_ptr<TopDownBuilder> makeBvhBuilder(BvhKind kind, const BvhBuildConfi
     case BvhKind::SpatialMedian: return std::make_unique<SpatialMedianBuilder>(config);
     case BvhKind::BinnedSah: return std::make_unique<BinnedSahBuilder>(config);
     case BvhKind::SweepSah: return std::make_unique<SweepSahBuilder>(config);
+    // sbvh's own recursion (sbvh_builder.h) builds the triangles' tree; this in-place one
+    // serves its spheres and cones, by binned SAH (object splits only: no triangle to clip).
+    case BvhKind::Sbvh: return std::make_unique<BinnedSahBuilder>(config);
     }
     // Every BvhKind is a case above; a value outside the enum is a programming error.
     throw std::logic_error(fmt::format("makeBvhBuilder: unknown BvhKind {}", int(kind)));
 }
 
 namespace {
-
-// Subtrees over fewer primitives than this are built as independent jobs, in parallel, after
-// the nodes above them; large enough that a job outweighs its scheduling, small enough that
-// there are many more jobs than threads.
-constexpr uint32_t kJobPrimitives = 4096;
-
-// Runs f() on `threads` TBB threads (0 = all hardware threads).
-template <typename F>
-void onThreads(int threads, F&& f) {
-    if (threads == 1) return f();
-    tbb::task_arena arena(threads == 0 ? tbb::task_arena::automatic : threads);
-    arena.execute(f);
-}
-
-// Puts the subtree built by a job (root at 0, padding slot, pairs) into the tree: its root into
-// its slot, its pairs appended (an even offset: pairs stay on cache lines of their own).
-void appendSubtree(std::vector<BvhNode, TraversalAllocator<BvhNode>>& nodes, uint32_t slot,
-                   const std::vector<BvhNode, TraversalAllocator<BvhNode>>& subtree) {
-    assert(nodes.size() % 2 == 0);
-    const uint32_t shift = uint32_t(nodes.size()) - 2;  // subtree index 2 lands at nodes.size()
-    const auto moved = [shift](BvhNode n) {
-        if (!n.isLeaf()) n.index += shift;
-        return n;
-    };
-    nodes[slot] = moved(subtree[0]);
-    for (size_t i = 2; i < subtree.size(); ++i) nodes.push_back(moved(subtree[i]));
-}
 
 // The nodes over `all` (prepared PrimRefs whose boxes and centres `root` bounds), which it
 // reorders into leaf order: the nodes above the jobs, then the jobs' subtrees appended in the
@@ -224,25 +169,28 @@ std::vector<BvhNode, TraversalAllocator<BvhNode>> buildNodes(BvhKind kind, const
 }  // namespace
 
 Bvh buildBvh(BvhKind kind, const BvhBuildConfig& config, const PrimitiveSet& prims) {
+    if (kind == BvhKind::Sbvh) return buildSbvh(config, prims);
     const size_t n = prims.validTriangles().size();
     // Uninitialised storage: every PrimRef is written by preparePrimRefs.
     const std::unique_ptr<PrimRef[]> refs = std::make_unique_for_overwrite<PrimRef[]>(n);
-    const BuildRange root = simd::withFloats4(
-        config.simd, [&](auto f) { return preparePrimRefs<decltype(f)>(prims, refs.get()); });
+    const BuildRange root = preparePrimRefs(prims, refs.get(), config.simd);
 
     Bvh bvh;
     bvh.nodes = buildNodes(kind, config, std::span<PrimRef>(refs.get(), n), root);
     bvh.primIndices.resize(n);
+    for (size_t i = 0; i < n; ++i) bvh.primIndices[i] = refs[i].prim;
+    copyLeafTriangles(prims, config.threads, bvh);
+    return bvh;
+}
+
+void copyLeafTriangles(const PrimitiveSet& prims, int threads, Bvh& bvh) {
+    const size_t n = bvh.primIndices.size();
     bvh.leafTriangles.resize(n);
-    onThreads(config.threads, [&] {
+    onThreads(threads, [&] {
         tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
-            for (size_t i = r.begin(); i < r.end(); ++i) {
-                bvh.primIndices[i] = refs[i].prim;
-                bvh.leafTriangles[i] = prims.triangles[refs[i].prim];
-            }
+            for (size_t i = r.begin(); i < r.end(); ++i) bvh.leafTriangles[i] = prims.triangles[bvh.primIndices[i]];
         });
     });
-    return bvh;
 }
 
 QuadricBvh buildQuadricBvh(BvhKind kind, const BvhBuildConfig& config, const PrimitiveSet& prims) {

@@ -19,9 +19,10 @@ enum class BvhKind {
     SpatialMedian,  // tdbvh: spatial median
     BinnedSah,  // sahbvh: binned SAH (Wald 2007)
     SweepSah,   // sweepbvh: full-sweep SAH, the exact reference for the binning
+    Sbvh,       // sbvh: binned SAH with spatial splits (Stich et al. 2009), sbvh_builder.h
 };
 
-// The registered name of a binary BVH by this builder: "tdbvh", "sahbvh", "sweepbvh".
+// The registered name of a binary BVH by this builder: "tdbvh", "sahbvh", "sweepbvh", "sbvh".
 const char* bvhKindName(BvhKind kind);
 
 enum class MedianSplitBox {
@@ -45,6 +46,9 @@ struct BvhBuildConfig {
     bool simd = true;            // SIMD in the hot loops (prep, binning, partition); false = the
                                  // scalar backend of the same code, the same tree
     MedianSplitBox medianSplitBox = MedianSplitBox::CentroidBox;  // tdbvh: which box's longest axis is halved
+    float sbvhAlpha = 1e-5f;     // sbvh: spatial splits only where the object split's children
+                                 // overlap by more than alpha * A(root)
+    float sbvhGrowth = 0.3f;     // sbvh: at most this many new references per triangle
     int threads = 1;             // build threads (TBB; 0 = all hardware threads): the tree does
                                  // not depend on them
 
@@ -52,6 +56,16 @@ struct BvhBuildConfig {
     // What the SAH charges for testing n primitives: n, or the blocks they fill.
     uint32_t sahTests(uint32_t n) const { return (n + (1u << sahBlockShift) - 1) >> sahBlockShift; }
 };
+
+// The SAH leaf test: a split of cost `splitCost` = A_L*N_L + A_R*N_R of n primitives in
+// `bounds` pays off when C_trav + C_isect * splitCost / A < C_isect * N.
+bool sahPrefersLeaf(const BvhBuildConfig& config, const Bounds3& bounds, uint32_t n, float splitCost);
+
+// Leaf rules every recursion shares: no plane separates primitives whose centres all coincide,
+// and near the depth bound only object-median splits (halving the count) are allowed, which
+// bounds the depth by depth + ceil(log2 N) <= kBvhMaxDepth - 1.
+bool allCentresEqual(const Bounds3& centroidBounds);
+bool nearDepthBound(int depth, uint32_t n);
 
 // A node under construction: the primitives refs[begin, end) and their boxes.
 struct BuildRange {
@@ -95,9 +109,9 @@ protected:
     // maxLeaf whose centres are not all equal.
     virtual std::optional<Split> trySplit(const BuildRange& range, bool mayBeLeaf) = 0;
 
-    // The SAH leaf test: a split of cost `splitCost` = A_L*N_L + A_R*N_R pays off when
-    // C_trav + C_isect * splitCost / A < C_isect * N.
-    bool sahPrefersLeaf(const BuildRange& range, float splitCost) const;
+    bool sahPrefersLeaf(const BuildRange& range, float splitCost) const {
+        return bvhlab::sahPrefersLeaf(config_, range.bounds, range.size(), splitCost);
+    }
 
     // Moves the primitives for which isLeft(ref) holds to the front; computes both halves' boxes
     // in the same pass (SIMD backend per config). Halves may be empty.
@@ -150,11 +164,17 @@ Split TopDownBuilder::partition(const BuildRange& range, IsLeft isLeft) {
     });
 }
 
+// One PrimRef per valid triangle in `out`, and the range over them (SIMD or scalar).
+BuildRange preparePrimRefs(const PrimitiveSet& prims, PrimRef* out, bool simd);
+
 // The whole build: PrimRefs from the valid triangles (SIMD or scalar), the recursion of the
 // chosen builder, then the leaf arrays (primitive indices and triangles in leaf order).
 Bvh buildBvh(BvhKind kind, const BvhBuildConfig& config, const PrimitiveSet& prims);
 
-// The same over the valid spheres and cones (their boxes), with their shapes in leaf order.
+// Fills bvh.leafTriangles with the triangles bvh.primIndices name, in parallel.
+void copyLeafTriangles(const PrimitiveSet& prims, int threads, Bvh& bvh);
+
+// buildBvh over the valid spheres and cones (their boxes), with their shapes in leaf order.
 QuadricBvh buildQuadricBvh(BvhKind kind, const BvhBuildConfig& config, const PrimitiveSet& prims);
 
 std::unique_ptr<TopDownBuilder> makeBvhBuilder(BvhKind kind, const BvhBuildConfig& config);

@@ -23,6 +23,10 @@ struct alignas(32) PrimRef {
     uint32_t pad;
 
     float center(int axis) const { return 0.5f * (lower[axis] + upper[axis]); }
+    Bounds3 box() const { return {{lower[0], lower[1], lower[2]}, {upper[0], upper[1], upper[2]}}; }
+    static PrimRef of(const Bounds3& b, uint32_t prim) {
+        return {{b.lower.x, b.lower.y, b.lower.z}, prim, {b.upper.x, b.upper.y, b.upper.z}, 0};
+    }
 };
 static_assert(sizeof(PrimRef) == 32);
 

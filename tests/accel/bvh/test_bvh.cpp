@@ -11,6 +11,7 @@
 #include "accel/registry.h"
 #include "apps/common/program_keys.h"
 #include "framework/scene/scene.h"
+#include "tests/support/triangle_soup.h"
 
 #include <gtest/gtest.h>
 
@@ -25,17 +26,7 @@ namespace {
 
 constexpr BvhKind kAllKinds[] = {BvhKind::SpatialMedian, BvhKind::BinnedSah, BvhKind::SweepSah};
 
-// A triangle soup; `valid` lists every triangle unless told otherwise.
-struct Soup {
-    std::vector<Triangle> triangles;
-    std::vector<uint32_t> valid;
-
-    void add(const Triangle& t) {
-        valid.push_back(uint32_t(triangles.size()));
-        triangles.push_back(t);
-    }
-    PrimitiveSet prims() const { return {triangles, valid}; }
-};
+using test::Soup;
 
 // The unit right triangle at the origin and a copy moved by `shift`: the smallest two-leaf tree.
 Soup triangleAndCopy(Vec3 shift) {
