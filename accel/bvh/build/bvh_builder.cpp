@@ -1,6 +1,7 @@
 #include "accel/bvh/build/bvh_builder.h"
 
 #include "accel/bvh/build/binned_sah_builder.h"
+#include "accel/bvh/build/build_threads.h"
 #include "accel/bvh/build/spatial_median_builder.h"
 #include "accel/bvh/build/sweep_sah_builder.h"
 
@@ -8,7 +9,6 @@
 #include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <bit>
@@ -178,14 +178,6 @@ namespace {
 // the nodes above them; large enough that a job outweighs its scheduling, small enough that
 // there are many more jobs than threads.
 constexpr uint32_t kJobPrimitives = 4096;
-
-// Runs f() on `threads` TBB threads (0 = all hardware threads).
-template <typename F>
-void onThreads(int threads, F&& f) {
-    if (threads == 1) return f();
-    tbb::task_arena arena(threads == 0 ? tbb::task_arena::automatic : threads);
-    arena.execute(f);
-}
 
 // Puts the subtree built by a job (root at 0, padding slot, pairs) into the tree: its root into
 // its slot, its pairs appended (an even offset: pairs stay on cache lines of their own).
