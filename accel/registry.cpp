@@ -43,6 +43,13 @@ const std::vector<AcceleratorInfo>& acceleratorInfos() {
                             "sahbvh's tree (leaves charged by blocks of eight) in 8-wide nodes, eight child boxes tested at "
                             "once (AVX2; scalar lanes without it), leaves eight triangles at once; N_TR counts wide steps",
                             BvhKind::BinnedSah),
+        bvhInfo<Bvh>("ploc",
+                     "BVH by PLOC (Meister & Bittner 2018): Morton order, mutual nearest neighbours within BVH::plocRadius "
+                     "merged bottom-up in parallel, leaves formed by SAH",
+                     BvhKind::Ploc),
+        bvhInfo<WideBvh<8>>("ploc8",
+                            "ploc's tree (leaves charged by blocks of eight) in 8-wide nodes, as sahbvh8; N_TR counts wide steps",
+                            BvhKind::Ploc),
         bvhInfo<Bvh>("sweepbvh", "BVH by full-sweep SAH over all N-1 planes per axis: the exact reference for sahbvh; slow build",
                      BvhKind::SweepSah),
     };

@@ -1,5 +1,5 @@
 // The BVH accelerators behind our interface: one class over a node layout, parameterised by the
-// builder (tdbvh, sahbvh, sweepbvh) and the traversal setting. Layout = Bvh is the binary tree
+// builder (tdbvh, sahbvh, sweepbvh, ploc) and the traversal setting. Layout = Bvh is the binary tree
 // the builders emit; Layout = WideBvh<N> collapses it by SAH into N-wide nodes (sahbvh4,
 // sahbvh8) whose leaves hold their triangles in SIMD blocks of eight. For them the SAH builders
 // charge a leaf by the blocks it fills (BvhBuildConfig::sahBlockShift), so their binary tree is

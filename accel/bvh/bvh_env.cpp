@@ -4,7 +4,7 @@ namespace bvhlab {
 
 void registerBvhKeys(EnvRegistry& r) {
     using namespace keys::BVH;
-    for (const IntKey& key : {maxLeaf, leafCap, bins, threads}) r.add(key);
+    for (const IntKey& key : {maxLeaf, leafCap, bins, plocRadius, threads}) r.add(key);
     for (const BoolKey& key : {sahTermination, allAxes, keys::BVH::simd, robust}) r.add(key);
     for (const FloatKey& key : {cTraversal, cIntersect}) r.add(key);
     r.add(tdbvhSplit);
@@ -18,6 +18,7 @@ std::vector<std::string> bvhEnvKeys(BvhKind kind) {
     case BvhKind::SpatialMedian: read.push_back(tdbvhSplit.name()); break;
     case BvhKind::BinnedSah: read.insert(read.end(), {sahTermination.name(), bins.name(), allAxes.name()}); break;
     case BvhKind::SweepSah: read.push_back(sahTermination.name()); break;
+    case BvhKind::Ploc: read.insert(read.end(), {sahTermination.name(), plocRadius.name()}); break;
     }
     return {read.begin(), read.end()};
 }
@@ -32,6 +33,7 @@ BvhBuildConfig bvhConfigFromEnv(const Env& env) {
     c.cIntersect = env.get(cIntersect);
     c.bins = env.get(bins);
     c.allAxes = env.get(allAxes);
+    c.plocRadius = env.get(plocRadius);
     c.simd = env.get(keys::BVH::simd);
     c.threads = env.get(threads);
     if (c.threads == 0) c.threads = env.get(keys::SetRayTracing::threads);

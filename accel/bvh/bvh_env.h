@@ -1,4 +1,4 @@
-// The env keys of the BVH accelerators (tdbvh, sahbvh, sweepbvh), all in section BVH::.
+// The env keys of the BVH accelerators (tdbvh, sahbvh, sweepbvh, ploc), all in section BVH::.
 #pragma once
 
 #include "accel/bvh/build/bvh_builder.h"
@@ -27,6 +27,9 @@ inline constexpr FloatKey cIntersect{
     "BVH::cIntersect", "1", 1e-6, 1e6,
     "SAH cost of a ray-triangle test: used by the SAH builders and by the reported SAH cost"};
 inline constexpr IntKey bins{"BVH::bins", "16", 2, 256, "sahbvh: bins per axis (Wald 2007: 16 suffices)"};
+inline constexpr IntKey plocRadius{
+    "BVH::plocRadius", "16", 1, 256,
+    "ploc: clusters on either side (Morton order) among which each cluster looks for its nearest neighbour"};
 inline constexpr BoolKey allAxes{"BVH::allAxes", "false",
                                  "sahbvh: bin all three axes and take the best, not only the widest"};
 inline constexpr BoolKey simd{"BVH::simd", "true",

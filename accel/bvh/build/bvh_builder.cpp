@@ -2,6 +2,7 @@
 
 #include "accel/bvh/build/binned_sah_builder.h"
 #include "accel/bvh/build/build_threads.h"
+#include "accel/bvh/build/ploc_builder.h"
 #include "accel/bvh/build/spatial_median_builder.h"
 #include "accel/bvh/build/sweep_sah_builder.h"
 
@@ -129,7 +130,7 @@ namespace {
 
 // Step one of buildBvh: one PrimRef per valid triangle, and their boxes, in lanes of F.
 template <typename F>
-BuildRange preparePrimRefs(const PrimitiveSet& prims, PrimRef* out) {
+BuildRange preparePrimRefsWith(const PrimitiveSet& prims, PrimRef* out) {
     const std::span<const uint32_t> validTriangles = prims.validTriangles();
     const uint32_t n = uint32_t(validTriangles.size());
     const Triangle* triangles = prims.triangles.data();
@@ -153,11 +154,16 @@ BuildRange preparePrimRefs(const PrimitiveSet& prims, PrimRef* out) {
 
 }  // namespace
 
+BuildRange preparePrimRefs(const PrimitiveSet& prims, PrimRef* out, bool simd) {
+    return simd::withFloats4(simd, [&](auto f) { return preparePrimRefsWith<decltype(f)>(prims, out); });
+}
+
 const char* bvhKindName(BvhKind kind) {
     switch (kind) {
     case BvhKind::SpatialMedian: return "tdbvh";
     case BvhKind::BinnedSah: return "sahbvh";
     case BvhKind::SweepSah: return "sweepbvh";
+    case BvhKind::Ploc: return "ploc";
     }
     return "bvh";
 }
@@ -167,6 +173,7 @@ std::unique_ptr<TopDownBuilder> makeBvhBuilder(BvhKind kind, const BvhBuildConfi
     case BvhKind::SpatialMedian: return std::make_unique<SpatialMedianBuilder>(config);
     case BvhKind::BinnedSah: return std::make_unique<BinnedSahBuilder>(config);
     case BvhKind::SweepSah: return std::make_unique<SweepSahBuilder>(config);
+    case BvhKind::Ploc: break;
     }
     // Every BvhKind is a case above; a value outside the enum is a programming error.
     throw std::logic_error(fmt::format("makeBvhBuilder: unknown BvhKind {}", int(kind)));
@@ -179,8 +186,8 @@ namespace {
 // there are many more jobs than threads.
 constexpr uint32_t kJobPrimitives = 4096;
 
-// Puts the subtree built by a job (root at 0, padding slot, pairs) into the tree: its root into
-// its slot, its pairs appended (an even offset: pairs stay on cache lines of their own).
+}  // namespace
+
 void appendSubtree(std::vector<BvhNode, TraversalAllocator<BvhNode>>& nodes, uint32_t slot,
                    const std::vector<BvhNode, TraversalAllocator<BvhNode>>& subtree) {
     assert(nodes.size() % 2 == 0);
@@ -192,6 +199,8 @@ void appendSubtree(std::vector<BvhNode, TraversalAllocator<BvhNode>>& nodes, uin
     nodes[slot] = moved(subtree[0]);
     for (size_t i = 2; i < subtree.size(); ++i) nodes.push_back(moved(subtree[i]));
 }
+
+namespace {
 
 // The nodes over `all` (prepared PrimRefs whose boxes and centres `root` bounds), which it
 // reorders into leaf order: the nodes above the jobs, then the jobs' subtrees appended in the
@@ -215,18 +224,11 @@ std::vector<BvhNode, TraversalAllocator<BvhNode>> buildNodes(BvhKind kind, const
 
 }  // namespace
 
-Bvh buildBvh(BvhKind kind, const BvhBuildConfig& config, const PrimitiveSet& prims) {
+void fillLeafArrays(Bvh& bvh, const PrimRef* refs, const PrimitiveSet& prims, int threads) {
     const size_t n = prims.validTriangles().size();
-    // Uninitialised storage: every PrimRef is written by preparePrimRefs.
-    const std::unique_ptr<PrimRef[]> refs = std::make_unique_for_overwrite<PrimRef[]>(n);
-    const BuildRange root = simd::withFloats4(
-        config.simd, [&](auto f) { return preparePrimRefs<decltype(f)>(prims, refs.get()); });
-
-    Bvh bvh;
-    bvh.nodes = buildNodes(kind, config, std::span<PrimRef>(refs.get(), n), root);
     bvh.primIndices.resize(n);
     bvh.leafTriangles.resize(n);
-    onThreads(config.threads, [&] {
+    onThreads(threads, [&] {
         tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 1 << 14), [&](const tbb::blocked_range<size_t>& r) {
             for (size_t i = r.begin(); i < r.end(); ++i) {
                 bvh.primIndices[i] = refs[i].prim;
@@ -234,11 +236,24 @@ Bvh buildBvh(BvhKind kind, const BvhBuildConfig& config, const PrimitiveSet& pri
             }
         });
     });
+}
+
+Bvh buildBvh(BvhKind kind, const BvhBuildConfig& config, const PrimitiveSet& prims) {
+    if (kind == BvhKind::Ploc) return buildPlocBvh(config, prims);
+    const size_t n = prims.validTriangles().size();
+    // Uninitialised storage: every PrimRef is written by preparePrimRefs.
+    const std::unique_ptr<PrimRef[]> refs = std::make_unique_for_overwrite<PrimRef[]>(n);
+    const BuildRange root = preparePrimRefs(prims, refs.get(), config.simd);
+    Bvh bvh;
+    bvh.nodes = buildNodes(kind, config, std::span<PrimRef>(refs.get(), n), root);
+    fillLeafArrays(bvh, refs.get(), prims, config.threads);
     return bvh;
 }
 
 QuadricBvh buildQuadricBvh(BvhKind kind, const BvhBuildConfig& config, const PrimitiveSet& prims) {
-    // Few primitives as a rule (the SPD scenes have thousands, not millions): plain loops.
+    // Few primitives as a rule (the SPD scenes have thousands, not millions): plain loops. ploc's
+    // clustering is for the millions of triangles; its spheres and cones get binned SAH.
+    if (kind == BvhKind::Ploc) kind = BvhKind::BinnedSah;
     const std::span<const uint32_t> valid = prims.validQuadrics();
     std::vector<PrimRef> refs(valid.size());
     BoundsAccumulator<simd::Scalar<4>> acc;

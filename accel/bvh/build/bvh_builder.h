@@ -19,9 +19,10 @@ enum class BvhKind {
     SpatialMedian,  // tdbvh: spatial median
     BinnedSah,  // sahbvh: binned SAH (Wald 2007)
     SweepSah,   // sweepbvh: full-sweep SAH, the exact reference for the binning
+    Ploc,       // ploc: bottom-up clustering (Meister & Bittner 2018), not a TopDownBuilder
 };
 
-// The registered name of a binary BVH by this builder: "tdbvh", "sahbvh", "sweepbvh".
+// The registered name of a binary BVH by this builder: "tdbvh", "sahbvh", "sweepbvh", "ploc".
 const char* bvhKindName(BvhKind kind);
 
 enum class MedianSplitBox {
@@ -45,6 +46,8 @@ struct BvhBuildConfig {
     bool simd = true;            // SIMD in the hot loops (prep, binning, partition); false = the
                                  // scalar backend of the same code, the same tree
     MedianSplitBox medianSplitBox = MedianSplitBox::CentroidBox;  // tdbvh: which box's longest axis is halved
+    int plocRadius = 16;         // ploc: each cluster looks for its nearest neighbour among the
+                                 // plocRadius clusters on either side in Morton order
     int threads = 1;             // build threads (TBB; 0 = all hardware threads): the tree does
                                  // not depend on them
 
@@ -151,12 +154,24 @@ Split TopDownBuilder::partition(const BuildRange& range, IsLeft isLeft) {
 }
 
 // The whole build: PrimRefs from the valid triangles (SIMD or scalar), the recursion of the
-// chosen builder, then the leaf arrays (primitive indices and triangles in leaf order).
+// chosen builder (or ploc's clustering), then the leaf arrays (primitive indices and triangles
+// in leaf order).
 Bvh buildBvh(BvhKind kind, const BvhBuildConfig& config, const PrimitiveSet& prims);
 
 // The same over the valid spheres and cones (their boxes), with their shapes in leaf order.
 QuadricBvh buildQuadricBvh(BvhKind kind, const BvhBuildConfig& config, const PrimitiveSet& prims);
 
+// A top-down builder; not for BvhKind::Ploc, which is bottom-up.
 std::unique_ptr<TopDownBuilder> makeBvhBuilder(BvhKind kind, const BvhBuildConfig& config);
+
+// The steps of buildBvh that every builder shares, for ploc's:
+// one PrimRef per valid triangle into `out` (its size), and their bounds;
+BuildRange preparePrimRefs(const PrimitiveSet& prims, PrimRef* out, bool simd);
+// the leaf arrays from PrimRefs in leaf order;
+void fillLeafArrays(Bvh& bvh, const PrimRef* refs, const PrimitiveSet& prims, int threads);
+// a subtree built apart (root at 0, padding slot, pairs) put into the tree: its root into
+// `slot`, its pairs appended at an even offset.
+void appendSubtree(std::vector<BvhNode, TraversalAllocator<BvhNode>>& nodes, uint32_t slot,
+                   const std::vector<BvhNode, TraversalAllocator<BvhNode>>& subtree);
 
 }  // namespace bvhlab
