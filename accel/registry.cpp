@@ -17,7 +17,8 @@ namespace {
 template <typename Layout>
 AcceleratorInfo bvhInfo(std::string name, std::string description, BvhKind kind) {
     return {std::move(name), std::move(description), bvhEnvKeys(kind), [kind](const Env& env) {
-                return std::make_unique<BvhAccelerator<Layout>>(kind, bvhConfigFromEnv(env), traversalConfigFromEnv(env));
+                return std::make_unique<BvhAccelerator<Layout>>(kind, bvhConfigFromEnv(env), traversalConfigFromEnv(env),
+                                                                statsConfigFromEnv(env));
             }};
 }
 
