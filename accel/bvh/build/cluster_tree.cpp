@@ -10,124 +10,157 @@ namespace bvhlab {
 
 namespace {
 
-// What the leaf-forming pass decides per node, bottom-up.
-struct LeafForming {
-    std::vector<uint32_t> prims;   // primitives below the node
-    std::vector<uint32_t> height;  // of the node's subtree once leaves are formed (0: a leaf)
-    std::vector<float> cost;       // SAH cost of that subtree, unnormalised (areas, not ratios)
-    std::vector<uint8_t> leaf;     // 1: the node becomes a leaf of all its primitives
-};
-
 float halfArea(const ClusterBox& b) {
     const float dx = b.upper[0] - b.lower[0], dy = b.upper[1] - b.lower[1], dz = b.upper[2] - b.lower[2];
     return dx * dy + dy * dz + dz * dx;
 }
 
-// Each node's cheapest form: a leaf (C_isect * tests * A) or an inner node (C_trav * A + its
-// children's costs), as the top-down SAH builders decide but with the children's whole
-// subtrees known. Nodes of one merge iteration are independent: one parallel loop each.
-LeafForming formLeaves(const ClusterTree& tree, const BvhBuildConfig& config) {
-    const size_t nodes = tree.boxes.size();
-    const uint32_t n = tree.leafCount;
-    LeafForming f{std::vector<uint32_t>(nodes), std::vector<uint32_t>(nodes), std::vector<float>(nodes),
-                  std::vector<uint8_t>(nodes)};
-    const uint32_t leafCap = config.effectiveLeafCap();
-    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, n, 1 << 14), [&](const tbb::blocked_range<uint32_t>& r) {
-        for (uint32_t i = r.begin(); i < r.end(); ++i) {
-            f.prims[i] = 1, f.height[i] = 0, f.leaf[i] = 1;
-            f.cost[i] = config.cIntersect * float(config.sahTests(1)) * halfArea(tree.boxes[i]);
-        }
-    });
-    uint32_t begin = n;
-    for (const uint32_t end : tree.mergeEnds) {
-        tbb::parallel_for(tbb::blocked_range<uint32_t>(begin, end, 1 << 12), [&](const tbb::blocked_range<uint32_t>& r) {
-            for (uint32_t i = r.begin(); i < r.end(); ++i) {
-                const uint32_t l = tree.children[2 * size_t(i - n)], rt = tree.children[2 * size_t(i - n) + 1];
-                const uint32_t prims = f.prims[l] + f.prims[rt];
-                const float area = halfArea(tree.boxes[i]);
-                const float asInner = config.cTraversal * area + f.cost[l] + f.cost[rt];
-                const float asLeaf = config.cIntersect * float(config.sahTests(prims)) * area;
-                const bool leaf = prims <= uint32_t(config.maxLeaf) ||
-                                  (config.sahTermination && prims <= leafCap && asLeaf <= asInner);
-                f.prims[i] = prims;
-                f.leaf[i] = leaf;
-                f.cost[i] = leaf ? asLeaf : asInner;
-                f.height[i] = leaf ? 0 : 1 + std::max(f.height[l], f.height[rt]);
-            }
-        });
-        begin = end;
-    }
-    return f;
+}  // namespace
+
+void ClusterTree::resize(uint32_t leaves) {
+    const size_t nodes = 2 * size_t(leaves) - 1;
+    leafCount = leaves;
+    boxes.resize(nodes);
+    children.resize(2 * (size_t(leaves) - 1));
+    prims.resize(nodes), height.resize(nodes), cost.resize(nodes), leaf.resize(nodes);
 }
+
+void formNode(ClusterTree& tree, uint32_t node, const BvhBuildConfig& config) {
+    const float area = halfArea(tree.boxes[node]);
+    if (node < tree.leafCount) {
+        tree.prims[node] = 1, tree.height[node] = 0, tree.leaf[node] = 1;
+        tree.cost[node] = config.cIntersect * float(config.sahTests(1)) * area;
+        return;
+    }
+    const uint32_t l = tree.children[2 * size_t(node - tree.leafCount)];
+    const uint32_t r = tree.children[2 * size_t(node - tree.leafCount) + 1];
+    const uint32_t prims = tree.prims[l] + tree.prims[r];
+    const float asInner = config.cTraversal * area + tree.cost[l] + tree.cost[r];
+    const float asLeaf = config.cIntersect * float(config.sahTests(prims)) * area;
+    const bool leaf = prims <= uint32_t(config.maxLeaf) ||
+                      (config.sahTermination && prims <= config.effectiveLeafCap() && asLeaf <= asInner);
+    tree.prims[node] = prims;
+    tree.leaf[node] = leaf;
+    tree.cost[node] = leaf ? asLeaf : asInner;
+    tree.height[node] = leaf ? 0 : 1 + std::max(tree.height[l], tree.height[r]);
+}
+
+namespace {
+
+using Nodes = std::vector<BvhNode, TraversalAllocator<BvhNode>>;
+
+// Subtrees over fewer primitives than this are emitted as parallel jobs and appended in order,
+// as bvh_builder's top-down jobs.
+constexpr uint32_t kJobPrimitives = 4096;
+
+// A subtree left to a job: its cluster, its slot in the nodes above, its depth, and where its
+// primitives start in `ordered` (known from the primitive counts).
+struct EmitJob {
+    uint32_t cluster;
+    uint32_t slot;
+    int depth;
+    uint32_t first;
+};
+
+class Emitter {
+public:
+    Emitter(const ClusterTree& tree, std::span<const PrimRef> leafRefs, const BvhBuildConfig& config,
+            std::span<PrimRef> ordered)
+        : tree_(tree), leafRefs_(leafRefs), config_(config), ordered_(ordered) {}
+
+    // The nodes of the subtree at `job` (root at 0, padding slot, pairs), depth first; with
+    // `deferred`, subtrees below kJobPrimitives are left to jobs appended there.
+    Nodes emit(const EmitJob& job, std::vector<EmitJob>* deferred) {
+        constexpr int kRebuildDepth = kBvhMaxDepth / 2;
+        const uint32_t n = tree_.leafCount;
+        Nodes nodes;
+        nodes.reserve(2 * size_t(tree_.prims[job.cluster]));
+        nodes.resize(2);
+        nodes[1] = BvhNode{{0, 0, 0, 0, 0, 0}, 0, 0};
+        written_ = job.first;
+        std::vector<EmitJob> stack{{job.cluster, 0, job.depth, 0}};
+        while (!stack.empty()) {
+            const EmitJob item = stack.back();
+            stack.pop_back();
+            const uint32_t c = item.cluster;
+            if (deferred && item.slot != 0 && tree_.prims[c] < kJobPrimitives) {
+                deferred->push_back({c, item.slot, item.depth, written_});
+                written_ += tree_.prims[c];
+                continue;
+            }
+            if (item.depth == kRebuildDepth && item.depth + tree_.height[c] >= uint32_t(kBvhMaxDepth)) {
+                rebuild(c, item, nodes);
+                continue;
+            }
+            BvhNode& node = nodes[item.slot];
+            node.setBox(tree_.boxes[c].bounds());
+            if (tree_.leaf[c]) {
+                node.index = written_;
+                node.count = tree_.prims[c];
+                gather(c);
+                continue;
+            }
+            const uint32_t left = uint32_t(nodes.size());
+            node.index = left;  // `node` stays valid: reserve() covers every node there can be
+            node.count = 0;
+            nodes.emplace_back();
+            nodes.emplace_back();
+            stack.push_back({tree_.children[2 * size_t(c - n) + 1], left + 1, item.depth + 1, 0});
+            stack.push_back({tree_.children[2 * size_t(c - n)], left, item.depth + 1, 0});
+        }
+        return nodes;
+    }
+
+private:
+    // Writes the primitives below `node` to `ordered`, left to right.
+    void gather(uint32_t node) {
+        const uint32_t n = tree_.leafCount;
+        below_.assign(1, node);
+        while (!below_.empty()) {
+            const uint32_t c = below_.back();
+            below_.pop_back();
+            if (c < n) {
+                ordered_[written_++] = leafRefs_[c];
+                continue;
+            }
+            below_.push_back(tree_.children[2 * size_t(c - n) + 1]);
+            below_.push_back(tree_.children[2 * size_t(c - n)]);
+        }
+    }
+
+    // The subtree at `c` built again by binned SAH, whose median rule keeps it within the
+    // depth bound from kRebuildDepth on.
+    void rebuild(uint32_t c, const EmitJob& item, Nodes& nodes) {
+        const uint32_t first = written_;
+        gather(c);
+        BoundsAccumulator<simd::Scalar<4>> acc;
+        for (uint32_t i = first; i < written_; ++i) acc.add(ordered_[i]);
+        const Nodes subtree = makeBvhBuilder(BvhKind::BinnedSah, config_)
+                                  ->build(ordered_, {first, written_, acc.bounds(), acc.centroidBounds()}, item.depth);
+        appendSubtree(nodes, item.slot, subtree);
+    }
+
+    const ClusterTree& tree_;
+    std::span<const PrimRef> leafRefs_;
+    const BvhBuildConfig& config_;
+    std::span<PrimRef> ordered_;
+    uint32_t written_ = 0;
+    std::vector<uint32_t> below_;  // the gather's stack
+};
 
 }  // namespace
 
-std::vector<BvhNode, TraversalAllocator<BvhNode>> bvhNodesFromClusterTree(const ClusterTree& tree,
-                                                                          std::span<const PrimRef> leafRefs,
-                                                                          const BvhBuildConfig& config,
-                                                                          std::span<PrimRef> ordered) {
-    LeafForming f;
-    onThreads(config.threads, [&] { f = formLeaves(tree, config); });
-    const uint32_t n = tree.leafCount;
-    constexpr int kRebuildDepth = kBvhMaxDepth / 2;
-
-    std::vector<BvhNode, TraversalAllocator<BvhNode>> nodes;
-    nodes.reserve(2 * size_t(n));
-    nodes.resize(2);
-    nodes[1] = BvhNode{{0, 0, 0, 0, 0, 0}, 0, 0};
-    uint32_t written = 0;  // PrimRefs written to `ordered`
-    std::vector<uint32_t> below;  // the gather's stack
-    // Writes the primitives below `node` to `ordered`, left to right.
-    const auto gather = [&](uint32_t node) {
-        below.assign(1, node);
-        while (!below.empty()) {
-            const uint32_t c = below.back();
-            below.pop_back();
-            if (c < n) {
-                ordered[written++] = leafRefs[c];
-                continue;
-            }
-            below.push_back(tree.children[2 * size_t(c - n) + 1]);
-            below.push_back(tree.children[2 * size_t(c - n)]);
-        }
-    };
-
-    struct WorkItem {
-        uint32_t cluster;
-        uint32_t slot;
-        int depth;
-    };
-    std::vector<WorkItem> stack{{tree.root(), 0, 0}};
-    while (!stack.empty()) {
-        const WorkItem item = stack.back();
-        stack.pop_back();
-        const uint32_t c = item.cluster;
-        if (item.depth == kRebuildDepth && item.depth + f.height[c] >= uint32_t(kBvhMaxDepth)) {
-            const uint32_t first = written;
-            gather(c);
-            BoundsAccumulator<simd::Scalar<4>> acc;
-            for (uint32_t i = first; i < written; ++i) acc.add(ordered[i]);
-            const auto subtree = makeBvhBuilder(BvhKind::BinnedSah, config)
-                                     ->build(ordered, {first, written, acc.bounds(), acc.centroidBounds()}, item.depth);
-            appendSubtree(nodes, item.slot, subtree);
-            continue;
-        }
-        BvhNode& node = nodes[item.slot];
-        node.setBox(tree.boxes[c].bounds());
-        if (f.leaf[c]) {
-            node.index = written;
-            node.count = f.prims[c];
-            gather(c);
-            continue;
-        }
-        const uint32_t left = uint32_t(nodes.size());
-        node.index = left;  // `node` stays valid: reserve() covers every node there can be
-        node.count = 0;
-        nodes.emplace_back();
-        nodes.emplace_back();
-        stack.push_back({tree.children[2 * size_t(c - n) + 1], left + 1, item.depth + 1});
-        stack.push_back({tree.children[2 * size_t(c - n)], left, item.depth + 1});
-    }
+Nodes bvhNodesFromClusterTree(const ClusterTree& tree, std::span<const PrimRef> leafRefs, const BvhBuildConfig& config,
+                              std::span<PrimRef> ordered) {
+    std::vector<EmitJob> jobs;
+    Nodes nodes = Emitter(tree, leafRefs, config, ordered).emit({tree.root(), 0, 0, 0}, &jobs);
+    std::vector<Nodes> subtrees(jobs.size());
+    onThreads(config.threads, [&] {
+        tbb::parallel_for(size_t(0), jobs.size(), [&](size_t j) {
+            subtrees[j] = Emitter(tree, leafRefs, config, ordered).emit(jobs[j], nullptr);
+        });
+    });
+    for (size_t j = 0; j < jobs.size(); ++j) appendSubtree(nodes, jobs[j].slot, subtrees[j]);
     return nodes;
 }
 

@@ -5,11 +5,13 @@
 #include "accel/bvh/build/morton_code.h"
 #include "accel/bvh/build/radix_sort.h"
 
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <bit>
 #include <limits>
+#include <memory>
 
 namespace bvhlab {
 
@@ -28,16 +30,26 @@ uint64_t pairRank(uint32_t first, uint32_t second) {
 }
 
 constexpr int kLanes = 8;
-constexpr int kMaxWindowVectors = 2 * ((256 + kLanes - 1) / kLanes);  // BVH::plocRadius <= 256
+constexpr uint32_t kNone = ~uint32_t(0);
+constexpr int kMaxRowVectors = (256 + kLanes - 1) / kLanes;  // BVH::plocRadius <= 256
 
-// Added to a vector of areas whose first k lanes are candidates: +inf rules out the others.
+// Added to a vector of areas whose first k lanes are candidates: NaN rules out the others (no
+// comparison holds for it, and min(NaN, x) is x).
 constexpr float kInf = std::numeric_limits<float>::infinity();
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 alignas(32) constexpr float kLanePenalty[kLanes + 1][kLanes] = {
-    {kInf, kInf, kInf, kInf, kInf, kInf, kInf, kInf}, {0, kInf, kInf, kInf, kInf, kInf, kInf, kInf},
-    {0, 0, kInf, kInf, kInf, kInf, kInf, kInf},       {0, 0, 0, kInf, kInf, kInf, kInf, kInf},
-    {0, 0, 0, 0, kInf, kInf, kInf, kInf},             {0, 0, 0, 0, 0, kInf, kInf, kInf},
-    {0, 0, 0, 0, 0, 0, kInf, kInf},                   {0, 0, 0, 0, 0, 0, 0, kInf},
+    {kNaN, kNaN, kNaN, kNaN, kNaN, kNaN, kNaN, kNaN}, {0, kNaN, kNaN, kNaN, kNaN, kNaN, kNaN, kNaN},
+    {0, 0, kNaN, kNaN, kNaN, kNaN, kNaN, kNaN},       {0, 0, 0, kNaN, kNaN, kNaN, kNaN, kNaN},
+    {0, 0, 0, 0, kNaN, kNaN, kNaN, kNaN},             {0, 0, 0, 0, 0, kNaN, kNaN, kNaN},
+    {0, 0, 0, 0, 0, 0, kNaN, kNaN},                   {0, 0, 0, 0, 0, 0, 0, kNaN},
     {0, 0, 0, 0, 0, 0, 0, 0}};
+
+// The best left neighbour found so far of the clusters of a chunk and the radius around it:
+// areas, and cluster indices as float bit patterns (blended by the same SIMD select).
+struct LeftBest {
+    std::vector<float> area;
+    std::vector<float> index;
+};
 
 // The clusters' boxes by coordinate (lower x y z, upper x y z), eight candidates per SIMD load,
 // with `pad` infinite boxes before and after them (a merge with one costs +inf), so that a
@@ -71,12 +83,10 @@ private:
 class Clustering {
 public:
     Clustering(const BvhBuildConfig& config, std::span<const PrimRef> leafRefs)
-        : radius_(uint32_t(std::clamp(config.plocRadius, 1, 256))), simd_(config.simd) {
+        : config_(config), radius_(uint32_t(std::clamp(config.plocRadius, 1, 256))) {
         const uint32_t n = uint32_t(leafRefs.size());
         const uint32_t pad = (radius_ + kLanes - 1) / kLanes * kLanes + kLanes;
-        tree_.leafCount = n;
-        tree_.boxes.resize(2 * size_t(n) - 1);
-        tree_.children.resize(2 * (size_t(n) - 1));
+        tree_.resize(n);
         ids_.resize(n), nextIds_.resize(n), neighbour_.resize(n);
         boxes_.reset(n, pad), nextBoxes_.reset(n, pad);
         tbb::parallel_for(tbb::blocked_range<uint32_t>(0, n, kChunk), [&](const tbb::blocked_range<uint32_t>& r) {
@@ -84,6 +94,7 @@ public:
                 const PrimRef& p = leafRefs[i];
                 tree_.boxes[i] = {{p.lower[0], p.lower[1], p.lower[2], 0.0f}, {p.upper[0], p.upper[1], p.upper[2], 0.0f}};
                 boxes_.set(i, tree_.boxes[i]);
+                formNode(tree_, i, config_);
                 ids_[i] = i;
             }
         });
@@ -92,62 +103,75 @@ public:
     ClusterTree run() {
         uint32_t count = tree_.leafCount, next = tree_.leafCount;
         while (count > 1) {
-            if (simd_) {
+            if (config_.simd) {
                 findNeighbours<simd::Floats<kLanes>>(count);
             } else {
                 findNeighbours<simd::Scalar<kLanes>>(count);
             }
             count = merge(count, next);
-            tree_.mergeEnds.push_back(next);
         }
         return std::move(tree_);
     }
 
 private:
     // neighbour_[i] for every cluster i < count: the least pair (pairRank) among the radius_
-    // clusters on either side, eight areas per SIMD step.
+    // clusters on either side. Each pair is computed once, by its left cluster, eight per SIMD
+    // step: the row of i's right neighbours gives i's best on the right and is offered to each
+    // of them as their left candidate. A chunk [b, e) computes the rows from b - r on.
     template <typename F>
     void findNeighbours(uint32_t count) {
-        const int r = int(radius_), vectorsPerSide = (r + kLanes - 1) / kLanes;
-        tbb::parallel_for(tbb::blocked_range<uint32_t>(0, count, kChunk), [&](const tbb::blocked_range<uint32_t>& range) {
-            F areas[kMaxWindowVectors];
-            for (uint32_t i = range.begin(); i < range.end(); ++i) {
-                F lo[3], hi[3];
-                for (int a = 0; a < 3; ++a) lo[a] = F::broadcast(*boxes_.at(a, i)), hi[a] = F::broadcast(*boxes_.at(3 + a, i));
+        const int r = int(radius_), vectors = (r + kLanes - 1) / kLanes;
+        tbb::parallel_for(uint32_t(0), (count + kChunk - 1) / kChunk, [&](uint32_t chunk) {
+            const uint32_t b = chunk * kChunk, e = std::min(count, b + kChunk);
+            const uint32_t lo = b > uint32_t(r) ? b - r : 0;
+            LeftBest& left = leftBest_.local();
+            left.area.assign(e - lo + r + kLanes, kInf);
+            left.index.assign(e - lo + r + kLanes, std::bit_cast<float>(kNone));
+            F row[kMaxRowVectors];
+            for (uint32_t i = lo; i < e; ++i) {
+                F lower[3], upper[3];
+                for (int a = 0; a < 3; ++a)
+                    lower[a] = F::broadcast(*boxes_.at(a, i)), upper[a] = F::broadcast(*boxes_.at(3 + a, i));
+                const F self = F::broadcast(std::bit_cast<float>(i));
                 F least = F::broadcast(kInf);
-                // Candidates from `start` on, the first `valid` of eight.
-                const auto areasFrom = [&](int64_t start, int valid) {
+                for (int v = 0; v < vectors; ++v) {
+                    const int64_t start = int64_t(i) + 1 + kLanes * v;
                     F d[3];
                     for (int a = 0; a < 3; ++a)
-                        d[a] = max(hi[a], F::loadu(boxes_.at(3 + a, start))) - min(lo[a], F::loadu(boxes_.at(a, start)));
-                    const F area = d[0] * d[1] + d[1] * d[2] + d[2] * d[0];
-                    return valid == kLanes ? area : area + F::loadu(kLanePenalty[valid]);
-                };
-                for (int k = 0; k < vectorsPerSide; ++k) {  // left: from i - r on
-                    areas[k] = areasFrom(int64_t(i) - r + kLanes * k, std::min(kLanes, r - kLanes * k));
-                    least = min(least, areas[k]);
+                        d[a] = max(upper[a], F::loadu(boxes_.at(3 + a, start))) - min(lower[a], F::loadu(boxes_.at(a, start)));
+                    F area = d[0] * d[1] + d[1] * d[2] + d[2] * d[0];
+                    if (r - kLanes * v < kLanes) area = area + F::loadu(kLanePenalty[r - kLanes * v]);
+                    row[v] = area;
+                    least = min(area, least);
+                    // Offered to the eight as their left candidate: i is the nearest so far, so
+                    // it wins ties (the nearer pair ranks first).
+                    float* bestArea = left.area.data() + (start - lo);
+                    float* bestIndex = left.index.data() + (start - lo);
+                    const F oldArea = F::loadu(bestArea);
+                    const auto better = area <= oldArea;
+                    select(better, area, oldArea).storeu(bestArea);
+                    select(better, self, F::loadu(bestIndex)).storeu(bestIndex);
                 }
-                for (int k = 0; k < vectorsPerSide; ++k) {  // right: from i + 1 on
-                    areas[vectorsPerSide + k] = areasFrom(int64_t(i) + 1 + kLanes * k, std::min(kLanes, r - kLanes * k));
-                    least = min(least, areas[vectorsPerSide + k]);
-                }
+                if (i < b) continue;
+                // i's best on the right: the least area, ties to the nearest (first lane).
                 alignas(32) float lanes[kLanes];
                 least.store(lanes);
-                const float bestArea = *std::min_element(lanes, lanes + kLanes);
-                // Among the candidates of that area (as a rule one), the least pair. Areas may
-                // overflow to +inf, so a candidate is a lane inside the window and the array.
-                uint64_t bestRank = ~uint64_t(0);
-                uint32_t best = 0;
-                for (int v = 0; v < 2 * vectorsPerSide; ++v) {
-                    const int side = v / vectorsPerSide, k = v % vectorsPerSide;
-                    const int valid = std::min(kLanes, r - kLanes * k);
-                    for (int bits = movemask(areas[v] <= F::broadcast(bestArea)); bits != 0; bits &= bits - 1) {
-                        const int lane = std::countr_zero(unsigned(bits));
-                        const int64_t j = side == 0 ? int64_t(i) - r + kLanes * k + lane : int64_t(i) + 1 + kLanes * k + lane;
-                        if (lane >= valid || j < 0 || j >= int64_t(count)) continue;
-                        const uint64_t rank = j < i ? pairRank(uint32_t(j), i) : pairRank(i, uint32_t(j));
-                        if (rank < bestRank) bestRank = rank, best = uint32_t(j);
-                    }
+                const float rightArea = *std::min_element(lanes, lanes + kLanes);
+                uint32_t right = kNone;
+                for (int v = 0; v < vectors && right == kNone; ++v) {
+                    if (const int bits = movemask(row[v] <= F::broadcast(rightArea)))
+                        right = i + 1 + kLanes * v + uint32_t(std::countr_zero(unsigned(bits)));
+                }
+                if (right >= count) right = kNone;  // only the infinite boxes past the end
+                const uint32_t leftIndex = std::bit_cast<uint32_t>(left.index[i - lo]);
+                const float leftArea = left.area[i - lo];
+                uint32_t best;
+                if (right == kNone || leftIndex == kNone) {
+                    best = right == kNone ? leftIndex : right;
+                } else if (rightArea != leftArea) {
+                    best = rightArea < leftArea ? right : leftIndex;
+                } else {
+                    best = pairRank(leftIndex, i) < pairRank(i, right) ? leftIndex : right;
                 }
                 neighbour_[i] = best;
             }
@@ -189,6 +213,7 @@ private:
                     }
                     tree_.children[2 * size_t(node - tree_.leafCount)] = ids_[i];
                     tree_.children[2 * size_t(node - tree_.leafCount) + 1] = ids_[j];
+                    formNode(tree_, node, config_);
                     nextIds_[out] = node++;
                     nextBoxes_.set(out++, box);
                 } else {
@@ -205,17 +230,18 @@ private:
         return kept;
     }
 
+    const BvhBuildConfig& config_;
     uint32_t radius_;
-    bool simd_;
     ClusterTree tree_;
     std::vector<uint32_t> ids_, nextIds_;  // the clusters' nodes, in order
     ClusterBoxes boxes_, nextBoxes_;       // and their boxes
     std::vector<uint32_t> neighbour_;
     std::vector<uint32_t> chunkMerges_, chunkKept_;
+    tbb::enumerable_thread_specific<LeftBest> leftBest_;
 };
 
-// The PrimRefs in Morton order of their centres (ties by index: the radix sort is stable).
-std::vector<PrimRef> sortByMortonCode(std::span<const PrimRef> refs, const BuildRange& root) {
+// `refs` in Morton order of their centres into `sorted` (ties by index: the radix sort is stable).
+void sortByMortonCode(std::span<const PrimRef> refs, const BuildRange& root, PrimRef* sorted) {
     const uint32_t n = uint32_t(refs.size());
     const MortonGrid grid(root.centroidBounds);
     std::vector<KeyValue> keys(n), scratch;
@@ -226,11 +252,9 @@ std::vector<PrimRef> sortByMortonCode(std::span<const PrimRef> refs, const Build
         }
     });
     radixSort(keys, scratch, MortonGrid::kBits);
-    std::vector<PrimRef> sorted(n);
     tbb::parallel_for(tbb::blocked_range<uint32_t>(0, n, kChunk), [&](const tbb::blocked_range<uint32_t>& r) {
         for (uint32_t i = r.begin(); i < r.end(); ++i) sorted[i] = refs[keys[i].value];
     });
-    return sorted;
 }
 
 }  // namespace
@@ -239,16 +263,17 @@ Bvh buildPlocBvh(const BvhBuildConfig& config, const PrimitiveSet& prims) {
     const size_t n = prims.validTriangles().size();
     Bvh bvh;
     if (n == 0) return bvh;
-    std::vector<PrimRef> refs(n);
-    const BuildRange root = preparePrimRefs(prims, refs.data(), config.simd);
-    std::vector<PrimRef> sorted;
+    // Uninitialised storage: every PrimRef is written before it is read.
+    const std::unique_ptr<PrimRef[]> refs = std::make_unique_for_overwrite<PrimRef[]>(n);
+    const std::unique_ptr<PrimRef[]> sorted = std::make_unique_for_overwrite<PrimRef[]>(n);
+    const BuildRange root = preparePrimRefs(prims, refs.get(), config.simd);
     ClusterTree tree;
     onThreads(config.threads, [&] {
-        sorted = sortByMortonCode(refs, root);
-        tree = Clustering(config, sorted).run();
+        sortByMortonCode({refs.get(), n}, root, sorted.get());
+        tree = Clustering(config, {sorted.get(), n}).run();
     });
-    bvh.nodes = bvhNodesFromClusterTree(tree, sorted, config, refs);
-    fillLeafArrays(bvh, refs.data(), prims, config.threads);
+    bvh.nodes = bvhNodesFromClusterTree(tree, {sorted.get(), n}, config, {refs.get(), n});
+    fillLeafArrays(bvh, refs.get(), prims, config.threads);
     return bvh;
 }
 
