@@ -8,6 +8,7 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <array>
 #include <vector>
 
@@ -91,15 +92,15 @@ double clippedArea(const Triangle& t, const Bounds3& box) {
     return poly.n >= 3 ? polygonArea(poly) : 0.0;
 }
 
-double endPointOverlap(std::span<const BvhNode> nodes, std::span<const Triangle> leafTriangles, double cTraversal,
-                       double cIntersect, int threads) {
+std::optional<double> endPointOverlap(std::span<const BvhNode> nodes, std::span<const Triangle> leafTriangles,
+                                      double cTraversal, double cIntersect, int threads) {
     if (nodes.empty()) return 0.0;
     const std::vector<SlotRange> slots = subtreeSlots(nodes);
     struct Sums {
         double overlap = 0.0, area = 0.0;
     };
     // The overlap of triangle `slot` with the boxes of the nodes it does not belong to.
-    const auto overlapOf = [&](uint32_t slot, std::vector<uint32_t>& stack) {
+    const auto overlapOf = [&](uint32_t slot, std::vector<uint32_t>& stack, uint64_t& visits) {
         const Triangle& t = leafTriangles[slot];
         const Bounds3 tb = t.bounds();
         double sum = 0.0;
@@ -108,6 +109,7 @@ double endPointOverlap(std::span<const BvhNode> nodes, std::span<const Triangle>
             const BvhNode& n = nodes[stack.back()];
             const SlotRange own = slots[stack.back()];
             stack.pop_back();
+            ++visits;
             const Bounds3 box = n.box();
             if (!overlaps(tb, box)) continue;
             if (slot < own.first || slot >= own.end) {
@@ -119,6 +121,11 @@ double endPointOverlap(std::span<const BvhNode> nodes, std::span<const Triangle>
         }
         return sum;
     };
+    // Node visits allowed in all: a triangle overlapping most boxes (e.g. many coincident
+    // triangles) makes the walks quadratic; then EPO is not computed.
+    const uint64_t budget = uint64_t(kEpoVisitsPerTriangle) * leafTriangles.size() + 100'000;
+    std::atomic<uint64_t> visited{0};
+    std::atomic<bool> overBudget{false};
     const auto run = [&] {
         // Fixed chunks summed in a fixed tree: the same rounding whatever the thread count.
         return tbb::parallel_deterministic_reduce(
@@ -126,10 +133,13 @@ double endPointOverlap(std::span<const BvhNode> nodes, std::span<const Triangle>
             [&](const tbb::blocked_range<uint32_t>& r, Sums s) {
                 std::vector<uint32_t> stack;
                 stack.reserve(2 * kBvhMaxDepth);
-                for (uint32_t i = r.begin(); i < r.end(); ++i) {
-                    s.overlap += overlapOf(i, stack);
+                uint64_t visits = 0;
+                for (uint32_t i = r.begin(); i < r.end() && !overBudget.load(std::memory_order_relaxed); ++i) {
+                    s.overlap += overlapOf(i, stack, visits);
                     s.area += triangleArea(leafTriangles[i]);
                 }
+                if (visited.fetch_add(visits, std::memory_order_relaxed) + visits > budget)
+                    overBudget.store(true, std::memory_order_relaxed);
                 return s;
             },
             [](Sums a, const Sums& b) {
@@ -140,6 +150,7 @@ double endPointOverlap(std::span<const BvhNode> nodes, std::span<const Triangle>
     };
     tbb::task_arena arena(threads == 0 ? tbb::task_arena::automatic : threads);
     const Sums s = arena.execute(run);
+    if (overBudget) return std::nullopt;
     return s.area > 0.0 ? s.overlap / s.area : 0.0;
 }
 
