@@ -17,7 +17,8 @@ namespace {
 template <typename Layout>
 AcceleratorInfo bvhInfo(std::string name, std::string description, BvhKind kind) {
     return {std::move(name), std::move(description), bvhEnvKeys(kind), [kind](const Env& env) {
-                return std::make_unique<BvhAccelerator<Layout>>(kind, bvhConfigFromEnv(env), traversalConfigFromEnv(env));
+                return std::make_unique<BvhAccelerator<Layout>>(kind, bvhConfigFromEnv(env), traversalConfigFromEnv(env),
+                                                                statsConfigFromEnv(env));
             }};
 }
 
@@ -50,6 +51,13 @@ const std::vector<AcceleratorInfo>& acceleratorInfos() {
         bvhInfo<WideBvh<8>>("sbvh8",
                             "sbvh's tree (leaves charged by blocks of eight) in 8-wide nodes, as sahbvh8; N_TR counts wide steps",
                             BvhKind::Sbvh),
+        bvhInfo<Bvh>("ploc",
+                     "BVH by PLOC (Meister & Bittner 2018): Morton order, mutual nearest neighbours within BVH::plocRadius "
+                     "merged bottom-up in parallel, leaves formed by SAH",
+                     BvhKind::Ploc),
+        bvhInfo<WideBvh<8>>("ploc8",
+                            "ploc's tree (leaves charged by blocks of eight) in 8-wide nodes, as sahbvh8; N_TR counts wide steps",
+                            BvhKind::Ploc),
         bvhInfo<Bvh>("sweepbvh", "BVH by full-sweep SAH over all N-1 planes per axis: the exact reference for sahbvh; slow build",
                      BvhKind::SweepSah),
     };

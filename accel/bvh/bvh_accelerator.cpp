@@ -1,5 +1,6 @@
 #include "accel/bvh/bvh_accelerator.h"
 
+#include "accel/bvh/layout/end_point_overlap.h"
 #include "accel/bvh/traverse/bvh_traversal.h"
 #include "accel/bvh/traverse/wide_bvh_traversal.h"
 
@@ -23,8 +24,9 @@ struct LayoutWidth<WideBvh<N>> {
 }  // namespace
 
 template <typename Layout>
-BvhAccelerator<Layout>::BvhAccelerator(BvhKind kind, const BvhBuildConfig& build, const TraversalConfig& traversal)
-    : kind_(kind), build_(build), traversal_(traversal), name_(bvhKindName(kind)) {
+BvhAccelerator<Layout>::BvhAccelerator(BvhKind kind, const BvhBuildConfig& build, const TraversalConfig& traversal,
+                                       const BvhStatsConfig& stats)
+    : kind_(kind), build_(build), traversal_(traversal), stats_(stats), name_(bvhKindName(kind)) {
     if constexpr (LayoutWidth<Layout>::value > 2) {
         name_ += std::to_string(LayoutWidth<Layout>::value);
         // The leaves test a block of triangles at a time: the SAH charges them so.
@@ -37,7 +39,7 @@ BuildStats BvhAccelerator<Layout>::build(const PrimitiveSet& prims) {
     // Build time: from the first read of the primitives (PrimRef preparation: boxes and centre
     // bounds) to the finished node arrays and leaf arrays (primitive indices and the primitives
     // copied in leaf order), including a collapse and the quadric tree. The statistics are not
-    // part of it.
+    // part of it, nor is EPO.
     tree_ = Layout();
     quadrics_ = QuadricBvh();
     const auto start = std::chrono::steady_clock::now();
@@ -45,6 +47,8 @@ BuildStats BvhAccelerator<Layout>::build(const PrimitiveSet& prims) {
     const auto built = std::chrono::steady_clock::now();
     BuildStats stats;
     fillTreeStats(binary, build_.cTraversal, build_.cIntersect, stats);
+    if (!binary.empty() && binary.leafTriangles.size() <= stats_.epoMaxTriangles)
+        stats.epo = endPointOverlap(binary.nodes, binary.leafTriangles, build_.cTraversal, build_.cIntersect, build_.threads);
     const Bounds3 triangleRoot = binary.empty() ? Bounds3() : binary.nodes[0].box();
     const auto statsEnd = std::chrono::steady_clock::now();
     if constexpr (std::is_same_v<Layout, Bvh>) {

@@ -1,5 +1,5 @@
 // The BVH accelerators behind our interface: one class over a node layout, parameterised by the
-// builder (tdbvh, sahbvh, sweepbvh) and the traversal setting. Layout = Bvh is the binary tree
+// builder (tdbvh, sahbvh, sweepbvh, ploc) and the traversal setting. Layout = Bvh is the binary tree
 // the builders emit; Layout = WideBvh<N> collapses it by SAH into N-wide nodes (sahbvh4,
 // sahbvh8) whose leaves hold their triangles in SIMD blocks of eight. For them the SAH builders
 // charge a leaf by the blocks it fills (BvhBuildConfig::sahBlockShift), so their binary tree is
@@ -16,13 +16,19 @@
 
 namespace bvhlab {
 
+// What the statistics after a build include (never timed).
+struct BvhStatsConfig {
+    uint32_t epoMaxTriangles = 1'000'000;  // EPO for scenes of up to this many triangles (0: never)
+};
+
 template <typename Layout>
 class BvhAccelerator final : public Accelerator {
 public:
-    BvhAccelerator(BvhKind kind, const BvhBuildConfig& build, const TraversalConfig& traversal = {});
+    BvhAccelerator(BvhKind kind, const BvhBuildConfig& build, const TraversalConfig& traversal = {},
+                   const BvhStatsConfig& stats = {});
 
     std::string_view name() const override { return name_; }
-    // Build time includes a collapse to wide nodes. #Nodes, #Leaves, depth and SAH are the
+    // Build time includes a collapse to wide nodes. #Nodes, #Leaves, depth, SAH and EPO are the
     // binary tree's (the same formula for every builder), with the quadric tree's added
     // (combineTreeStats); memory is the layouts'.
     BuildStats build(const PrimitiveSet& prims) override;
@@ -39,6 +45,7 @@ private:
     BvhKind kind_;
     BvhBuildConfig build_;
     TraversalConfig traversal_;
+    BvhStatsConfig stats_;
     std::string name_;  // the builder's name, with the width of a wide layout: sahbvh, sahbvh4
     Layout tree_;
     QuadricBvh quadrics_;  // the spheres and cones, when the scene has any (quadric_leaves.h)

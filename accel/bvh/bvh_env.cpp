@@ -4,7 +4,7 @@ namespace bvhlab {
 
 void registerBvhKeys(EnvRegistry& r) {
     using namespace keys::BVH;
-    for (const IntKey& key : {maxLeaf, leafCap, bins, threads}) r.add(key);
+    for (const IntKey& key : {maxLeaf, leafCap, bins, plocRadius, threads, epoMaxTriangles}) r.add(key);
     for (const BoolKey& key : {sahTermination, allAxes, keys::BVH::simd, robust}) r.add(key);
     for (const FloatKey& key : {cTraversal, cIntersect, sbvhAlpha, sbvhGrowth}) r.add(key);
     r.add(tdbvhSplit);
@@ -13,7 +13,8 @@ void registerBvhKeys(EnvRegistry& r) {
 std::vector<std::string> bvhEnvKeys(BvhKind kind) {
     using namespace keys::BVH;
     std::vector<std::string_view> read = {maxLeaf.name(), leafCap.name(), cTraversal.name(),
-                                          cIntersect.name(), keys::BVH::simd.name(), robust.name(), threads.name()};
+                                          cIntersect.name(), keys::BVH::simd.name(), robust.name(), threads.name(),
+                                          epoMaxTriangles.name()};
     switch (kind) {
     case BvhKind::SpatialMedian: read.push_back(tdbvhSplit.name()); break;
     case BvhKind::BinnedSah: read.insert(read.end(), {sahTermination.name(), bins.name(), allAxes.name()}); break;
@@ -21,6 +22,7 @@ std::vector<std::string> bvhEnvKeys(BvhKind kind) {
     case BvhKind::Sbvh:
         read.insert(read.end(), {sahTermination.name(), bins.name(), allAxes.name(), sbvhAlpha.name(), sbvhGrowth.name()});
         break;
+    case BvhKind::Ploc: read.insert(read.end(), {sahTermination.name(), plocRadius.name()}); break;
     }
     return {read.begin(), read.end()};
 }
@@ -37,11 +39,16 @@ BvhBuildConfig bvhConfigFromEnv(const Env& env) {
     c.allAxes = env.get(allAxes);
     c.sbvhAlpha = env.get(sbvhAlpha);
     c.sbvhGrowth = env.get(sbvhGrowth);
+    c.plocRadius = env.get(plocRadius);
     c.simd = env.get(keys::BVH::simd);
     c.threads = env.get(threads);
     if (c.threads == 0) c.threads = env.get(keys::SetRayTracing::threads);
     c.medianSplitBox = env.get(tdbvhSplit) == "nodebox" ? MedianSplitBox::NodeBox : MedianSplitBox::CentroidBox;
     return c;
+}
+
+BvhStatsConfig statsConfigFromEnv(const Env& env) {
+    return {uint32_t(env.get(keys::BVH::epoMaxTriangles))};
 }
 
 TraversalConfig traversalConfigFromEnv(const Env& env) {

@@ -1,7 +1,8 @@
-// The env keys of the BVH accelerators (tdbvh, sahbvh, sweepbvh, sbvh), all in section BVH::.
+// The env keys of the BVH accelerators (tdbvh, sahbvh, sweepbvh, sbvh, ploc), all in section BVH::.
 #pragma once
 
 #include "accel/bvh/build/bvh_builder.h"
+#include "accel/bvh/bvh_accelerator.h"
 #include "accel/bvh/traverse/traversal_config.h"
 #include "framework/config/common_keys.h"
 #include "framework/config/env.h"
@@ -27,6 +28,9 @@ inline constexpr FloatKey cIntersect{
     "BVH::cIntersect", "1", 1e-6, 1e6,
     "SAH cost of a ray-triangle test: used by the SAH builders and by the reported SAH cost"};
 inline constexpr IntKey bins{"BVH::bins", "16", 2, 256, "sahbvh: bins per axis (Wald 2007: 16 suffices)"};
+inline constexpr IntKey plocRadius{
+    "BVH::plocRadius", "16", 1, 256,
+    "ploc: clusters on either side (Morton order) among which each cluster looks for its nearest neighbour"};
 inline constexpr BoolKey allAxes{"BVH::allAxes", "false",
                                  "sahbvh: bin all three axes and take the best, not only the widest"};
 inline constexpr FloatKey sbvhAlpha{
@@ -45,6 +49,10 @@ inline constexpr BoolKey robust{
 inline constexpr IntKey threads{"BVH::threads", "0", 0, 1024,
                                 "build threads; 0 = as SetRayTracing::threads (0 there: all hardware threads). The "
                                 "tree is the same whatever the count"};
+inline constexpr IntKey epoMaxTriangles{
+    "BVH::epoMaxTriangles", "1000000", 0, 2147483647,
+    "statistics: EPO (end-point overlap) after the build, untimed, for scenes of up to this many triangles; 0 = never "
+    "(one clipping walk per triangle: about 2 s of CPU per million triangles; the 8.4 M-triangle terrain is above)"};
 inline constexpr std::string_view kMedianSplitBoxes[] = {"centroidbox", "nodebox"};
 inline constexpr ChoiceKey tdbvhSplit{"BVH::tdbvhSplit", "centroidbox", kMedianSplitBoxes,
                                       "tdbvh: halve the longest axis of the box of the centres, or of the node's box"};
@@ -56,6 +64,7 @@ void registerBvhKeys(EnvRegistry& registry);
 std::vector<std::string> bvhEnvKeys(BvhKind kind);
 
 BvhBuildConfig bvhConfigFromEnv(const Env& env);
+BvhStatsConfig statsConfigFromEnv(const Env& env);
 TraversalConfig traversalConfigFromEnv(const Env& env);
 
 }  // namespace bvhlab

@@ -125,6 +125,8 @@ std::vector<nlohmann::json> measureRounds(const Scene& scene, const RaySets& ray
                               {"nodes", optional(k.stats.nodes)},
                               {"leaves", optional(k.stats.leaves)},
                               {"sah", k.stats.sah ? nlohmann::json(k.stats.sah->cost) : nlohmann::json()},
+                              {"epo", optional(k.stats.epo)},
+                              {"leaf_sizes", k.stats.leafSizes.empty() ? nlohmann::json() : nlohmann::json(k.stats.leafSizes)},
                               {"bytes", optional(k.stats.bytes)}};
         for (size_t set = 0; set < std::size(raySets); ++set) {
             const double q = std::max<double>(1.0, double(k.counters[set].queries));
@@ -162,15 +164,15 @@ std::string benchTable(const nlohmann::json& results) {
     size_t accelWidth = 14;
     for (const nlohmann::json& row : results["rows"]) accelWidth = std::max(accelWidth, row["accel"].get<std::string>().size());
     std::string out = fmt::format("{:<16} {:>3} {:<{}} {:>9} {:>6} {:>8} {:>6} {:>6} {:>8} {:>6} {:>6} {:>8} {:>6} {:>6} "
-                                  "{:>6} {:>6} {:>8} {:>7}\n",
+                                  "{:>6} {:>6} {:>8} {:>7} {:>7}\n",
                                   "scene", "thr", "accel", accelWidth, "T_B ms", "xE", "prim us", "xE", "xER", "shad us", "xE",
-                                  "xER", "incoh us", "xE", "xER", "N_IT", "N_TR", "SAH", "MB");
+                                  "xER", "incoh us", "xE", "xER", "N_IT", "N_TR", "SAH", "EPO", "MB");
     std::map<std::string, std::vector<nlohmann::json>> byConfig;
     for (const nlohmann::json& row : results["rows"]) {
         const nlohmann::json& e = row["ratio_to_embree-bare"];
         const nlohmann::json& er = row["ratio_to_embree-robust"];
         out += fmt::format("{:<16} {:>3} {:<{}} {:>9.1f} {:>6} {:>8.3f} {:>6} {:>6} {:>8.3f} {:>6} {:>6} "
-                           "{:>8.3f} {:>6} {:>6} {:>6} {:>6} {:>8} {:>7}\n",
+                           "{:>8.3f} {:>6} {:>6} {:>6} {:>6} {:>8} {:>7} {:>7}\n",
                            row["scene"].get<std::string>(), row["threads"].get<int>(), row["accel"].get<std::string>(),
                            accelWidth, row["build_ms"].get<double>(), numberOrNa(e["build"], "{:.2f}"),
                            row["primary"]["t_r_us"].get<double>(), numberOrNa(e["primary"], "{:.2f}"),
@@ -179,7 +181,7 @@ std::string benchTable(const nlohmann::json& results) {
                            row["incoherent"]["t_r_us"].get<double>(), numberOrNa(e["incoherent"], "{:.2f}"),
                            numberOrNa(er["incoherent"], "{:.2f}"), numberOrNa(row["primary"]["n_it"], "{:.1f}"),
                            numberOrNa(row["primary"]["n_tr"], "{:.1f}"), numberOrNa(row["sah"], "{:.2f}"),
-                           row["bytes"].is_null() ? "n/a" : fmt::format("{:.1f}", row["bytes"].get<double>() / 1048576.0));
+                           numberOrNa(row["epo"], "{:.2f}"), row["bytes"].is_null() ? "n/a" : fmt::format("{:.1f}", row["bytes"].get<double>() / 1048576.0));
         byConfig[fmt::format("{} threads={}", row["accel"].get<std::string>(), row["threads"].get<int>())].push_back(row);
     }
     out += "\ngeometric means over scenes of the ratios to embree-bare (embree-robust):\n";

@@ -65,6 +65,12 @@ struct BuildStats {
     // levels); unset when it has no such bound. Checked by `bvhlab stress`, not reported.
     std::optional<int> depthBound;
     std::optional<SahCost> sah;
+    // End-point overlap (Aila, Karras and Laine 2013) with the SAH's constants: the area of
+    // geometry inside node boxes but not in their subtrees, by node cost, over all geometry's
+    // area. Unset where the tree is invisible or it was not computed (large scenes).
+    std::optional<double> epo;
+    // leafSizes[k]: the leaves holding k primitives; empty when the tree is invisible.
+    std::vector<size_t> leafSizes;
     std::optional<size_t> bytes;
 };
 

@@ -38,19 +38,20 @@ nlohmann::json optionalJson(const std::optional<T>& value) {
 
 std::string formatStatsTable(const StatsRow& row) {
     const BuildStats& b = row.build;
-    std::string out = fmt::format("{:<14} {:<9} {:>9} {:>9} {:>9} {:>10} {:>9} {:>9} {:>8} {:>8} {:>10} {:>10}\n",
-                                  "scene", "accel", "#Prims", "#Leaves", "#Nodes", "SAH", "T_B ms", "T_R us",
+    std::string out = fmt::format("{:<14} {:<9} {:>9} {:>9} {:>9} {:>10} {:>8} {:>9} {:>9} {:>8} {:>8} {:>10} {:>10}\n",
+                                  "scene", "accel", "#Prims", "#Leaves", "#Nodes", "SAH", "EPO", "T_B ms", "T_R us",
                                   "N_IT", "N_TR", "N_Q", "render ms");
     auto line = [&](const char* label, const QueryStats& q, bool first) {
         const bool traced = q.counters.queries > 0, counted = traced && row.hasCounters;
         const std::string nit = counted ? fmt::format("{:.2f}", perQuery(q.counters.intersectionTests, q.counters.queries)) : "n/a";
         const std::string ntr = counted ? fmt::format("{:.2f}", perQuery(q.counters.traversalSteps, q.counters.queries)) : "n/a";
         const std::string tr = traced ? fmt::format("{:.3f}", q.usPerQuery()) : "n/a";
-        out += fmt::format("{:<14} {:<9} {:>9} {:>9} {:>9} {:>10} {:>9} {:>9} {:>8} {:>8} {:>10} {:>10}\n",
+        out += fmt::format("{:<14} {:<9} {:>9} {:>9} {:>9} {:>10} {:>8} {:>9} {:>9} {:>8} {:>8} {:>10} {:>10}\n",
                            first ? row.scene : label, first ? row.accel : "",
                            first ? fmt::format("{}", row.prims) : "", first ? orNa(b.leaves, "{}") : "",
                            first ? orNa(b.nodes, "{}") : "",
                            first ? (b.sah ? fmt::format("{:.3f}", b.sah->cost) : "n/a") : "",
+                           first ? orNa(b.epo, "{:.3f}") : "",
                            first ? fmt::format("{:.1f}", b.buildMs) : "", tr, nit, ntr,
                            q.counters.queries, first ? fmt::format("{:.1f}", row.render.renderMs) : "");
     };
@@ -64,7 +65,7 @@ std::string formatStatsTable(const StatsRow& row) {
                        row.load.degenerateTriangles, row.load.degenerateSpheres, row.load.degenerateCones,
                        row.render.shadowRaysSkippedDisabled, row.render.shadowRaysSkippedBackfacing,
                        row.render.bouncesSkipped, row.render.threads);
-    if (b.sah) out += fmt::format("; SAH with C_trav={} C_isect={}", b.sah->cTraversal, b.sah->cIntersect);
+    if (b.sah) out += fmt::format("; SAH and EPO with C_trav={} C_isect={}", b.sah->cTraversal, b.sah->cIntersect);
     return out;
 }
 
@@ -86,6 +87,8 @@ nlohmann::json statsJson(const StatsRow& row) {
         {"sah", b.sah ? nlohmann::json(b.sah->cost) : nlohmann::json()},
         {"sah_c_trav", b.sah ? nlohmann::json(b.sah->cTraversal) : nlohmann::json()},
         {"sah_c_isect", b.sah ? nlohmann::json(b.sah->cIntersect) : nlohmann::json()},
+        {"epo", optionalJson(b.epo)},
+        {"leaf_sizes", b.leafSizes.empty() ? nlohmann::json() : nlohmann::json(b.leafSizes)},
         {"build_ms", b.buildMs},
         {"render_ms", row.render.renderMs},
         {"threads", row.render.threads},

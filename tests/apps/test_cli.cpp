@@ -165,10 +165,14 @@ TEST(Cli, BenchMeasuresInRoundsWithPairedRatios) {
         EXPECT_EQ(row["primary"]["t_r_us_all"].size(), 3u) << accel;
         EXPECT_EQ(row["primary"]["queries"], 24 * 16) << accel;
         EXPECT_EQ(row["primary"]["n_it"].is_null(), accel.starts_with("embree")) << accel;
-        if (accel == "embree") EXPECT_EQ(row["ratio_to_embree"]["primary"], 1.0);
+        if (accel == "embree") {
+            EXPECT_EQ(row["ratio_to_embree"]["primary"], 1.0);
+        }
         // Every row has its ratio to Embree as its users call it; embree-bare's is itself.
         EXPECT_TRUE(row["ratio_to_embree-bare"]["shadow"].is_number()) << accel;
-        if (accel == "embree-bare") EXPECT_EQ(row["ratio_to_embree-bare"]["primary"], 1.0);
+        if (accel == "embree-bare") {
+            EXPECT_EQ(row["ratio_to_embree-bare"]["primary"], 1.0);
+        }
     }
     EXPECT_EQ(labels, (std::vector<std::string>{"sahbvh", "sahbvh:BVH::robust=false", "embree", "embree-robust",
                                                 "embree-bare"}));

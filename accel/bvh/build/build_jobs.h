@@ -1,12 +1,12 @@
 // How a build runs its subtrees as parallel jobs and still makes one tree whatever the thread
 // count: the nodes above the jobs are built first, each job's subtree (root at 0, a padding
 // slot, sibling pairs) on its own, and the subtrees are appended in the order the jobs were
-// deferred. Shared by the in-place builders (bvh_builder.cpp) and sbvh (sbvh_builder.cpp).
+// deferred. Shared by the in-place builders (bvh_builder.cpp), sbvh (sbvh_builder.cpp) and
+// ploc's tree of clusters (cluster_tree.cpp).
 #pragma once
 
+#include "accel/bvh/build/build_threads.h"
 #include "accel/bvh/layout/bvh.h"
-
-#include <tbb/task_arena.h>
 
 #include <cassert>
 #include <vector>
@@ -19,14 +19,6 @@ using BvhNodes = std::vector<BvhNode, TraversalAllocator<BvhNode>>;
 // the nodes above them; large enough that a job outweighs its scheduling, small enough that
 // there are many more jobs than threads.
 inline constexpr uint32_t kJobPrimitives = 4096;
-
-// Runs f() on `threads` TBB threads (0 = all hardware threads).
-template <typename F>
-void onThreads(int threads, F&& f) {
-    if (threads == 1) return f();
-    tbb::task_arena arena(threads == 0 ? tbb::task_arena::automatic : threads);
-    arena.execute(f);
-}
 
 // Puts the subtree built by a job into the tree: its root into its slot, its pairs appended (an
 // even offset: pairs stay on cache lines of their own), its leaves' indices moved by leafShift

@@ -2,6 +2,7 @@
 
 #include "accel/bvh/build/binned_sah_builder.h"
 #include "accel/bvh/build/build_jobs.h"
+#include "accel/bvh/build/ploc_builder.h"
 #include "accel/bvh/build/sbvh_builder.h"
 #include "accel/bvh/build/spatial_median_builder.h"
 #include "accel/bvh/build/sweep_sah_builder.h"
@@ -127,6 +128,7 @@ const char* bvhKindName(BvhKind kind) {
     case BvhKind::BinnedSah: return "sahbvh";
     case BvhKind::SweepSah: return "sweepbvh";
     case BvhKind::Sbvh: return "sbvh";
+    case BvhKind::Ploc: return "ploc";
     }
     return "bvh";
 }
@@ -139,6 +141,7 @@ std::unique_ptr<TopDownBuilder> makeBvhBuilder(BvhKind kind, const BvhBuildConfi
     // sbvh's own recursion (sbvh_builder.h) builds the triangles' tree; this in-place one
     // serves its spheres and cones, by binned SAH (object splits only: no triangle to clip).
     case BvhKind::Sbvh: return std::make_unique<BinnedSahBuilder>(config);
+    case BvhKind::Ploc: break;
     }
     // Every BvhKind is a case above; a value outside the enum is a programming error.
     throw std::logic_error(fmt::format("makeBvhBuilder: unknown BvhKind {}", int(kind)));
@@ -168,19 +171,11 @@ std::vector<BvhNode, TraversalAllocator<BvhNode>> buildNodes(BvhKind kind, const
 
 }  // namespace
 
-Bvh buildBvh(BvhKind kind, const BvhBuildConfig& config, const PrimitiveSet& prims) {
-    if (kind == BvhKind::Sbvh) return buildSbvh(config, prims);
+void fillLeafArrays(Bvh& bvh, const PrimRef* refs, const PrimitiveSet& prims, int threads) {
     const size_t n = prims.validTriangles().size();
-    // Uninitialised storage: every PrimRef is written by preparePrimRefs.
-    const std::unique_ptr<PrimRef[]> refs = std::make_unique_for_overwrite<PrimRef[]>(n);
-    const BuildRange root = preparePrimRefs(prims, refs.get(), config.simd);
-
-    Bvh bvh;
-    bvh.nodes = buildNodes(kind, config, std::span<PrimRef>(refs.get(), n), root);
     bvh.primIndices.resize(n);
     for (size_t i = 0; i < n; ++i) bvh.primIndices[i] = refs[i].prim;
-    copyLeafTriangles(prims, config.threads, bvh);
-    return bvh;
+    copyLeafTriangles(prims, threads, bvh);
 }
 
 void copyLeafTriangles(const PrimitiveSet& prims, int threads, Bvh& bvh) {
@@ -193,8 +188,23 @@ void copyLeafTriangles(const PrimitiveSet& prims, int threads, Bvh& bvh) {
     });
 }
 
+Bvh buildBvh(BvhKind kind, const BvhBuildConfig& config, const PrimitiveSet& prims) {
+    if (kind == BvhKind::Sbvh) return buildSbvh(config, prims);
+    if (kind == BvhKind::Ploc) return buildPlocBvh(config, prims);
+    const size_t n = prims.validTriangles().size();
+    // Uninitialised storage: every PrimRef is written by preparePrimRefs.
+    const std::unique_ptr<PrimRef[]> refs = std::make_unique_for_overwrite<PrimRef[]>(n);
+    const BuildRange root = preparePrimRefs(prims, refs.get(), config.simd);
+    Bvh bvh;
+    bvh.nodes = buildNodes(kind, config, std::span<PrimRef>(refs.get(), n), root);
+    fillLeafArrays(bvh, refs.get(), prims, config.threads);
+    return bvh;
+}
+
 QuadricBvh buildQuadricBvh(BvhKind kind, const BvhBuildConfig& config, const PrimitiveSet& prims) {
-    // Few primitives as a rule (the SPD scenes have thousands, not millions): plain loops.
+    // Few primitives as a rule (the SPD scenes have thousands, not millions): plain loops. ploc's
+    // clustering is for the millions of triangles; its spheres and cones get binned SAH.
+    if (kind == BvhKind::Ploc) kind = BvhKind::BinnedSah;
     const std::span<const uint32_t> valid = prims.validQuadrics();
     std::vector<PrimRef> refs(valid.size());
     BoundsAccumulator<simd::Scalar<4>> acc;

@@ -20,9 +20,11 @@ enum class BvhKind {
     BinnedSah,  // sahbvh: binned SAH (Wald 2007)
     SweepSah,   // sweepbvh: full-sweep SAH, the exact reference for the binning
     Sbvh,       // sbvh: binned SAH with spatial splits (Stich et al. 2009), sbvh_builder.h
+    Ploc,       // ploc: bottom-up clustering (Meister & Bittner 2018), not a TopDownBuilder
 };
 
-// The registered name of a binary BVH by this builder: "tdbvh", "sahbvh", "sweepbvh", "sbvh".
+// The registered name of a binary BVH by this builder: "tdbvh", "sahbvh", "sweepbvh", "sbvh",
+// "ploc".
 const char* bvhKindName(BvhKind kind);
 
 enum class MedianSplitBox {
@@ -49,6 +51,8 @@ struct BvhBuildConfig {
     float sbvhAlpha = 1e-5f;     // sbvh: spatial splits only where the object split's children
                                  // overlap by more than alpha * A(root)
     float sbvhGrowth = 0.3f;     // sbvh: at most this many new references per triangle
+    int plocRadius = 16;         // ploc: each cluster looks for its nearest neighbour among the
+                                 // plocRadius clusters on either side in Morton order
     int threads = 1;             // build threads (TBB; 0 = all hardware threads): the tree does
                                  // not depend on them
 
@@ -164,19 +168,23 @@ Split TopDownBuilder::partition(const BuildRange& range, IsLeft isLeft) {
     });
 }
 
-// One PrimRef per valid triangle in `out`, and the range over them (SIMD or scalar).
-BuildRange preparePrimRefs(const PrimitiveSet& prims, PrimRef* out, bool simd);
-
 // The whole build: PrimRefs from the valid triangles (SIMD or scalar), the recursion of the
-// chosen builder, then the leaf arrays (primitive indices and triangles in leaf order).
+// chosen builder (sbvh's own, or ploc's clustering), then the leaf arrays (primitive indices
+// and triangles in leaf order).
 Bvh buildBvh(BvhKind kind, const BvhBuildConfig& config, const PrimitiveSet& prims);
-
-// Fills bvh.leafTriangles with the triangles bvh.primIndices name, in parallel.
-void copyLeafTriangles(const PrimitiveSet& prims, int threads, Bvh& bvh);
 
 // buildBvh over the valid spheres and cones (their boxes), with their shapes in leaf order.
 QuadricBvh buildQuadricBvh(BvhKind kind, const BvhBuildConfig& config, const PrimitiveSet& prims);
 
+// A top-down builder; not for BvhKind::Ploc, which is bottom-up.
 std::unique_ptr<TopDownBuilder> makeBvhBuilder(BvhKind kind, const BvhBuildConfig& config);
+
+// The steps of buildBvh that the builders with their own recursion (sbvh, ploc) share:
+// one PrimRef per valid triangle into `out` (its size), and the range over them;
+BuildRange preparePrimRefs(const PrimitiveSet& prims, PrimRef* out, bool simd);
+// the leaf arrays from PrimRefs in leaf order;
+void fillLeafArrays(Bvh& bvh, const PrimRef* refs, const PrimitiveSet& prims, int threads);
+// bvh.leafTriangles from the triangles bvh.primIndices name, in parallel.
+void copyLeafTriangles(const PrimitiveSet& prims, int threads, Bvh& bvh);
 
 }  // namespace bvhlab

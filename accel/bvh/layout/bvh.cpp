@@ -14,6 +14,7 @@ void fillTreeStats(std::span<const BvhNode> tree, double cTraversal, double cInt
         int depth;
     };
     std::vector<Item> stack;
+    std::vector<size_t> leafSizes;
     if (!tree.empty()) stack.push_back({0, 0});
     while (!stack.empty()) {
         const auto [index, depth] = stack.back();
@@ -26,6 +27,8 @@ void fillTreeStats(std::span<const BvhNode> tree, double cTraversal, double cInt
             ++leaves;
             leafPrims += node.count;
             maxLeafPrims = std::max<size_t>(maxLeafPrims, node.count);
+            if (leafSizes.size() <= node.count) leafSizes.resize(node.count + 1, 0);
+            ++leafSizes[node.count];
             leafAreaTimesPrims += area * node.count;
         } else {
             innerArea += area;
@@ -38,6 +41,7 @@ void fillTreeStats(std::span<const BvhNode> tree, double cTraversal, double cInt
     stats.leaves = leaves;
     stats.avgLeafPrimitives = leaves ? double(leafPrims) / double(leaves) : 0.0;
     stats.maxLeafPrimitives = maxLeafPrims;
+    stats.leafSizes = std::move(leafSizes);
     stats.maxDepth = maxDepth;
     stats.depthBound = kBvhMaxDepth;
 
@@ -67,6 +71,10 @@ void combineTreeStats(BuildStats& first, const Bounds3& firstRoot, const BuildSt
     first.primitives += second.primitives;
     first.maxLeafPrimitives = std::max(first.maxLeafPrimitives.value_or(0), second.maxLeafPrimitives.value_or(0));
     first.maxDepth = std::max(first.maxDepth.value_or(0), second.maxDepth.value_or(0));
+    if (first.leafSizes.size() < second.leafSizes.size()) first.leafSizes.resize(second.leafSizes.size(), 0);
+    for (size_t k = 0; k < second.leafSizes.size(); ++k) first.leafSizes[k] += second.leafSizes[k];
+    // EPO is of the triangles' geometry: with spheres and cones beside them it is not known.
+    if (!second.epo) first.epo.reset();
     if (first.sah && second.sah) {
         const double unionArea = unionOf(firstRoot, secondRoot).halfArea();
         const double a = unionArea > 0.0 ? firstRoot.halfArea() / unionArea : 1.0;

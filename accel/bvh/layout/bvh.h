@@ -17,8 +17,8 @@ namespace bvhlab {
 // subtree first. Leaf l holds leafTriangles[l.index .. l.index + l.count).
 using Bvh = NodeTree<BvhNode>;
 
-// Fills the tree fields of BuildStats (nodes, leaves, leaf sizes, depth, SAH; not the build
-// time nor the bytes) from the nodes of a tree laid out as Bvh. The SAH cost, the same formula
+// Fills the tree fields of BuildStats (nodes, leaves, leaf sizes and their histogram, depth, SAH;
+// not the build time, the bytes nor EPO: end_point_overlap.h) from the nodes of a tree laid out as Bvh. The SAH cost, the same formula
 // for every builder, normalised by the root area:
 //   C_trav * sum_inner A(n)/A(root) + C_isect * sum_leaves A(l)/A(root) * N(l).
 void fillTreeStats(std::span<const BvhNode> nodes, double cTraversal, double cIntersect, BuildStats& stats);
@@ -33,7 +33,8 @@ void fillTreeStats(const NodeTree<BvhNode, Leaves>& tree, double cTraversal, dou
 // The statistics of two trees that every query traverses one after the other (triangles, then
 // quadrics), into `first`: counts and bytes add up, and the SAH of each counts with the
 // probability that a ray through the union of the two root boxes enters its root
-// (A(root) / A(union)), i.e. both costs renormalised to the union's area.
+// (A(root) / A(union)), i.e. both costs renormalised to the union's area. The leaf-size
+// histograms add up; EPO stays only if both have one.
 void combineTreeStats(BuildStats& first, const Bounds3& firstRoot, const BuildStats& second, const Bounds3& secondRoot);
 
 }  // namespace bvhlab

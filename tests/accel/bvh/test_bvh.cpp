@@ -24,7 +24,7 @@
 namespace bvhlab {
 namespace {
 
-constexpr BvhKind kAllKinds[] = {BvhKind::SpatialMedian, BvhKind::BinnedSah, BvhKind::SweepSah};
+constexpr BvhKind kAllKinds[] = {BvhKind::SpatialMedian, BvhKind::BinnedSah, BvhKind::SweepSah, BvhKind::Ploc};
 
 using test::Soup;
 
@@ -658,7 +658,7 @@ TEST(Bvh, CountersCountVisitsAndTests) {
 
 TEST(Bvh, RegisteredWithTheirEnvKeys) {
     const EnvRegistry& registry = programKeys();
-    for (const char* name : {"tdbvh", "sahbvh", "sahbvh4", "sahbvh8", "sweepbvh"}) {
+    for (const char* name : {"tdbvh", "sahbvh", "sahbvh4", "sahbvh8", "sweepbvh", "ploc", "ploc8"}) {
         const auto& infos = acceleratorInfos();
         const auto it = std::find_if(infos.begin(), infos.end(), [&](const AcceleratorInfo& i) { return i.name == name; });
         ASSERT_NE(it, infos.end()) << name;
@@ -946,4 +946,72 @@ TEST(Bvh, RecursionRefusesASplitWithAnEmptyHalf) {
     EXPECT_THROW(builder.build(refs, root), std::logic_error);
 }
 
+}  // namespace bvhlab
+
+namespace bvhlab {
+namespace {
+
+// ploc is deterministic: the neighbour search, the merges and the leaf forming run over fixed
+// chunks, ties broken by a total order on pairs, so the tree is the same at 1, 2 and all threads.
+TEST(Ploc, SameTreeWhateverTheThreadCount) {
+    const Soup soup = randomSoup(60000, 71);
+    std::vector<Bvh> trees;
+    for (int threads : {1, 2, 0}) {
+        BvhBuildConfig config = defaultConfig();
+        config.threads = threads;
+        trees.push_back(buildBvh(BvhKind::Ploc, config, soup.prims()));
+    }
+    for (size_t t = 1; t < trees.size(); ++t) {
+        ASSERT_EQ(trees[t].nodes.size(), trees[0].nodes.size());
+        EXPECT_EQ(std::memcmp(trees[t].nodes.data(), trees[0].nodes.data(), trees[0].nodes.size() * sizeof(BvhNode)), 0);
+        EXPECT_EQ(trees[t].primIndices, trees[0].primIndices);
+    }
+}
+
+// Boxes on a line, each 1.5 times further out and larger: each cluster's nearest neighbour is
+// the cluster of all nearer ones, so the clustering is a chain N - 1 deep. The subtrees that
+// would reach kBvhMaxDepth are rebuilt by binned SAH from depth 32: the tree keeps every
+// primitive once and stays below the bound, and is deeper than 32 (the chain did occur).
+TEST(Ploc, ChainOfClustersIsRebuiltWithinTheDepthBound) {
+    Soup soup;
+    for (int i = 0; i < 300; ++i) {
+        const float x = std::pow(1.5f, float(i) - 150.0f);
+        soup.add({{x, 0, 0}, {x * 1.2f, 0, 0}, {x, x * 0.2f, x * 0.2f}});
+    }
+    BvhBuildConfig config;
+    config.maxLeaf = 1;
+    config.sahTermination = false;
+    BvhAccelerator<Bvh> accel(BvhKind::Ploc, config);
+    const TreeFacts facts = buildAndCheck(accel, soup);
+    EXPECT_EQ(facts.leaves, soup.valid.size());
+    EXPECT_LT(facts.maxDepth, kBvhMaxDepth);
+    EXPECT_GT(facts.maxDepth, kBvhMaxDepth / 2) << "the chain this test is about did not occur";
+}
+
+// Equal boxes (all distances tie) pair up 0-1, 2-3, ... each iteration: a balanced tree, not a
+// chain of one merge per iteration.
+TEST(Ploc, CoincidentTrianglesPairUp) {
+    Soup soup;
+    for (int i = 0; i < 1024; ++i) soup.add({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+    BvhBuildConfig config;
+    config.maxLeaf = 1;
+    config.sahTermination = false;
+    BvhAccelerator<Bvh> accel(BvhKind::Ploc, config);
+    const TreeFacts facts = buildAndCheck(accel, soup);
+    EXPECT_EQ(facts.maxDepth, 10);
+}
+
+// The clustering's tree with SAH-formed leaves is as good by SAH as the binned top-down build
+// on a soup (within 15 %), and its leaves hold up to leafCap primitives.
+TEST(Ploc, SahNearTheBinnedBuild) {
+    const Soup soup = randomSoup(20000, 73);
+    BvhAccelerator<Bvh> ploc(BvhKind::Ploc, defaultConfig()), sah(BvhKind::BinnedSah, defaultConfig());
+    const double plocSah = ploc.build(soup.prims()).sah->cost, binnedSah = sah.build(soup.prims()).sah->cost;
+    EXPECT_LT(plocSah, 1.15 * binnedSah);
+    const TreeFacts facts = checkTree(ploc.bvh(), soup);
+    EXPECT_GT(facts.maxLeaf, 2u);
+    EXPECT_LE(facts.maxLeaf, size_t(defaultConfig().leafCap));
+}
+
+}  // namespace
 }  // namespace bvhlab

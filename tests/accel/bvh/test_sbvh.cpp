@@ -193,10 +193,16 @@ TEST(Sbvh, ReferenceSplitBoxesHoldTheTriangleParts) {
         const float position = box.lower[axis] + unit(rng) * (box.upper[axis] - box.lower[axis]);
         const auto [left, right] = splitReference(t, box, axis, position);
         for (const Bounds3* part : {&left, &right}) {
-            if (!part->isEmpty()) EXPECT_TRUE(contains(box, *part));
+            if (!part->isEmpty()) {
+                EXPECT_TRUE(contains(box, *part));
+            }
         }
-        if (!left.isEmpty()) EXPECT_LE(left.upper[axis], position);
-        if (!right.isEmpty()) EXPECT_GE(right.lower[axis], position);
+        if (!left.isEmpty()) {
+            EXPECT_LE(left.upper[axis], position);
+        }
+        if (!right.isEmpty()) {
+            EXPECT_GE(right.lower[axis], position);
+        }
         for (int s = 0; s < 50; ++s) {
             float u = unit(rng), v = unit(rng);
             if (u + v > 1.0f) u = 1.0f - u, v = 1.0f - v;

@@ -260,13 +260,17 @@ TEST_P(Stress, ScaleAndTranslationChangeNothing) {
                 // bound is 2 %: the wide layouts charge leaves by blocks of eight, so a flipped tie
                 // that moves a triangle across a block boundary changes a leaf's charge by a whole
                 // block (measured: up to 1.2 % for sahbvh4/sahbvh8 at scale 1e4, 0.2 % for sahbvh).
+                // ploc's order is the Morton grid's: rounding moves centres lying on its cell
+                // boundaries (the cube's grid again) to the next cell, which reorders clusters
+                // (measured: up to 2.3 % for ploc8): 3 % for it.
+                const double bound = variant().label.starts_with("ploc") ? 3e-2 : 2e-2;
                 const double relative = (stats.sah->cost - baseSah->cost) / baseSah->cost;
                 RecordProperty(fmt::format("{}.sah_change_at_scale_{:g}", variant().label, scale), fmt::format("{:.2e}", relative));
                 if (std::exp2(std::round(std::log2(scale))) == scale) {
                     EXPECT_NEAR(stats.sah->cost, baseSah->cost, 1e-9 * baseSah->cost) << label;
                     EXPECT_EQ(stats.nodes, baseStats.nodes) << label;
                 } else {
-                    EXPECT_NEAR(stats.sah->cost, baseSah->cost, 2e-2 * baseSah->cost) << label;
+                    EXPECT_NEAR(stats.sah->cost, baseSah->cost, bound * baseSah->cost) << label;
                     if (std::abs(relative) > 1e-3)
                         std::printf("[ NOTE     ] %s: SAH cost at scale %g differs by %.2e from scale 1 (the rounded "
                                     "coordinates break ties differently)\n", variant().label.c_str(), scale, relative);
