@@ -153,7 +153,8 @@ TEST(Tradeoff, BadBinsAreAnError) {
 
 // `tradeoff --builders --quick`: a row per scene x builder in builders.csv, the ratios to
 // embree-medium are 1 for itself, Embree has no SAH or EPO and ours have both, the Pareto front
-// is not empty, the report has the rank correlations, and a second run keeps every result.
+// is not empty, the report has the rank correlations, a second run keeps every result, and
+// docs/plots/plot_builders.py draws from the folder.
 TEST(Tradeoff, BuildersQuickRunWritesRowsAndResumes) {
     const fs::path dir = makeScenes();
     const std::string command = args(dir, "--builders --builds 1 --passes 1");
@@ -188,6 +189,14 @@ TEST(Tradeoff, BuildersQuickRunWritesRowsAndResumes) {
     r = run(command);
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_TRUE(contains(r.output, "0 configurations measured, 22 kept")) << r.output;
+
+    // The plot script draws both charts from that folder (where Debian's matplotlib is installed).
+    if (std::system("/usr/bin/python3 -c 'import matplotlib' 2>/dev/null") != 0) return;
+    const std::string plot = "/usr/bin/python3 " + (fs::path(BVHLAB_SOURCE_DIR) / "docs" / "plots" / "plot_builders.py").string() +
+                             " --data " + out.string() + " > /dev/null 2>&1";
+    ASSERT_EQ(std::system(plot.c_str()), 0) << plot;
+    for (const char* png : {"builders_pareto.png", "builders_pareto_scenes.png"})
+        EXPECT_GT(fs::file_size(out / "plots" / png), 1000u) << png;
 }
 
 // The plot script draws from a tradeoff folder into its plots/ subfolder, which it creates, and
