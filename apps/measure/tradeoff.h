@@ -8,6 +8,7 @@
 //
 // tradeoff_command.cpp: the command line and the loop; tradeoff_measure.cpp: one scene's
 // shared inputs and one configuration's measurements; tradeoff_report.cpp: CSV and Markdown.
+// With --builders the command compares the builders instead (builders.h).
 #pragma once
 
 #include "apps/common/accel_config.h"
@@ -28,6 +29,7 @@ namespace bvhlab {
 
 struct TradeoffSettings {
     bool quick = false;
+    bool builders = false;  // the builders side by side (builders.h) instead of the K series
     std::vector<int> bins = {2, 4, 8, 16, 32, 64, 128};  // K of the sahbvh configurations
     int raySize = 400;       // T_R and mismatch ray sets: image width = height; 0 = the scene's own size
     int seriesSize = 200;    // spp series and reference: image width = height
@@ -67,6 +69,15 @@ Env tradeoffSceneEnv(const Env& sceneEnv, const TradeoffSettings& settings, int 
 // the same settings.
 TradeoffScene prepareTradeoffScene(const std::string& id, const Env& sceneEnv, const TradeoffSettings& settings,
                                    const std::filesystem::path& sceneDir, const nlohmann::json& fingerprint);
+
+// The builds of one configuration: up to settings.builds, fewer once they have taken
+// buildBudgetMs; the last structure is kept for the traces.
+struct TimedBuilds {
+    std::unique_ptr<Accelerator> accel;
+    BuildStats stats;  // of the last build
+    std::vector<double> buildMs, buildCpuMs;  // wall (the structure's own timer) and process CPU time
+};
+TimedBuilds timedBuilds(const Scene& scene, const AccelConfig& config, const Env& env, const TradeoffSettings& settings);
 
 // Builds (median), traces the ray sets, counts mismatches against Embree and renders the spp
 // series: the JSON stored in DIR/<scene>/<config>.json.

@@ -1,11 +1,13 @@
-// `bvhlab tradeoff [--scenes ...] [--out DIR] [--quick] [--resume | --fresh]`: run time against
-// error for tdbvh, sahbvh with K bins, sweepbvh and embree (see apps/measure/tradeoff.h). Results are kept
+// `bvhlab tradeoff [--scenes ...] [--out DIR] [--quick] [--builders] [--resume | --fresh]`: run time
+// against error for tdbvh, sahbvh with K bins, sweepbvh and embree (see apps/measure/tradeoff.h), or
+// with --builders every builder against Embree's three qualities (apps/measure/builders.h). Results are kept
 // per configuration in DIR/<scene>/<config>.json; a run skips those already measured with the
 // same settings, so an interrupted run resumes where it stopped.
 #include "apps/common/app_keys.h"
 #include "apps/common/cli_common.h"
 #include "apps/common/commands.h"
 #include "apps/common/scene_list.h"
+#include "apps/measure/builders.h"
 #include "apps/measure/tradeoff.h"
 #include "framework/core/error.h"
 #include "framework/core/parse_number.h"
@@ -62,7 +64,7 @@ void addTradeoffCommand(CLI::App& app) {
     struct Options {
         EnvOptions env;
         std::vector<std::string> scenes;
-        std::string out = "out/tradeoff";
+        std::string out;  // default out/tradeoff, out/builders with --builders
         bool quick = false;
         bool resume = true;
         std::string bins = "2,4,8,16,32,64,128";
@@ -76,10 +78,15 @@ void addTradeoffCommand(CLI::App& app) {
     command->add_option("--scenes", options->scenes,
                         "scene env files, .list files or scene files (default env/scenes.list; --quick: munich and sibenik)");
     command->add_option("--out", options->out, "folder of the results: DIR/<scene>/<config>.json, tradeoff.csv, "
-                                               "image_error.csv, tradeoff.md")
-        ->capture_default_str();
+                                               "image_error.csv, tradeoff.md (--builders: builders.csv, "
+                                               "builders_summary.csv, builders.md); default out/tradeoff, out/builders");
+    command->add_flag("--builders", s.builders,
+                      "compare the builders instead: sahbvh, sbvh, ploc binary and 8-wide, tdbvh, sweepbvh and "
+                      "Embree low/medium/high; T_B, SAH, EPO, T_R of primary, shadow and incoherent rays, Pareto "
+                      "front, rank correlations");
     command->add_flag("--quick", options->quick,
-                      "CI subset: munich and sibenik, 200x200, K 4,16,64, up to 16 spp, reference 64 spp, 2 passes");
+                      "CI subset: munich and sibenik, 200x200, K 4,16,64, up to 16 spp, reference 64 spp, 2 passes "
+                      "(--builders: the same scenes, rays and passes)");
     command->add_flag("--resume,!--fresh", options->resume,
                       "keep results already in DIR that were measured with the same settings (default); --fresh "
                       "measures everything again");
@@ -122,8 +129,9 @@ void addTradeoffCommand(CLI::App& app) {
                 for (const char* id : {"munich", "sibenik"})
                     sceneArgs.push_back(repositoryFile(std::filesystem::path("env/scenes") / (std::string(id) + ".env")).string());
             const std::vector<SceneArgument> scenes = expandSceneList(sceneArgs, options->env);
-            const std::vector<AccelConfig> configs = tradeoffConfigs(settings);
-            const std::filesystem::path dir = prepareOutputFolder(options->out);
+            const std::vector<AccelConfig> configs = settings.builders ? builderConfigs() : tradeoffConfigs(settings);
+            const std::string out = !options->out.empty() ? options->out : settings.builders ? "out/builders" : "out/tradeoff";
+            const std::filesystem::path dir = prepareOutputFolder(out);
 
             std::vector<std::string> ids;
             size_t kept = 0, measured = 0;
@@ -146,36 +154,60 @@ void addTradeoffCommand(CLI::App& app) {
                 if (pending.empty()) continue;  // not even loaded
 
                 std::filesystem::create_directories(sceneDir);
+                // Measures one configuration and stores its result at once (what a resumed run keeps).
+                auto measureAndStore = [&](const AccelConfig& config, auto measure) {
+                    const auto configStart = Clock::now();
+                    json result = measure();
+                    result["fingerprint"] = fingerprint;
+                    result["measure_s"] = std::chrono::duration<double>(Clock::now() - configStart).count();
+                    writeFileAtomically(sceneDir / (config.label + ".json"), result.dump(2) + "\n");
+                    ++measured;
+                    return result;
+                };
+                auto eta = [&] {
+                    const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+                    const size_t left = total - kept - measured;
+                    return fmt::format("{}, {} left, ETA {}", Progress::formatDuration(elapsed), left,
+                                       Progress::formatDuration(elapsed / double(measured) * double(left)));
+                };
+                if (settings.builders) {
+                    const BuildersScene scene = prepareBuildersScene(id, sceneEnv, settings);
+                    fmt::print(stderr, "  {}: {} triangles, {} primary, {} shadow and {} incoherent rays\n", id,
+                               scene.scene.triangleCount(), scene.rays.primary.size(), scene.rays.shadow.size(),
+                               scene.rays.incoherent.size());
+                    for (const AccelConfig& config : pending) {
+                        const json result = measureAndStore(config, [&] { return measureBuilderConfig(scene, config, settings); });
+                        fmt::print(stderr, "  {} {}: T_B {:.1f} ms, T_R {:.3f}/{:.3f}/{:.3f} us (CPU) ({})\n", id,
+                                   config.label, result["build_ms"].get<double>(),
+                                   result["primary"]["t_r_cpu_us"].get<double>(), result["shadow"]["t_r_cpu_us"].get<double>(),
+                                   result["incoherent"]["t_r_cpu_us"].get<double>(), eta());
+                    }
+                    continue;
+                }
                 const TradeoffScene scene = prepareTradeoffScene(id, sceneEnv, settings, sceneDir, fingerprint);
                 fmt::print(stderr, "  {}: {} triangles, {} primary and {} shadow rays, images {}x{}\n", id,
                            scene.scene.triangleCount(), scene.rays.primary.size(), scene.rays.shadow.size(),
                            scene.seriesCamera.width, scene.seriesCamera.height);
                 for (const AccelConfig& config : pending) {
-                    const auto configStart = Clock::now();
-                    json result = measureTradeoffConfig(scene, config, settings);
-                    result["fingerprint"] = fingerprint;
-                    result["measure_s"] = std::chrono::duration<double>(Clock::now() - configStart).count();
-                    writeFileAtomically(sceneDir / (config.label + ".json"), result.dump(2) + "\n");
-                    ++measured;
-                    const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
-                    const size_t left = total - kept - measured;
+                    const json result = measureAndStore(config, [&] { return measureTradeoffConfig(scene, config, settings); });
                     fmt::print(stderr,
                                "  {} {}: T_B {:.1f} ms, SAH {}, T_R {:.3f}/{:.3f} us, image {} spp {:.0f} ms (CPU; wall "
-                               "{:.0f} ms), mismatches {}/{} ({}, {} left, ETA {})\n",
+                               "{:.0f} ms), mismatches {}/{} ({})\n",
                                id, config.label, result["build_cpu_ms"].get<double>(),
                                result["sah"].is_null() ? "n/a" : fmt::format("{:.2f}", result["sah"].get<double>()),
                                result["primary"]["t_r_cpu_us"].get<double>(), result["shadow"]["t_r_cpu_us"].get<double>(),
                                settings.maxSpp, result["series"].back()["time_to_image_cpu_ms"].get<double>(),
                                result["series"].back()["time_to_image_ms"].get<double>(),
                                result["primary"]["mismatches"].get<size_t>(), result["shadow"]["mismatches"].get<size_t>(),
-                               Progress::formatDuration(elapsed), left, Progress::formatDuration(elapsed / double(measured) * double(left)));
+                               eta());
                 }
             }
-            const std::string md = writeTradeoffReport(dir, ids, configs, settings);
+            const std::string md = settings.builders ? writeBuildersReport(dir, ids, configs, settings)
+                                                     : writeTradeoffReport(dir, ids, configs, settings);
             fmt::print("{}", md);
             fmt::print(stderr, "tradeoff: {} configurations measured, {} kept from an earlier run, in {}; wrote {}\n",
                        measured, kept, Progress::formatDuration(std::chrono::duration<double>(Clock::now() - start).count()),
-                       (dir / "tradeoff.csv").string());
+                       (dir / (settings.builders ? "builders.csv" : "tradeoff.csv")).string());
         });
         if (code != 0) throw CLI::RuntimeError(code);
     });

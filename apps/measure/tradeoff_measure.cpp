@@ -64,10 +64,12 @@ std::vector<int> TradeoffSettings::sppSeries() const {
 }
 
 json TradeoffSettings::toJson() const {
-    return {{"version", 2},  // of the stored results: older ones are measured again
+    json j = {{"version", 2},  // of the stored results: older ones are measured again
             {"ray_size", raySize},   {"series_size", seriesSize}, {"max_spp", maxSpp},
             {"reference_spp", referenceSpp}, {"builds", builds}, {"build_budget_ms", buildBudgetMs},
             {"passes", passes},      {"threads", threads}};
+    if (builders) j["mode"] = "builders";  // its results and the K series' are not each other's
+    return j;
 }
 
 std::vector<AccelConfig> tradeoffConfigs(const TradeoffSettings& settings) {
@@ -80,6 +82,22 @@ std::vector<AccelConfig> tradeoffConfigs(const TradeoffSettings& settings) {
     configs.push_back(parseAccelConfig("sweepbvh"));
     configs.push_back(parseAccelConfig("embree"));
     return configs;
+}
+
+TimedBuilds timedBuilds(const Scene& scene, const AccelConfig& config, const Env& env, const TradeoffSettings& settings) {
+    TimedBuilds b;
+    tbb::task_arena arena(settings.threads);
+    double total = 0.0;
+    for (int i = 0; i < settings.builds && (i == 0 || total < settings.buildBudgetMs); ++i) {
+        b.accel.reset();  // one structure (and one Embree device) alive at a time
+        b.accel = createAccelerator(config.name, env);
+        const double cpu = processCpuMs();
+        arena.execute([&] { b.stats = b.accel->build(scene.primitives()); });
+        b.buildCpuMs.push_back(processCpuMs() - cpu);
+        b.buildMs.push_back(b.stats.buildMs);
+        total += b.stats.buildMs;
+    }
+    return b;
 }
 
 Env tradeoffSceneEnv(const Env& sceneEnv, const TradeoffSettings& settings, int width, int height) {
@@ -179,22 +197,11 @@ TradeoffScene prepareTradeoffScene(const std::string& id, const Env& sceneEnv, c
 json measureTradeoffConfig(const TradeoffScene& t, const AccelConfig& config, const TradeoffSettings& settings) {
     Env env = t.env;
     for (const std::string& o : config.overrides) env.setOverride(o);
-
-    // Builds: the median of up to `builds`, fewer once they have taken buildBudgetMs.
-    std::unique_ptr<Accelerator> accel;
-    BuildStats stats;
-    std::vector<double> buildMs, buildCpuMs;
-    tbb::task_arena arena(settings.threads);
-    double total = 0.0;
-    for (int b = 0; b < settings.builds && (b == 0 || total < settings.buildBudgetMs); ++b) {
-        accel.reset();  // one structure (and one Embree device) alive at a time
-        accel = createAccelerator(config.name, env);
-        const double cpu = processCpuMs();
-        arena.execute([&] { stats = accel->build(t.scene.primitives()); });
-        buildCpuMs.push_back(processCpuMs() - cpu);
-        buildMs.push_back(stats.buildMs);
-        total += stats.buildMs;
-    }
+    TimedBuilds built = timedBuilds(t.scene, config, env, settings);
+    const std::unique_ptr<Accelerator>& accel = built.accel;
+    const BuildStats& stats = built.stats;
+    const std::vector<double>& buildMs = built.buildMs;
+    const std::vector<double>& buildCpuMs = built.buildCpuMs;
     const bool counted = accel->hasCounters();
     const double buildMedian = median(buildMs), buildCpuMedian = median(buildCpuMs);
 

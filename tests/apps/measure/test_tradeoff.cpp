@@ -151,6 +151,54 @@ TEST(Tradeoff, BadBinsAreAnError) {
     EXPECT_TRUE(contains(r.output, "--bins")) << r.output;
 }
 
+// `tradeoff --builders --quick`: a row per scene x builder in builders.csv, the ratios to
+// embree-medium are 1 for itself, Embree has no SAH or EPO and ours have both, the Pareto front
+// is not empty, the report has the rank correlations, a second run keeps every result, and
+// docs/plots/plot_builders.py draws from the folder.
+TEST(Tradeoff, BuildersQuickRunWritesRowsAndResumes) {
+    const fs::path dir = makeScenes();
+    const std::string command = args(dir, "--builders --builds 1 --passes 1");
+    Result r = run(command);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(contains(r.output, "22 configurations measured, 0 kept")) << r.output;
+    EXPECT_TRUE(contains(r.output, "Spearman")) << r.output;
+    const fs::path out = dir / "out";
+    const std::vector<std::string> configs = {"sahbvh", "sahbvh8", "sbvh",     "sbvh8",         "ploc",       "ploc8",
+                                              "tdbvh",  "sweepbvh", "embree-low", "embree-medium", "embree-high"};
+    const auto rows = readCsv(out / "builders.csv");
+    ASSERT_EQ(rows.size(), 22u);
+    int onFront = 0;
+    for (size_t i = 0; i < rows.size(); ++i) {
+        const auto& row = rows[i];
+        EXPECT_EQ(row.at("scene"), i < 11 ? "soup" : "terrain");
+        EXPECT_EQ(row.at("config"), configs[i % 11]);
+        EXPECT_EQ(row.at("primary_rays"), "2304");  // 48 x 48
+        const bool embree = row.at("config").starts_with("embree");
+        EXPECT_EQ(row.at("sah").empty(), embree) << row.at("config");
+        EXPECT_EQ(row.at("epo").empty(), embree) << row.at("config");
+        for (const char* set : {"primary", "shadow", "incoherent"}) {
+            EXPECT_GT(std::stod(row.at(fmt::format("t_r_{}_cpu_us", set))), 0.0);
+            EXPECT_NE(row.at(fmt::format("ratio_embree_bare_{}", set)), "") << row.at("config") << " " << set;
+            if (row.at("config") == "embree-medium") EXPECT_EQ(row.at(fmt::format("ratio_embree_medium_{}", set)), "1.0000");
+            onFront += row.at(fmt::format("pareto_{}", set)) == "1";
+        }
+    }
+    EXPECT_GE(onFront, 6);  // at least one per scene and ray set
+    EXPECT_EQ(readCsv(out / "builders_summary.csv").size(), 11u);
+
+    r = run(command);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(contains(r.output, "0 configurations measured, 22 kept")) << r.output;
+
+    // The plot script draws both charts from that folder (where Debian's matplotlib is installed).
+    if (std::system("/usr/bin/python3 -c 'import matplotlib' 2>/dev/null") != 0) return;
+    const std::string plot = "/usr/bin/python3 " + (fs::path(BVHLAB_SOURCE_DIR) / "docs" / "plots" / "plot_builders.py").string() +
+                             " --data " + out.string() + " > /dev/null 2>&1";
+    ASSERT_EQ(std::system(plot.c_str()), 0) << plot;
+    for (const char* png : {"builders_pareto.png", "builders_pareto_scenes.png"})
+        EXPECT_GT(fs::file_size(out / "plots" / png), 1000u) << png;
+}
+
 // The plot script draws from a tradeoff folder into its plots/ subfolder, which it creates, and
 // leaves the plots committed in docs/plots alone. Skipped where Debian's matplotlib is missing
 // (setup.sh installs it).

@@ -1,0 +1,104 @@
+// `bvhlab tradeoff --builders`: the configurations, one scene's rays and one configuration's figures.
+#include "accel/registry.h"
+#include "apps/common/cli_common.h"
+#include "apps/common/timing.h"
+#include "apps/measure/builders.h"
+#include "framework/config/common_keys.h"
+#include "framework/render/render_keys.h"
+#include "framework/report/provenance.h"
+
+#include <fmt/core.h>
+#include <stdexcept>
+
+namespace bvhlab {
+
+using nlohmann::json;
+
+std::vector<AccelConfig> builderConfigs() {
+    std::vector<AccelConfig> configs;
+    for (const char* name : {"sahbvh", "sahbvh8", "sbvh", "sbvh8", "ploc", "ploc8", "tdbvh", "sweepbvh"})
+        configs.push_back(parseAccelConfig(name));
+    for (const char* quality : {"low", "medium", "high"}) {
+        AccelConfig c = parseAccelConfig(fmt::format("embree:Embree::quality={}", quality));
+        c.label = fmt::format("embree-{}", quality);
+        configs.push_back(c);
+    }
+    return configs;
+}
+
+BuildersScene prepareBuildersScene(const std::string& id, const Env& sceneEnv, const TradeoffSettings& settings) {
+    BuildersScene b;
+    b.id = id;
+    b.env = tradeoffSceneEnv(sceneEnv, settings, settings.raySize, settings.raySize);
+    b.scene = loadSceneFor(b.env, /*useCache=*/true);
+    Env reference = b.env;
+    reference.set(keys::SetRayTracing::threads, "0", "bvhlab tradeoff --builders (reference)");
+    auto embree = createAccelerator("embree", reference);
+    embree->build(b.scene.primitives());
+    const Camera camera(resolveCamera(b.scene, b.env));
+    const RenderSettings render = RenderSettings::fromEnv(b.env, b.scene, camera.spec());
+    b.rays = makeRaySets(b.scene, camera, render.lights, *embree);
+    return b;
+}
+
+json measureBuilderConfig(const BuildersScene& b, const AccelConfig& config, const TradeoffSettings& settings) {
+    Env env = b.env;
+    for (const std::string& o : config.overrides) env.setOverride(o);
+
+    const TimedBuilds built = timedBuilds(b.scene, config, env, settings);
+    const Accelerator* accel = built.accel.get();
+    const BuildStats& stats = built.stats;
+    const std::vector<double>& buildMs = built.buildMs;
+    const std::vector<double>& buildCpuMs = built.buildCpuMs;
+
+    const std::vector<Ray>* sets[] = {&b.rays.primary, &b.rays.shadow, &b.rays.incoherent};
+    const bool anyHit[] = {false, true, true};
+    const bool counted = accel->hasCounters();
+    auto optional = [](const auto& v) { return v ? json(*v) : json(); };
+    json result = {{"scene", b.id},
+                   {"config", config.label},
+                   {"accel", config.name},
+                   {"overrides", config.overrides},
+                   {"threads", settings.threads},
+                   {"prims", b.scene.triangleCount()},
+                   {"build_ms", median(buildMs)},
+                   {"build_ms_all", buildMs},
+                   {"build_cpu_ms", median(buildCpuMs)},
+                   {"build_cpu_ms_all", buildCpuMs},
+                   {"nodes", optional(stats.nodes)},
+                   {"leaves", optional(stats.leaves)},
+                   {"avg_leaf", optional(stats.avgLeafPrimitives)},
+                   {"max_leaf", optional(stats.maxLeafPrimitives)},
+                   {"leaf_sizes", stats.leafSizes.empty() ? json() : json(stats.leafSizes)},
+                   {"sah", stats.sah ? json(stats.sah->cost) : json()},
+                   {"epo", optional(stats.epo)},
+                   {"bytes", optional(stats.bytes)},
+                   {"provenance", provenanceJson()}};
+    for (size_t s = 0; s < std::size(kBuilderRaySets); ++s) {
+        const PassResult r = tracePasses(*accel, *sets[s], anyHit[s], settings.threads, settings.passes);
+        const double q = std::max<double>(1.0, double(r.counters.queries));
+        result[kBuilderRaySets[s]] = {{"rays", sets[s]->size()},
+                                      {"t_r_us", r.usPerQuery},
+                                      {"t_r_cpu_us", r.cpuUsPerQuery},
+                                      {"n_it", counted ? json(double(r.counters.intersectionTests) / q) : json()},
+                                      {"n_tr", counted ? json(double(r.counters.traversalSteps) / q) : json()}};
+    }
+    // The bare loop, Embree as its users call it (the bench's embree-bare), on the baseline's tree.
+    if (config.label == kBuildersBaseline) {
+        json bare = json::object();
+        for (size_t s = 0; s < std::size(kBuilderRaySets); ++s) {
+            try {
+                const std::unique_ptr<NativeRayBatch> batch = accel->prepareNativeBatch(*sets[s]);
+                const PassResult r = traceNativePasses(*batch, anyHit[s], settings.threads, settings.passes);
+                bare[kBuilderRaySets[s]] = {{"t_r_us", r.usPerQuery}, {"t_r_cpu_us", r.cpuUsPerQuery}};
+            } catch (const std::invalid_argument& e) {
+                fmt::print(stderr, "  {}: no bare loop over the {} rays ({})\n", b.id, kBuilderRaySets[s], e.what());
+                bare[kBuilderRaySets[s]] = nullptr;
+            }
+        }
+        result["bare"] = bare;
+    }
+    return result;
+}
+
+}  // namespace bvhlab

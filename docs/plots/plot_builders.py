@@ -1,0 +1,117 @@
+#!/usr/bin/python3
+"""Plots of `bvhlab tradeoff --builders` (docs/builders.md, "Builders side by side"), drawn from its CSV files.
+
+    /usr/bin/python3 docs/plots/plot_builders.py [--data out/builders] [--out DATA/plots]
+
+Debian's python3-matplotlib; /usr/bin/python3 because a python3 earlier on PATH may not see it.
+The PNGs go to DATA/plots unless --out names another folder (created if missing). Writes
+builders_pareto.png (over the scenes: geometric means of the ratios to embree-medium, one panel
+per ray set) and builders_pareto_scenes.png (per scene, primary rays, absolute times). The Pareto
+fronts are the command's (the pareto_* columns), not recomputed here.
+"""
+import argparse
+import csv
+import math
+import os
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib.ticker import FuncFormatter  # noqa: E402
+
+RAY_SETS = ["primary", "shadow", "incoherent"]
+PLAIN = FuncFormatter(lambda v, _: f"{v:g}")
+
+
+def read_csv(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def num(text):
+    return float(text) if text not in ("", None) else None
+
+
+def style(config):
+    """Colour per builder family, filled marker for the 8-wide layout, hollow for the binary one."""
+    family = config.rstrip("8")
+    colours = {"sahbvh": "tab:blue", "sbvh": "tab:green", "ploc": "tab:purple", "tdbvh": "tab:red",
+               "sweepbvh": "black", "embree-low": "gold", "embree-medium": "tab:orange", "embree-high": "tab:brown"}
+    marker = "^" if config.startswith("embree") else "o" if config.endswith("8") else "s"
+    filled = config.endswith("8") or config.startswith("embree")
+    return colours.get(family, "grey"), marker, filled
+
+
+def draw(ax, points, xlabel, ylabel, title):
+    """points: (config, x, y, on_front). The front is joined as a staircase."""
+    for config, x, y, _ in points:
+        colour, marker, filled = style(config)
+        ax.scatter([x], [y], color=colour if filled else "none", edgecolors=colour, marker=marker, s=40, zorder=3)
+        ax.annotate(config, (x, y), textcoords="offset points", xytext=(4, 3), fontsize=7)
+    front = sorted((x, y) for _, x, y, on in points if on)
+    if front:
+        xs, ys = [], []
+        for x, y in front:
+            if xs:
+                xs.append(x), ys.append(ys[-1])
+            xs.append(x), ys.append(y)
+        ax.plot(xs, ys, color="grey", linestyle="--", linewidth=1, zorder=2, label="Pareto front")
+        ax.legend(fontsize=7, loc="upper right")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    for axis in (ax.xaxis, ax.yaxis):
+        axis.set_major_formatter(PLAIN)
+        axis.set_minor_formatter(FuncFormatter(lambda v, _: f"{v:g}" if f"{v:.0e}"[0] in "25" else ""))
+    ax.tick_params(which="minor", labelsize=6)
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title, fontsize=9)
+    ax.grid(True, which="both", alpha=0.3)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--data", default="out/builders", help="folder with builders.csv and builders_summary.csv")
+    parser.add_argument("--out", help="folder for the PNG files (default: DATA/plots; created if missing)")
+    args = parser.parse_args()
+    out = args.out or os.path.join(args.data, "plots")
+    os.makedirs(out, exist_ok=True)
+
+    summary = read_csv(os.path.join(args.data, "builders_summary.csv"))
+    fig, axes = plt.subplots(1, len(RAY_SETS), figsize=(5 * len(RAY_SETS), 4.5))
+    for ax, ray_set in zip(axes, RAY_SETS):
+        points = [(r["config"], num(r["build_ratio_embree_medium"]), num(r[f"ratio_embree_medium_{ray_set}"]),
+                   r[f"pareto_{ray_set}"] == "1") for r in summary]
+        points = [p for p in points if p[1] and p[2]]
+        draw(ax, points, "T_B / T_B(embree-medium)", "T_R / T_R(embree-medium)", f"{ray_set} rays")
+    scenes = max(int(r["scenes"]) for r in summary)
+    fig.suptitle(f"Build time against trace time, geometric means over {scenes} scenes "
+                 "(hollow: binary, filled: 8-wide)", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "builders_pareto.png"), dpi=110)
+    plt.close(fig)
+
+    rows = read_csv(os.path.join(args.data, "builders.csv"))
+    scene_ids = list(dict.fromkeys(r["scene"] for r in rows))
+    one_thread = all(r["threads"] == "1" for r in rows)
+    # T_B: the structure's own timer (the command's choice: CPU time would include the EPO).
+    build_key, trace_key = "build_ms", "t_r_primary_cpu_us" if one_thread else "t_r_primary_us"
+    cols = min(3, len(scene_ids))
+    rows_n = math.ceil(len(scene_ids) / cols)
+    fig, axes = plt.subplots(rows_n, cols, figsize=(5 * cols, 4 * rows_n), squeeze=False)
+    for ax, scene in zip(axes.flat, scene_ids):
+        points = [(r["config"], num(r[build_key]), num(r[trace_key]), r["pareto_primary"] == "1")
+                  for r in rows if r["scene"] == scene]
+        draw(ax, [p for p in points if p[1] and p[2]], "T_B [ms]", "T_R primary [µs]", scene)
+    for ax in list(axes.flat)[len(scene_ids):]:
+        ax.axis("off")
+    fig.suptitle("Per scene, primary rays ({})".format("T_R CPU time, 1 thread" if one_thread else "wall time"), fontsize=10)
+    fig.tight_layout()
+    fig.savefig(os.path.join(out, "builders_pareto_scenes.png"), dpi=90)
+    plt.close(fig)
+    print(f"wrote {out}/builders_pareto.png, {out}/builders_pareto_scenes.png")
+
+
+if __name__ == "__main__":
+    main()
