@@ -179,7 +179,9 @@ TEST(Tradeoff, BuildersQuickRunWritesRowsAndResumes) {
         for (const char* set : {"primary", "shadow", "incoherent"}) {
             EXPECT_GT(std::stod(row.at(fmt::format("t_r_{}_cpu_us", set))), 0.0);
             EXPECT_NE(row.at(fmt::format("ratio_embree_bare_{}", set)), "") << row.at("config") << " " << set;
-            if (row.at("config") == "embree-medium") EXPECT_EQ(row.at(fmt::format("ratio_embree_medium_{}", set)), "1.0000");
+            if (row.at("config") == "embree-medium") {
+                EXPECT_EQ(row.at(fmt::format("ratio_embree_medium_{}", set)), "1.0000");
+            }
             onFront += row.at(fmt::format("pareto_{}", set)) == "1";
         }
     }
