@@ -535,7 +535,11 @@ TEST(Bvh, RegisteredWithTheirEnvKeys) {
     env.set(keys::BVH::bins, "8", "test");
     env.set(keys::BVH::maxLeaf, "3", "test");
     env.set(keys::BVH::tdbvhSplit, "nodebox", "test");
+    env.set(keys::BVH::optimize, "insertion", "test");
+    env.set(keys::BVH::optimizeIterations, "5", "test");
     const BvhBuildConfig config = bvhConfigFromEnv(env);
+    EXPECT_EQ(config.optimize, BvhOptimize::Insertion);
+    EXPECT_EQ(config.optimizeIterations, 5);
     EXPECT_EQ(config.bins, 8);
     EXPECT_EQ(config.maxLeaf, 3);
     EXPECT_EQ(config.medianSplitBox, MedianSplitBox::NodeBox);
