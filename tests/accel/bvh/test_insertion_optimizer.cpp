@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstring>
 
 namespace bvhlab {
@@ -80,6 +81,27 @@ TEST(InsertionOptimizer, AgreesWithNaiveOnRandomRays) {
     BvhAccelerator<WideBvh<8>> wide(BvhKind::BinnedSah, insertionConfig());
     wide.build(soup.prims());
     test::expectAgreesWithNaive(wide, soup, 2000, 10.0f, 17);
+}
+
+// Where the search finds no better place (coincident triangles: every box the same) or the
+// builder's tree is a deep chain (centres at x = 1.5^i under the spatial median), the pass
+// keeps the depth below kBvhMaxDepth and the invariants.
+TEST(InsertionOptimizer, StaysWithinTheDepthBound) {
+    Soup coincident, chain;
+    for (int i = 0; i < 20000; ++i) coincident.add({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
+    for (int i = 0; i < 200; ++i) {
+        const float x = std::pow(1.5f, float(i) - 100.0f);
+        chain.add({{x, 0, 0}, {x * 1.01f, 0, 0}, {x, 1e-3f, 1e-3f}});
+    }
+    for (const Soup* soup : {&coincident, &chain}) {
+        BvhBuildConfig config = insertionConfig();
+        config.maxLeaf = 1;
+        config.sahTermination = false;
+        const Bvh bvh = buildBvh(BvhKind::SpatialMedian, config, soup->prims());
+        EXPECT_LT(test::checkTree(bvh, *soup).maxDepth, kBvhMaxDepth);
+        config.optimize = BvhOptimize::None;
+        EXPECT_LE(sahOf(bvh), sahOf(buildBvh(BvhKind::SpatialMedian, config, soup->prims())));
+    }
 }
 
 TEST(InsertionOptimizer, TinyScenes) {
