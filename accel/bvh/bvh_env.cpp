@@ -4,17 +4,18 @@ namespace bvhlab {
 
 void registerBvhKeys(EnvRegistry& r) {
     using namespace keys::BVH;
-    for (const IntKey& key : {maxLeaf, leafCap, bins, plocRadius, threads, epoMaxTriangles}) r.add(key);
+    for (const IntKey& key : {maxLeaf, leafCap, bins, plocRadius, threads, epoMaxTriangles, optimizeIterations}) r.add(key);
     for (const BoolKey& key : {sahTermination, allAxes, keys::BVH::simd, robust}) r.add(key);
     for (const FloatKey& key : {cTraversal, cIntersect, sbvhAlpha, sbvhGrowth}) r.add(key);
     r.add(tdbvhSplit);
+    r.add(optimize);
 }
 
 std::vector<std::string> bvhEnvKeys(BvhKind kind) {
     using namespace keys::BVH;
     std::vector<std::string_view> read = {maxLeaf.name(), leafCap.name(), cTraversal.name(),
                                           cIntersect.name(), keys::BVH::simd.name(), robust.name(), threads.name(),
-                                          epoMaxTriangles.name()};
+                                          epoMaxTriangles.name(), optimize.name(), optimizeIterations.name()};
     switch (kind) {
     case BvhKind::SpatialMedian: read.push_back(tdbvhSplit.name()); break;
     case BvhKind::BinnedSah: read.insert(read.end(), {sahTermination.name(), bins.name(), allAxes.name()}); break;
@@ -44,6 +45,8 @@ BvhBuildConfig bvhConfigFromEnv(const Env& env) {
     c.threads = env.get(threads);
     if (c.threads == 0) c.threads = env.get(keys::SetRayTracing::threads);
     c.medianSplitBox = env.get(tdbvhSplit) == "nodebox" ? MedianSplitBox::NodeBox : MedianSplitBox::CentroidBox;
+    c.optimize = env.get(optimize) == "insertion" ? BvhOptimize::Insertion : BvhOptimize::None;
+    c.optimizeIterations = env.get(optimizeIterations);
     return c;
 }
 

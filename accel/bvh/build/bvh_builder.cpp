@@ -2,6 +2,7 @@
 
 #include "accel/bvh/build/binned_sah_builder.h"
 #include "accel/bvh/build/build_jobs.h"
+#include "accel/bvh/build/insertion_optimizer.h"
 #include "accel/bvh/build/ploc_builder.h"
 #include "accel/bvh/build/sbvh_builder.h"
 #include "accel/bvh/build/spatial_median_builder.h"
@@ -188,7 +189,10 @@ void copyLeafTriangles(const PrimitiveSet& prims, int threads, Bvh& bvh) {
     });
 }
 
-Bvh buildBvh(BvhKind kind, const BvhBuildConfig& config, const PrimitiveSet& prims) {
+namespace {
+
+// The builder's tree, before any optimisation.
+Bvh buildBinary(BvhKind kind, const BvhBuildConfig& config, const PrimitiveSet& prims) {
     if (kind == BvhKind::Sbvh) return buildSbvh(config, prims);
     if (kind == BvhKind::Ploc) return buildPlocBvh(config, prims);
     const size_t n = prims.validTriangles().size();
@@ -198,6 +202,14 @@ Bvh buildBvh(BvhKind kind, const BvhBuildConfig& config, const PrimitiveSet& pri
     Bvh bvh;
     bvh.nodes = buildNodes(kind, config, std::span<PrimRef>(refs.get(), n), root);
     fillLeafArrays(bvh, refs.get(), prims, config.threads);
+    return bvh;
+}
+
+}  // namespace
+
+Bvh buildBvh(BvhKind kind, const BvhBuildConfig& config, const PrimitiveSet& prims) {
+    Bvh bvh = buildBinary(kind, config, prims);
+    if (config.optimize == BvhOptimize::Insertion) optimizeByInsertion(bvh, config.optimizeIterations);
     return bvh;
 }
 

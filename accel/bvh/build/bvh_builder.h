@@ -27,6 +27,12 @@ enum class BvhKind {
 // "ploc".
 const char* bvhKindName(BvhKind kind);
 
+// What runs after the builder on its binary tree.
+enum class BvhOptimize {
+    None,
+    Insertion,  // insertion_optimizer.h (Bittner et al. 2013)
+};
+
 enum class MedianSplitBox {
     NodeBox,      // halve the box of the primitives (classic spatial median)
     CentroidBox,  // halve the box of their centres (pbrt's "middle"; never an empty side unless
@@ -53,6 +59,9 @@ struct BvhBuildConfig {
     float sbvhGrowth = 0.3f;     // sbvh: at most this many new references per triangle
     int plocRadius = 16;         // ploc: each cluster looks for its nearest neighbour among the
                                  // plocRadius clusters on either side in Morton order
+    BvhOptimize optimize = BvhOptimize::None;
+    int optimizeIterations = 3;  // insertion: at most this many passes over the inner nodes; more
+                                 // lower the SAH further, each about as slow as the first
     int threads = 1;             // build threads (TBB; 0 = all hardware threads): the tree does
                                  // not depend on them
 
@@ -170,7 +179,7 @@ Split TopDownBuilder::partition(const BuildRange& range, IsLeft isLeft) {
 
 // The whole build: PrimRefs from the valid triangles (SIMD or scalar), the recursion of the
 // chosen builder (sbvh's own, or ploc's clustering), then the leaf arrays (primitive indices
-// and triangles in leaf order).
+// and triangles in leaf order), then the optimisation the config asks for.
 Bvh buildBvh(BvhKind kind, const BvhBuildConfig& config, const PrimitiveSet& prims);
 
 // buildBvh over the valid spheres and cones (their boxes), with their shapes in leaf order.

@@ -11,6 +11,7 @@
 #include "accel/registry.h"
 #include "apps/common/program_keys.h"
 #include "framework/scene/scene.h"
+#include "tests/support/bvh_checks.h"
 #include "tests/support/triangle_soup.h"
 
 #include <gtest/gtest.h>
@@ -26,7 +27,11 @@ namespace {
 
 constexpr BvhKind kAllKinds[] = {BvhKind::SpatialMedian, BvhKind::BinnedSah, BvhKind::SweepSah, BvhKind::Ploc};
 
+using test::checkTree;
+using test::expectAgreesWithNaive;
+using test::randomSoup;
 using test::Soup;
+using test::TreeFacts;
 
 // The unit right triangle at the origin and a copy moved by `shift`: the smallest two-leaf tree.
 Soup triangleAndCopy(Vec3 shift) {
@@ -34,19 +39,6 @@ Soup triangleAndCopy(Vec3 shift) {
     Soup soup;
     soup.add(unit);
     soup.add({unit.v0 + shift, unit.v1 + shift, unit.v2 + shift});
-    return soup;
-}
-
-// Triangles with corners in [0, extent)^3 and edge lengths up to `size`.
-Soup randomSoup(size_t n, uint32_t seed, float extent = 10.0f, float size = 1.0f) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> pos(0.0f, extent), offset(-size, size);
-    Soup soup;
-    while (soup.triangles.size() < n) {
-        const Vec3 p(pos(rng), pos(rng), pos(rng));
-        const Triangle t{p, p + Vec3(offset(rng), offset(rng), offset(rng)), p + Vec3(offset(rng), offset(rng), offset(rng))};
-        if (!isDegenerate(t)) soup.add(t);
-    }
     return soup;
 }
 
@@ -66,87 +58,6 @@ Soup mixedScaleSoup(size_t n, uint32_t seed) {
 
 BvhBuildConfig defaultConfig() { return BvhBuildConfig{}; }
 
-bool contains(const Bounds3& outer, const Bounds3& inner) {
-    return outer.lower.x <= inner.lower.x && outer.lower.y <= inner.lower.y && outer.lower.z <= inner.lower.z &&
-           outer.upper.x >= inner.upper.x && outer.upper.y >= inner.upper.y && outer.upper.z >= inner.upper.z;
-}
-
-bool sameBox(const Bounds3& a, const Bounds3& b) { return a.lower == b.lower && a.upper == b.upper; }
-
-struct TreeFacts {
-    size_t nodes = 0, leaves = 0, maxLeaf = 0;
-    int maxDepth = 0;
-};
-
-// Checks every structural invariant and returns the counts found by walking the tree:
-// each valid primitive exactly once in the leaves, leaf ranges tiling the leaf arrays, the
-// leaf triangles the primitives' own, boxes exactly the union of what they hold (children
-// inside their parent, triangles inside their leaf), sibling pairs at even indices.
-TreeFacts checkTree(const Bvh& bvh, const Soup& soup) {
-    TreeFacts facts;
-    const size_t n = soup.valid.size();
-    EXPECT_EQ(bvh.primIndices.size(), n);
-    EXPECT_EQ(bvh.leafTriangles.size(), n);
-    if (n == 0) {
-        EXPECT_TRUE(bvh.empty());
-        return facts;
-    }
-    EXPECT_EQ(reinterpret_cast<uintptr_t>(bvh.nodes.data()) % 64, 0u) << "sibling pairs must share a cache line";
-
-    std::multiset<uint32_t> seen(bvh.primIndices.begin(), bvh.primIndices.end());
-    EXPECT_EQ(seen, std::multiset<uint32_t>(soup.valid.begin(), soup.valid.end()));
-    for (size_t i = 0; i < n; ++i) {
-        const Triangle& a = bvh.leafTriangles[i];
-        const Triangle& b = soup.triangles[bvh.primIndices[i]];
-        EXPECT_TRUE(a.v0 == b.v0 && a.v1 == b.v1 && a.v2 == b.v2) << "leaf triangle " << i;
-    }
-
-    std::vector<int> covered(n, 0);
-    struct Item {
-        uint32_t node;
-        int depth;
-    };
-    std::vector<Item> stack{{0, 0}};
-    while (!stack.empty()) {
-        const auto [index, depth] = stack.back();
-        stack.pop_back();
-        if (index >= bvh.nodes.size()) {
-            ADD_FAILURE() << "node index " << index << " out of range";
-            continue;
-        }
-        const BvhNode& node = bvh.nodes[index];
-        ++facts.nodes;
-        facts.maxDepth = std::max(facts.maxDepth, depth);
-        const Bounds3 box = node.box();
-        if (node.isLeaf()) {
-            ++facts.leaves;
-            facts.maxLeaf = std::max<size_t>(facts.maxLeaf, node.count);
-            EXPECT_LE(size_t(node.index) + node.count, n);
-            Bounds3 tight;
-            for (uint32_t i = node.index; i < node.index + node.count && i < n; ++i) {
-                ++covered[i];
-                tight.extend(bvh.leafTriangles[i].bounds());
-            }
-            EXPECT_TRUE(sameBox(box, tight)) << "leaf " << index << " box is not its triangles' box";
-        } else {
-            EXPECT_TRUE(node.index >= 2 && node.index % 2 == 0) << "children of " << index << " at " << node.index;
-            if (node.index + 1 >= bvh.nodes.size()) {
-                ADD_FAILURE() << "children of " << index << " out of range";
-                continue;
-            }
-            const Bounds3 left = bvh.nodes[node.index].box(), right = bvh.nodes[node.index + 1].box();
-            EXPECT_TRUE(contains(box, left) && contains(box, right)) << "children outside node " << index;
-            EXPECT_TRUE(sameBox(box, unionOf(left, right))) << "node " << index << " box is not its children's";
-            stack.push_back({node.index, depth + 1});
-            stack.push_back({node.index + 1, depth + 1});
-        }
-    }
-    for (size_t i = 0; i < n; ++i) EXPECT_EQ(covered[i], 1) << "leaf slot " << i << " covered " << covered[i] << " times";
-    EXPECT_EQ(facts.nodes, 2 * facts.leaves - 1);
-    EXPECT_LT(facts.maxDepth, kBvhMaxDepth);
-    return facts;
-}
-
 // Builds, checks the tree and that BuildStats reports what the walk found.
 TreeFacts buildAndCheck(BvhAccelerator<Bvh>& accel, const Soup& soup) {
     const BuildStats stats = accel.build(soup.prims());
@@ -159,50 +70,6 @@ TreeFacts buildAndCheck(BvhAccelerator<Bvh>& accel, const Soup& soup) {
     EXPECT_EQ(stats.bytes.value_or(0), accel.bvh().bytes());
     EXPECT_TRUE(stats.sah.has_value());
     return facts;
-}
-
-Ray randomRay(std::mt19937& rng, float extent) {
-    std::uniform_real_distribution<float> pos(-0.2f * extent, 1.2f * extent), dir(-1.0f, 1.0f);
-    Ray ray;
-    ray.org = {pos(rng), pos(rng), pos(rng)};
-    const Vec3 target(pos(rng), pos(rng), pos(rng));
-    ray.dir = target - ray.org;
-    // Every seventh ray runs along an axis, from a triangle's vertex coordinate: slab planes.
-    if (rng() % 7 == 0) ray.dir = Vec3(0.0f), ray.dir[rng() % 3] = (rng() & 1) ? 1.0f : -1.0f;
-    return ray;
-}
-
-// Both queries against brute force on `count` rays.
-void expectAgreesWithNaive(const Accelerator& accel, const Soup& soup, int count, float extent, uint32_t seed) {
-    NaiveAccelerator naive;
-    naive.build(soup.prims());
-    std::mt19937 rng(seed);
-    int mismatches = 0;
-    for (int i = 0; i < count && mismatches < 5; ++i) {
-        Ray ray = randomRay(rng, extent);
-        if (!soup.triangles.empty() && i % 3 == 0) {
-            // Aim at a vertex-derived point on a triangle: many rays hit something.
-            const Triangle& t = soup.triangles[soup.valid[rng() % soup.valid.size()]];
-            ray.dir = (t.v0 + t.v1 + t.v2) * (1.0f / 3.0f) - ray.org;
-        }
-        if (i % 5 == 0) ray.tmax = std::uniform_real_distribution<float>(0.1f, 1.5f)(rng);
-        // Intervals reaching behind the origin: far slab distances are then negative too.
-        if (i % 4 == 1) ray.tmin = -std::uniform_real_distribution<float>(0.0f, 2.0f)(rng);
-        Hit expected, actual;
-        QueryCounters c1, c2;
-        const bool e = naive.findNearest(ray, expected, c1);
-        const bool a = accel.findNearest(ray, actual, c2);
-        if (e != a || !hitsAgree(expected, actual)) {
-            ++mismatches;
-            ADD_FAILURE() << accel.name() << " ray " << i << ": naive t=" << expected.t << " prim " << expected.primitive
-                          << ", bvh t=" << actual.t << " prim " << actual.primitive;
-        }
-        if (naive.isOccluded(ray, c1) != accel.isOccluded(ray, c2)) {
-            ++mismatches;
-            ADD_FAILURE() << accel.name() << " ray " << i << ": occlusion differs";
-        }
-        EXPECT_EQ(c2.queries, 2u);
-    }
 }
 
 TEST(Bvh, NodeIsThirtyTwoBytes) {
@@ -668,7 +535,11 @@ TEST(Bvh, RegisteredWithTheirEnvKeys) {
     env.set(keys::BVH::bins, "8", "test");
     env.set(keys::BVH::maxLeaf, "3", "test");
     env.set(keys::BVH::tdbvhSplit, "nodebox", "test");
+    env.set(keys::BVH::optimize, "insertion", "test");
+    env.set(keys::BVH::optimizeIterations, "5", "test");
     const BvhBuildConfig config = bvhConfigFromEnv(env);
+    EXPECT_EQ(config.optimize, BvhOptimize::Insertion);
+    EXPECT_EQ(config.optimizeIterations, 5);
     EXPECT_EQ(config.bins, 8);
     EXPECT_EQ(config.maxLeaf, 3);
     EXPECT_EQ(config.medianSplitBox, MedianSplitBox::NodeBox);

@@ -8,6 +8,7 @@
 #include "accel/bvh/bvh_accelerator.h"
 #include "accel/naive/naive_accelerator.h"
 #include "framework/scene/scene.h"
+#include "tests/support/bvh_checks.h"
 #include "tests/support/triangle_soup.h"
 
 #include <gtest/gtest.h>
@@ -19,6 +20,7 @@
 namespace bvhlab {
 namespace {
 
+using test::sahOf;
 using test::Soup;
 
 // Long thin triangles along the diagonals of a cube of side 10: their boxes are large and
@@ -102,12 +104,6 @@ size_t checkSbvh(const Bvh& bvh, const Soup& soup, float growth) {
     }
     for (size_t i = 0; i < refs; ++i) EXPECT_EQ(covered[i], 1) << "leaf slot " << i;
     return refs;
-}
-
-double sahOf(const Bvh& bvh) {
-    BuildStats stats;
-    fillTreeStats(bvh, 1.0, 1.0, stats);
-    return stats.sah->cost;
 }
 
 TEST(Sbvh, InvariantsWithSplitReferences) {

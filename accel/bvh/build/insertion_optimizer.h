@@ -1,0 +1,19 @@
+// Insertion-based optimisation of a finished binary BVH (Bittner, Hapala, Havran, "Fast
+// Insertion-Based Optimization of Bounding Volume Hierarchies", CGF 32(1) 2013): inner nodes
+// that waste area are taken out and their two children reinserted where they raise the SAH
+// least. A post-pass after any builder (BVH::optimize=insertion): the builder's leaves stay
+// whole, only inner nodes move.
+#pragma once
+
+#include "accel/bvh/layout/bvh.h"
+
+namespace bvhlab {
+
+// Optimises `bvh` in place by at most `passes` passes (fewer when one gains under 1 %): the
+// nodes are emitted again depth-first, the leaf arrays reordered to the new leaf order. With
+// the leaves fixed, the SAH changes only through the inner nodes' areas, whatever C_trav,
+// C_isect or the leaves' block charge; a pass that would raise it is undone. Sequential: the
+// same tree whatever the thread count.
+void optimizeByInsertion(Bvh& bvh, int passes);
+
+}  // namespace bvhlab
