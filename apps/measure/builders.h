@@ -17,7 +17,8 @@ namespace bvhlab {
 // The ray sets of a scene's builder comparison, in the order of every table.
 inline constexpr const char* kBuilderRaySets[] = {"primary", "shadow", "incoherent"};
 
-// sahbvh, sahbvh8, sbvh, sbvh8, ploc, ploc8, tdbvh, sweepbvh, embree-low, embree-medium,
+// sahbvh, sahbvh8, sbvh, sbvh8, ploc, ploc8, tdbvh, sweepbvh; sahbvh, sahbvh8, ploc8 and tdbvh
+// with BVH::optimize=insertion (labelled <name>+insertion); embree-low, embree-medium,
 // embree-high (Embree::quality through the configuration's overrides).
 std::vector<AccelConfig> builderConfigs();
 

@@ -18,6 +18,12 @@ std::vector<AccelConfig> builderConfigs() {
     std::vector<AccelConfig> configs;
     for (const char* name : {"sahbvh", "sahbvh8", "sbvh", "sbvh8", "ploc", "ploc8", "tdbvh", "sweepbvh"})
         configs.push_back(parseAccelConfig(name));
+    // The insertion pass after the builders it changes most (tdbvh) and the defaults' trees.
+    for (const char* name : {"sahbvh", "sahbvh8", "ploc8", "tdbvh"}) {
+        AccelConfig c = parseAccelConfig(fmt::format("{}:BVH::optimize=insertion", name));
+        c.label = fmt::format("{}+insertion", name);
+        configs.push_back(c);
+    }
     for (const char* quality : {"low", "medium", "high"}) {
         AccelConfig c = parseAccelConfig(fmt::format("embree:Embree::quality={}", quality));
         c.label = fmt::format("embree-{}", quality);

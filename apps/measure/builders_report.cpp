@@ -236,7 +236,7 @@ std::string writeBuildersReport(const std::filesystem::path& dir, const std::vec
                           std::vector<double>& epo, std::vector<double> (&trace)[kSets]) {
         std::vector<double> s0, e0, t0[kSets];
         for (const auto& [label, r] : byLabel)
-            if (label.ends_with('8') == wide && std::isfinite(r.sah) && std::isfinite(r.epo) && r.epo > 0) {
+            if (r.stored.at("accel").get<std::string>().ends_with('8') == wide && std::isfinite(r.sah) && std::isfinite(r.epo) && r.epo > 0) {
                 s0.push_back(r.sah), e0.push_back(r.epo);
                 for (size_t s = 0; s < kSets; ++s) t0[s].push_back(r.trace[s]);
             }

@@ -160,18 +160,23 @@ TEST(Tradeoff, BuildersQuickRunWritesRowsAndResumes) {
     const std::string command = args(dir, "--builders --builds 1 --passes 1");
     Result r = run(command);
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    EXPECT_TRUE(contains(r.output, "22 configurations measured, 0 kept")) << r.output;
+    EXPECT_TRUE(contains(r.output, "30 configurations measured, 0 kept")) << r.output;
     EXPECT_TRUE(contains(r.output, "Spearman")) << r.output;
     const fs::path out = dir / "out";
-    const std::vector<std::string> configs = {"sahbvh", "sahbvh8", "sbvh",     "sbvh8",         "ploc",       "ploc8",
-                                              "tdbvh",  "sweepbvh", "embree-low", "embree-medium", "embree-high"};
+    const std::vector<std::string> configs = {
+        "sahbvh",           "sahbvh8",           "sbvh",          "sbvh8",           "ploc",
+        "ploc8",            "tdbvh",             "sweepbvh",      "sahbvh+insertion", "sahbvh8+insertion",
+        "ploc8+insertion",  "tdbvh+insertion",   "embree-low",    "embree-medium",   "embree-high"};
+    const size_t n = configs.size();
     const auto rows = readCsv(out / "builders.csv");
-    ASSERT_EQ(rows.size(), 22u);
+    ASSERT_EQ(rows.size(), 2 * n);
+    std::map<std::string, double> sah;  // scene/config
     int onFront = 0;
     for (size_t i = 0; i < rows.size(); ++i) {
         const auto& row = rows[i];
-        EXPECT_EQ(row.at("scene"), i < 11 ? "soup" : "terrain");
-        EXPECT_EQ(row.at("config"), configs[i % 11]);
+        EXPECT_EQ(row.at("scene"), i < n ? "soup" : "terrain");
+        EXPECT_EQ(row.at("config"), configs[i % n]);
+        if (!row.at("sah").empty()) sah[row.at("scene") + "/" + row.at("config")] = std::stod(row.at("sah"));
         EXPECT_EQ(row.at("primary_rays"), "2304");  // 48 x 48
         const bool embree = row.at("config").starts_with("embree");
         EXPECT_EQ(row.at("sah").empty(), embree) << row.at("config");
@@ -186,11 +191,18 @@ TEST(Tradeoff, BuildersQuickRunWritesRowsAndResumes) {
         }
     }
     EXPECT_GE(onFront, 6);  // at least one per scene and ray set
-    EXPECT_EQ(readCsv(out / "builders_summary.csv").size(), 11u);
+    // The insertion pass never raises the SAH of the tree it follows.
+    for (const char* scene : {"soup", "terrain"}) {
+        for (const char* builder : {"sahbvh", "sahbvh8", "ploc8", "tdbvh"}) {
+            const std::string plain = fmt::format("{}/{}", scene, builder);
+            EXPECT_LE(sah.at(plain + "+insertion"), sah.at(plain)) << plain;
+        }
+    }
+    EXPECT_EQ(readCsv(out / "builders_summary.csv").size(), n);
 
     r = run(command);
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    EXPECT_TRUE(contains(r.output, "0 configurations measured, 22 kept")) << r.output;
+    EXPECT_TRUE(contains(r.output, "0 configurations measured, 30 kept")) << r.output;
 
     // The plot script draws both charts from that folder (where Debian's matplotlib is installed).
     if (std::system("/usr/bin/python3 -c 'import matplotlib' 2>/dev/null") != 0) return;
