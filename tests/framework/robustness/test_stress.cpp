@@ -358,6 +358,15 @@ const std::vector<EdgeCase>& edgeCases() {
     return cases;
 }
 
+// A bound against a build that hangs or goes quadratic, not a timing. The slowest here is sbvh on
+// collinear centres: about 1 s in Release, 21 s under AddressSanitizer (measured in CI's sanitizer
+// pass: sbvh's nodes allocate their reference vectors, which ASan makes expensive).
+#ifdef __SANITIZE_ADDRESS__
+constexpr double kEdgeBuildSeconds = 120.0;
+#else
+constexpr double kEdgeBuildSeconds = 20.0;
+#endif
+
 TEST_P(Stress, BuildersAtTheEdgeEndInBoundedTimeAndDepth) {
     if (isNaive()) GTEST_SKIP() << "naive builds nothing";
     for (const EdgeCase& c : edgeCases()) {
@@ -367,7 +376,7 @@ TEST_P(Stress, BuildersAtTheEdgeEndInBoundedTimeAndDepth) {
         const auto accel = build(c.scene, &stats);
         const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         RecordProperty(variant().label + "." + c.scene.name + ".build_ms", int(stats.buildMs));
-        EXPECT_LT(seconds, 20.0) << "build of " << c.scene.name;
+        EXPECT_LT(seconds, kEdgeBuildSeconds) << "build of " << c.scene.name;
         EXPECT_EQ(stats.primitives, c.scene.validPrimitives.size());
         if (stats.maxDepth) {
             EXPECT_LT(*stats.maxDepth, kBvhMaxDepth);
