@@ -34,12 +34,15 @@ def num(text):
 
 
 def style(config):
-    """Colour per builder family, filled marker for the 8-wide layout, hollow for the binary one."""
-    family = config.rstrip("8")
+    """Colour per builder family, filled for the 8-wide layout, hollow for the binary one; the
+    insertion pass (`+insertion`) keeps its builder's colour and fill, as a diamond."""
+    builder, _, optimised = config.partition("+")
+    family = builder.rstrip("8")
     colours = {"sahbvh": "tab:blue", "sbvh": "tab:green", "ploc": "tab:purple", "tdbvh": "tab:red",
                "sweepbvh": "black", "embree-low": "gold", "embree-medium": "tab:orange", "embree-high": "tab:brown"}
-    marker = "^" if config.startswith("embree") else "o" if config.endswith("8") else "s"
-    filled = config.endswith("8") or config.startswith("embree")
+    wide = builder.endswith("8")
+    marker = "^" if builder.startswith("embree") else "D" if optimised else "o" if wide else "s"
+    filled = wide or builder.startswith("embree")
     return colours.get(family, "grey"), marker, filled
 
 
