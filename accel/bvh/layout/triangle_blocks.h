@@ -37,7 +37,7 @@ inline constexpr uint32_t blocksFor(uint32_t triangles) {
 }
 
 // A leaf of these arrays names its first block and its triangle count; the triangle in lane l
-// of block b is at position 4b + l of primIndices.
+// of block b is at position kLanes * b + l of primIndices.
 struct TriangleBlockLeaves {
     // The primitive index of each lane, reported in Hit::primitive (kInvalidPrimitive: padding).
     std::vector<uint32_t> primIndices;
