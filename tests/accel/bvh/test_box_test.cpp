@@ -1,10 +1,11 @@
 // The robust box tests (box_test.h) against an exact predicate: whenever the ray's segment
 // [tmin, tmax] meets a closed box, the test says so, for intervals from t = 0 and from below it
 // (NegativeT), in the binary test and in every lane of the wide ones; and it is not loose: a
-// box the segment misses by more than 1e-5 of its distances is culled (see axisParallel). The boxes are built to
-// graze: flat, point-sized or touching the ray at a float point next to it, on rays with large
-// origins and nearly axis-parallel or axis-parallel directions. Without the far margin
-// (Robust = false) the same cases miss boxes: the margin is what makes the test conservative.
+// box the segment misses by more than 1e-5 of its distances is culled (see axisParallel). The
+// boxes are built to graze: flat, point-sized or touching the ray at a float point next to it,
+// on rays with large origins and nearly axis-parallel or axis-parallel directions. Without the
+// far margin (Robust = false) the same cases miss boxes: the margin is what makes the test
+// conservative.
 #include "accel/bvh/traverse/box_test.h"
 
 #include <gtest/gtest.h>

@@ -72,7 +72,7 @@ void expectLanesAnswerAsScalar(uint64_t seed) {
         for (size_t first = 0; first + kLanes <= tris.size(); first += kLanes) {
             const BlockHits block = test.intersect(blockOf(tris, first, kLanes), kAllLanes, ray.tmin, ray.tmax);
             for (int lane = 0; lane < kLanes; ++lane) {
-                TriangleHitT<float> h;
+                TriangleHitT<float> h{};  // set only on a hit; {} keeps GCC from warning
                 const bool hit = Robust ? intersectTriangle(sheared, tris[first + lane], ray.tmin, ray.tmax, h)
                                         : intersectTriangleMollerTrumbore(ray, tris[first + lane], ray.tmin, ray.tmax, h);
                 ASSERT_EQ(bool(block.mask >> lane & 1), hit) << "triangle " << first + lane;
