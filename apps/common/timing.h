@@ -3,16 +3,13 @@
 #pragma once
 
 #include "framework/core/accelerator.h"
+#include "framework/core/cpu_clock.h"
 
 #include <vector>
 
 namespace bvhlab {
 
 double median(std::vector<double> values);
-
-// CPU time of the whole process so far [ms]. With one thread at work it leaves out the time
-// a shared, loaded machine gives to other processes, which wall time does not.
-double processCpuMs();
 
 struct PassResult {
     double usPerQuery = 0.0;     // median over passes of wall time / queries

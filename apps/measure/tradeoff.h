@@ -75,7 +75,9 @@ TradeoffScene prepareTradeoffScene(const std::string& id, const Env& sceneEnv, c
 struct TimedBuilds {
     std::unique_ptr<Accelerator> accel;
     BuildStats stats;  // of the last build
-    std::vector<double> buildMs, buildCpuMs;  // wall (the structure's own timer) and process CPU time
+    // Wall time (the structure's own timer) and the process's CPU time over the same work (the
+    // structure's BuildStats::buildCpuMs where it has one: our builds leave their statistics out).
+    std::vector<double> buildMs, buildCpuMs;
 };
 TimedBuilds timedBuilds(const Scene& scene, const AccelConfig& config, const Env& env, const TradeoffSettings& settings);
 

@@ -55,6 +55,10 @@ struct SahCost {
 // unset: unavailable, not zero.
 struct BuildStats {
     double buildMs = 0.0;
+    // The process's CPU time over what buildMs times, where the structure times itself work
+    // that build() does besides the build (ours: tree statistics and EPO, not part of T_B);
+    // unset where build() does nothing else, and a timer around the call measures the build.
+    std::optional<double> buildCpuMs;
     size_t primitives = 0;  // primitives built over (degenerate ones excluded)
     std::optional<size_t> nodes;  // all nodes, leaves included
     std::optional<size_t> leaves;
