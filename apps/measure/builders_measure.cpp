@@ -1,10 +1,7 @@
 // `bvhlab tradeoff --builders`: the configurations, one scene's rays and one configuration's figures.
-#include "accel/registry.h"
 #include "apps/common/cli_common.h"
 #include "apps/common/timing.h"
 #include "apps/measure/builders.h"
-#include "framework/config/common_keys.h"
-#include "framework/render/render_keys.h"
 #include "framework/report/provenance.h"
 
 #include <fmt/core.h>
@@ -37,13 +34,7 @@ BuildersScene prepareBuildersScene(const std::string& id, const Env& sceneEnv, c
     b.id = id;
     b.env = tradeoffSceneEnv(sceneEnv, settings, settings.raySize, settings.raySize);
     b.scene = loadSceneFor(b.env, /*useCache=*/true);
-    Env reference = b.env;
-    reference.set(keys::SetRayTracing::threads, "0", "bvhlab tradeoff --builders (reference)");
-    auto embree = createAccelerator("embree", reference);
-    embree->build(b.scene.primitives());
-    const Camera camera(resolveCamera(b.scene, b.env));
-    const RenderSettings render = RenderSettings::fromEnv(b.env, b.scene, camera.spec());
-    b.rays = makeRaySets(b.scene, camera, render.lights, *embree);
+    b.rays = sceneRaySets(b.scene, b.env, *referenceEmbree(b.scene, b.env));
     return b;
 }
 

@@ -64,6 +64,14 @@ struct TradeoffScene {
 // The scene's env as the tradeoff uses it (camera sizes, threads), before per-configuration overrides.
 Env tradeoffSceneEnv(const Env& sceneEnv, const TradeoffSettings& settings, int width, int height);
 
+// Embree built over the scene on every hardware thread: the untimed reference whose hits make
+// the ray sets and whose answers every configuration's are checked against.
+std::unique_ptr<Accelerator> referenceEmbree(const Scene& scene, const Env& env);
+
+// The ray sets of the scene's camera at env's size (primary, shadow, incoherent: ray_sets.h),
+// made from the reference's hits.
+RaySets sceneRaySets(const Scene& scene, const Env& env, const Accelerator& reference);
+
 // Loads the scene (through the scene cache), makes the ray sets and Embree's answers, and
 // renders the reference image or reads it from DIR/<id>/reference.exr when it was made with
 // the same settings.

@@ -128,23 +128,30 @@ ImageError imageError(const std::vector<Vec3>& image, const std::vector<Vec3>& r
     return e;
 }
 
+std::unique_ptr<Accelerator> referenceEmbree(const Scene& scene, const Env& env) {
+    Env reference = env;
+    reference.set(keys::SetRayTracing::threads, "0", "bvhlab tradeoff (reference)");
+    auto embree = createAccelerator("embree", reference);
+    embree->build(scene.primitives());
+    return embree;
+}
+
+RaySets sceneRaySets(const Scene& scene, const Env& env, const Accelerator& reference) {
+    const Camera camera(resolveCamera(scene, env));
+    const RenderSettings render = RenderSettings::fromEnv(env, scene, camera.spec());
+    return makeRaySets(scene, camera, render.lights, reference);
+}
+
 TradeoffScene prepareTradeoffScene(const std::string& id, const Env& sceneEnv, const TradeoffSettings& settings,
                                    const std::filesystem::path& sceneDir, const json& fingerprint) {
     TradeoffScene t;
     t.id = id;
     t.env = tradeoffSceneEnv(sceneEnv, settings, settings.raySize, settings.raySize);
     t.scene = loadSceneFor(t.env, /*useCache=*/true);
-
-    // Embree, on every hardware thread (nothing here is timed), answers the rays every
-    // configuration answers and renders the images every configuration must reproduce.
-    Env reference = t.env;
-    reference.set(keys::SetRayTracing::threads, "0", "bvhlab tradeoff (reference)");
-    auto embree = createAccelerator("embree", reference);
-    embree->build(t.scene.primitives());
-
-    const Camera rayCamera(resolveCamera(t.scene, t.env));
-    const RenderSettings raySettings = RenderSettings::fromEnv(t.env, t.scene, rayCamera.spec());
-    t.rays = makeRaySets(t.scene, rayCamera, raySettings.lights, *embree);
+    // Embree answers the rays every configuration answers and renders the images every
+    // configuration must reproduce.
+    const std::unique_ptr<Accelerator> embree = referenceEmbree(t.scene, t.env);
+    t.rays = sceneRaySets(t.scene, t.env, *embree);
     t.referenceHits.resize(t.rays.primary.size());
     t.referenceOccluded.resize(t.rays.shadow.size());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, t.rays.primary.size(), 4096), [&](const auto& range) {
@@ -156,7 +163,7 @@ TradeoffScene prepareTradeoffScene(const std::string& id, const Env& sceneEnv, c
         for (size_t i = range.begin(); i < range.end(); ++i) t.referenceOccluded[i] = embree->isOccluded(t.rays.shadow[i], unused);
     });
 
-    const Env seriesEnv = tradeoffSceneEnv(reference, settings, settings.seriesSize, settings.seriesSize);
+    const Env seriesEnv = tradeoffSceneEnv(t.env, settings, settings.seriesSize, settings.seriesSize);
     t.seriesCamera = resolveCamera(t.scene, seriesEnv);
     RenderSettings seriesSettings = RenderSettings::fromEnv(seriesEnv, t.scene, t.seriesCamera);
     seriesSettings.threads = 0;
