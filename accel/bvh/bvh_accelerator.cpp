@@ -1,4 +1,5 @@
 #include "accel/bvh/bvh_accelerator.h"
+#include "accel/bvh/build/build_threads.h"
 
 #include "accel/bvh/layout/end_point_overlap.h"
 #include "accel/bvh/traverse/bvh_traversal.h"
@@ -59,7 +60,7 @@ BuildStats BvhAccelerator<Layout>::build(const PrimitiveSet& prims) {
         tree_ = std::move(binary);
     } else {
         const CollapseCosts costs{build_.cTraversal, build_.cIntersect, build_.effectiveLeafCap()};
-        tree_ = collapseToWide<LayoutWidth<Layout>::value>(std::move(binary), costs);
+        onThreads(build_.threads, [&] { tree_ = collapseToWide<LayoutWidth<Layout>::value>(std::move(binary), costs); });
     }
     if (prims.hasQuadrics()) {
         BvhBuildConfig config = build_;

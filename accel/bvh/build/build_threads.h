@@ -1,4 +1,5 @@
-// How the builders run on BvhBuildConfig::threads (internal to build/).
+// How the builders (and the collapse into wide nodes) run on BvhBuildConfig::threads (internal to
+// build/ and its caller, bvh_accelerator.cpp).
 #pragma once
 
 #include <tbb/task_arena.h>

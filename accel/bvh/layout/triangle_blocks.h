@@ -43,17 +43,29 @@ struct TriangleBlockLeaves {
     std::vector<uint32_t> primIndices;
     std::vector<TriangleBlock, TraversalAllocator<TriangleBlock>> blocks;
 
-    // Appends a leaf of `count` triangles (primitive indices `prims`); returns its first block.
+    // Sizes the arrays for `blocks` blocks, to be filled by writeLeaf.
+    void resizeLeaves(uint32_t blocks) {
+        this->blocks.resize(blocks);
+        primIndices.resize(size_t(blocks) * TriangleBlock::kLanes);
+    }
+
+    // Writes a leaf of `count` triangles (primitive indices `prims`) into the blocks from
+    // `first` on, which must exist (resizeLeaves); padding lanes included.
+    void writeLeaf(uint32_t first, const Triangle* triangles, const uint32_t* prims, uint32_t count) {
+        const Vec3 point = triangles[count - 1].v0;  // the padding triangle
+        for (uint32_t i = 0, end = blocksFor(count) * TriangleBlock::kLanes; i < end; ++i) {
+            const bool real = i < count;
+            blocks[first + i / TriangleBlock::kLanes].set(int(i % TriangleBlock::kLanes),
+                                                          real ? triangles[i] : Triangle{point, point, point});
+            primIndices[size_t(first) * TriangleBlock::kLanes + i] = real ? prims[i] : kInvalidPrimitive;
+        }
+    }
+
+    // Appends a leaf of `count` triangles; returns its first block.
     uint32_t appendLeaf(const Triangle* triangles, const uint32_t* prims, uint32_t count) {
         const uint32_t first = uint32_t(blocks.size());
-        const Vec3 point = triangles[count - 1].v0;  // the padding triangle
-        for (uint32_t i = 0; i < blocksFor(count) * TriangleBlock::kLanes; ++i) {
-            const int lane = int(i % TriangleBlock::kLanes);
-            if (lane == 0) blocks.emplace_back();
-            const bool real = i < count;
-            blocks.back().set(lane, real ? triangles[i] : Triangle{point, point, point});
-            primIndices.push_back(real ? prims[i] : kInvalidPrimitive);
-        }
+        resizeLeaves(first + blocksFor(count));
+        writeLeaf(first, triangles, prims, count);
         return first;
     }
 

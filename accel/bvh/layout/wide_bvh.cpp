@@ -1,8 +1,12 @@
 #include "accel/bvh/layout/wide_bvh.h"
 
+#include <tbb/task_group.h>
+
 #include <algorithm>
 #include <memory>
+#include <optional>
 #include <utility>
+#include <vector>
 
 namespace bvhlab {
 
@@ -115,36 +119,95 @@ private:
     std::unique_ptr<Choice[]> plan_;
 };
 
-}  // namespace
+// What the wide subtree of one wide node takes: the wide nodes below it and the blocks of all
+// its leaves, its own leaf lanes included. Known before emission, they give every subtree its
+// place in the arrays, so that subtrees are written in parallel into the layout the sequential
+// depth-first emission makes.
+struct SubtreeSize {
+    uint32_t nodesBelow = 0;
+    uint32_t blocks = 0;
+};
+
+// Subtrees of at least this many blocks are emitted as tasks of their own; smaller ones inline.
+constexpr uint32_t kParallelBlocks = 512;
 
 template <int N>
-WideBvh<N> collapseToWide(Bvh&& bvh, const CollapseCosts& costs) {
-    WideBvh<N> wide;
-    if (bvh.empty()) return wide;
-    const std::vector<BvhNode, TraversalAllocator<BvhNode>>& binary = bvh.nodes;
-    const CollapsePlan<N> plan(binary, costs);
-    wide.nodes.reserve(binary.size() / 2 + 1);
-    size_t blocks = 0;  // merging leaves only saves blocks: an upper bound
-    for (const BvhNode& n : binary) blocks += n.isLeaf() ? blocksFor(n.count) : 0;
-    wide.blocks.reserve(blocks);
-    wide.primIndices.reserve(blocks * TriangleBlock::kLanes);
+class WideEmitter {
+public:
+    WideEmitter(const Bvh& bvh, const CollapsePlan<N>& plan, WideBvh<N>& wide)
+        : bvh_(bvh), plan_(plan), wide_(wide), sizes_(new SubtreeSize[bvh.nodes.size()]) {}
 
-    // A leaf lane: the triangles of the binary leaves below n, left to right (a binary leaf's
-    // straight from its arrays: most leaf lanes are one).
-    std::vector<Triangle> triangles;
-    std::vector<uint32_t> prims, below;
-    const auto appendLeaf = [&](uint32_t n) {
-        const BvhNode& leaf = binary[n];
-        if (leaf.isLeaf())
-            return wide.appendLeaf(&bvh.leafTriangles[leaf.index], &bvh.primIndices[leaf.index], leaf.count);
-        triangles.clear(), prims.clear();
-        below.assign(1, n);
+    // The sizes of the wide subtree of inner binary node n and of every wide node below it.
+    SubtreeSize measure(uint32_t n) {
+        uint32_t lanes[N];
+        const int count = plan_.lanesOf(n, lanes);
+        SubtreeSize size;
+        for (int i = 0; i < count; ++i) {
+            if (plan_.asLeaf(lanes[i])) {
+                size.blocks += blocksFor(plan_.triangles(lanes[i]));
+            } else {
+                const SubtreeSize below = measure(lanes[i]);
+                size.nodesBelow += 1 + below.nodesBelow;
+                size.blocks += below.blocks;
+            }
+        }
+        return sizes_[n] = size;
+    }
+
+    // Writes the wide node of inner binary node n at `slot`, its leaves' blocks from block
+    // `firstBlock` on (its own leaf lanes first, in lane order), its inner lanes' nodes at
+    // `firstNode`, `firstNode` + 1, ... (lane order) and their subtrees after them, the last
+    // lane's first: the order of a depth-first emission with a stack.
+    void emit(uint32_t n, uint32_t slot, uint32_t firstNode, uint32_t firstBlock) {
+        uint32_t lanes[N];
+        const int count = plan_.lanesOf(n, lanes);
+        WideNode<N> node = emptyWideNode<N>();
+        uint32_t block = firstBlock, nextNode = firstNode;
+        for (int i = 0; i < count; ++i) {
+            const Bounds3 b = bvh_.nodes[lanes[i]].box();
+            for (int a = 0; a < 3; ++a) node.lower[a][i] = b.lower[a], node.upper[a][i] = b.upper[a];
+            if (plan_.asLeaf(lanes[i])) {
+                node.child[i] = block, node.count[i] = plan_.triangles(lanes[i]);
+                writeLeaf(lanes[i], block);
+                block += blocksFor(node.count[i]);
+            }
+        }
+        for (int i = 0; i < count; ++i)
+            if (node.count[i] == 0) node.child[i] = nextNode++;
+        wide_.nodes[slot] = node;
+
+        std::optional<tbb::task_group> tasks;  // made only where a subtree is large enough
+        for (int i = count; i-- > 0;) {
+            if (node.count[i] != 0) continue;
+            const SubtreeSize& size = sizes_[lanes[i]];
+            const uint32_t child = lanes[i], childSlot = node.child[i], childNodes = nextNode, childBlocks = block;
+            if (size.blocks >= kParallelBlocks) {
+                if (!tasks) tasks.emplace();
+                tasks->run([=, this] { emit(child, childSlot, childNodes, childBlocks); });
+            } else {
+                emit(child, childSlot, childNodes, childBlocks);
+            }
+            nextNode += size.nodesBelow, block += size.blocks;
+        }
+        if (tasks) tasks->wait();
+    }
+
+    // A leaf lane at `first`: the triangles of the binary leaves below n, left to right (a
+    // binary leaf's straight from its arrays: most leaf lanes are one).
+    void writeLeaf(uint32_t n, uint32_t first) {
+        const BvhNode& leaf = bvh_.nodes[n];
+        if (leaf.isLeaf()) {
+            wide_.writeLeaf(first, &bvh_.leafTriangles[leaf.index], &bvh_.primIndices[leaf.index], leaf.count);
+            return;
+        }
+        std::vector<Triangle> triangles;
+        std::vector<uint32_t> prims, below(1, n);
         while (!below.empty()) {
-            const BvhNode& node = binary[below.back()];
+            const BvhNode& node = bvh_.nodes[below.back()];
             below.pop_back();
             if (node.isLeaf()) {
-                const Triangle* t = &bvh.leafTriangles[node.index];
-                const uint32_t* p = &bvh.primIndices[node.index];
+                const Triangle* t = &bvh_.leafTriangles[node.index];
+                const uint32_t* p = &bvh_.primIndices[node.index];
                 triangles.insert(triangles.end(), t, t + node.count);
                 prims.insert(prims.end(), p, p + node.count);
             } else {
@@ -152,44 +215,38 @@ WideBvh<N> collapseToWide(Bvh&& bvh, const CollapseCosts& costs) {
                 below.push_back(node.index);
             }
         }
-        return wide.appendLeaf(triangles.data(), prims.data(), uint32_t(prims.size()));
-    };
-
-    // Work: an inner binary node whose lanes fill the wide node at `slot`.
-    struct Work {
-        uint32_t binary;
-        uint32_t slot;
-    };
-    std::vector<Work> stack;
-    wide.nodes.push_back(emptyWideNode<N>());
-    if (plan.rootIsOneLeaf()) {
-        WideNode<N>& root = wide.nodes[0];
-        const Bounds3 b = binary[0].box();
-        for (int a = 0; a < 3; ++a) root.lower[a][0] = b.lower[a], root.upper[a][0] = b.upper[a];
-        root.child[0] = appendLeaf(0);
-        root.count[0] = plan.triangles(0);
-    } else {
-        stack.push_back({0, 0});
+        wide_.writeLeaf(first, triangles.data(), prims.data(), uint32_t(prims.size()));
     }
-    while (!stack.empty()) {
-        const Work work = stack.back();
-        stack.pop_back();
-        uint32_t lanes[N];
-        const int n = plan.lanesOf(work.binary, lanes);
-        WideNode<N> node = emptyWideNode<N>();
-        for (int i = 0; i < n; ++i) {
-            const Bounds3 b = binary[lanes[i]].box();
-            for (int a = 0; a < 3; ++a) node.lower[a][i] = b.lower[a], node.upper[a][i] = b.upper[a];
-            if (plan.asLeaf(lanes[i])) node.child[i] = appendLeaf(lanes[i]), node.count[i] = plan.triangles(lanes[i]);
-        }
-        // Inner lanes (count 0) get wide nodes of their own, in lane order.
-        for (int i = 0; i < n; ++i) {
-            if (node.count[i] != 0) continue;
-            node.child[i] = uint32_t(wide.nodes.size());
-            wide.nodes.push_back(emptyWideNode<N>());
-            stack.push_back({lanes[i], node.child[i]});
-        }
-        wide.nodes[work.slot] = node;
+
+private:
+    const Bvh& bvh_;
+    const CollapsePlan<N>& plan_;
+    WideBvh<N>& wide_;
+    std::unique_ptr<SubtreeSize[]> sizes_;  // per inner binary node that becomes a wide node
+};
+
+}  // namespace
+
+template <int N>
+WideBvh<N> collapseToWide(Bvh&& bvh, const CollapseCosts& costs) {
+    WideBvh<N> wide;
+    if (bvh.empty()) return wide;
+    const CollapsePlan<N> plan(bvh.nodes, costs);
+    WideEmitter<N> emitter(bvh, plan, wide);
+    if (plan.rootIsOneLeaf()) {
+        const uint32_t triangles = plan.triangles(0);
+        wide.resizeLeaves(blocksFor(triangles));
+        WideNode<N> root = emptyWideNode<N>();
+        const Bounds3 b = bvh.nodes[0].box();
+        for (int a = 0; a < 3; ++a) root.lower[a][0] = b.lower[a], root.upper[a][0] = b.upper[a];
+        root.child[0] = 0, root.count[0] = triangles;
+        emitter.writeLeaf(0, 0);
+        wide.nodes.assign(1, root);
+    } else {
+        const SubtreeSize size = emitter.measure(0);
+        wide.nodes.resize(1 + size.nodesBelow);
+        wide.resizeLeaves(size.blocks);
+        emitter.emit(0, 0, 1, 0);
     }
     bvh = Bvh();
     return wide;

@@ -45,8 +45,9 @@ struct CollapseCosts {
 // blocks pay, and a wide node opens the descendants that pay, not the largest box. Every lane
 // is a proper descendant of its node's binary node, so the wide tree is no deeper than the
 // binary one; a merged leaf lists its binary leaves' triangles left to right. The root is a
-// wide node (holding a single leaf lane when all triangles are cheapest as one leaf).
-// Instantiated for N = 4 and 8.
+// wide node (holding a single leaf lane when all triangles are cheapest as one leaf). Large
+// subtrees are written as TBB tasks (in the caller's arena), each at a place fixed beforehand:
+// the layout does not depend on the thread count. Instantiated for N = 4 and 8.
 template <int N>
 WideBvh<N> collapseToWide(Bvh&& bvh, const CollapseCosts& costs);
 

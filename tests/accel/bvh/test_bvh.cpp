@@ -17,6 +17,7 @@
 #include "tests/support/triangle_soup.h"
 
 #include <gtest/gtest.h>
+#include <tbb/task_arena.h>
 
 #include <array>
 #include <cmath>
@@ -759,6 +760,31 @@ TEST(Bvh, SameTreeWhateverTheThreadCount) {
         EXPECT_EQ(parallel.leaves, sequential.leaves);
         EXPECT_EQ(parallel.sah->cost, sequential.sah->cost);
         EXPECT_EQ(trees[0].primIndices, depthFirst.primIndices);
+    }
+}
+
+// The collapse writes large subtrees in parallel, each at a place fixed beforehand: the wide
+// tree is the same, byte for byte, whatever the thread count (its subtrees are large enough here
+// to be emitted as tasks).
+TEST(Bvh, SameWideTreeWhateverTheThreadCount) {
+    const Soup soup = randomSoup(60000, 69);
+    BvhBuildConfig config = defaultConfig();
+    config.sahBlockShift = 3;
+    const Bvh binary = buildBvh(BvhKind::BinnedSah, config, soup.prims());
+    const CollapseCosts costs{1.0f, 1.0f, uint32_t(config.leafCap)};
+    std::vector<WideBvh<8>> trees;
+    for (int threads : {1, 2}) {
+        tbb::task_arena arena(threads);
+        arena.execute([&] { trees.push_back(collapseToWide<8>(Bvh(binary), costs)); });
+    }
+    trees.push_back(collapseToWide<8>(Bvh(binary), costs));  // outside any arena: all threads
+    ASSERT_GT(trees[0].blocks.size(), 8 * 512u);  // the root's lanes reach wide_bvh.cpp's kParallelBlocks
+    for (size_t t = 1; t < trees.size(); ++t) {
+        ASSERT_EQ(trees[t].nodes.size(), trees[0].nodes.size());
+        ASSERT_EQ(trees[t].blocks.size(), trees[0].blocks.size());
+        EXPECT_EQ(std::memcmp(trees[t].nodes.data(), trees[0].nodes.data(), trees[0].nodes.size() * sizeof(WideNode<8>)), 0);
+        EXPECT_EQ(std::memcmp(trees[t].blocks.data(), trees[0].blocks.data(), trees[0].blocks.size() * sizeof(TriangleBlock)), 0);
+        EXPECT_EQ(trees[t].primIndices, trees[0].primIndices);
     }
 }
 
