@@ -130,6 +130,9 @@ Scene loadSceneFor(const Env& env, bool useCache, SceneLoadInfo* info) {
     fmt::print(stderr, "scene {}: {} triangles ({} degenerate, not built over) {} in {:.0f} ms\n", scene.name,
                scene.triangleCount(), scene.report.degenerateTriangles,
                loaded.fromCache ? "read from cache " + loaded.cacheFile.string() : std::string("loaded"), loaded.ms);
+    if (scene.report.skippedPolygons || scene.report.earClippedPolygons)
+        fmt::print(stderr, "scene {}: {} non-convex polygons ear-clipped, {} polygons skipped (no exact cover)\n",
+                   scene.name, scene.report.earClippedPolygons, scene.report.skippedPolygons);
     if (!scene.spheres.empty() || !scene.cones.empty())
         fmt::print(stderr, "scene {}: {} spheres ({} degenerate), {} cones/cylinders ({} degenerate)\n", scene.name,
                    scene.spheres.size(), scene.report.degenerateSpheres, scene.cones.size(),

@@ -95,7 +95,13 @@ private:
         }
 
         Vec3 color{0.0f};
-        const Vec3 shadowOrigin = facesRay ? surface.originAbove() : surface.originBelow();
+        // The shadow ray starts on the side its normal faces, except from the inside of a
+        // transmitting polygon: there it starts inside, as the ray came, and the polygon it
+        // would leave through occludes it (a closed glass solid lets no shadow ray out of its
+        // own faces). Spheres and cones keep the outside's start (their inside is lit through
+        // the glass, as Havran's counts for mount's glass spheres show).
+        const bool insideGlassPolygon = transmits && !surface.outside && hit.primitive < scene_.triangleCount();
+        const Vec3 shadowOrigin = facesRay || insideGlassPolygon ? surface.originAbove() : surface.originBelow();
         for (const PointLight& light : scene_.lights) {
             const Vec3 toLight = light.position - surface.position;
             const float cosine = glm::dot(n, toLight);
@@ -119,17 +125,20 @@ private:
             color += lightIntensity_ * (material.diffuse * diffuse + Vec3(material.mirror * highlight)) * light.intensity;
         }
 
-        // SPD rules 7-9: reflection from reflective surfaces, refraction through transmitting
-        // ones (total internal reflection: the reflection ray only), up to the tree depth. The
-        // rays leave on the incoming side (reflection) or through (refraction).
-        if (material.mirror <= 0.0f && !transmits) return color;
+        // SPD rules 7-9: reflection from reflective surfaces and from transmitting ones ("a ray
+        // hitting a transmitting object spawns a reflection ray as well", whatever its Ks),
+        // refraction through transmitting ones (total internal reflection: the reflection ray
+        // only), up to the tree depth. The rays leave on the incoming side (reflection) or
+        // through (refraction).
+        const bool reflects = material.mirror > 0.0f || transmits;
+        if (!reflects) return color;
         if (depth >= rules_.maxDepth) {
-            counts.raysCutByDepth += (material.mirror > 0.0f) + transmits;
+            counts.raysCutByDepth += reflects + transmits;
             return color;
         }
         const Vec3 d = glm::normalize(ray.dir);
         const Vec3& facing = surface.shadingNormal;  // toward the incoming ray
-        bool reflects = material.mirror > 0.0f;
+        float reflectance = material.mirror;
         if (transmits) {
             // Snell's law; entering from outside goes from index 1 to the material's.
             const float eta = surface.outside ? 1.0f / material.ior : material.ior;
@@ -137,18 +146,15 @@ private:
             const float k = 1.0f - eta * eta * (1.0f - cosIn * cosIn);
             if (k < 0.0f) {
                 ++counts.totalInternalReflections;
-                reflects = true;
+                reflectance += material.transmission;  // what would have passed reflects
             } else {
                 ++counts.refractionRays;
                 const Vec3 refracted = eta * d + (eta * cosIn - std::sqrt(k)) * facing;
                 color += material.transmission * trace({surface.originBelow(), refracted}, depth + 1, ts, nullptr);
             }
         }
-        if (reflects) {
-            ++counts.reflectionRays;
-            const float weight = material.mirror > 0.0f ? material.mirror : material.transmission;
-            color += weight * trace({surface.originAbove(), glm::reflect(d, facing)}, depth + 1, ts, nullptr);
-        }
+        ++counts.reflectionRays;
+        color += reflectance * trace({surface.originAbove(), glm::reflect(d, facing)}, depth + 1, ts, nullptr);
         return color;
     }
 

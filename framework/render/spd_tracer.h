@@ -1,8 +1,8 @@
 // The ray tracer of Eric Haines' Standard Procedural Databases (SPD_Readme.txt, "Testing
 // Procedures"): eye rays at the corners of the pixels (the four corners averaged), Whitted
-// recursion to a fixed tree depth with a reflection ray from every hit on a reflective surface
-// and a refraction ray (Snell's law) from every hit on a transmitting one, a shadow ray per
-// light unless the normal faces away from it, Phong highlights. It counts the rays under
+// recursion to a fixed tree depth with a reflection ray from every hit on a reflective or
+// transmitting surface and a refraction ray (Snell's law) from every hit on a transmitting
+// one, a shadow ray per light unless the normal faces away from it, Phong highlights. It counts the rays under
 // Havran's names (havran_stats_grids.txt): invariants that every correct ray tracer reproduces
 // whatever its acceleration structure.
 #pragma once

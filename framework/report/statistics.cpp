@@ -59,11 +59,11 @@ std::string formatStatsTable(const StatsRow& row) {
     // the shadow rays alone (any-hit queries toward the lights), as the report's rows.
     line("primary", row.render.primary, true);
     line("  shadow rays", row.render.shadow, false);
-    out += fmt::format("degenerate, skipped: {} triangles, {} spheres, {} cones/cylinders; "
+    out += fmt::format("degenerate, skipped: {} triangles, {} spheres, {} cones/cylinders, {} polygons; "
                        "shadow rays skipped: {} (shadows off), {} (light behind surface); bounces cut by depthLimit: "
                        "{}; threads: {}",
                        row.load.degenerateTriangles, row.load.degenerateSpheres, row.load.degenerateCones,
-                       row.render.shadowRaysSkippedDisabled, row.render.shadowRaysSkippedBackfacing,
+                       row.load.skippedPolygons, row.render.shadowRaysSkippedDisabled, row.render.shadowRaysSkippedBackfacing,
                        row.render.bouncesSkipped, row.render.threads);
     if (b.sah) out += fmt::format("; SAH and EPO with C_trav={} C_isect={}", b.sah->cTraversal, b.sah->cIntersect);
     return out;
@@ -78,6 +78,8 @@ nlohmann::json statsJson(const StatsRow& row) {
         {"degenerate", row.load.degenerateTriangles},
         {"degenerate_spheres", row.load.degenerateSpheres},
         {"degenerate_cones", row.load.degenerateCones},
+        {"skipped_polygons", row.load.skippedPolygons},
+        {"ear_clipped_polygons", row.load.earClippedPolygons},
         {"nodes", optionalJson(b.nodes)},
         {"leaves", optionalJson(b.leaves)},
         {"avg_leaf_prims", optionalJson(b.avgLeafPrimitives)},

@@ -45,6 +45,8 @@ struct LoadReport {
     size_t degenerateTriangles = 0;  // see isDegenerate (scene.h, sphere.h, cone.h): kept,
     size_t degenerateSpheres = 0;    // never built over
     size_t degenerateCones = 0;
+    size_t skippedPolygons = 0;     // faces of 4+ vertices without an exact cover (PolygonProblem)
+    size_t earClippedPolygons = 0;  // non-convex faces, triangulated by ear clipping
     std::vector<std::string> warnings;
 };
 
@@ -53,7 +55,8 @@ struct Scene {
     std::filesystem::path source;  // empty for generated scenes
 
     // Meshes as read, one flat list. Triangle i (the primitive index) is indices[i]:
-    // its place in file order after fan triangulation, degenerate triangles included.
+    // its place in file order after triangulation (appendPolygon), degenerate triangles
+    // included.
     std::vector<Vec3> positions;
     std::vector<Vec3> normals;  // per vertex; empty when the file has none
     std::vector<glm::uvec3> indices;

@@ -32,6 +32,7 @@ struct Header {
     uint32_t sourceAdler32;
     uint64_t nameBytes, positions, normals, indices, materialIds, materials, lights, warnings;
     uint64_t degenerate, spheres, cones;  // triangles degenerate; spheres and cones stored
+    uint64_t skippedPolygons, earClippedPolygons;
     uint32_t hasCamera, hasBackground;
     float camera[10];  // from, at, up, fovy
     int32_t cameraWidth, cameraHeight;
@@ -207,6 +208,8 @@ std::optional<Scene> readSceneCache(const std::filesystem::path& cacheFile, cons
                                   h.cameraWidth, h.cameraHeight};
     }
     if (h.hasBackground) scene.background = Vec3(h.background[0], h.background[1], h.background[2]);
+    scene.report.skippedPolygons = h.skippedPolygons;
+    scene.report.earClippedPolygons = h.earClippedPolygons;
     scene.finalize();  // derives triangles, valid primitives, bounds and the degenerate count
     if (scene.report.degenerateTriangles != h.degenerate) return fail("degenerate count differs");
     return scene;
@@ -229,6 +232,8 @@ void writeSceneCache(const std::filesystem::path& cacheFile, const SceneCacheKey
     h.lights = scene.lights.size();
     h.warnings = scene.report.warnings.size();
     h.degenerate = scene.report.degenerateTriangles;
+    h.skippedPolygons = scene.report.skippedPolygons;
+    h.earClippedPolygons = scene.report.earClippedPolygons;
     h.spheres = scene.spheres.size();
     h.cones = scene.cones.size();
     h.hasCamera = scene.camera.has_value();

@@ -17,7 +17,7 @@ namespace bvhlab {
 
 // Bump when the cache layout changes or when a reader's output for the same bytes changes
 // (old entries then miss and are rewritten).
-constexpr uint32_t kSceneCacheVersion = 3;
+constexpr uint32_t kSceneCacheVersion = 4;
 
 // What identifies a source file's content: its size and checksums of its raw bytes.
 struct SceneCacheKey {

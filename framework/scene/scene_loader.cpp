@@ -102,6 +102,11 @@ void requireSomethingToRender(const Scene& scene) {
         why = fmt::format("{} degenerate (zero area, NaN or infinite vertices, or a normal that cannot be "
                           "normalised)", scene.triangleCount() == 1 ? "its one triangle is"
                                          : fmt::format("all {} triangles are", scene.triangleCount()));
+    } else if (r.skippedPolygons > 0) {
+        const auto named = std::find_if(r.warnings.begin(), r.warnings.end(),
+                                        [](const std::string& w) { return w.find("polygon of") != std::string::npos; });
+        why = fmt::format("all {} polygons were skipped{}", r.skippedPolygons,
+                          named != r.warnings.end() ? " (the first: " + *named + ")" : "");
     } else if (scene.positions.empty()) {
         why = "no primitives";
     } else {

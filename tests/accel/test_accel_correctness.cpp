@@ -16,6 +16,8 @@
 #include "framework/scene/procedural.h"
 #include "framework/scene/scene_loader.h"
 #include "tests/support/oracle.h"
+#include "tests/support/polygons.h"
+#include "tests/support/random_geometry.h"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -327,6 +329,26 @@ TEST_P(AccelCorrectness, ClosedMeshesAreWatertight) {
         }
     }
 }
+
+// NFF faces that are not convex (stars, combs, notched squares, gears of 144 corners) in
+// random planes, as the NFF reader triangulates them: ear-clipped triangles with collinear
+// corners and slivers among them.
+Scene nonConvexPolygonScene() {
+    std::mt19937 rng(26);
+    const std::vector<Polygon2> shapes = {starPolygon(), combPolygon(), notchedSquare(), gearPolygon()};
+    std::string nff;
+    for (int i = 0; i < 200; ++i) {
+        const DVec3 u = randomUnit(rng), w = randomUnit(rng);
+        const DVec3 v = glm::normalize(glm::cross(w, u));
+        const double size = 0.3 + 2.0 * std::uniform_real_distribution<double>(0.0, 1.0)(rng);
+        nff += nffPolygon(shapes[i % shapes.size()], {randomPointWithin(rng, 8.0), size * u, size * v});
+    }
+    Scene scene = readNff("polygons.nff", nff);
+    scene.finalize();
+    return scene;
+}
+
+TEST_P(AccelCorrectness, NonConvexPolygons) { runScene("nonconvex_polygons", nonConvexPolygonScene); }
 
 // --- Scene files --------------------------------------------------------------------------------
 

@@ -1,7 +1,7 @@
 // NFF, Eric Haines' Neutral File Format of the Standard Procedural Databases (SPD): a
 // viewpoint block, background, point lights, materials ("fill colours"), polygons with
-// and without vertex normals (fan-triangulated), spheres and cones (native primitives;
-// degenerate ones are counted and skipped by Scene::finalize).
+// and without vertex normals (convex or not: appendPolygon), spheres and cones (native
+// primitives; degenerate ones are counted and skipped by Scene::finalize).
 #include "framework/scene/readers/reader_util.h"
 #include "framework/scene/scene_loader.h"
 
@@ -68,6 +68,7 @@ Scene readNff(const std::filesystem::path& file, const std::string& bytes) {
     uint32_t material = 0;  // the default material until the first "f"
     bool hasNormals = false;  // some polygon was a "pp"
     std::vector<uint32_t> polygon;
+    PolygonTriangulator triangulator;
 
     // Each entity starts on a line of its own; the loop ends its last line.
     for (std::string_view keyword = text.next(); !keyword.empty(); text.endLine(), keyword = text.next()) {
@@ -115,7 +116,7 @@ Scene readNff(const std::filesystem::path& file, const std::string& bytes) {
             if (corners < 3) {
                 throw text.error(fmt::format("polygon with {} vertices; a polygon needs at least 3", corners));
             }
-            const size_t first = scene.positions.size();
+            const size_t first = scene.positions.size(), line = text.line();
             polygon.clear();
             for (uint64_t k = 0; k < corners; ++k) {
                 text.endLine();
@@ -128,7 +129,7 @@ Scene readNff(const std::filesystem::path& file, const std::string& bytes) {
                 scene.normals.resize(scene.positions.size(), normal);
             }
             hasNormals |= withNormals;
-            appendFan(scene.indices, polygon);
+            appendPolygon(scene, triangulator, polygon, file, line);
             scene.materialIds.resize(scene.indices.size(), material);
         } else {
             throw text.error(fmt::format("unknown NFF entity {}", quoted(keyword)));

@@ -1,9 +1,10 @@
 // Wavefront OBJ. tinyobjloader parses faces, normals and materials; a pass of our own reads
 // the vertex positions, because tinyobj turns "nan", "inf" and garbage into 0 without a word,
 // and notes the line of every face, because tinyobj's messages cannot place a bad index.
-// tinyobj's triangulation is off (it splits quads along the shorter diagonal); appendFan
-// keeps primitive indices in file order. We call LoadObj on a stream rather than ObjReader:
-// ObjReader reads either a file by name (no gzip) or a string without its mtllib.
+// tinyobj's triangulation is off (it splits quads along the shorter diagonal); appendPolygon
+// keeps primitive indices in file order and covers non-convex faces exactly. We call LoadObj
+// on a stream rather than ObjReader: ObjReader reads either a file by name (no gzip) or a
+// string without its mtllib.
 #include "framework/scene/readers/reader_util.h"
 #include "framework/scene/scene_loader.h"
 
@@ -111,6 +112,7 @@ Scene readObj(const std::filesystem::path& file, const std::string& bytes) {
 
     size_t face = 0;
     std::vector<uint32_t> polygon;
+    PolygonTriangulator triangulator;
     for (const tinyobj::shape_t& shape : shapes) {
         const tinyobj::mesh_t& mesh = shape.mesh;
         size_t corner = 0;
@@ -136,7 +138,7 @@ Scene readObj(const std::filesystem::path& file, const std::string& bytes) {
                     scene.normals[index.vertex_index] = Vec3(n[0], n[1], n[2]);
                 }
             }
-            appendFan(scene.indices, polygon);
+            appendPolygon(scene, triangulator, polygon, file, line);
             if (!objMaterials.empty()) {
                 // Material 0 is the default, for faces before any usemtl or with an unknown one.
                 const int id = mesh.material_ids[f];

@@ -33,6 +33,7 @@ Scene readOff(const std::filesystem::path& file, const std::string& bytes) {
 
     scene.indices.reserve(plausibleCount(faceCount, bytes.size(), 8));
     std::vector<uint32_t> polygon;
+    PolygonTriangulator triangulator;
     for (uint64_t f = 0; f < faceCount; ++f) {
         const uint64_t corners = text.read<uint64_t>("a face's vertex count");
         if (corners < 3) throw text.error(fmt::format("face with {} vertices; a face needs at least 3", corners));
@@ -45,7 +46,7 @@ Scene readOff(const std::filesystem::path& file, const std::string& bytes) {
             }
             polygon.push_back(uint32_t(index));
         }
-        appendFan(scene.indices, polygon);
+        appendPolygon(scene, triangulator, polygon, file, text.line());
         text.skipLine();  // an optional face colour
     }
     return scene;

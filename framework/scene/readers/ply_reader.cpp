@@ -324,6 +324,7 @@ template <typename Source>
 void readElements(Source& source, const PlyHeader& header, const PlyLayout& layout, Scene& scene) {
     const uint64_t vertexCount = layout.vertex ? layout.vertex->count : 0;
     std::vector<uint32_t> polygon;
+    PolygonTriangulator triangulator;
     for (const PlyElement& element : header.elements) {
         source.element = &element;
         const bool isVertex = &element == layout.vertex;
@@ -370,7 +371,11 @@ void readElements(Source& source, const PlyHeader& header, const PlyLayout& layo
                     }
                     polygon.push_back(uint32_t(index));
                 }
-                appendFan(scene.indices, polygon);
+                // A face of more corners is triangulated in its plane: its vertices must be known.
+                if (polygon.size() > 3 && scene.positions.size() < vertexCount)
+                    throw source.error("a face of more than three vertices before the vertex element");
+                appendPolygon(scene, triangulator, polygon,
+                              [&](const std::string& m) { return std::string(source.error(m).what()); });
             }
             if (isVertex) {
                 scene.positions.push_back(position);

@@ -1,9 +1,10 @@
 // What the scene readers share: strict number parsing, a tokenizer that knows line numbers
-// for error messages, fan triangulation and a cap on counts read from untrusted headers.
+// for error messages, polygons as triangles and a cap on counts read from untrusted headers.
 #pragma once
 
 #include "framework/core/error.h"
 #include "framework/core/parse_number.h"
+#include "framework/scene/polygon_triangulation.h"
 #include "framework/scene/scene.h"
 
 #include <algorithm>
@@ -112,10 +113,38 @@ private:
     size_t line_;
 };
 
-// Splits the polygon (v0 v1 ... vn-1) into the fan (v0 vi vi+1), i = 1..n-2, in that order:
-// every reader triangulates this way, so that primitive indices follow file order.
-inline void appendFan(std::vector<glm::uvec3>& indices, std::span<const uint32_t> polygon) {
-    for (size_t i = 1; i + 1 < polygon.size(); ++i) indices.emplace_back(polygon[0], polygon[i], polygon[i + 1]);
+// Appends a face's triangles to scene.indices: the fan from its first corner if it is convex
+// (so that primitive indices follow file order), else the ear-clipped triangles that cover it
+// exactly (PolygonTriangulator). A face that cannot be covered exactly is skipped and counted
+// in scene.report, the first few in a warning that locate(message) places in the file.
+template <typename Locate>
+void appendPolygon(Scene& scene, PolygonTriangulator& triangulator, std::span<const uint32_t> polygon,
+                   const Locate& locate) {
+    if (polygon.size() == 3) {  // the common case, as it is; Scene::finalize judges its area
+        scene.indices.emplace_back(polygon[0], polygon[1], polygon[2]);
+        return;
+    }
+    const PolygonProblem problem = triangulator.triangulate(scene.positions, polygon);
+    if (problem == PolygonProblem::None) {
+        scene.indices.insert(scene.indices.end(), triangulator.triangles().begin(), triangulator.triangles().end());
+        scene.report.earClippedPolygons += triangulator.wasEarClipped();
+        return;
+    }
+    constexpr size_t kNamed = 10;
+    if (scene.report.skippedPolygons < kNamed) {
+        scene.report.warnings.push_back(
+            locate(fmt::format("polygon of {} vertices skipped: {}", polygon.size(), describe(problem))));
+    } else if (scene.report.skippedPolygons == kNamed) {
+        scene.report.warnings.push_back("further skipped polygons are counted, not named");
+    }
+    ++scene.report.skippedPolygons;
+}
+
+// The same for a face of a text file, named by its line.
+inline void appendPolygon(Scene& scene, PolygonTriangulator& triangulator, std::span<const uint32_t> polygon,
+                          const std::filesystem::path& file, size_t line) {
+    appendPolygon(scene, triangulator, polygon,
+                  [&](const std::string& message) { return std::string(inputError(file, line, message).what()); });
 }
 
 // A count read from a file, for reserve(): no more items than the rest of the file can hold

@@ -1,6 +1,7 @@
 // The SPD rules' ray counts (framework/render/spd_tracer.h) on small scenes built in code whose
 // counts follow from the rules by hand: corner rays, the depth limit, reflection and
-// refraction, shadow rays and the normal facing away, one- and two-sided primitives. Every
+// refraction (transmitters reflect too), shadow rays and the normal facing away, shadow rays
+// from inside glass, one- and two-sided primitives. Every
 // count is checked with naive and with the default BVH: the counts are invariants.
 #include "accel/naive/naive_accelerator.h"
 #include "accel/registry.h"
@@ -118,25 +119,76 @@ TEST(SpdTracer, ReflectionsStopAtTheTreeDepth) {
     }
 }
 
+// The ray tree of 9 eye rays straight through a glass solid lit from behind it, below: per eye
+// ray, 8 secondary rays of which 4 hit (the counts of the two tests below), and a shadow ray
+// from each of the 2 hits on the bottom from inside (the 3 other hits face away from the light).
+void expectGlassTree(const SpdCounts& c, uint64_t shadowRaysOccluded) {
+    EXPECT_EQ(c.usedIntPrimRays, 9u);
+    EXPECT_EQ(c.secondaryRays, 9u * 8u);
+    EXPECT_EQ(c.usedIntSecRays, 9u * 4u);
+    EXPECT_EQ(c.shadowRays, 9u * 2u);
+    EXPECT_EQ(c.shadowRaysSkippedBackfacing, 9u * 3u);
+    EXPECT_EQ(c.usedIntShadRays, shadowRaysOccluded);
+    EXPECT_EQ(c.raysCutByDepth, 9u * 2u);
+}
+
 // A glass sphere seen through its centre: the eye ray's hit spawns a reflection (escapes) and a
 // refraction, which hits the inside and spawns an inner reflection and an exit refraction
 // (escapes), and so on: at depths 1 to 4 two rays each, of which the refraction at depth 1 and
-// the inner reflections at depths 2 and 3 and 4 hit; the hit at depth 5 spawns none.
+// the inner reflections at depths 2 and 3 and 4 hit; the hit at depth 5 spawns none. A light
+// below: the hits on the bottom from inside (depths 2 and 4) cast shadow rays, which start
+// outside a sphere (unlike a polygon's, below), toward the light, unoccluded.
 TEST(SpdTracer, RefractionThroughAGlassSphere) {
     Scene scene;
     scene.materials = {glass()};
     scene.spheres = {{Vec3(0), 1.0f}};
     scene.sphereMaterialIds = {0};
     scene.camera = CameraSpec{Vec3(0, 0, 10), Vec3(0), Vec3(0, 1, 0), 0.5f, 2, 2};
+    scene.lights = {{Vec3(0, 0, -10), Vec3(1)}};
     scene.finalize();
     const SpdCounts c = counts(scene);
-    EXPECT_EQ(c.usedIntPrimRays, 9u);
-    EXPECT_EQ(c.secondaryRays, 9u * 8u);
-    EXPECT_EQ(c.usedIntSecRays, 9u * 4u);
+    expectGlassTree(c, /*shadowRaysOccluded=*/0u);
     EXPECT_EQ(c.refractionRays, 9u * 4u);
     EXPECT_EQ(c.reflectionRays, 9u * 4u);
     EXPECT_EQ(c.totalInternalReflections, 0u);
-    EXPECT_EQ(c.raysCutByDepth, 9u * 2u);
+}
+
+// SPD's testing procedure: "a ray hitting a transmitting object spawns a reflection ray as
+// well", whatever its Ks. A glass quad with Ks = 0 under the camera: each eye ray's hit spawns a
+// reflection ray (up, into the sky) and a refraction ray (down, into nothing).
+TEST(SpdTracer, ATransmitterReflectsEvenWithoutKs) {
+    Scene scene;
+    scene.materials = {Material{.diffuse = Vec3(0.1f), .transmission = 0.8f, .ior = 1.1f}};
+    addQuad(scene, 0.0f, 100.0f, 0);
+    scene.camera = cameraAt({0, 0, 5}, -1.0f);
+    scene.finalize();
+    const SpdCounts c = counts(scene);
+    EXPECT_EQ(c.usedIntPrimRays, 9u);
+    EXPECT_EQ(c.secondaryRays, 18u);
+    EXPECT_EQ(c.reflectionRays, 9u);
+    EXPECT_EQ(c.refractionRays, 9u);
+    EXPECT_EQ(c.usedIntSecRays, 0u);
+}
+
+// A glass slab (its top facing up, its bottom down) lit from below, seen from above through
+// its top. Per eye ray (depth 1, on the top from outside: the light is behind it, no shadow
+// ray) the refraction (depth 2) meets the bottom from inside, and so do the inner reflections
+// of depth 4; those of depth 3 and 5 meet the top from inside. Every hit but the last spawns a
+// reflection and a refraction; the refractions leaving the slab hit nothing. The two hits on
+// the bottom from inside cast shadow rays toward the light (the outward normal faces it),
+// which start inside, as the ray came, and the bottom occludes them. Ks = 0 or not, the same.
+TEST(SpdTracer, ShadowRaysFromInsideAGlassPolygonStartInside) {
+    for (const float ks : {0.0f, 0.1f}) {
+        SCOPED_TRACE(ks);
+        Scene scene;
+        scene.materials = {Material{.diffuse = Vec3(0.1f), .mirror = ks, .transmission = 0.9f, .ior = 1.5f}};
+        addQuad(scene, 1.0f, 100.0f, 0);
+        addQuad(scene, 0.0f, 100.0f, 0, /*facingDown=*/true);
+        scene.camera = cameraAt({0, 0, 5}, -1.0f);
+        scene.lights = {{Vec3(0, 0, -10), Vec3(1)}};
+        scene.finalize();
+        expectGlassTree(counts(scene), /*shadowRaysOccluded=*/9u * 2u);
+    }
 }
 
 // Seen from behind, a one-sided quad's normal faces away from the camera and the light on the

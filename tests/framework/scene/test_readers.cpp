@@ -80,17 +80,18 @@ void expectLoadError(const std::string& name, std::string_view text, std::initia
 // ---------------------------------------------------------------------------------------------
 // OBJ
 
-TEST(ObjReader, FanTriangulatesInFileOrderAndKeepsDegenerateTriangles) {
+TEST(ObjReader, FanTriangulatesConvexFacesInFileOrderAndKeepsDegenerateTriangles) {
     const Scene scene = loadText("fan.obj",
-                                 "# quad, a zero-area triangle, pentagon\n"
+                                 "# quad, a zero-area triangle, a convex pentagon with a straight corner\n"
                                  "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\n"
                                  "f 1 2 3 4\n"
                                  "f 1 2 5\n"  // collinear: zero area
-                                 "f 1 2 3 4 5\n");
+                                 "f 1 2 5 3 4\n");
     EXPECT_EQ(scene.name, "fan");
-    EXPECT_EQ(scene.indices, (std::vector<uvec3>{{0, 1, 2}, {0, 2, 3}, {0, 1, 4}, {0, 1, 2}, {0, 2, 3}, {0, 3, 4}}));
-    EXPECT_EQ(scene.report.degenerateTriangles, 1u);
-    EXPECT_EQ(scene.validPrimitives, (std::vector<uint32_t>{0, 1, 3, 4, 5}));
+    // The pentagon's first fan triangle (0, 1, 4) is on its straight bottom edge: zero area.
+    EXPECT_EQ(scene.indices, (std::vector<uvec3>{{0, 1, 2}, {0, 2, 3}, {0, 1, 4}, {0, 1, 4}, {0, 4, 2}, {0, 2, 3}}));
+    EXPECT_EQ(scene.report.degenerateTriangles, 2u);
+    EXPECT_EQ(scene.validPrimitives, (std::vector<uint32_t>{0, 1, 4, 5}));
     EXPECT_TRUE(scene.normals.empty());
     EXPECT_TRUE(scene.materialIds.empty());
 }
@@ -268,10 +269,14 @@ TEST_P(PlyEncodings, SkipsWhatItDoesNotUseAndKeepsTheRest) {
     EXPECT_EQ(scene.positions[4], Vec3(2, 0, -4));
     ASSERT_EQ(scene.normals.size(), 5u);
     EXPECT_EQ(scene.normals[3], Vec3(0, 3, 1));
-    EXPECT_EQ(scene.indices, (std::vector<uvec3>{{0, 1, 2}, {0, 2, 3}, {0, 1, 1}, {1, 4, 2}}));
+    // The quad (z = -x - 2y at three corners, -3 at the fourth) is not planar: skipped, named.
+    EXPECT_EQ(scene.indices, (std::vector<uvec3>{{0, 1, 1}, {1, 4, 2}}));
+    EXPECT_EQ(scene.report.skippedPolygons, 1u);
     EXPECT_EQ(scene.report.degenerateTriangles, 1u);
-    EXPECT_EQ(scene.validPrimitives, (std::vector<uint32_t>{0, 1, 3}));
-    EXPECT_EQ(scene.report.warnings.size(), 2u);  // material and edge were skipped
+    EXPECT_EQ(scene.validPrimitives, (std::vector<uint32_t>{1}));
+    ASSERT_EQ(scene.report.warnings.size(), 3u);  // material and edge were skipped, and the quad
+    EXPECT_NE(scene.report.warnings[2].find("polygon of 4 vertices skipped: not planar (element 'face', record 1 of 3)"),
+              std::string::npos) << scene.report.warnings[2];
 }
 
 TEST_P(PlyEncodings, TruncatedDataIsAnError) {
