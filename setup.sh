@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs what bvhlab needs on Debian 12 (only what is missing), then configures and builds
-# it into build/ (Release). Extra arguments go to CMake, e.g. ./setup.sh -DBVHLAB_NATIVE=OFF
+# it into build/ (Release): the bvhlab program, and with --tests everything (the test suite too).
+# Other arguments go to CMake, e.g. ./setup.sh -DBVHLAB_NATIVE=OFF
 set -euo pipefail
 cd "$(dirname "$0")"
 
@@ -26,5 +27,10 @@ if ((${#missing[@]})); then
   fi
 fi
 
-cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release "$@"
-cmake --build build -j "$(nproc)"
+target=bvhlab
+cmake_args=()
+for arg in "$@"; do
+  if [ "$arg" = --tests ]; then target=all; else cmake_args+=("$arg"); fi
+done
+cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release ${cmake_args[@]+"${cmake_args[@]}"}
+cmake --build build -j "$(nproc)" --target "$target"

@@ -1,8 +1,11 @@
 // bvhlab: build, trace and measure bounding volume hierarchies.
+#include "apps/common/cli_common.h"
 #include "apps/common/commands.h"
 #include "apps/common/progress.h"
 #include "apps/common/run_record.h"
 #include "framework/report/provenance.h"
+
+#include <fmt/core.h>
 
 int main(int argc, char** argv) {
     bvhlab::recordRun(argc, argv);
@@ -14,12 +17,21 @@ int main(int argc, char** argv) {
     app.require_subcommand(1);
     bvhlab::addRenderCommand(app);
     bvhlab::addRaycastCommand(app);
+    bvhlab::addRaysCommand(app);
     bvhlab::addBenchCommand(app);
     bvhlab::addBatchCommand(app);
     bvhlab::addStressCommand(app);
     bvhlab::addTradeoffCommand(app);
     bvhlab::addSpdCommand(app);
     bvhlab::addKeysCommand(app);
-    CLI11_PARSE(app, argc, argv);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        // `-DKey value` leaves the value over, which CLI11 would call an unexpected argument.
+        const std::string hint = dynamic_cast<const CLI::ExtrasError*>(&e) ? bvhlab::overrideWithoutEqualsHint(argc, argv) : "";
+        if (hint.empty()) return app.exit(e);
+        fmt::print(stderr, "error: {}\n", hint);
+        return e.get_exit_code();
+    }
     return 0;
 }

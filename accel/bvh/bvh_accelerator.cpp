@@ -51,6 +51,7 @@ BuildStats BvhAccelerator<Layout>::build(const PrimitiveSet& prims) {
     const double cpuBuilt = processCpuMs();
     BuildStats stats;
     fillTreeStats(binary, build_.cTraversal, build_.cIntersect, stats);
+    stats.leafBound = build_.effectiveLeafCap();  // every builder's leaves, and the collapse's
     if (!binary.empty() && binary.leafTriangles.size() <= stats_.epoMaxTriangles)
         stats.epo = endPointOverlap(binary.nodes, binary.leafTriangles, build_.cTraversal, build_.cIntersect, build_.threads);
     const Bounds3 triangleRoot = binary.empty() ? Bounds3() : binary.nodes[0].box();

@@ -1,8 +1,12 @@
 #include "apps/common/accel_config.h"
 
+#include "accel/registry.h"
 #include "apps/common/cli_common.h"
+#include "framework/core/error.h"
 
-#include <sstream>
+#include <fmt/ranges.h>
+
+#include <algorithm>
 
 namespace bvhlab {
 
@@ -22,6 +26,40 @@ std::vector<AccelConfig> parseAccelConfigList(const std::string& list) {
     std::vector<AccelConfig> configs;
     for (const std::string& item : splitCommaList(list)) configs.push_back(parseAccelConfig(item));
     return configs;
+}
+
+std::string ourAccelerators() {
+    std::vector<std::string> names;
+    for (const AcceleratorInfo& info : acceleratorInfos())
+        if (info.name != "naive" && info.name != "embree") names.push_back(info.name);
+    return fmt::format("{}", fmt::join(names, ","));
+}
+
+namespace {
+
+// The config as the user typed it (its label may be a short name: embree-robust).
+std::string typed(const AccelConfig& config) {
+    return config.overrides.empty() ? config.name : fmt::format("{}:{}", config.name, fmt::join(config.overrides, ":"));
+}
+
+}  // namespace
+
+Env accelConfigEnv(const AccelConfig& config, const Env& base, const std::string& option) {
+    Env env = base;
+    for (const std::string& o : config.overrides) env.setOverride(o, fmt::format("{} {}", option, typed(config)));
+    return env;
+}
+
+void checkAccelConfigs(const std::vector<AccelConfig>& configs, const Env& base, const std::string& option) {
+    if (configs.empty()) throw InputError(fmt::format("{}: no accelerator given", option));
+    std::vector<std::string> known;
+    for (const AcceleratorInfo& info : acceleratorInfos()) known.push_back(info.name);
+    for (const AccelConfig& config : configs) {
+        if (std::find(known.begin(), known.end(), config.name) == known.end())
+            throw InputError(fmt::format("{} {}: unknown accelerator '{}' (known: {})", option, typed(config),
+                                         config.name, fmt::join(known, ", ")));
+        accelConfigEnv(config, base, option);
+    }
 }
 
 }  // namespace bvhlab

@@ -1,7 +1,9 @@
 // An accelerator as a command runs it: a name from the registry plus env overrides, written
-// NAME or NAME:Key=value:Key=value (e.g. embree:Embree::robust=true). Used by `bvhlab bench`
-// and `bvhlab stress`.
+// NAME or NAME:Key=value:Key=value (e.g. embree:Embree::robust=true). Used by every subcommand
+// that takes --accel.
 #pragma once
+
+#include "framework/config/env.h"
 
 #include <string>
 #include <vector>
@@ -16,7 +18,19 @@ struct AccelConfig {
 
 AccelConfig parseAccelConfig(const std::string& text);
 
+// Every registered accelerator but the brute force and Embree, comma-separated: the default of
+// the subcommands that measure all of our structures (stress, tradeoff).
+std::string ourAccelerators();
+
 // A comma-separated list of configs.
 std::vector<AccelConfig> parseAccelConfigList(const std::string& list);
+
+// The env `config` runs with: `base` and its overrides. An override that is not a key or not a
+// value of it is an InputError naming it as typed: "--accel sahbvh:BVH::binz=8: unknown key".
+Env accelConfigEnv(const AccelConfig& config, const Env& base, const std::string& option = "--accel");
+
+// Checks every config before any work (a subcommand calls it first): a registered accelerator,
+// overrides that accelConfigEnv takes. Throws InputError naming the option and the config.
+void checkAccelConfigs(const std::vector<AccelConfig>& configs, const Env& base, const std::string& option = "--accel");
 
 }  // namespace bvhlab

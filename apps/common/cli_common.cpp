@@ -40,10 +40,19 @@ void EnvOptions::addThreadsTo(CLI::App& command) {
 }
 
 std::vector<std::string> EnvOptions::files(const std::filesystem::path& sceneEnvFile) const {
+    std::vector<std::string> candidates;
+    if (!noGlobalEnv) candidates.push_back(repositoryFile("env/global.env").string());
+    if (!sceneEnvFile.empty()) candidates.push_back(sceneEnvFile.string());
+    candidates.insert(candidates.end(), envFiles.begin(), envFiles.end());
+    // A file named twice (--env env/global.env) is read once, where it first comes.
     std::vector<std::string> result;
-    if (!noGlobalEnv) result.push_back(repositoryFile("env/global.env").string());
-    if (!sceneEnvFile.empty()) result.push_back(sceneEnvFile.string());
-    result.insert(result.end(), envFiles.begin(), envFiles.end());
+    for (const std::string& file : candidates) {
+        std::error_code ec;
+        const bool seen = std::any_of(result.begin(), result.end(), [&](const std::string& earlier) {
+            return std::filesystem::equivalent(earlier, file, ec);
+        });
+        if (!seen) result.push_back(file);
+    }
     return result;
 }
 
@@ -80,9 +89,12 @@ SceneChoice chooseScene(const std::string& scene, const std::string& sceneEnv, c
         choice.envFile = sceneEnv;
     }
     if (scene.empty()) return choice;
-    if (std::filesystem::exists(scene)) {
-        choice.sceneFile = scene;
-        if (choice.envFile.empty()) choice.envFile = sceneEnvFor(scene, options);
+    // A file here, or in Scene::dir as -DScene::file would find it.
+    const std::filesystem::path inSceneDir = options.load().get(keys::Scene::dir) / scene;
+    for (const std::filesystem::path& file : {std::filesystem::path(scene), inSceneDir}) {
+        if (!std::filesystem::is_regular_file(file)) continue;
+        choice.sceneFile = file;
+        if (choice.envFile.empty()) choice.envFile = sceneEnvFor(file, options);
         return choice;
     }
     const std::filesystem::path named = repositoryFile(std::filesystem::path("env/scenes") / (scene + ".env"));
@@ -95,8 +107,9 @@ SceneChoice chooseScene(const std::string& scene, const std::string& sceneEnv, c
         for (const auto& entry : std::filesystem::directory_iterator(repositoryFile("env/scenes")))
             if (entry.path().extension() == ".env") known.push_back(entry.path().stem().string());
     std::sort(known.begin(), known.end());
-    throw InputError(fmt::format("--scene {}: no such file, and no scene env file env/scenes/{}.env (scene names: {})",
-                                 scene, scene, fmt::join(known, ", ")));
+    throw InputError(fmt::format("--scene {}: no such file here or in Scene::dir ({}), and no scene env file "
+                                 "env/scenes/{}.env (scene names: {})",
+                                 scene, inSceneDir.parent_path().string(), scene, fmt::join(known, ", ")));
 }
 
 Env SceneChoice::load(const EnvOptions& options) const {
@@ -197,6 +210,30 @@ void writeFileAtomically(const std::filesystem::path& file, const std::string& t
         if (!out) throw InputError(fmt::format("{}: cannot write", temporary.string()));
     }
     std::filesystem::rename(temporary, file);
+}
+
+ChosenScene loadChosenScene(const std::string& scene, const EnvOptions& options, const std::string& out,
+                            Progress& progress) {
+    Env env = chooseScene(scene, "", options).load(options);
+    prepareOutputFile(out);
+    progress.phase("loading the scene");
+    Scene loaded = loadSceneFor(env);
+    return {std::move(env), std::move(loaded)};
+}
+
+std::string overrideWithoutEqualsHint(int argc, const char* const* argv) {
+    for (int i = 1; i < argc; ++i) {
+        const std::string_view arg = argv[i];
+        if (!arg.starts_with("-D") || arg.starts_with("--")) continue;
+        // -DKey or -D Key, then a word that is not an option.
+        const int keyAt = arg == "-D" ? i + 1 : i;
+        if (keyAt + 1 >= argc) continue;
+        const std::string_view key = arg == "-D" ? std::string_view(argv[keyAt]) : arg.substr(2);
+        const std::string_view value = argv[keyAt + 1];
+        if (key.find('=') != std::string_view::npos || value.starts_with('-')) continue;
+        return fmt::format("-D{} {}: -D takes Section::key=value as one word; write -D{}={}", key, value, key, value);
+    }
+    return {};
 }
 
 int runGuarded(const std::function<void()>& body) {

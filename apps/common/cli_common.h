@@ -54,6 +54,15 @@ struct SceneChoice {
 };
 SceneChoice chooseScene(const std::string& scene, const std::string& sceneEnv, const EnvOptions& options);
 
+// The scene `--scene` names (chooseScene, no --scene-env) with the env it runs with, loaded
+// after `out` is checked (so a bad output path fails before the load), the load shown on `progress`.
+struct ChosenScene {
+    Env env;
+    Scene scene;
+};
+ChosenScene loadChosenScene(const std::string& scene, const EnvOptions& options, const std::string& out,
+                            Progress& progress);
+
 // How loadSceneFor got its scene.
 struct SceneLoadInfo {
     bool fromCache = false;           // read from the scene cache, not parsed
@@ -90,6 +99,10 @@ std::vector<std::string> splitCommaList(const std::string& text);
 // Writes `text` to `file` by way of a temporary file beside it, so a reader (or a run resumed
 // after an interruption) never sees half a file.
 void writeFileAtomically(const std::filesystem::path& file, const std::string& text);
+
+// For a command line that CLI11 refused with a word left over: if that word is the value of a
+// -D written without '=' (`-DASDS::type grid`), what to write instead; else empty.
+std::string overrideWithoutEqualsHint(int argc, const char* const* argv);
 
 // Runs `body`, turning InputError and other exceptions into a one-line message and exit code 1.
 int runGuarded(const std::function<void()>& body);

@@ -7,6 +7,7 @@ namespace bvhlab {
 
 void addRenderCommand(CLI::App& app);
 void addRaycastCommand(CLI::App& app);
+void addRaysCommand(CLI::App& app);
 void addKeysCommand(CLI::App& app);
 void addBenchCommand(CLI::App& app);
 void addBatchCommand(CLI::App& app);

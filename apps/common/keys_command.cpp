@@ -1,6 +1,6 @@
-// `bvhlab keys`: prints every env key and accelerator as Markdown (docs/env-keys.md); with
-// --env, -D or --no-global-env, the configuration they resolve to instead: every key, its
-// value and where the value came from.
+// `bvhlab keys`: prints every env key and accelerator as Markdown (docs/env-keys.md), with the
+// value env/global.env gives it; with --env, -D or --no-global-env, the configuration they
+// resolve to instead: every key, its value, where the value came from and its default.
 #include "accel/registry.h"
 #include "apps/common/cli_common.h"
 #include "apps/common/commands.h"
@@ -19,16 +19,20 @@ void addKeysCommand(CLI::App& app) {
     options->addTo(*command);
     command->callback([options, command] {
         const bool resolve = command->count("--env") + command->count("-D") + command->count("--no-global-env") > 0;
-        if (!resolve) {
-            fmt::print("{}", envKeysMarkdown());
-            return;
-        }
         const int code = runGuarded([&] {
             const Env env = options->load();
+            if (!resolve) {
+                fmt::print("{}", envKeysMarkdown(env));
+                return;
+            }
             fmt::print("# env files: {}\n", fmt::join(options->files(), " "));
             const nlohmann::json resolved = env.toJson();
-            for (const auto& [name, value] : resolved.items())
-                fmt::print("{} {}  # {}\n", name, value["value"].get<std::string>(), value["from"].get<std::string>());
+            for (const auto& [name, value] : resolved.items()) {
+                const std::string from = value["from"].get<std::string>();
+                const std::string& declared = env.registry().find(name)->defaultValue;
+                fmt::print("{} {}  # {}\n", name, value["value"].get<std::string>(),
+                           from == "default" ? from : fmt::format("{} (default: {})", from, declared.empty() ? "empty" : declared));
+            }
         });
         if (code != 0) throw CLI::RuntimeError(code);
     });

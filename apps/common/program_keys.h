@@ -10,8 +10,13 @@ namespace bvhlab {
 
 const EnvRegistry& programKeys();
 
-// docs/env-keys.md: every key (type, default, meaning) and every accelerator with the keys it
-// reads. `bvhlab keys` prints it; a test keeps the committed file equal to it.
-std::string envKeysMarkdown();
+// docs/env-keys.md: every key (type, default, the value env/global.env gives it, meaning) and
+// every accelerator with the keys it reads. `globalEnv` is an Env with env/global.env loaded.
+// `bvhlab keys` prints it; a test keeps the committed file equal to it.
+std::string envKeysMarkdown(const Env& globalEnv);
+
+// A key's type as the reference lists it: "int 1..256", "float 0.001..1000" (a float range as
+// declared, not as its double widening), "a | b | c".
+std::string envKeyType(const EnvKey& key);
 
 }  // namespace bvhlab

@@ -70,8 +70,7 @@ std::vector<nlohmann::json> measureRounds(const Scene& scene, const RaySets& ray
     for (size_t c = 0; c < configs.size(); ++c) {
         Contender& k = contenders[c];
         k.config = configs[c];
-        k.env = sceneEnv;
-        for (const std::string& o : k.config.overrides) k.env.setOverride(o);
+        k.env = accelConfigEnv(k.config, sceneEnv);
         k.env.set(keys::SetRayTracing::threads, std::to_string(threads), "bvhlab bench --threads");
         k.usPerQuery.resize(std::size(raySets));
         k.counters.resize(std::size(raySets));
@@ -232,6 +231,7 @@ void addBenchCommand(CLI::App& app) {
             for (const char* reference : {"embree", "embree:Embree::robust=true"})
                 if (std::none_of(configs.begin(), configs.end(), [&](const AccelConfig& c) { return c.label == parseAccelConfig(reference).label; }))
                     configs.push_back(parseAccelConfig(reference));
+            checkAccelConfigs(configs, options->env.load());
             std::vector<int> threadCounts;
             for (const std::string& item : splitCommaList(options->threads)) {
                 int t = -1;
@@ -252,12 +252,10 @@ void addBenchCommand(CLI::App& app) {
             for (size_t s = 0; s < scenes.size(); ++s) {
                 const Env env = scenes[s].load(options->env);
                 const Scene scene = loadSceneFor(env);
-                const Camera camera(resolveCamera(scene, env));
-                const RenderSettings settings = RenderSettings::fromEnv(env, scene, camera.spec());
                 const RaySets rays = [&] {
                     auto reference = createAccelerator("embree", env);
                     reference->build(scene.primitives());
-                    return makeRaySets(scene, camera, settings.lights, *reference);
+                    return sceneRaySets(scene, env, *reference);
                 }();
                 progress.phase(fmt::format("[{}/{}] {}: {} primary, {} shadow, {} incoherent rays", s + 1, scenes.size(),
                                            scene.name, rays.primary.size(), rays.shadow.size(), rays.incoherent.size()));

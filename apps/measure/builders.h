@@ -17,10 +17,11 @@ namespace bvhlab {
 // The ray sets of a scene's builder comparison, in the order of every table.
 inline constexpr const char* kBuilderRaySets[] = {"primary", "shadow", "incoherent"};
 
-// sahbvh, sahbvh8, sbvh, sbvh8, ploc, ploc8, tdbvh, sweepbvh; sahbvh, sahbvh8, ploc8 and tdbvh
-// with BVH::optimize=insertion (labelled <name>+insertion); embree-low, embree-medium,
-// embree-high (Embree::quality through the configuration's overrides).
-std::vector<AccelConfig> builderConfigs();
+// The configurations of `accels` (NAME or NAME:Key=value, comma-separated; empty: every one of
+// ours, ourAccelerators()); of those, sahbvh, sahbvh8, ploc8 and tdbvh also with
+// BVH::optimize=insertion (labelled <name>+insertion); then embree-low, embree-medium,
+// embree-high (Embree::quality through the configuration's overrides), the yardsticks.
+std::vector<AccelConfig> builderConfigs(const std::string& accels);
 
 // The configuration every ratio is taken against, and the second yardstick.
 inline constexpr const char* kBuildersBaseline = "embree-medium";

@@ -5,18 +5,20 @@
 #include "framework/report/provenance.h"
 
 #include <fmt/core.h>
+
+#include <algorithm>
 #include <stdexcept>
 
 namespace bvhlab {
 
 using nlohmann::json;
 
-std::vector<AccelConfig> builderConfigs() {
-    std::vector<AccelConfig> configs;
-    for (const char* name : {"sahbvh", "sahbvh8", "sbvh", "sbvh8", "ploc", "ploc8", "tdbvh", "sweepbvh"})
-        configs.push_back(parseAccelConfig(name));
+std::vector<AccelConfig> builderConfigs(const std::string& accels) {
+    std::vector<AccelConfig> configs = parseAccelConfigList(accels.empty() ? ourAccelerators() : accels);
     // The insertion pass after the builders it changes most (tdbvh) and the defaults' trees.
     for (const char* name : {"sahbvh", "sahbvh8", "ploc8", "tdbvh"}) {
+        if (std::none_of(configs.begin(), configs.end(), [&](const AccelConfig& c) { return c.label == name; }))
+            continue;
         AccelConfig c = parseAccelConfig(fmt::format("{}:BVH::optimize=insertion", name));
         c.label = fmt::format("{}+insertion", name);
         configs.push_back(c);
@@ -39,8 +41,7 @@ BuildersScene prepareBuildersScene(const std::string& id, const Env& sceneEnv, c
 }
 
 json measureBuilderConfig(const BuildersScene& b, const AccelConfig& config, const TradeoffSettings& settings) {
-    Env env = b.env;
-    for (const std::string& o : config.overrides) env.setOverride(o);
+    const Env env = accelConfigEnv(config, b.env);
 
     const TimedBuilds built = timedBuilds(b.scene, config, env, settings);
     const Accelerator* accel = built.accel.get();

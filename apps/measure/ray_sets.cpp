@@ -1,5 +1,6 @@
 #include "apps/measure/ray_sets.h"
 
+#include "framework/render/renderer.h"
 #include "framework/scene/surface_point.h"
 
 #include <glm/gtc/constants.hpp>
@@ -48,6 +49,12 @@ RaySets makeRaySets(const Scene& scene, const Camera& camera, const std::vector<
         sets.incoherent.push_back({origin, cosineDirection(n, uniform(rng), uniform(rng)), 0.0f, aoRadius});
     }
     return sets;
+}
+
+RaySets sceneRaySets(const Scene& scene, const Env& env, const Accelerator& reference) {
+    const Camera camera(resolveCamera(scene, env));
+    const RenderSettings render = RenderSettings::fromEnv(env, scene, camera.spec());
+    return makeRaySets(scene, camera, render.lights, reference);
 }
 
 }  // namespace bvhlab

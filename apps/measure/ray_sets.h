@@ -3,6 +3,7 @@
 // incoherent rays (cosine-distributed bounces from the hits, as ambient occlusion casts them).
 #pragma once
 
+#include "framework/config/env.h"
 #include "framework/core/accelerator.h"
 #include "framework/render/camera.h"
 
@@ -20,5 +21,9 @@ struct RaySets {
 // `aoRadiusFraction` is the incoherent rays' length relative to the scene's bounding diagonal.
 RaySets makeRaySets(const Scene& scene, const Camera& camera, const std::vector<PointLight>& lights,
                     const Accelerator& reference, float aoRadiusFraction = 0.1f, uint32_t seed = 1);
+
+// The ray sets of the scene's camera and lights as env resolves them (its size, the scene's own
+// view), made from the reference's hits: what `bench`, `tradeoff` and `rays` trace and write.
+RaySets sceneRaySets(const Scene& scene, const Env& env, const Accelerator& reference);
 
 }  // namespace bvhlab

@@ -45,8 +45,10 @@ struct TradeoffSettings {
     nlohmann::json toJson() const;
 };
 
-// tdbvh, sahbvh-K<k> for every k (sahbvh:BVH::bins=k), sweepbvh, embree; labels are file names.
-std::vector<AccelConfig> tradeoffConfigs(const TradeoffSettings& settings);
+// The configurations of `accels` (comma-separated; empty: every one of ours, ourAccelerators()),
+// a bare sahbvh among them as sahbvh-K<k> for every k (sahbvh:BVH::bins=k), then embree, the
+// yardstick; labels are file names.
+std::vector<AccelConfig> tradeoffConfigs(const TradeoffSettings& settings, const std::string& accels);
 
 // What every configuration of one scene is measured against, made once per scene.
 struct TradeoffScene {
@@ -67,10 +69,6 @@ Env tradeoffSceneEnv(const Env& sceneEnv, const TradeoffSettings& settings, int 
 // Embree built over the scene on every hardware thread: the untimed reference whose hits make
 // the ray sets and whose answers every configuration's are checked against.
 std::unique_ptr<Accelerator> referenceEmbree(const Scene& scene, const Env& env);
-
-// The ray sets of the scene's camera at env's size (primary, shadow, incoherent: ray_sets.h),
-// made from the reference's hits.
-RaySets sceneRaySets(const Scene& scene, const Env& env, const Accelerator& reference);
 
 // Loads the scene (through the scene cache), makes the ray sets and Embree's answers, and
 // renders the reference image or reads it from DIR/<id>/reference.exr when it was made with

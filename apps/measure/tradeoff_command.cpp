@@ -68,6 +68,7 @@ void addTradeoffCommand(CLI::App& app) {
         bool quick = false;
         bool resume = true;
         std::string bins = "2,4,8,16,32,64,128";
+        std::string accels;  // empty: all of ours
         TradeoffSettings settings;
     };
     auto options = std::make_shared<Options>();
@@ -81,7 +82,7 @@ void addTradeoffCommand(CLI::App& app) {
                                                "image_error.csv, tradeoff.md (--builders: builders.csv, "
                                                "builders_summary.csv, builders.md); default out/tradeoff, out/builders");
     command->add_flag("--builders", s.builders,
-                      "compare the builders instead: sahbvh, sbvh, ploc binary and 8-wide, tdbvh, sweepbvh and "
+                      "compare the builders instead: every structure of --accel (default: all of ours) and "
                       "Embree low/medium/high; T_B, SAH, EPO, T_R of primary, shadow and incoherent rays, Pareto "
                       "front, rank correlations");
     command->add_flag("--quick", options->quick,
@@ -90,6 +91,9 @@ void addTradeoffCommand(CLI::App& app) {
     command->add_flag("--resume,!--fresh", options->resume,
                       "keep results already in DIR that were measured with the same settings (default); --fresh "
                       "measures everything again");
+    command->add_option("--accel", options->accels,
+                        "comma-separated NAME or NAME:Key=value:... to measure (default: every structure of ours; a "
+                        "bare sahbvh is the K series; Embree is always added as the yardstick)");
     command->add_option("--bins", options->bins, "sahbvh bin counts K")->capture_default_str();
     command->add_option("--ray-size", s.raySize, "T_R and mismatch rays: primary rays of an NxN image (0 = the scene's size)")
         ->capture_default_str()->check(CLI::Range(0, 16384));
@@ -124,12 +128,14 @@ void addTradeoffCommand(CLI::App& app) {
             }
             settings.bins = parseBins(bins);
             if (settings.threads == 0) settings.threads = tbb::info::default_concurrency();
+            const std::vector<AccelConfig> configs =
+                settings.builders ? builderConfigs(options->accels) : tradeoffConfigs(settings, options->accels);
+            checkAccelConfigs(configs, options->env.load());
             std::vector<std::string> sceneArgs = options->scenes;
             if (sceneArgs.empty() && options->quick)
                 for (const char* id : {"munich", "sibenik"})
                     sceneArgs.push_back(repositoryFile(std::filesystem::path("env/scenes") / (std::string(id) + ".env")).string());
             const std::vector<SceneArgument> scenes = expandSceneList(sceneArgs, options->env);
-            const std::vector<AccelConfig> configs = settings.builders ? builderConfigs() : tradeoffConfigs(settings);
             const std::string out = !options->out.empty() ? options->out : settings.builders ? "out/builders" : "out/tradeoff";
             const std::filesystem::path dir = prepareOutputFolder(out);
 

@@ -72,14 +72,19 @@ json TradeoffSettings::toJson() const {
     return j;
 }
 
-std::vector<AccelConfig> tradeoffConfigs(const TradeoffSettings& settings) {
-    std::vector<AccelConfig> configs = {parseAccelConfig("tdbvh")};
-    for (int k : settings.bins) {
-        AccelConfig c = parseAccelConfig(fmt::format("sahbvh:BVH::bins={}", k));
-        c.label = fmt::format("sahbvh-K{}", k);
-        configs.push_back(c);
+std::vector<AccelConfig> tradeoffConfigs(const TradeoffSettings& settings, const std::string& accels) {
+    std::vector<AccelConfig> configs;
+    for (const AccelConfig& config : parseAccelConfigList(accels.empty() ? ourAccelerators() : accels)) {
+        if (config.label != "sahbvh") {
+            configs.push_back(config);
+            continue;
+        }
+        for (int k : settings.bins) {
+            AccelConfig c = parseAccelConfig(fmt::format("sahbvh:BVH::bins={}", k));
+            c.label = fmt::format("sahbvh-K{}", k);
+            configs.push_back(c);
+        }
     }
-    configs.push_back(parseAccelConfig("sweepbvh"));
     configs.push_back(parseAccelConfig("embree"));
     return configs;
 }
@@ -134,12 +139,6 @@ std::unique_ptr<Accelerator> referenceEmbree(const Scene& scene, const Env& env)
     auto embree = createAccelerator("embree", reference);
     embree->build(scene.primitives());
     return embree;
-}
-
-RaySets sceneRaySets(const Scene& scene, const Env& env, const Accelerator& reference) {
-    const Camera camera(resolveCamera(scene, env));
-    const RenderSettings render = RenderSettings::fromEnv(env, scene, camera.spec());
-    return makeRaySets(scene, camera, render.lights, reference);
 }
 
 TradeoffScene prepareTradeoffScene(const std::string& id, const Env& sceneEnv, const TradeoffSettings& settings,
@@ -203,8 +202,7 @@ TradeoffScene prepareTradeoffScene(const std::string& id, const Env& sceneEnv, c
 }
 
 json measureTradeoffConfig(const TradeoffScene& t, const AccelConfig& config, const TradeoffSettings& settings) {
-    Env env = t.env;
-    for (const std::string& o : config.overrides) env.setOverride(o);
+    const Env env = accelConfigEnv(config, t.env);
     TimedBuilds built = timedBuilds(t.scene, config, env, settings);
     const std::unique_ptr<Accelerator>& accel = built.accel;
     const BuildStats& stats = built.stats;

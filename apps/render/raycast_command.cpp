@@ -32,12 +32,8 @@ void addRaycastCommand(CLI::App& app) {
     command->add_flag("--any", options->any, "any-hit queries (isOccluded) instead of closest hit");
     command->callback([options] {
         const int code = runGuarded([&] {
-            const SceneChoice choice = chooseScene(options->scene, "", options->env);
-            const Env env = choice.load(options->env);
-            const std::filesystem::path out = prepareOutputFile(options->out);
             Progress progress;
-            progress.phase("loading the scene");
-            const Scene scene = loadSceneFor(env);
+            const auto [env, scene] = loadChosenScene(options->scene, options->env, options->out, progress);
             progress.phase(fmt::format("building {}", env.get(keys::ASDS::type)));
             const BuiltAccelerator built = buildAccelerator(scene, env);
             const std::vector<Ray> rays = readRayFile(options->rays);
@@ -60,7 +56,7 @@ void addRaycastCommand(CLI::App& app) {
             });
             const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             progress.finish();
-            writeHitFile(out, hits);
+            writeHitFile(options->out, hits);
 
             QueryCounters total;
             for (const QueryCounters& c : perThread) total += c;

@@ -116,6 +116,7 @@ void addSpdCommand(CLI::App& app) {
             const Env base = chooseScene("", "", options->env).load(options->env);
             const std::vector<AccelConfig> configs =
                 parseAccelConfigList(options->accels.empty() ? base.get(keys::ASDS::type) : options->accels);
+            checkAccelConfigs(configs, base);
             const auto havran = readHavranReference(base.get(keys::Spd::reference));
             SpdRules rules;
             rules.maxDepth = base.get(keys::Spd::maxDepth);
@@ -142,8 +143,7 @@ void addSpdCommand(CLI::App& app) {
                     sceneJson["havran"] = nlohmann::json::object();
                 }
                 for (const AccelConfig& config : configs) {
-                    Env accelEnv = env;
-                    for (const std::string& o : config.overrides) accelEnv.setOverride(o);
+                    const Env accelEnv = accelConfigEnv(config, env);
                     progress.phase(fmt::format("{} {}: building", scene.name, config.label));
                     auto accel = createAccelerator(config.name, accelEnv);
                     const BuildStats build = accel->build(scene.primitives());

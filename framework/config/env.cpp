@@ -177,11 +177,12 @@ void Env::set(const std::string& name, const std::string& text, const std::strin
     values_[name] = {std::move(canonical), origin};
 }
 
-void Env::setOverride(const std::string& assignment) {
+void Env::setOverride(const std::string& assignment, const std::string& origin) {
     const size_t eq = assignment.find('=');
     if (eq == std::string::npos)
-        throw InputError(fmt::format("-D{}: expected Section::key=value", assignment));
-    set(trim(assignment.substr(0, eq)), trim(assignment.substr(eq + 1)), "-D" + trim(assignment.substr(0, eq)));
+        throw InputError(fmt::format("{}: expected Section::key=value", origin.empty() ? "-D" + assignment : origin));
+    const std::string key = trim(assignment.substr(0, eq));
+    set(key, trim(assignment.substr(eq + 1)), origin.empty() ? "-D" + key : origin);
 }
 
 void Env::loadFile(const std::filesystem::path& file) {
@@ -198,6 +199,15 @@ void Env::loadFile(const std::filesystem::path& file) {
         const std::string text = split == std::string::npos ? "" : trim(content.substr(split));
         if (name.find("::") == std::string::npos || name.size() < 4)
             throw inputError(file, lineNo, fmt::format("expected 'Section::key value', got '{}'", content));
+        // Key=value is the form of -D, not of env files: say so rather than "unknown key".
+        if (const size_t eq = content.find('='); eq != std::string::npos && (name.find('=') != std::string::npos ||
+                                                                              text.starts_with('='))) {
+            const std::string key = trim(content.substr(0, eq)), value = trim(content.substr(eq + 1));
+            throw inputError(file, lineNo,
+                             fmt::format("'{}': env lines are 'Section::key value', with a space; write '{} {}' "
+                                         "('=' is for -D{}={})",
+                                         content, key, value, key, value));
+        }
         set(name, text, fmt::format("{}:{}", file.string(), lineNo), baseDir);
     }
 }

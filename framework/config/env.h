@@ -43,8 +43,9 @@ public:
     // Relative paths resolve against `baseDir`.
     void set(const std::string& key, const std::string& value, const std::string& origin,
              const std::filesystem::path& baseDir = std::filesystem::current_path());
-    // "Section::key=value", as given on the command line after -D.
-    void setOverride(const std::string& assignment);
+    // "Section::key=value", as given on the command line after -D; errors and provenance name it
+    // "-DSection::key", or `origin` where it came from elsewhere (bench --accel NAME:Key=value).
+    void setOverride(const std::string& assignment, const std::string& origin = "");
 
     template <EnvType Type>
     void set(const Key<Type>& key, const std::string& value, const std::string& origin) {

@@ -66,8 +66,11 @@ struct BuildStats {
     std::optional<size_t> maxLeafPrimitives;
     std::optional<int> maxDepth;
     // The depth the structure promises to stay below (its traversal stacks hold that many
-    // levels); unset when it has no such bound. Checked by `bvhlab stress`, not reported.
+    // levels), and the most primitives it promises a leaf holds; unset where it promises none.
+    // Checked by `bvhlab stress` and the stress tests, which hold a structure to what it
+    // promises and every structure to bounded build time and memory; not reported.
     std::optional<int> depthBound;
+    std::optional<size_t> leafBound;
     std::optional<SahCost> sah;
     // End-point overlap (Aila, Karras and Laine 2013) with the SAH's constants: the area of
     // geometry inside node boxes but not in their subtrees, by node cost, over all geometry's

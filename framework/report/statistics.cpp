@@ -59,12 +59,16 @@ std::string formatStatsTable(const StatsRow& row) {
     // the shadow rays alone (any-hit queries toward the lights), as the report's rows.
     line("primary", row.render.primary, true);
     line("  shadow rays", row.render.shadow, false);
-    out += fmt::format("degenerate, skipped: {} triangles, {} spheres, {} cones/cylinders, {} polygons; "
-                       "shadow rays skipped: {} (shadows off), {} (light behind surface); bounces cut by depthLimit: "
-                       "{}; threads: {}",
+    // Shadow rays not cast: those whose light is behind the surface, and with shadows off the rest.
+    const std::string shadowsNotCast =
+        row.render.shadowRaysSkippedDisabled > 0
+            ? fmt::format("shadows off: no shadow rays cast ({} toward lights, {} with the light behind the surface)",
+                          row.render.shadowRaysSkippedDisabled, row.render.shadowRaysSkippedBackfacing)
+            : fmt::format("shadow rays not cast: {} (the light behind the surface)", row.render.shadowRaysSkippedBackfacing);
+    out += fmt::format("degenerate, skipped: {} triangles, {} spheres, {} cones/cylinders, {} polygons; {}; bounces "
+                       "cut by depthLimit: {}; threads: {}",
                        row.load.degenerateTriangles, row.load.degenerateSpheres, row.load.degenerateCones,
-                       row.load.skippedPolygons, row.render.shadowRaysSkippedDisabled, row.render.shadowRaysSkippedBackfacing,
-                       row.render.bouncesSkipped, row.render.threads);
+                       row.load.skippedPolygons, shadowsNotCast, row.render.bouncesSkipped, row.render.threads);
     if (b.sah) out += fmt::format("; SAH and EPO with C_trav={} C_isect={}", b.sah->cTraversal, b.sah->cIntersect);
     return out;
 }

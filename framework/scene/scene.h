@@ -67,7 +67,7 @@ struct Scene {
     std::vector<uint32_t> sphereMaterialIds;
     std::vector<Cone> cones;
     std::vector<uint32_t> coneMaterialIds;
-    std::vector<Material> materials{Material{}};
+    std::vector<Material> materials = std::vector<Material>(1);  // (not {Material{}}: GCC 12 warns on it)
 
     std::optional<CameraSpec> camera;
     std::vector<PointLight> lights;

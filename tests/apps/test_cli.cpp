@@ -146,6 +146,32 @@ TEST(Cli, RaycastAnswersRayFileWithNaive) {
     EXPECT_EQ(hits[1].primitive, kInvalidPrimitive);
 }
 
+// `bvhlab rays` writes the bench's ray sets of a scene's camera and lights for raycast: the
+// primary rays one per pixel, the shadow and incoherent rays from their hits, any-hit queries.
+TEST(Cli, RaysWritesTheBenchRaySetsForRaycast) {
+    const std::string tiny = " -DCamera::width=16 -DCamera::height=12 --out ";
+    for (const std::string kind : {"primary", "shadow", "incoherent"}) {
+        SCOPED_TRACE(kind);
+        const auto file = tempDir() / (kind + ".rays");
+        Result r = run("rays --kind " + kind + tiny + file.string());
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        const std::vector<Ray> rays = readRayFile(file);
+        if (kind == "primary") {
+            EXPECT_EQ(rays.size(), 16u * 12u);
+        } else {
+            EXPECT_GT(rays.size(), 0u);
+        }
+        for (const Ray& ray : rays) EXPECT_TRUE(ray.isValid());
+        const auto hits = tempDir() / (kind + ".hits");
+        r = run("raycast --rays " + file.string() + (kind == "primary" ? "" : " --any") + " --out " + hits.string());
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        EXPECT_EQ(readHitFile(hits).size(), rays.size());
+    }
+    const Result bad = run("rays --kind sideways --out " + (tempDir() / "x.rays").string());
+    EXPECT_NE(bad.exitCode, 0);
+    EXPECT_NE(bad.output.find("sideways"), std::string::npos) << bad.output;
+}
+
 // `bvhlab bench`, tiny: a row per structure with every round kept; Embree's counters are
 // unavailable (null), not zero; a paired ratio of a series to itself is exactly 1.
 TEST(Cli, BenchMeasuresInRoundsWithPairedRatios) {

@@ -1,12 +1,16 @@
 // docs/env-keys.md lists exactly the registered keys and accelerators (regenerate it with
-// `bvhlab keys > docs/env-keys.md`), and env/global.env uses only known keys.
+// `bvhlab keys > docs/env-keys.md`), env/global.env uses only known keys, and every path of
+// the repository that a doc names exists.
 #include "accel/bvh/bvh_env.h"
 #include "accel/registry.h"
 #include "apps/common/program_keys.h"
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
+#include <regex>
+#include <set>
 #include <sstream>
 
 using namespace bvhlab;
@@ -16,7 +20,9 @@ TEST(Docs, EnvKeyListMatchesRegistry) {
     ASSERT_TRUE(in) << "docs/env-keys.md is missing";
     std::stringstream text;
     text << in.rdbuf();
-    EXPECT_EQ(text.str(), envKeysMarkdown()) << "run: build/bvhlab keys > docs/env-keys.md";
+    Env globalEnv(programKeys());
+    globalEnv.loadFile(std::string(BVHLAB_SOURCE_DIR) + "/env/global.env");
+    EXPECT_EQ(text.str(), envKeysMarkdown(globalEnv)) << "run: build/bvhlab keys > docs/env-keys.md";
 }
 
 TEST(Docs, GlobalEnvLoads) {
@@ -48,4 +54,64 @@ TEST(Docs, BvhConfigDefaultsAreTheKeysDefaults) {
     EXPECT_EQ(fromKeys.medianSplitBox, members.medianSplitBox);
     EXPECT_EQ(fromKeys.sbvhAlpha, members.sbvhAlpha);
     EXPECT_EQ(fromKeys.sbvhGrowth, members.sbvhGrowth);
+}
+
+// Every path of the repository that the docs, the README and the CMake files name exists
+// (`framework/scene/scene_cache.{h,cpp}` is two paths; a comma-separated list is several).
+// Paths a user is told to create are listed here as examples.
+TEST(Docs, EveryRepositoryPathTheyNameExists) {
+    namespace fs = std::filesystem;
+    const fs::path root(BVHLAB_SOURCE_DIR);
+    const std::set<std::string> examples = {"accel/kdtree"};
+    std::vector<fs::path> files = {root / "README.md", root / "CMakeLists.txt"};
+    for (const char* folder : {"docs", "framework", "accel", "apps", "tests"})
+        for (const auto& entry : fs::recursive_directory_iterator(root / folder))
+            if (entry.path().extension() == ".md" || entry.path().filename() == "CMakeLists.txt")
+                files.push_back(entry.path());
+    const std::regex pathPattern(R"((^|[^\w./-])((framework|accel|apps|tests|env|docs)/[\w./{},*-]*[\w}*]))");
+    // A path, or with a '*' (wide_bvh.*) some file that starts as it does.
+    const auto exists = [&](const std::string& path) {
+        const size_t star = path.find('*');
+        if (star == std::string::npos) return fs::exists(root / path);
+        const fs::path prefix = root / path.substr(0, star);
+        if (!fs::is_directory(prefix.parent_path())) return false;
+        for (const auto& entry : fs::directory_iterator(prefix.parent_path()))
+            if (entry.path().string().starts_with(prefix.string())) return true;
+        return false;
+    };
+    for (const fs::path& file : files) {
+        std::ifstream in(file);
+        size_t lineNumber = 0;
+        for (std::string line; std::getline(in, line);) {
+            ++lineNumber;
+            for (std::sregex_iterator m(line.begin(), line.end(), pathPattern), end; m != end; ++m) {
+                std::string text = (*m)[2];
+                std::vector<std::string> paths;
+                if (const size_t open = text.find('{'), close = text.find('}');
+                    open != std::string::npos && close != std::string::npos && open < close) {
+                    std::stringstream alternatives(text.substr(open + 1, close - open - 1));
+                    for (std::string a; std::getline(alternatives, a, ',');)
+                        paths.push_back(text.substr(0, open) + a + text.substr(close + 1));
+                } else {
+                    std::stringstream list(text);
+                    for (std::string p; std::getline(list, p, ',');) paths.push_back(p);
+                }
+                for (const std::string& path : paths)
+                    EXPECT_TRUE(examples.count(path) || exists(path))
+                        << fs::relative(file, root).string() << ":" << lineNumber << " names " << path;
+            }
+        }
+    }
+}
+
+// docs/adding-an-accelerator.md tells a new structure how to test every primitive kind and
+// names every file of bvhlab's own that it touches.
+TEST(Docs, AddingAnAcceleratorCoversEveryPrimitiveKindAndFile) {
+    std::ifstream in(std::string(BVHLAB_SOURCE_DIR) + "/docs/adding-an-accelerator.md");
+    std::stringstream text;
+    text << in.rdbuf();
+    for (const char* needed : {"intersectTriangle", "intersectQuadric", "validQuadrics", "sphereBase", "coneBase",
+                               "countQuadricTest", "accel/CMakeLists.txt", "accel/registry.cpp",
+                               "tests/test_architecture.cpp", "docs/env-keys.md", "leafBound", "depthBound"})
+        EXPECT_NE(text.str().find(needed), std::string::npos) << needed;
 }

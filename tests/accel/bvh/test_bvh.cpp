@@ -167,6 +167,26 @@ TEST(Bvh, DegeneratePrimitivesAreNotBuiltOver) {
     }
 }
 
+// A BVH promises its bounds through BuildStats (what `bvhlab stress` holds it to): a depth
+// below kBvhMaxDepth and leaves of at most max(maxLeaf, leafCap) primitives, and keeps them,
+// here on coincident triangles, where no split separates anything.
+TEST(Bvh, ReportsTheBoundsItPromisesAndKeepsThem) {
+    Soup soup = randomSoup(10, 3);
+    for (int i = 0; i < 3000; ++i) soup.add(soup.triangles[0]);
+    BvhBuildConfig config = defaultConfig();
+    config.leafCap = 5;
+    for (BvhKind kind : kAllKinds) {
+        BvhAccelerator<Bvh> accel(kind, config);
+        buildAndCheck(accel, soup);
+        const BuildStats stats = accel.build(soup.prims());
+        ASSERT_TRUE(stats.leafBound && stats.depthBound);
+        EXPECT_EQ(*stats.leafBound, 5u);
+        EXPECT_EQ(*stats.depthBound, kBvhMaxDepth);
+        EXPECT_LE(*stats.maxLeafPrimitives, *stats.leafBound);
+        EXPECT_LT(*stats.maxDepth, *stats.depthBound);
+    }
+}
+
 TEST(Bvh, BuildCpuTimeLeavesTheStatisticsOut) {
     // T_B in CPU time covers what buildMs covers: the build, not the tree statistics and the
     // EPO that build() computes after it (the measuring apps read buildCpuMs, not a clock

@@ -3,6 +3,7 @@
 // or its env file seen from its own camera, the run recorded in the JSON, --threads and --scenes
 // with one meaning, output paths checked alike, a too-large image refused up front, progress
 // lines and --quiet (the progress line itself: test_progress.cpp).
+#include "apps/common/program_keys.h"
 #include "framework/io/ray_file.h"
 #include "framework/scene/scene_cache.h"
 #include "tests/support/cli_run.h"
@@ -61,6 +62,69 @@ TEST(CliConventions, KeysResolvesEnvFilesAndOverrides) {
     EXPECT_NE(run("keys").output.find("| `BVH::bins` |"), std::string::npos);
 }
 
+// `keys` shows the value that runs beside the default: env/global.env's in the reference, every
+// layer's (with where it comes from) when resolving; a file named twice is read once.
+TEST(CliConventions, KeysShowTheValueThatRunsBesideTheDefault) {
+    const std::string reference = run("keys").output;
+    const size_t row = reference.find("| `ASDS::type` |");
+    ASSERT_NE(row, std::string::npos) << reference;
+    const std::string asds = reference.substr(row, reference.find('\n', row) - row);
+    EXPECT_NE(asds.find("| `sahbvh` | `sahbvh8` |"), std::string::npos) << asds;  // default, then global.env's
+
+    const Result r = run("keys --env env/global.env -DBVH::bins=8");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("# env files: env/global.env\n"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("ASDS::type sahbvh8  # env/global.env:"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("(default: sahbvh)"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("BVH::bins 8  # -DBVH::bins (default: 16)"), std::string::npos) << r.output;
+}
+
+// The two slips of the Key=value forms get the right form named: `Key=value` in an env file,
+// `-DKey value` on the command line.
+TEST(CliConventions, KeyValueSlipsGetTheRightForm) {
+    const fs::path env = tempDir() / "equals.env";
+    std::ofstream(env) << "# a comment\nASDS::type=sahbvh\n";
+    Result r = run("keys --env " + env.string());
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find(env.string() + ":2: 'ASDS::type=sahbvh': env lines are 'Section::key value', with a "
+                            "space; write 'ASDS::type sahbvh'"),
+              std::string::npos)
+        << r.output;
+    r = run("render -DASDS::type grid --out " + (tempDir() / "slip").string());
+    EXPECT_NE(r.exitCode, 0);
+    EXPECT_NE(r.output.find("-DASDS::type grid: -D takes Section::key=value as one word; write -DASDS::type=grid"),
+              std::string::npos)
+        << r.output;
+}
+
+// Every subcommand that takes --accel checks its names and their :Key=value overrides before any
+// work (no scene is loaded), and the error names what the user typed, not a -D they never wrote.
+TEST(CliConventions, AccelListsAreCheckedFirstAndNamedAsTyped) {
+    const fs::path nff = tempDir() / "one.nff";
+    std::ofstream(nff) << "v\nfrom 0 0 5\nat 0 0 0\nup 0 1 0\nangle 30\nhither 1\nresolution 4 4\n"
+                          "l 0 0 5\nf 1 1 1 1 0 0 0 1\np 3\n-1 -1 0\n1 -1 0\n0 1 0\n";
+    const std::string out = (tempDir() / "accel_check").string();
+    for (const std::string& command : {"bench --out " + out + ".json", "stress --out " + out + ".json",
+                                       "spd " + nff.string() + " --out " + out, "tradeoff --out " + out,
+                                       "tradeoff --builders --out " + out}) {
+        SCOPED_TRACE(command);
+        Result r = run(command + " --accel sahbvh,kdtree");
+        EXPECT_EQ(r.exitCode, 1) << r.output;
+        EXPECT_NE(r.output.find("--accel kdtree: unknown accelerator 'kdtree' (known: "), std::string::npos) << r.output;
+        EXPECT_EQ(r.output.find("triangles ("), std::string::npos) << "a scene was loaded first:\n" << r.output;
+        r = run(command + " --accel sahbvh:BVH::binz=8");
+        EXPECT_EQ(r.exitCode, 1) << r.output;
+        EXPECT_NE(r.output.find("--accel sahbvh:BVH::binz=8: unknown key 'BVH::binz'"), std::string::npos) << r.output;
+        EXPECT_EQ(r.output.find("-DBVH::binz"), std::string::npos) << r.output;
+    }
+}
+
+// A float range is printed as declared, not as its double widening (0.0010000000474974513).
+TEST(CliConventions, FloatRangesArePrintedAsDeclared) {
+    constexpr FloatKey key{"Test::epsilon", "0.01", 0.001f, 1000.0f, "a float key declared with float bounds"};
+    EXPECT_EQ(envKeyType(key.declaration()), "float 0.001..1000");
+}
+
 // --env layers on env/global.env; --no-global-env starts from the keys' defaults.
 TEST(CliConventions, EnvFilesLayerOnGlobalEnv) {
     const fs::path env = tempDir() / "small.env";
@@ -111,10 +175,20 @@ TEST(CliConventions, SceneEnvGivesTheCamera) {
 
     r = run("render --scene no_such_scene --out " + out.string());
     EXPECT_EQ(r.exitCode, 1);
-    EXPECT_NE(r.output.find("no_such_scene: no such file, and no scene env file env/scenes/no_such_scene.env"),
-              std::string::npos)
-        << r.output;
+    EXPECT_NE(r.output.find("no_such_scene: no such file here or in Scene::dir ("), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("and no scene env file env/scenes/no_such_scene.env"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("munich"), std::string::npos) << r.output;  // the names there are
+}
+
+// --scene NAME.ext looks in Scene::dir, as -DScene::file=NAME.ext does.
+TEST(CliConventions, SceneFileIsLookedForInSceneDir) {
+    const fs::path dir = tempDir() / "scene_dir";
+    fs::create_directories(dir);
+    std::ofstream(dir / "quad_in_dir.obj") << "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n";
+    const fs::path out = tempDir() / "in_dir";
+    const Result r = run("render --scene quad_in_dir.obj -DScene::dir=" + dir.string() + kTiny + "--out " + out.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("scene quad_in_dir: 2 triangles"), std::string::npos) << r.output;
 }
 
 // `--scene munich` and `--scene .../munich.ply` both take env/scenes/munich.env's view.
@@ -185,6 +259,18 @@ TEST(CliConventions, NothingTracedIsNotApplicable) {
     EXPECT_FALSE(j["primary"]["t_r_us"].is_null());
     const std::string shadowLine = r.output.substr(r.output.find("  shadow rays"));
     EXPECT_NE(shadowLine.substr(0, shadowLine.find('\n')).find("n/a"), std::string::npos) << r.output;
+}
+
+// The statistics footer says "shadows off" only when they are.
+TEST(CliConventions, TheFooterSaysWhyShadowRaysWereNotCast) {
+    const fs::path out = tempDir() / "footer";
+    Result r = run("render" + kTiny + "--out " + out.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(r.output.find("shadows off"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("shadow rays not cast: "), std::string::npos) << r.output;
+    r = run("render -DSetRayTracing::shadows=false" + kTiny + "--out " + out.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("shadows off: no shadow rays cast ("), std::string::npos) << r.output;
 }
 
 #if !defined(__SANITIZE_ADDRESS__)  // ASan reserves more address space than any ulimit -v below

@@ -4,6 +4,9 @@
 // structure disagrees with Embree on the same rays, the image error falls with the sample
 // count and is the same for every structure; a second run keeps every result, a missing one is
 // measured again, and so is everything when the settings change or with --fresh.
+#include "accel/registry.h"
+#include "apps/measure/builders.h"
+#include "apps/measure/tradeoff.h"
 #include "tests/support/cli_run.h"
 #include "tests/support/oracle.h"
 #include "tests/support/scratch_dir.h"
@@ -12,6 +15,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -44,9 +48,11 @@ fs::path makeScenes() {
     return dir;
 }
 
+// The K series beside tdbvh and sweepbvh unless `extra` names the structures.
 std::string args(const fs::path& dir, const std::string& extra = "") {
+    const std::string accels = extra.find("--accel") == std::string::npos ? " --accel tdbvh,sahbvh,sweepbvh" : "";
     return "tradeoff --quick --scenes " + (dir / "soup.env").string() + " " + (dir / "terrain.env").string() +
-           " --size 40 --ray-size 48 -DScene::cacheDir= --out " + (dir / "out").string() + " " + extra;
+           " --size 40 --ray-size 48 -DScene::cacheDir= --out " + (dir / "out").string() + accels + " " + extra;
 }
 
 // A CSV file as one map per row, keyed by the header's names.
@@ -151,13 +157,35 @@ TEST(Tradeoff, BadBinsAreAnError) {
     EXPECT_TRUE(contains(r.output, "--bins")) << r.output;
 }
 
+// Without --accel, both modes measure every registered structure of ours (a new one included),
+// and Embree as the yardstick; a bare sahbvh is the K series.
+TEST(Tradeoff, ByDefaultEveryStructureOfOursIsMeasured) {
+    TradeoffSettings settings;
+    settings.bins = {4, 16};
+    const std::vector<AccelConfig> series = tradeoffConfigs(settings, "");
+    const std::vector<AccelConfig> builders = builderConfigs("");
+    const auto has = [](const std::vector<AccelConfig>& configs, const std::string& label) {
+        return std::any_of(configs.begin(), configs.end(), [&](const AccelConfig& c) { return c.label == label; });
+    };
+    for (const AcceleratorInfo& info : acceleratorInfos()) {
+        if (info.name == "naive" || info.name == "embree") continue;
+        EXPECT_TRUE(has(builders, info.name)) << info.name;
+        EXPECT_TRUE(info.name == "sahbvh" ? has(series, "sahbvh-K4") && has(series, "sahbvh-K16") : has(series, info.name))
+            << info.name;
+    }
+    EXPECT_TRUE(has(series, "embree"));
+    EXPECT_TRUE(has(builders, "embree-medium"));
+    EXPECT_FALSE(has(series, "naive"));
+}
+
 // `tradeoff --builders --quick`: a row per scene x builder in builders.csv, the ratios to
 // embree-medium are 1 for itself, Embree has no SAH or EPO and ours have both, the Pareto front
 // is not empty, the report has the rank correlations, a second run keeps every result, and
 // docs/plots/plot_builders.py draws from the folder.
 TEST(Tradeoff, BuildersQuickRunWritesRowsAndResumes) {
     const fs::path dir = makeScenes();
-    const std::string command = args(dir, "--builders --builds 1 --passes 1");
+    const std::string command =
+        args(dir, "--builders --builds 1 --passes 1 --accel sahbvh,sahbvh8,sbvh,sbvh8,ploc,ploc8,tdbvh,sweepbvh");
     Result r = run(command);
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_TRUE(contains(r.output, "30 configurations measured, 0 kept")) << r.output;
