@@ -115,3 +115,16 @@ TEST(Docs, AddingAnAcceleratorCoversEveryPrimitiveKindAndFile) {
                                "tests/test_architecture.cpp", "docs/env-keys.md", "leafBound", "depthBound"})
         EXPECT_NE(text.str().find(needed), std::string::npos) << needed;
 }
+
+// docs/results.md has the default structure beside the report's two, and says what it was run at.
+TEST(Docs, ResultsHaveTheDefaultStructureAndTheirCommit) {
+    std::ifstream in(std::string(BVHLAB_SOURCE_DIR) + "/docs/results.md");
+    std::stringstream text;
+    text << in.rdbuf();
+    Env globalEnv(programKeys());
+    globalEnv.loadFile(std::string(BVHLAB_SOURCE_DIR) + "/env/global.env");
+    const std::string defaultStructure = globalEnv.get(keys::ASDS::type);
+    for (const std::string& accel : {defaultStructure, std::string("sahbvh"), std::string("tdbvh"), std::string("embree")})
+        EXPECT_NE(text.str().find("| conference | " + accel + " |"), std::string::npos) << accel;
+    EXPECT_TRUE(std::regex_search(text.str(), std::regex("at commit [0-9a-f]{7}")));
+}
