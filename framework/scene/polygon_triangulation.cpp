@@ -51,7 +51,6 @@ PolygonProblem PolygonTriangulator::triangulate(std::span<const Vec3> positions,
         if (corners_.empty() || positions[c] != positions[corners_.back()]) corners_.push_back(c);
     }
     while (corners_.size() > 1 && positions[corners_.back()] == positions[corners_.front()]) corners_.pop_back();
-    droppedRepeats_ = corners_.size() != corners.size();
     for (const uint32_t c : corners_) {
         if (!isFinite(positions[c])) return PolygonProblem::NotFinite;
     }

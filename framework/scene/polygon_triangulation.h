@@ -43,8 +43,7 @@ public:
     PolygonProblem triangulate(std::span<const Vec3> positions, std::span<const uint32_t> corners);
 
     std::span<const glm::uvec3> triangles() const { return triangles_; }
-    bool wasEarClipped() const { return earClipped_; }    // non-convex: not a fan
-    bool droppedRepeats() const { return droppedRepeats_; }  // some corner was given twice in a row
+    bool wasEarClipped() const { return earClipped_; }  // non-convex: not a fan
 
 private:
     bool project(std::span<const Vec3> positions, PolygonProblem& problem);
@@ -61,7 +60,7 @@ private:
     std::vector<uint8_t> ear_;  // isEar as last computed: a hint, checked again before a clip
     uint64_t earTests_ = 0;
     std::vector<glm::uvec3> triangles_;
-    bool earClipped_ = false, droppedRepeats_ = false;
+    bool earClipped_ = false;
 };
 
 }  // namespace bvhlab
