@@ -103,6 +103,49 @@ bool BvhAccelerator<Layout>::isOccluded(const Ray& ray, QueryCounters& counters)
 }
 
 template <typename Layout>
+void BvhAccelerator<Layout>::findNearestBatch(std::span<const Ray> rays, std::span<Hit> hits, QueryCounters& counters,
+                                              std::span<RayCost> costs) const {
+    if (traversal_.robust) findNearestRange<true>(rays, hits, counters, costs);
+    else findNearestRange<false>(rays, hits, counters, costs);
+}
+
+template <typename Layout>
+void BvhAccelerator<Layout>::isOccludedBatch(std::span<const Ray> rays, std::span<uint8_t> occluded,
+                                             QueryCounters& counters, std::span<RayCost> costs) const {
+    if (traversal_.robust) isOccludedRange<true>(rays, occluded, counters, costs);
+    else isOccludedRange<false>(rays, occluded, counters, costs);
+}
+
+template <typename Layout>
+template <bool Robust>
+void BvhAccelerator<Layout>::findNearestRange(std::span<const Ray> rays, std::span<Hit> hits, QueryCounters& counters,
+                                              std::span<RayCost> costs) const {
+    const bool withQuadrics = !quadrics_.empty();
+    for (size_t i = 0; i < rays.size(); ++i) {
+        const QueryCounters before = counters;
+        Hit hit;
+        const bool found = answerOf(tree_, runQuery<ClosestHitQuery, Robust>(tree_, rays[i], counters), hit);
+        if (withQuadrics) findNearestQuadric(rays[i], found, hit, counters);
+        hits[i] = hit;
+        if (!costs.empty()) costs[i] = costBetween(before, counters);
+    }
+}
+
+template <typename Layout>
+template <bool Robust>
+void BvhAccelerator<Layout>::isOccludedRange(std::span<const Ray> rays, std::span<uint8_t> occluded,
+                                             QueryCounters& counters, std::span<RayCost> costs) const {
+    const bool withQuadrics = !quadrics_.empty();
+    for (size_t i = 0; i < rays.size(); ++i) {
+        const QueryCounters before = counters;
+        bool answer = runQuery<AnyHitQuery, Robust>(tree_, rays[i], counters).occluded;
+        if (!answer && withQuadrics) answer = isOccludedQuadric(rays[i], counters);
+        occluded[i] = answer ? 1 : 0;
+        if (!costs.empty()) costs[i] = costBetween(before, counters);
+    }
+}
+
+template <typename Layout>
 bool BvhAccelerator<Layout>::findNearestQuadric(const Ray& ray, bool found, Hit& hit, QueryCounters& counters) const {
     Ray rest = ray;
     if (found) rest.tmax = hit.t;

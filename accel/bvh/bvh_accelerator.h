@@ -34,6 +34,12 @@ public:
     BuildStats build(const PrimitiveSet& prims) override;
     bool findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const override;
     bool isOccluded(const Ray& ray, QueryCounters& counters) const override;
+    // The robustness setting is chosen once per batch; the quadric tree's part is skipped as
+    // a whole when the scene has none.
+    void findNearestBatch(std::span<const Ray> rays, std::span<Hit> hits, QueryCounters& counters,
+                          std::span<RayCost> costs) const override;
+    void isOccludedBatch(std::span<const Ray> rays, std::span<uint8_t> occluded, QueryCounters& counters,
+                         std::span<RayCost> costs) const override;
 
     const Layout& bvh() const { return tree_; }
 
@@ -41,6 +47,12 @@ private:
     // The quadric tree's part of a query (after the triangles'), kept out of the hot path.
     [[gnu::noinline]] bool findNearestQuadric(const Ray& ray, bool found, Hit& hit, QueryCounters& counters) const;
     [[gnu::noinline]] bool isOccludedQuadric(const Ray& ray, QueryCounters& counters) const;
+    template <bool Robust>
+    void findNearestRange(std::span<const Ray> rays, std::span<Hit> hits, QueryCounters& counters,
+                          std::span<RayCost> costs) const;
+    template <bool Robust>
+    void isOccludedRange(std::span<const Ray> rays, std::span<uint8_t> occluded, QueryCounters& counters,
+                         std::span<RayCost> costs) const;
 
     BvhKind kind_;
     BvhBuildConfig build_;

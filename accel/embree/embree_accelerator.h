@@ -1,6 +1,6 @@
 // Intel Embree 3 behind our interface: the speed reference. One geometry per primitive kind
 // over the valid primitives (triangles; spheres as its sphere points; cones as a user geometry
-// with our own test), queried with rtcIntersect1 / rtcOccluded1.
+// with our own test), queried with rtcIntersect1 / rtcOccluded1, batches with its stream API.
 //
 // Embree has no counters and no visible tree: N_IT, N_TR, the node statistics and the SAH
 // cost are unavailable (hasCounters() is false, those optional BuildStats fields stay empty);
@@ -69,6 +69,13 @@ public:
     BuildStats build(const PrimitiveSet& prims) override;
     bool findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const override;
     bool isOccluded(const Ray& ray, QueryCounters& counters) const override;
+    // Through Embree's stream API (rtcIntersect1M / rtcOccluded1M) in chunks converted on the
+    // stack; a ray Embree cannot take as it is (negative tmin, coordinates beyond its range)
+    // takes the single-ray path. `costs` are zero: Embree does not count.
+    void findNearestBatch(std::span<const Ray> rays, std::span<Hit> hits, QueryCounters& counters,
+                          std::span<RayCost> costs) const override;
+    void isOccludedBatch(std::span<const Ray> rays, std::span<uint8_t> occluded, QueryCounters& counters,
+                         std::span<RayCost> costs) const override;
     bool hasCounters() const override { return false; }
     // Rays with tmin >= 0 and coordinates within Embree's range, as RTCRayHit; see the .cpp.
     std::unique_ptr<NativeRayBatch> prepareNativeBatch(const std::vector<Ray>& rays) const override;

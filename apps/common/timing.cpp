@@ -49,14 +49,15 @@ PassResult timePasses(size_t n, int threads, int passes, BeforePass&& beforePass
 }  // namespace
 
 PassResult tracePasses(const Accelerator& accel, const std::vector<Ray>& rays, bool anyHit, int threads, int passes) {
+    // Through the batch calls, one per range, into answers allocated outside the timing.
+    std::vector<Hit> hits(anyHit ? 0 : rays.size());
+    std::vector<uint8_t> occluded(anyHit ? rays.size() : 0);
+    const std::span<const Ray> all(rays);
     return timePasses(
         rays.size(), threads, passes, [] {},
         [&](size_t begin, size_t end, QueryCounters& local) {
-            Hit hit;
-            for (size_t i = begin; i < end; ++i) {
-                if (anyHit) accel.isOccluded(rays[i], local);
-                else accel.findNearest(rays[i], hit, local);
-            }
+            if (anyHit) accel.isOccludedBatch(all.subspan(begin, end - begin), std::span(occluded).subspan(begin, end - begin), local, {});
+            else accel.findNearestBatch(all.subspan(begin, end - begin), std::span(hits).subspan(begin, end - begin), local, {});
         });
 }
 

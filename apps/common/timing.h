@@ -17,7 +17,8 @@ struct PassResult {
     QueryCounters counters;      // of one pass
 };
 
-// Answers every ray `passes` times with `threads` threads; the first pass also counts.
+// Answers every ray `passes` times with `threads` threads through the interface's batch calls
+// (one per range of 4096 rays); the first pass also counts.
 PassResult tracePasses(const Accelerator& accel, const std::vector<Ray>& rays, bool anyHit, int threads, int passes);
 
 // The same passes over a native batch (reset before each pass, untimed); counts queries only.

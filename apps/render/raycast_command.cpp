@@ -40,6 +40,7 @@ void addRaycastCommand(CLI::App& app) {
             constexpr size_t kRaysPerStep = 1024;
             progress.phase(fmt::format("tracing {} rays", rays.size()), (rays.size() + kRaysPerStep - 1) / kRaysPerStep);
             std::vector<Hit> hits(rays.size());
+            std::vector<uint8_t> occluded(options->any ? rays.size() : 0);
             const int threads = env.get(keys::SetRayTracing::threads);
             tbb::enumerable_thread_specific<QueryCounters> perThread;
 
@@ -47,9 +48,13 @@ void addRaycastCommand(CLI::App& app) {
             tbb::task_arena(threads > 0 ? threads : tbb::info::default_concurrency()).execute([&] {
                 tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), kRaysPerStep), [&](const auto& range) {
                     QueryCounters& counters = perThread.local();
-                    for (size_t i = range.begin(); i < range.end(); ++i) {
-                        if (!options->any) built.accel->findNearest(rays[i], hits[i], counters);
-                        else if (built.accel->isOccluded(rays[i], counters)) hits[i] = {0.0f, 0, 0.0f, 0.0f};
+                    const auto part = std::span<const Ray>(rays).subspan(range.begin(), range.size());
+                    if (!options->any) {
+                        built.accel->findNearestBatch(part, std::span(hits).subspan(range.begin(), range.size()), counters, {});
+                    } else {
+                        built.accel->isOccludedBatch(part, std::span(occluded).subspan(range.begin(), range.size()), counters, {});
+                        for (size_t i = range.begin(); i < range.end(); ++i)
+                            if (occluded[i]) hits[i] = {0.0f, 0, 0.0f, 0.0f};
                     }
                     progress.advance((range.size() + kRaysPerStep - 1) / kRaysPerStep, range.size());
                 });

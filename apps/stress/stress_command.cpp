@@ -251,7 +251,7 @@ private:
             Baseline b{&config, {}, std::vector<Hit>(baseRays.size())};
             const auto accel = build(config, base, b.stats);
             QueryCounters counters;
-            for (size_t i = 0; i < baseRays.size(); ++i) accel->findNearest(baseRays[i], b.hits[i], counters);
+            accel->findNearestBatch(baseRays, b.hits, counters, {});
             baselines.push_back(std::move(b));
         }
         for (double scale : scales)
@@ -401,11 +401,9 @@ private:
                 const double seconds = secondsSince(start);
                 size_t wrong = 0;
                 QueryCounters counters;
-                for (size_t i = 0; i < rays.size(); ++i) {
-                    Hit h;
-                    accel->findNearest(rays[i], h, counters);
-                    if (!hitsAgree(h, reference[i])) ++wrong;
-                }
+                std::vector<Hit> hits(rays.size());
+                accel->findNearestBatch(rays, hits, counters, {});
+                for (size_t i = 0; i < rays.size(); ++i) wrong += !hitsAgree(hits[i], reference[i]);
                 fmt::print(stderr, "built in {:.0f} ms, depth {}, {} of {} answers differ from naive\n", stats.buildMs,
                            stats.maxDepth ? fmt::format("{}", *stats.maxDepth) : "n/a", wrong, rays.size());
                 // What the structure promises, and bounded time and memory of every structure.

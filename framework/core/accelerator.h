@@ -8,6 +8,7 @@
 
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -41,6 +42,12 @@ struct QueryCounters {
         ++intersectionTests;
         ++(std::holds_alternative<Sphere>(shape) ? sphereTests : coneTests);
     }
+};
+
+// The work of one query, for the heat maps: its N_IT and N_TR.
+struct RayCost {
+    uint32_t intersectionTests = 0;
+    uint32_t traversalSteps = 0;
 };
 
 // SAH cost normalised by the root box: C_trav * sum over inner nodes of A(n)/A(root)
@@ -96,6 +103,33 @@ public:
     // Any hit in [ray.tmin, ray.tmax], stopping at the first one found.
     virtual bool isOccluded(const Ray& ray, QueryCounters& counters) const = 0;
 
+    // The same queries over a span of rays, answered into a span of the same length: every
+    // hits[i] is written (Hit{} on a miss), occluded[i] is 1 or 0. `costs` is empty, or of the
+    // same length and receives each ray's work. One call answers its rays on the calling thread
+    // (callers split a large batch over threads), counting into `counters` exactly what the
+    // single-ray calls would. These defaults loop over the single-ray calls; a structure
+    // overrides them to choose its traversal once per batch (ours) or to call a native batch
+    // API (Embree's stream API). Answers equal the single-ray calls': ours bit for bit; a native
+    // batch API may round differently, within hitsAgree (docs/accuracy.md).
+    virtual void findNearestBatch(std::span<const Ray> rays, std::span<Hit> hits, QueryCounters& counters,
+                                  std::span<RayCost> costs) const {
+        for (size_t i = 0; i < rays.size(); ++i) {
+            const QueryCounters before = counters;
+            Hit hit;
+            findNearest(rays[i], hit, counters);
+            hits[i] = hit;
+            if (!costs.empty()) costs[i] = costBetween(before, counters);
+        }
+    }
+    virtual void isOccludedBatch(std::span<const Ray> rays, std::span<uint8_t> occluded, QueryCounters& counters,
+                                 std::span<RayCost> costs) const {
+        for (size_t i = 0; i < rays.size(); ++i) {
+            const QueryCounters before = counters;
+            occluded[i] = isOccluded(rays[i], counters) ? 1 : 0;
+            if (!costs.empty()) costs[i] = costBetween(before, counters);
+        }
+    }
+
     // False when the structure cannot count N_IT and N_TR (they are then reported as unavailable).
     virtual bool hasCounters() const { return true; }
 
@@ -104,6 +138,12 @@ public:
     // naming the first ray the native call cannot take as it is.
     virtual std::unique_ptr<NativeRayBatch> prepareNativeBatch(const std::vector<Ray>& /*rays*/) const {
         return nullptr;
+    }
+
+protected:
+    static RayCost costBetween(const QueryCounters& before, const QueryCounters& after) {
+        return {uint32_t(after.intersectionTests - before.intersectionTests),
+                uint32_t(after.traversalSteps - before.traversalSteps)};
     }
 };
 

@@ -41,8 +41,11 @@ struct ShadowQuery {
 // Per-thread scratch and statistics, reused across tiles: nothing is allocated per ray.
 struct ThreadState {
     std::vector<PathState> paths, nextPaths;
+    std::vector<Ray> rays;  // the rays of one batch call
     std::vector<Hit> hits;
-    std::vector<ShadowQuery> shadows;
+    std::vector<uint8_t> occluded;
+    std::vector<RayCost> costs;
+    std::vector<std::vector<ShadowQuery>> shadowsByLight;  // one batch per light
     RenderStats stats;
 };
 
@@ -75,26 +78,27 @@ private:
 
     void traceWavefront(ThreadState& ts, int depth, bool firstSample) const {
         ts.nextPaths.clear();
-        ts.shadows.clear();
+        ts.shadowsByLight.resize(lights_.size());
+        for (std::vector<ShadowQuery>& shadows : ts.shadowsByLight) shadows.clear();
+        const size_t n = ts.paths.size();
+        ts.rays.resize(n);
+        for (size_t i = 0; i < n; ++i) ts.rays[i] = ts.paths[i].ray;
+        ts.hits.resize(n);
+        ts.costs.resize(n);
+        // Closest hits of the whole wavefront first: one batch call, timed as a block.
         QueryStats& primary = ts.stats.primary;
         const auto start = Clock::now();
-        // Closest hits of the whole wavefront first, timed as a block.
-        std::vector<Hit>& hits = ts.hits;
-        hits.assign(ts.paths.size(), Hit{});
-        for (size_t i = 0; i < ts.paths.size(); ++i) {
-            const QueryCounters before = primary.counters;
-            accel_.findNearest(ts.paths[i].ray, hits[i], primary.counters);
-            recordCost(ts.paths[i].pixel, before, primary.counters);
-        }
+        accel_.findNearestBatch(ts.rays, ts.hits, primary.counters, ts.costs);
         primary.queryNanoseconds += std::chrono::duration<double, std::nano>(Clock::now() - start).count();
+        for (size_t i = 0; i < n; ++i) recordCost(ts.paths[i].pixel, ts.costs[i]);
 
-        for (size_t i = 0; i < ts.paths.size(); ++i) shade(ts, ts.paths[i], hits[i], depth, firstSample);
+        for (size_t i = 0; i < n; ++i) shade(ts, ts.paths[i], ts.hits[i], depth, firstSample);
         traceShadows(ts);
     }
 
-    void recordCost(uint32_t pixel, const QueryCounters& before, const QueryCounters& after) const {
-        fb_.traversalSteps[pixel] += float(after.traversalSteps - before.traversalSteps);
-        fb_.intersectionTests[pixel] += float(after.intersectionTests - before.intersectionTests);
+    void recordCost(uint32_t pixel, const RayCost& cost) const {
+        fb_.traversalSteps[pixel] += float(cost.traversalSteps);
+        fb_.intersectionTests[pixel] += float(cost.intersectionTests);
     }
 
     void shade(ThreadState& ts, const PathState& path, const Hit& hit, int depth, bool firstSample) const {
@@ -116,7 +120,8 @@ private:
         const Vec3 diffuse = path.throughput * material.diffuse * (1.0f - material.mirror);
         fb_.color[path.pixel] += diffuse * settings_.ambient;
         const Vec3 origin = surface.originAbove();
-        for (const ShadingLight& light : lights_) {
+        for (size_t l = 0; l < lights_.size(); ++l) {
+            const ShadingLight& light = lights_[l];
             const Vec3 toLight = light.position - p;
             const float distance2 = glm::dot(toLight, toLight);
             const float cosine = glm::dot(ns, toLight) / std::sqrt(distance2);
@@ -131,7 +136,7 @@ private:
                 continue;
             }
             // The ray ends just short of the light: t = 1 is the light itself.
-            ts.shadows.push_back({Ray{origin, light.position - origin, 0.0f, 1.0f - 1e-5f}, radiance, path.pixel});
+            ts.shadowsByLight[l].push_back({Ray{origin, light.position - origin, 0.0f, 1.0f - 1e-5f}, radiance, path.pixel});
         }
 
         if (material.mirror > 0.0f) {
@@ -145,17 +150,25 @@ private:
         }
     }
 
+    // The shadow rays of the wavefront, one batch per light (rays towards one point). A pixel
+    // has one path per wavefront, so it still receives its lights' radiance in light order.
     void traceShadows(ThreadState& ts) const {
         QueryStats& shadow = ts.stats.shadow;
-        const auto start = Clock::now();
-        for (ShadowQuery& q : ts.shadows) {
-            const QueryCounters before = shadow.counters;
-            // Unoccluded rays keep their radiance; occluded ones are zeroed and add nothing.
-            if (accel_.isOccluded(q.ray, shadow.counters)) q.radiance = Vec3(0.0f);
-            recordCost(q.pixel, before, shadow.counters);
+        for (const std::vector<ShadowQuery>& queries : ts.shadowsByLight) {
+            const size_t n = queries.size();
+            ts.rays.resize(n);
+            for (size_t i = 0; i < n; ++i) ts.rays[i] = queries[i].ray;
+            ts.occluded.resize(n);
+            ts.costs.resize(n);
+            const auto start = Clock::now();
+            accel_.isOccludedBatch(ts.rays, ts.occluded, shadow.counters, ts.costs);
+            shadow.queryNanoseconds += std::chrono::duration<double, std::nano>(Clock::now() - start).count();
+            for (size_t i = 0; i < n; ++i) {
+                recordCost(queries[i].pixel, ts.costs[i]);
+                // Unoccluded rays carry their radiance; occluded ones add nothing.
+                if (!ts.occluded[i]) fb_.color[queries[i].pixel] += queries[i].radiance;
+            }
         }
-        shadow.queryNanoseconds += std::chrono::duration<double, std::nano>(Clock::now() - start).count();
-        for (const ShadowQuery& q : ts.shadows) fb_.color[q.pixel] += q.radiance;
     }
 
     const Scene& scene_;

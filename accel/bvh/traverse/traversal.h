@@ -128,27 +128,37 @@ struct LeafTester<QuadricLeaves, Robust> {
     }
 };
 
-// The entry of every query: it counts, answers invalid rays and empty trees with a miss, and
-// runs the skeleton variant the ray needs: NegativeT when the interval reaches below t = 0
-// (the box test's far margin must then be sign-aware), Robust per BVH::robust.
-template <typename Query, typename Tree>
-Query runQuery(const Tree& tree, const Ray& ray, const TraversalConfig& config, QueryCounters& counters) {
+// The entry of every query for a fixed robustness setting (a batch fixes it once): it counts,
+// answers invalid rays and empty trees with a miss, and runs the skeleton variant the ray
+// needs: NegativeT when the interval reaches below t = 0 (the box test's far margin must then
+// be sign-aware).
+template <typename Query, bool Robust, typename Tree>
+[[gnu::always_inline]] inline Query runQuery(const Tree& tree, const Ray& ray, QueryCounters& counters) {
     ++counters.queries;
     if (tree.empty() || !ray.isValid()) return Query(ray);
-    const bool negativeT = ray.tmin < 0.0f;
-    if (config.robust) {
-        return negativeT ? traverse<Query, true, true>(tree, ray, counters) : traverse<Query, false, true>(tree, ray, counters);
-    }
-    return negativeT ? traverse<Query, true, false>(tree, ray, counters) : traverse<Query, false, false>(tree, ray, counters);
+    return ray.tmin < 0.0f ? traverse<Query, true, Robust>(tree, ray, counters)
+                           : traverse<Query, false, Robust>(tree, ray, counters);
+}
+
+// Robust per BVH::robust.
+template <typename Query, typename Tree>
+Query runQuery(const Tree& tree, const Ray& ray, const TraversalConfig& config, QueryCounters& counters) {
+    return config.robust ? runQuery<Query, true>(tree, ray, counters) : runQuery<Query, false>(tree, ray, counters);
+}
+
+// The answer of a closest-hit query, in the primitives' index space; false on a miss (`hit`
+// unchanged).
+template <typename Tree>
+[[gnu::always_inline]] inline bool answerOf(const Tree& tree, const ClosestHitQuery& query, Hit& hit) {
+    if (query.found == kInvalidPrimitive) return false;
+    hit = {query.best.t, tree.primIndices[query.found], query.best.u, query.best.v};
+    return true;
 }
 
 // Closest hit; on a miss returns false and leaves `hit` unchanged.
 template <typename Tree>
 bool findNearest(const Tree& tree, const Ray& ray, Hit& hit, QueryCounters& counters, const TraversalConfig& config) {
-    const ClosestHitQuery query = runQuery<ClosestHitQuery>(tree, ray, config, counters);
-    if (query.found == kInvalidPrimitive) return false;
-    hit = {query.best.t, tree.primIndices[query.found], query.best.u, query.best.v};
-    return true;
+    return answerOf(tree, runQuery<ClosestHitQuery>(tree, ray, config, counters), hit);
 }
 
 template <typename Tree>
