@@ -24,6 +24,7 @@ const std::map<std::string, std::vector<std::string>> kMayInclude = {
     {"framework/io", {"framework/core", "framework/config", "framework/scene", "framework/render"}},
     {"framework/report", {"framework/core", "framework/config", "framework/scene", "framework/render"}},
     {"framework/robustness", {"framework/core", "framework/config", "framework/scene", "framework/render"}},
+    {"framework/plugin", {"framework/core", "framework/config"}},
     {"accel/naive", {"framework/core"}},
     {"accel/embree", {"framework/core", "framework/config"}},
     {"accel/bvh/simd", {"framework/core"}},
@@ -33,7 +34,7 @@ const std::map<std::string, std::vector<std::string>> kMayInclude = {
     {"accel/bvh",
      {"framework/core", "framework/config", "accel/bvh/simd", "accel/bvh/layout", "accel/bvh/build",
       "accel/bvh/traverse"}},
-    {"accel", {"framework/core", "framework/config", "accel/naive", "accel/embree", "accel/bvh"}},
+    {"accel", {"framework/core", "framework/config", "framework/plugin", "accel/naive", "accel/embree", "accel/bvh"}},
 };
 
 // apps/ sees all of framework/ and, of accel/, only the registry: a structure is reached by
