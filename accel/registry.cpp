@@ -4,6 +4,7 @@
 #include "accel/bvh/bvh_env.h"
 #include "accel/embree/embree_accelerator.h"
 #include "accel/embree/embree_env.h"
+#include "accel/guarded_accelerator.h"
 #include "accel/naive/naive_accelerator.h"
 #include "framework/core/error.h"
 
@@ -19,19 +20,18 @@ AcceleratorInfo bvhInfo(std::string name, std::string description, BvhKind kind)
     return {std::move(name), std::move(description), bvhEnvKeys(kind), [kind](const Env& env) {
                 return std::make_unique<BvhAccelerator<Layout>>(kind, bvhConfigFromEnv(env), traversalConfigFromEnv(env),
                                                                 statsConfigFromEnv(env));
-            }};
+            },
+            {}};
 }
 
-}  // namespace
-
-const std::vector<AcceleratorInfo>& acceleratorInfos() {
-    static const std::vector<AcceleratorInfo> infos = {
+std::vector<AcceleratorInfo>& registeredInfos() {
+    static std::vector<AcceleratorInfo> infos = {
         {"naive", "brute force: tests every triangle; the reference the others are tested against", {},
-         [](const Env&) { return std::make_unique<NaiveAccelerator>(); }},
+         [](const Env&) { return std::make_unique<NaiveAccelerator>(); }, {}},
         {"embree", "Intel Embree 3 (rtcIntersect1/rtcOccluded1): the speed reference; no counters, no visible tree",
          {std::string(keys::Embree::quality.name()), std::string(keys::Embree::robust.name()),
           std::string(keys::Embree::threads.name())},
-         [](const Env& env) { return std::make_unique<EmbreeAccelerator>(env); }},
+         [](const Env& env) { return std::make_unique<EmbreeAccelerator>(env); }, {}},
         bvhInfo<Bvh>("tdbvh", "BVH by spatial median: the middle of the longest axis (BVH::tdbvhSplit), object median fallback",
                      BvhKind::SpatialMedian),
         bvhInfo<Bvh>("sahbvh", "BVH by binned SAH (Wald 2007): BVH::bins bins along the widest centre axis, SSE binning",
@@ -64,10 +64,33 @@ const std::vector<AcceleratorInfo>& acceleratorInfos() {
     return infos;
 }
 
+}  // namespace
+
+const std::vector<AcceleratorInfo>& acceleratorInfos() { return registeredInfos(); }
+
+const AcceleratorInfo* findAccelerator(const std::string& name) {
+    for (const AcceleratorInfo& info : registeredInfos())
+        if (info.name == name) return &info;
+    return nullptr;
+}
+
+void addAccelerator(AcceleratorInfo info) {
+    if (const AcceleratorInfo* taken = findAccelerator(info.name))
+        throw InputError(fmt::format("{}: accelerator '{}' is already defined by {}", info.plugin, info.name,
+                                     taken->plugin.empty() ? "bvhlab" : taken->plugin));
+    info.create = [create = std::move(info.create), plugin = info.plugin, name = info.name](const Env& env) {
+        std::unique_ptr<Accelerator> accel = guardPlugin(plugin, name, "its factory", [&] { return create(env); });
+        if (!accel) throw PluginError(fmt::format("plugin {}, accelerator '{}': its factory returned nothing", plugin, name));
+        return guardAccelerator(std::move(accel), plugin, name);
+    };
+    registeredInfos().push_back(std::move(info));
+}
+
 void registerAcceleratorKeys(EnvRegistry& registry) {
     std::vector<std::string> names;
     for (const AcceleratorInfo& info : acceleratorInfos()) names.push_back(info.name);
     registry.add(keys::ASDS::type.declaration(names));
+    registry.add(keys::ASDS::plugins);
     registerEmbreeKeys(registry);
     registerBvhKeys(registry);
 }

@@ -15,6 +15,9 @@ namespace bvhlab {
 namespace keys::ASDS {
 // Its choices, the accelerators' names, are given when it is registered.
 inline constexpr ChoiceKey type{"ASDS::type", "sahbvh", {}, "acceleration structure to build and trace with"};
+inline constexpr TextKey plugins{"ASDS::plugins", "",
+                                 "plugin files to load, comma-separated (relative to the env file's folder); "
+                                 "docs/plugins.md"};
 }
 
 struct AcceleratorInfo {
@@ -22,9 +25,17 @@ struct AcceleratorInfo {
     std::string description;
     std::vector<std::string> envKeys;  // the keys it reads, besides the framework's
     std::function<std::unique_ptr<Accelerator>(const Env&)> create;
+    std::string plugin;  // the plugin file it comes from; empty for bvhlab's own
 };
 
+// bvhlab's own accelerators, then those plugins added, in load order.
 const std::vector<AcceleratorInfo>& acceleratorInfos();
+const AcceleratorInfo* findAccelerator(const std::string& name);
+
+// Adds a plugin's accelerator (info.plugin set). Its build and queries are guarded: an exception
+// thrown inside reaches the caller as a PluginError naming the plugin and the accelerator.
+// Throws InputError if the name is taken.
+void addAccelerator(AcceleratorInfo info);
 
 // Throws InputError naming the unknown accelerator and the known ones.
 std::unique_ptr<Accelerator> createAccelerator(const std::string& name, const Env& env);
@@ -32,7 +43,8 @@ inline std::unique_ptr<Accelerator> createAccelerator(const Env& env) {
     return createAccelerator(env.get(keys::ASDS::type), env);
 }
 
-// ASDS::type and every accelerator's keys.
+// ASDS::type, ASDS::plugins and the keys of bvhlab's own accelerators (a plugin's are
+// registered when it is loaded).
 void registerAcceleratorKeys(EnvRegistry& registry);
 
 }  // namespace bvhlab

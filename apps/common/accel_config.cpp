@@ -2,6 +2,7 @@
 
 #include "accel/registry.h"
 #include "apps/common/cli_common.h"
+#include "apps/common/plugins.h"
 #include "framework/core/error.h"
 
 #include <fmt/ranges.h>
@@ -31,7 +32,7 @@ std::vector<AccelConfig> parseAccelConfigList(const std::string& list) {
 std::string ourAccelerators() {
     std::vector<std::string> names;
     for (const AcceleratorInfo& info : acceleratorInfos())
-        if (info.name != "naive" && info.name != "embree") names.push_back(info.name);
+        if (info.name != "naive" && info.name != "embree" && info.plugin.empty()) names.push_back(info.name);
     return fmt::format("{}", fmt::join(names, ","));
 }
 
@@ -52,6 +53,7 @@ Env accelConfigEnv(const AccelConfig& config, const Env& base, const std::string
 
 void checkAccelConfigs(const std::vector<AccelConfig>& configs, const Env& base, const std::string& option) {
     if (configs.empty()) throw InputError(fmt::format("{}: no accelerator given", option));
+    for (const AccelConfig& config : configs) loadPluginFor(config.name);
     std::vector<std::string> known;
     for (const AcceleratorInfo& info : acceleratorInfos()) known.push_back(info.name);
     for (const AccelConfig& config : configs) {

@@ -18,7 +18,7 @@ struct AccelConfig {
 
 AccelConfig parseAccelConfig(const std::string& text);
 
-// Every registered accelerator but the brute force and Embree, comma-separated: the default of
+// Every accelerator of bvhlab's own but the brute force and Embree, comma-separated: the default of
 // the subcommands that measure all of our structures (stress, tradeoff).
 std::string ourAccelerators();
 

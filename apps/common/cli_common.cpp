@@ -2,6 +2,7 @@
 
 #include "accel/registry.h"
 #include "apps/common/app_keys.h"
+#include "apps/common/plugins.h"
 #include "apps/common/program_keys.h"
 #include "framework/config/common_keys.h"
 #include "framework/core/error.h"
@@ -17,6 +18,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <tuple>
 
 #include <unistd.h>
 
@@ -32,6 +34,7 @@ void EnvOptions::addTo(CLI::App& command) {
     command.add_option("-D", overrides, "override an env key: -DSection::key=value (repeatable; wins over files)")
         ->allow_extra_args(false);
     command.add_flag("--no-global-env", noGlobalEnv, "do not read env/global.env: start from the keys' defaults");
+    command.add_option("--plugin", plugins, "load a plugin's accelerators from this file (repeatable; docs/plugins.md)");
 }
 
 void EnvOptions::addThreadsTo(CLI::App& command) {
@@ -56,7 +59,39 @@ std::vector<std::string> EnvOptions::files(const std::filesystem::path& sceneEnv
     return result;
 }
 
+void EnvOptions::loadPlugins(const std::vector<std::string>& layerFiles) const {
+    for (const std::string& file : plugins) loadPlugin(file);
+    // ASDS::plugins and ASDS::type as the layers give them, read before the registry checks the
+    // layers, since a plugin they name adds keys and accelerators the layers may use.
+    std::string type, typeOrigin;
+    auto usePlugins = [](const std::string& list, const std::filesystem::path& baseDir) {
+        for (const std::string& file : splitCommaList(list)) loadPlugin(baseDir / file);
+    };
+    for (const std::string& file : layerFiles)
+        for (const EnvLine& line : readEnvLines(file)) {
+            if (line.name == keys::ASDS::plugins.name())
+                usePlugins(line.text, std::filesystem::absolute(file).parent_path());
+            if (line.name == keys::ASDS::type.name()) std::tie(type, typeOrigin) = std::pair(line.text, line.origin);
+        }
+    for (const std::string& assignment : overrides) {
+        const size_t eq = assignment.find('=');
+        if (eq == std::string::npos) continue;  // reported by Env::setOverride
+        const std::string name = assignment.substr(0, eq), value = assignment.substr(eq + 1);
+        if (name == keys::ASDS::plugins.name()) usePlugins(value, std::filesystem::current_path());
+        if (name == keys::ASDS::type.name()) std::tie(type, typeOrigin) = std::pair(value, "-D" + name);
+    }
+    if (!type.empty() && !loadPluginFor(type)) {
+        std::vector<std::string> known, folders;
+        for (const AcceleratorInfo& info : acceleratorInfos()) known.push_back(info.name);
+        for (const std::filesystem::path& folder : pluginFolders()) folders.push_back(folder.string());
+        throw InputError(fmt::format("{}: unknown accelerator '{}': none of bvhlab's, no plugin loaded adds it, and "
+                                     "no {}.so in the plugin folders ({}; BVHLAB_PLUGIN_PATH adds folders). Known: {}",
+                                     typeOrigin, type, type, fmt::join(folders, ", "), fmt::join(known, ", ")));
+    }
+}
+
 Env EnvOptions::load(const std::filesystem::path& sceneEnvFile) const {
+    loadPlugins(files(sceneEnvFile));
     Env env(programKeys());
     for (const std::string& file : files(sceneEnvFile)) env.loadFile(file);
     if (threads >= 0) env.set(keys::SetRayTracing::threads, std::to_string(threads), "--threads");

@@ -29,16 +29,22 @@ std::filesystem::path repositoryFile(const std::filesystem::path& relative);
 struct EnvOptions {
     std::vector<std::string> envFiles;
     std::vector<std::string> overrides;
+    std::vector<std::string> plugins;  // --plugin
     bool noGlobalEnv = false;
     int threads = -1;  // --threads; -1: not given
 
-    // Adds --env, -D and --no-global-env.
+    // Adds --env, -D, --no-global-env and --plugin.
     void addTo(CLI::App& command);
     // Adds --threads N (0 = all hardware threads), setting SetRayTracing::threads.
     void addThreadsTo(CLI::App& command);
+    // Loads the plugins first (--plugin, ASDS::plugins of the layers, ASDS::type's by name; see
+    // apps/common/plugins.h), then the layers. Throws InputError.
     Env load(const std::filesystem::path& sceneEnvFile = {}) const;
     // The env files load() reads, in order.
     std::vector<std::string> files(const std::filesystem::path& sceneEnvFile = {}) const;
+
+private:
+    void loadPlugins(const std::vector<std::string>& layerFiles) const;
 };
 
 // The env file under env/scenes/ whose Scene::file is `sceneFile` (the same file on disk), or

@@ -3,6 +3,7 @@
 #include "accel/registry.h"
 #include "apps/common/app_keys.h"
 #include "framework/config/common_keys.h"
+#include "framework/core/error.h"
 #include "framework/render/render_keys.h"
 
 #include <fmt/ranges.h>
@@ -41,8 +42,10 @@ std::string envKeyType(const EnvKey& key) {
     return "";
 }
 
-const EnvRegistry& programKeys() {
-    static const EnvRegistry registry = [] {
+namespace {
+
+EnvRegistry& mutableProgramKeys() {
+    static EnvRegistry registry = [] {
         EnvRegistry r;
         registerCommonKeys(r);
         registerRenderKeys(r);
@@ -51,6 +54,23 @@ const EnvRegistry& programKeys() {
         return r;
     }();
     return registry;
+}
+
+}  // namespace
+
+const EnvRegistry& programKeys() { return mutableProgramKeys(); }
+
+void registerPluginKeys(const std::string& plugin, const std::vector<EnvKey>& pluginKeys) {
+    EnvRegistry& registry = mutableProgramKeys();
+    for (const EnvKey& key : pluginKeys)
+        if (registry.find(key.name))
+            throw InputError(fmt::format("{}: env key '{}' is already declared by bvhlab or a plugin loaded before", plugin,
+                                         key.name));
+    for (const EnvKey& key : pluginKeys) registry.add(key);
+    // ASDS::type's choices are the accelerators known now.
+    std::vector<std::string> names;
+    for (const AcceleratorInfo& info : acceleratorInfos()) names.push_back(info.name);
+    registry.add(keys::ASDS::type.declaration(names));
 }
 
 std::string envKeysMarkdown(const Env& globalEnv) {
@@ -79,7 +99,8 @@ std::string envKeysMarkdown(const Env& globalEnv) {
     }
     md += "\n# Accelerators (`ASDS::type`)\n\n| name | what it is | keys it reads |\n|---|---|---|\n";
     for (const AcceleratorInfo& info : acceleratorInfos())
-        md += fmt::format("| `{}` | {} | {} |\n", info.name, info.description,
+        md += fmt::format("| `{}` | {}{} | {} |\n", info.name, info.description,
+                          info.plugin.empty() ? "" : fmt::format(" (plugin `{}`)", info.plugin),
                           info.envKeys.empty() ? "none" : fmt::format("`{}`", fmt::join(info.envKeys, "`, `")));
     return md;
 }

@@ -5,10 +5,16 @@
 #include "framework/config/env.h"
 
 #include <string>
+#include <vector>
 
 namespace bvhlab {
 
 const EnvRegistry& programKeys();
+
+// Adds a plugin's keys (after its accelerators are registered, whose names become choices of
+// ASDS::type). Throws InputError, adding none, if one is declared already. Envs made before
+// read the new keys' defaults.
+void registerPluginKeys(const std::string& plugin, const std::vector<EnvKey>& keys);
 
 // docs/env-keys.md: every key (type, default, the value env/global.env gives it, meaning) and
 // every accelerator with the keys it reads. `globalEnv` is an Env with env/global.env loaded.

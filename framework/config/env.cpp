@@ -153,14 +153,16 @@ std::vector<std::string> EnvRegistry::nearest(const std::string& name, size_t co
     return result;
 }
 
+// Relative default paths are relative to the repository root, so they work from any folder.
+Env::Value Env::defaultOf(const EnvKey& key) {
+    std::string text = key.defaultValue;
+    if (key.type == EnvType::Path && !text.empty())
+        text = (std::filesystem::path(BVHLAB_SOURCE_DIR) / text).lexically_normal().string();
+    return {text, "default"};
+}
+
 Env::Env(const EnvRegistry& registry) : registry_(&registry) {
-    // Relative default paths are relative to the repository root, so they work from any folder.
-    for (const auto& [name, key] : registry.keys()) {
-        std::string text = key.defaultValue;
-        if (key.type == EnvType::Path && !text.empty())
-            text = (std::filesystem::path(BVHLAB_SOURCE_DIR) / text).lexically_normal().string();
-        values_[name] = {text, "default"};
-    }
+    for (const auto& [name, key] : registry.keys()) values_[name] = defaultOf(key);
 }
 
 void Env::set(const std::string& name, const std::string& text, const std::string& origin,
@@ -185,10 +187,10 @@ void Env::setOverride(const std::string& assignment, const std::string& origin) 
     set(key, trim(assignment.substr(eq + 1)), origin.empty() ? "-D" + key : origin);
 }
 
-void Env::loadFile(const std::filesystem::path& file) {
+std::vector<EnvLine> readEnvLines(const std::filesystem::path& file) {
     std::ifstream in(file);
     if (!in) throw inputError(file, 0, "cannot open env file");
-    const std::filesystem::path baseDir = std::filesystem::absolute(file).parent_path();
+    std::vector<EnvLine> lines;
     std::string line;
     for (size_t lineNo = 1; std::getline(in, line); ++lineNo) {
         const size_t hash = line.find('#');
@@ -208,17 +210,25 @@ void Env::loadFile(const std::filesystem::path& file) {
                                          "('=' is for -D{}={})",
                                          content, key, value, key, value));
         }
-        set(name, text, fmt::format("{}:{}", file.string(), lineNo), baseDir);
+        lines.push_back({name, text, fmt::format("{}:{}", file.string(), lineNo)});
     }
+    return lines;
 }
 
-const Env::Value& Env::value(std::string_view keyName, EnvType expected) const {
+void Env::loadFile(const std::filesystem::path& file) {
+    const std::filesystem::path baseDir = std::filesystem::absolute(file).parent_path();
+    for (const EnvLine& line : readEnvLines(file)) set(line.name, line.text, line.origin, baseDir);
+}
+
+Env::Value Env::value(std::string_view keyName, EnvType expected) const {
     const std::string name(keyName);
     const EnvKey* key = registry_->find(name);
     // Reading a key the registry does not hold, or with another type, is a programming error.
     if (!key || key->type != expected)
         throw std::logic_error(fmt::format("env key '{}' is not registered as {}", name, typeName(expected)));
-    return values_.at(name);
+    // A key registered after this Env was made (a plugin's, loaded later) reads its default.
+    const auto it = values_.find(name);
+    return it != values_.end() ? it->second : defaultOf(*key);
 }
 
 bool Env::get(const BoolKey& key) const { return value(key.name(), EnvType::Bool).text == "true"; }
@@ -234,18 +244,25 @@ std::filesystem::path Env::get(const PathKey& key) const { return value(key.name
 std::optional<Vec3> Env::get(const Vec3Key& key) const { return parseVec3(value(key.name(), EnvType::Vec3).text); }
 
 std::vector<Vec3> Env::get(const Vec3ListKey& key) const {
-    const std::string& text = value(key.name(), EnvType::Vec3List).text;
+    const std::string text = value(key.name(), EnvType::Vec3List).text;
     std::vector<Vec3> list;
     if (text.empty()) return list;
     for (const std::string& item : splitList(text)) list.push_back(*parseVec3(item));
     return list;
 }
 
-bool Env::isExplicit(const std::string& key) const { return values_.at(key).origin != "default"; }
+bool Env::isExplicit(const std::string& key) const {
+    const auto it = values_.find(key);
+    return it != values_.end() && it->second.origin != "default";
+}
 
 nlohmann::json Env::toJson() const {
     nlohmann::json j = nlohmann::json::object();
-    for (const auto& [name, v] : values_) j[name] = {{"value", v.text}, {"from", v.origin}};
+    for (const auto& [name, key] : registry_->keys()) {
+        const auto it = values_.find(name);
+        const Value v = it != values_.end() ? it->second : defaultOf(key);
+        j[name] = {{"value", v.text}, {"from", v.origin}};
+    }
     return j;
 }
 

@@ -31,6 +31,16 @@ private:
     std::map<std::string, EnvKey> keys_;
 };
 
+// One `Section::key value` line of an env file, checked for its form only.
+struct EnvLine {
+    std::string name;
+    std::string text;
+    std::string origin;  // "file:line"
+};
+// The lines of an env file, in order, before any registry sees them (the plugins an env file
+// names are loaded before its other keys are checked). Throws InputError naming file and line.
+std::vector<EnvLine> readEnvLines(const std::filesystem::path& file);
+
 // Resolved configuration: defaults, then env files in order, then -D overrides.
 class Env {
 public:
@@ -74,7 +84,8 @@ private:
         std::string text;    // validated; paths already resolved
         std::string origin;  // "default", "file:line" or "-D"
     };
-    const Value& value(std::string_view key, EnvType expected) const;
+    static Value defaultOf(const EnvKey& key);
+    Value value(std::string_view key, EnvType expected) const;
 
     const EnvRegistry* registry_;
     std::map<std::string, Value> values_;

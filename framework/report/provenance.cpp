@@ -22,12 +22,24 @@ std::string cpuModel() {
     return "unknown";
 }
 
+namespace {
+
+nlohmann::json& loadedPlugins() {
+    static nlohmann::json plugins = nlohmann::json::array();
+    return plugins;
+}
+
+}  // namespace
+
+void recordLoadedPlugin(nlohmann::json plugin) { loadedPlugins().push_back(std::move(plugin)); }
+
 nlohmann::json provenanceJson() {
     return {{"git_commit", gitCommit()},
             {"compiler", BVHLAB_COMPILER},
             {"cxx_flags", BVHLAB_CXX_FLAGS},
             {"cpu", cpuModel()},
-            {"hardware_threads", std::thread::hardware_concurrency()}};
+            {"hardware_threads", std::thread::hardware_concurrency()},
+            {"plugins", loadedPlugins()}};
 }
 
 }  // namespace bvhlab

@@ -9,7 +9,10 @@ namespace bvhlab {
 
 std::string gitCommit();
 std::string cpuModel();  // from /proc/cpuinfo, "unknown" elsewhere
-// {"git_commit", "compiler", "cxx_flags", "cpu", "hardware_threads"}
+// {"git_commit", "compiler", "cxx_flags", "cpu", "hardware_threads", "plugins"}
 nlohmann::json provenanceJson();
+// A plugin loaded by this process ({"path", "size", "crc32", "api_version", "accelerators"}),
+// listed under "plugins" in every provenance made after.
+void recordLoadedPlugin(nlohmann::json plugin);
 
 }  // namespace bvhlab

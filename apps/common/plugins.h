@@ -1,0 +1,38 @@
+// Loading plugins (docs/plugins.md): shared libraries whose entry point (framework/plugin/
+// plugin_api.h) adds accelerators, with their env keys, to the registry at run time. A plugin
+// is loaded from --plugin FILE, from ASDS::plugins in an env layer, or found by the name of the
+// accelerator asked for (`-DASDS::type=NAME` loads NAME.so from the plugin folders).
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace bvhlab {
+
+struct LoadedPlugin {
+    std::filesystem::path file;  // absolute
+    uint64_t size = 0;
+    uint32_t crc32 = 0;
+    int apiVersion = 0;
+    std::vector<std::string> accelerators;
+};
+
+// Loads `file` once (again: nothing happens). Throws InputError naming the file when it cannot be
+// opened, is not a bvhlab plugin, was built for another API version (both named), its entry
+// point throws, or it adds an accelerator or key that exists already (then it adds nothing).
+const LoadedPlugin& loadPlugin(const std::filesystem::path& file);
+const std::deque<LoadedPlugin>& loadedPlugins();  // in load order
+
+// Where plugins are found by name, in order: the folders of BVHLAB_PLUGIN_PATH (':'-separated),
+// the program's plugins/ folder (a build tree's build/plugins/) and ../lib/bvhlab/plugins/ beside
+// it (an installed package).
+std::vector<std::filesystem::path> pluginFolders();
+
+// If `accelerator` is not known, loads `accelerator`.so from the first plugin folder holding
+// one. False when it is still unknown (the caller then reports the unknown name).
+bool loadPluginFor(const std::string& accelerator);
+
+}  // namespace bvhlab

@@ -1,0 +1,110 @@
+// Loading plugins end to end (apps/common/plugins.h): refused with an error naming the file and
+// why, errors thrown inside a plugin reported with the plugin and the accelerator, found by
+// name in the plugin folders, listed by `bvhlab keys` and in the JSON provenance.
+#include "tests/support/cli_run.h"
+#include "tests/support/scratch_dir.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+
+namespace bvhlab::test {
+namespace {
+
+const std::string kPlugins = BVHLAB_TEST_PLUGINS;
+const std::string kThrowing = kPlugins + "/throwing.so";
+
+// A small render of the default scene, into a scratch folder.
+Result render(const std::string& args) {
+    return run("render -DCamera::width=16 -DCamera::height=12 " + args + " --out " +
+               (scratchDir("plugins") / "image").string());
+}
+
+TEST(Plugins, AWrongApiVersionIsRefusedNamingBothVersions) {
+    const Result r = render("--plugin " + kPlugins + "/wrong_version.so");
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("wrong_version.so: built for plugin API version 999, but this bvhlab has version 1"),
+              std::string::npos)
+        << r.output;
+}
+
+TEST(Plugins, AFileThatIsNotAPluginIsRefused) {
+    const auto text = scratchDir("plugins") / "not_a_plugin.so";
+    std::ofstream(text) << "hello\n";
+    Result r = render("--plugin " + text.string());
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("not_a_plugin.so: cannot load as a plugin"), std::string::npos) << r.output;
+
+    // A shared library, but not a plugin: the program's own dependency.
+    r = render("--plugin /lib/x86_64-linux-gnu/libz.so.1");
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("not a bvhlab plugin"), std::string::npos) << r.output;
+
+    r = render("--plugin /no/such/plugin.so");
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("/no/such/plugin.so: plugin file not found"), std::string::npos) << r.output;
+}
+
+TEST(Plugins, ExceptionsInsideAPluginNameThePluginAndTheAccelerator) {
+    Result r = render("--plugin " + kThrowing + " -DASDS::type=throwing");
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("throwing.so, accelerator 'throwing': build() threw: no build today"), std::string::npos)
+        << r.output;
+
+    r = render("--plugin " + kThrowing + " -DASDS::type=throwing_query");
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("accelerator 'throwing_query': findNearestBatch() threw: no queries today"),
+              std::string::npos)
+        << r.output;
+
+    r = render("--plugin " + kThrowing + " -DASDS::type=throwing_factory");
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("accelerator 'throwing_factory': its factory threw: no accelerator today"), std::string::npos)
+        << r.output;
+}
+
+TEST(Plugins, AnAcceleratorIsFoundByNameInThePluginFolders) {
+    Result r = runShell("BVHLAB_PLUGIN_PATH=/nowhere:" + kPlugins + " " + BVHLAB_BINARY +
+                        " render -DCamera::width=16 -DCamera::height=12 -DASDS::type=throwing --out " +
+                        (scratchDir("plugins") / "image").string());
+    EXPECT_NE(r.output.find("accelerator 'throwing': build() threw"), std::string::npos) << r.output;
+
+    r = render("-DASDS::type=throwing");
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("unknown accelerator 'throwing'"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("no throwing.so in the plugin folders"), std::string::npos) << r.output;
+}
+
+TEST(Plugins, AnEnvFileLoadsPluginsRelativeToItsFolder) {
+    const auto dir = scratchDir("plugins_env");
+    std::ofstream(dir / "plugin.env") << "ASDS::plugins " << std::filesystem::relative(kThrowing, dir).string()
+                                      << "\nASDS::type throwing\nThrowing::unused 4\n";
+    const Result r = render("--env " + (dir / "plugin.env").string());
+    EXPECT_NE(r.output.find("accelerator 'throwing': build() threw"), std::string::npos) << r.output;
+}
+
+TEST(Plugins, KeysListsAPluginsAcceleratorsAndKeysWithItsFile) {
+    const Result r = run("keys --plugin " + kThrowing);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("| `throwing_query` | throws in its queries (plugin `" + kThrowing + "`)"), std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("| `Throwing::unused` | int 1..9 | `3` |"), std::string::npos) << r.output;
+}
+
+TEST(Plugins, TheJsonProvenanceNamesEveryPluginLoaded) {
+    const auto out = scratchDir("plugins_json") / "image";
+    const Result r =
+        run("render -DCamera::width=16 -DCamera::height=12 -DASDS::type=naive --plugin " + kThrowing + " --out " + out.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    std::ifstream in(out.string() + ".json");
+    const nlohmann::json plugins = nlohmann::json::parse(in)["provenance"]["plugins"];
+    ASSERT_EQ(plugins.size(), 1u) << plugins.dump();
+    EXPECT_EQ(plugins[0]["path"], kThrowing);
+    EXPECT_EQ(plugins[0]["api_version"], 1);
+    EXPECT_EQ(plugins[0]["crc32"].get<std::string>().size(), 8u);
+    EXPECT_EQ(plugins[0]["accelerators"], nlohmann::json({"throwing", "throwing_query", "throwing_factory"}));
+}
+
+}  // namespace
+}  // namespace bvhlab::test
