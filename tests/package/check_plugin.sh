@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
-# The package tests (tests/CMakeLists.txt), each ending in the check that a plugin was built and
-# exports bvhlab's two entry points (framework/plugin/plugin_api.h); loading it is not tested here.
-#   tests/package/check_plugin.sh out-of-tree BUILD_DIR       find_package(bvhlab) on the installed build
-#   tests/package/check_plugin.sh add-subdirectory BUILD_DIR  add_subdirectory(bvhlab) in another project
+# The package tests (tests/CMakeLists.txt), on the plugin example of docs/plugins.md as a user
+# pastes it into an empty folder (tests/package/extract_doc_plugin.py):
+#   tests/package/check_plugin.sh out-of-tree BUILD_DIR       find_package(bvhlab) on `cmake --install`
+#       of BUILD_DIR, then the installed bvhlab loads the plugin and `bvhlab check` runs on it
+#   tests/package/check_plugin.sh add-subdirectory BUILD_DIR  add_subdirectory(bvhlab) in another
+#       project, which builds the plugin; it must export bvhlab's two entry points
 set -euo pipefail
 
 fail() { echo "check_plugin: $*" >&2; exit 1; }
@@ -12,28 +14,33 @@ here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/../.." && pwd)
 build=$(cd "$2" && pwd)
 work="$build/package-tests/$1"
+rm -rf "$work" && mkdir -p "$work"
+name=$(/usr/bin/python3 "$here/extract_doc_plugin.py" "$root/docs/plugins.md" "$work/plugin") \
+  || fail "could not take the example from docs/plugins.md"
 
 case "$1" in
   out-of-tree)
-    plugins=$(BVHLAB_BUILD="$build" "$here/build_plugin_out_of_tree.sh" "$here/minimal_plugin" "$work")
-    expected="$work/build/minimal.so"
+    plugin=$(BVHLAB_BUILD="$build" "$here/build_plugin_out_of_tree.sh" "$work/plugin" "$work")
+    [ "$plugin" = "$work/build/$name.so" ] || fail "expected $work/build/$name.so, built: $plugin"
+    bvhlab="$work/prefix/bin/bvhlab"
+    "$bvhlab" keys --plugin "$plugin" | grep -q "| \`$name\` |" || fail "bvhlab keys does not list $name"
+    "$bvhlab" render --plugin "$plugin" -DASDS::type="$name" -DCamera::width=32 -DCamera::height=24 \
+      --out "$work/render/image" || fail "the installed bvhlab could not render with $name"
+    echo "the installed bvhlab loaded $plugin and rendered with $name"
     ;;
   add-subdirectory)
-    rm -rf "$work" && mkdir -p "$work"
-    cmake -S "$here/add_subdirectory" -B "$work" -G Ninja -DCMAKE_BUILD_TYPE=Release -DBVHLAB_SOURCE="$root" \
+    cmake -S "$here/add_subdirectory" -B "$work/build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+      -DBVHLAB_SOURCE="$root" -DPLUGIN_NAME="$name" -DPLUGIN_SOURCES="$(ls "$work"/plugin/*.cpp | paste -sd';')" \
       || fail "configuring tests/package/add_subdirectory failed"
     # The plugin target only: it pulls bvhlab_core and bvhlab_config, nothing else of bvhlab.
-    cmake --build "$work" -j 2 --target subdir_plugin || fail "building the plugin failed"
-    expected="$work/subdir_plugin.so"
-    plugins=$expected
+    cmake --build "$work/build" -j 2 --target "$name" || fail "building the plugin failed"
+    plugin="$work/build/$name.so"
+    [ -f "$plugin" ] || fail "$plugin was not built"
+    symbols=$(nm -D --defined-only "$plugin")
+    for symbol in bvhlab_plugin_api_version bvhlab_register_plugin; do
+      grep -qw "$symbol" <<< "$symbols" || fail "$plugin does not export $symbol"
+    done
+    echo "$plugin exports bvhlab_plugin_api_version and bvhlab_register_plugin"
     ;;
   *) fail "unknown test $1" ;;
 esac
-
-echo "built: $plugins"
-[ -f "$expected" ] || fail "$expected was not built"
-symbols=$(nm -D --defined-only "$expected")
-for symbol in bvhlab_plugin_api_version bvhlab_register_plugin; do
-  grep -qw "$symbol" <<< "$symbols" || fail "$expected does not export $symbol"
-done
-echo "$expected exports bvhlab_plugin_api_version and bvhlab_register_plugin"
