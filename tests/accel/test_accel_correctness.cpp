@@ -15,7 +15,7 @@
 #include "framework/core/triangle.h"
 #include "framework/scene/procedural.h"
 #include "framework/scene/scene_loader.h"
-#include "tests/support/oracle.h"
+#include "apps/check/oracle.h"
 #include "tests/support/polygons.h"
 #include "tests/support/random_geometry.h"
 
@@ -32,7 +32,7 @@
 namespace bvhlab {
 namespace {
 
-using namespace bvhlab::test;
+using namespace bvhlab::check;
 
 // Accelerators whose known deviations are reported, not failed, up to this fraction of rays.
 bool isExternal(const std::string& name) { return name == "embree"; }

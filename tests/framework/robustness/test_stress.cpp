@@ -22,7 +22,7 @@
 #include "framework/robustness/stress_scenes.h"
 #include "framework/robustness/watertight_probe.h"
 #include "tests/support/cli_run.h"
-#include "tests/support/oracle.h"
+#include "apps/check/oracle.h"
 #include "tests/support/scratch_dir.h"
 
 #include <fmt/format.h>
@@ -280,7 +280,7 @@ TEST_P(Stress, ScaleAndTranslationChangeNothing) {
 TEST_P(Stress, SahCostIgnoresDecimalScales) {
     // Without exact ties between candidate splits (a soup of random triangles), rounding the
     // coordinates by a decimal scale must not change the normalised SAH cost beyond 1e-3.
-    static const Scene base = test::makeSoupScene(4000, 11, 1e-2f, 1.0f, 50.0f);
+    static const Scene base = check::makeSoupScene(4000, 11, 1e-2f, 1.0f, 50.0f);
     BuildStats baseStats;
     build(base, &baseStats);
     if (!baseStats.sah) GTEST_SKIP() << variant().label << " reports no SAH cost";
@@ -337,7 +337,7 @@ const std::vector<EdgeCase>& edgeCases() {
             EdgeCase c{std::move(scene), {}, {}};
             c.rays = raysTowardTriangles(c.scene, 128, 9);
             // And some rays that miss the tiny ones but cross the huge triangle or the line.
-            const std::vector<Ray> more = test::generateRays(test::RayKind::Outside, c.scene.primitives(), c.scene.bounds, 64, 10);
+            const std::vector<Ray> more = check::generateRays(check::RayKind::Outside, c.scene.primitives(), c.scene.bounds, 64, 10);
             c.rays.insert(c.rays.end(), more.begin(), more.end());
             NaiveAccelerator naive;
             naive.build(c.scene.primitives());
@@ -389,7 +389,7 @@ TEST_P(Stress, BuildersAtTheEdgeEndInBoundedTimeAndDepth) {
             accel->findNearest(c.rays[i], h, counters);
             if (!hitsAgree(h, c.naive[i])) {
                 ++differ;
-                if (examples.size() < 3) examples.push_back(test::describe(c.rays[i]) + ": " + test::describe(h) + " vs naive " + test::describe(c.naive[i]));
+                if (examples.size() < 3) examples.push_back(check::describe(c.rays[i]) + ": " + check::describe(h) + " vs naive " + check::describe(c.naive[i]));
             }
         }
         expectZero("answers differing from naive on " + c.scene.name, differ, c.rays.size(), examples);
@@ -459,7 +459,7 @@ TEST_P(Stress, RaysStartingOnASurface) {
             Hit h;
             if (accel->findNearest(out, h, counters)) {
                 ++selfHitsLeaving;
-                if (examples.size() < 3) examples.push_back("leaving " + test::describe(out) + " hit " + test::describe(h));
+                if (examples.size() < 3) examples.push_back("leaving " + check::describe(out) + " hit " + check::describe(h));
             }
             if (accel->isOccluded(out, counters)) ++occludedLeaving;
             // Entering it (origin offset inward): the far side, never the start.
@@ -467,10 +467,10 @@ TEST_P(Stress, RaysStartingOnASurface) {
             Hit h2;
             if (!accel->findNearest(in, h2, counters)) {
                 ++missesEntering;
-                if (examples.size() < 3) examples.push_back("entering " + test::describe(in) + " missed");
+                if (examples.size() < 3) examples.push_back("entering " + check::describe(in) + " missed");
             } else if (h2.primitive == s.prim) {
                 ++selfHitsEntering;
-                if (examples.size() < 3) examples.push_back("entering " + test::describe(in) + " hit its start " + test::describe(h2));
+                if (examples.size() < 3) examples.push_back("entering " + check::describe(in) + " hit its start " + check::describe(h2));
             }
         }
         expectZero("hits leaving " + c.scene.name, selfHitsLeaving, points.size(), examples);
@@ -517,10 +517,10 @@ TEST_P(Stress, AxisParallelRaysInThePlanesOfFaces) {
         Hit h;
         if (!accel->findNearest(rays[i], h, counters)) {
             ++misses;
-            if (examples.size() < 3) examples.push_back(test::describe(rays[i]) + " missed");
+            if (examples.size() < 3) examples.push_back(check::describe(rays[i]) + " missed");
         } else if (std::abs(double(h.t) - expectedT[i]) > 1e-6 * expectedT[i]) {
             ++wrongT;
-            if (examples.size() < 3) examples.push_back(test::describe(rays[i]) + " hit " + test::describe(h));
+            if (examples.size() < 3) examples.push_back(check::describe(rays[i]) + " hit " + check::describe(h));
         }
         if (!accel->isOccluded(rays[i], counters)) ++occlusionMisses;
     }
@@ -563,7 +563,7 @@ TEST_P(Stress, NegativeTminSeesBehindTheOrigin) {
         naive.findNearest(r, b, counters);
         if (found != b.found() || !hitsAgree(a, b) || accel->isOccluded(r, counters) != b.found()) {
             ++differ;
-            if (examples.size() < 3) examples.push_back(test::describe(r) + ": " + test::describe(a) + " vs naive " + test::describe(b));
+            if (examples.size() < 3) examples.push_back(check::describe(r) + ": " + check::describe(a) + " vs naive " + check::describe(b));
         }
     }
     expectZero("answers with negative tmin unlike naive", differ, rays, examples);
@@ -607,7 +607,7 @@ TEST_P(Stress, VeryShortAndVeryLongRays) {
         wrong |= accel->findNearest(startsBeyond, h3, counters) && h3.primitive == prim;
         if (wrong) {
             ++shortWrong;
-            if (examples.size() < 3) examples.push_back(fmt::format("{} toward prim {} at t {:.9g}", test::describe(reaches), prim, tPlane));
+            if (examples.size() < 3) examples.push_back(fmt::format("{} toward prim {} at t {:.9g}", check::describe(reaches), prim, tPlane));
         }
     }
     EXPECT_GT(shortRays, 500u);
@@ -629,17 +629,17 @@ TEST_P(Stress, VeryShortAndVeryLongRays) {
         naiveHits += naive.findNearest(r, n, counters);
         if (!hitsAgree(a, n)) {
             ++longDiffer;
-            if (examples.size() < 3) examples.push_back(test::describe(r) + ": " + test::describe(a) + " vs naive " + test::describe(n));
+            if (examples.size() < 3) examples.push_back(check::describe(r) + ": " + check::describe(a) + " vs naive " + check::describe(n));
         }
     }
     EXPECT_GT(naiveHits, toward.size() / 2);
     expectZero("very long rays answered unlike naive", longDiffer, toward.size(), examples);
 
     // NaN anywhere, zero direction, empty intervals: misses, no crash.
-    for (const Ray& r : test::generateRays(test::RayKind::Invalid, scene.primitives(), scene.bounds, 400, 43)) {
+    for (const Ray& r : check::generateRays(check::RayKind::Invalid, scene.primitives(), scene.bounds, 400, 43)) {
         Hit h;
-        EXPECT_FALSE(accel->findNearest(r, h, counters)) << test::describe(r);
-        EXPECT_FALSE(accel->isOccluded(r, counters)) << test::describe(r);
+        EXPECT_FALSE(accel->findNearest(r, h, counters)) << check::describe(r);
+        EXPECT_FALSE(accel->isOccluded(r, counters)) << check::describe(r);
     }
 }
 

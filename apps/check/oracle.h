@@ -1,4 +1,5 @@
-// Test-side helpers shared by the accelerator tests: a double-precision brute-force oracle,
+// The reference of the conformance suite (`bvhlab check`, apps/check/conformance.h), also used
+// by the accelerator tests: a double-precision brute-force oracle,
 // a judge that decides whether an answer is right, wrong, or within rounding of the truth,
 // deterministic ray and scene generators, and the comparison of an accelerator against naive.
 //
@@ -20,7 +21,7 @@
 #include <string>
 #include <vector>
 
-namespace bvhlab::test {
+namespace bvhlab::check {
 
 // ---------------------------------------------------------------------------------------------
 // Double-precision brute force.
@@ -148,6 +149,9 @@ struct Reference {
     std::vector<OracleHit> oracle;     // double brute-force nearest
 };
 Reference computeReference(const Accelerator& naive, const Oracle& oracle, std::span<const Ray> rays);
+// The oracle's answers alone (naive's left empty): the structure is compared with the oracle,
+// whose judge decides, and naive is taken to agree with it.
+Reference computeOracleReference(const Oracle& oracle, std::span<const Ray> rays);
 
 struct ComparisonReport {
     size_t rays = 0;
@@ -168,11 +172,14 @@ struct ComparisonReport {
     size_t occlusionTies = 0;      // skipped by the tie caveat
     size_t shrunkOcclusion = 0;    // isOccluded true with tmax just below the nearest t
     size_t queriesMiscounted = 0;  // counters.queries did not go up by exactly 1 per query
-    std::vector<std::string> examples;  // the first few problems, with full ray, t and prim
+    size_t occludedMiscounted = 0; // of them, by isOccluded
+    // The first few problems, with full ray, t and prim: of findNearest (and the judge), and of isOccluded.
+    std::vector<std::string> examples, occlusionExamples;
 
-    size_t failures() const {
-        return accelWrong + returnMismatch + occlusionMismatch + shrunkOcclusion + queriesMiscounted;
-    }
+    size_t failures() const { return nearestFailures() + occlusionFailures(); }
+    // What `bvhlab check`'s agreement and any-hit checks count.
+    size_t nearestFailures() const { return accelWrong + returnMismatch + queriesMiscounted - occludedMiscounted; }
+    size_t occlusionFailures() const { return occlusionMismatch + shrunkOcclusion + occludedMiscounted; }
     std::string summary() const;
 };
 
@@ -186,4 +193,4 @@ std::string describe(const Ray& ray);
 std::string describe(const Hit& hit);
 std::string describe(const OracleHit& hit);
 
-}  // namespace bvhlab::test
+}  // namespace bvhlab::check

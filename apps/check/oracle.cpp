@@ -1,4 +1,4 @@
-#include "tests/support/oracle.h"
+#include "apps/check/oracle.h"
 
 #include "framework/core/triangle.h"
 #include "framework/robustness/stress_scenes.h"
@@ -12,7 +12,7 @@
 #include <map>
 #include <stdexcept>
 
-namespace bvhlab::test {
+namespace bvhlab::check {
 
 namespace {
 
@@ -731,6 +731,13 @@ Reference computeReference(const Accelerator& naive, const Oracle& oracle, std::
     return ref;
 }
 
+Reference computeOracleReference(const Oracle& oracle, std::span<const Ray> rays) {
+    Reference ref;
+    ref.oracle.resize(rays.size());
+    for (size_t i = 0; i < rays.size(); ++i) ref.oracle[i] = oracle.nearest(rays[i]);
+    return ref;
+}
+
 std::string ComparisonReport::summary() const {
     std::string s = fmt::format(
         "{} rays: accel {} hits, naive {} hits; {} disagreements with naive (accelerator wrong {}, naive wrong {}, "
@@ -741,6 +748,7 @@ std::string ComparisonReport::summary() const {
         naiveWrong, accelVsOracle, returnMismatch, occlusionMismatch, occlusionTies, shrunkOcclusion,
         queriesMiscounted);
     for (const std::string& e : examples) s += "\n    " + e;
+    for (const std::string& e : occlusionExamples) s += "\n    " + e;
     return s;
 }
 
@@ -748,9 +756,13 @@ ComparisonReport compareWithReference(const Accelerator& accel, const Reference&
                                       std::span<const Ray> rays, size_t maxExamples) {
     ComparisonReport report;
     report.rays = rays.size();
-    auto example = [&](size_t i, const std::string& what) {
-        if (report.examples.size() < maxExamples) report.examples.push_back(fmt::format("ray #{} {}: {}", i, describe(rays[i]), what));
+    auto exampleIn = [&](std::vector<std::string>& list, size_t i, const std::string& what) {
+        if (list.size() < maxExamples) list.push_back(fmt::format("ray #{} {}: {}", i, describe(rays[i]), what));
     };
+    auto example = [&](size_t i, const std::string& what) { exampleIn(report.examples, i, what); };
+    auto occlusionExample = [&](size_t i, const std::string& what) { exampleIn(report.occlusionExamples, i, what); };
+    // Without naive's answers (computeOracleReference), naive is the oracle.
+    const bool withNaive = !ref.naive.empty();
     const Hit sentinel{-12345.0f, 0xDEADBEEFu, 7.0f, 9.0f};
     for (size_t i = 0; i < rays.size(); ++i) {
         const Ray& ray = rays[i];
@@ -768,10 +780,10 @@ ComparisonReport compareWithReference(const Accelerator& accel, const Reference&
             example(i, fmt::format("findNearest returned {} with hit {}", found, describe(hit)));
         }
         const Hit a = found ? hit : Hit{};
-        const Hit& n = ref.naive[i];
+        const Hit n = withNaive ? ref.naive[i] : ref.oracle[i].toHit();
         report.accelHits += a.found();
         report.naiveHits += n.found();
-        const bool naiveWrong = ref.naiveVerdict[i] == Verdict::Wrong;
+        const bool naiveWrong = withNaive && ref.naiveVerdict[i] == Verdict::Wrong;
         report.naiveWrong += naiveWrong;
 
         const Judgement ja = oracle.judge(ray, a, ref.oracle[i]);
@@ -785,7 +797,10 @@ ComparisonReport compareWithReference(const Accelerator& accel, const Reference&
             else if (naiveWrong) ++report.naiveOnlyWrong;
             else ++report.ambiguous;
         }
-        if (accelWrong || naiveWrong)
+        if (accelWrong && !withNaive)
+            example(i, fmt::format("structure {} [{}: {}]; reference {}", describe(a), verdictName(ja.verdict), ja.reason,
+                                   describe(ref.oracle[i])));
+        else if (accelWrong || naiveWrong)
             example(i, fmt::format("accelerator {} [{}: {}]; naive {} [{}{}{}]; oracle {}", describe(a),
                                    verdictName(ja.verdict), ja.reason, describe(n), verdictName(ref.naiveVerdict[i]),
                                    naiveWrong ? ": " : "", naiveWrong ? ref.naiveReason[i] : "",
@@ -797,7 +812,8 @@ ComparisonReport compareWithReference(const Accelerator& accel, const Reference&
         const bool occluded = accel.isOccluded(ray, occCounters);
         if (occCounters.queries != 1) {
             ++report.queriesMiscounted;
-            example(i, fmt::format("isOccluded counted {} queries", occCounters.queries));
+            ++report.occludedMiscounted;
+            occlusionExample(i, fmt::format("isOccluded counted {} queries", occCounters.queries));
         }
         if (occluded != a.found()) {
             const float tol = 1e-4f * std::max(1.0f, std::abs(a.t));
@@ -806,7 +822,7 @@ ComparisonReport compareWithReference(const Accelerator& accel, const Reference&
                 ++report.occlusionTies;
             } else {
                 ++report.occlusionMismatch;
-                example(i, fmt::format("isOccluded = {} but findNearest found {}", occluded, describe(a)));
+                occlusionExample(i, fmt::format("isOccluded = {} but findNearest found {}", occluded, describe(a)));
             }
         }
         // Nothing can block the ray before its nearest hit: with tmax just below the nearest t
@@ -817,7 +833,7 @@ ComparisonReport compareWithReference(const Accelerator& accel, const Reference&
             shorter.tmax = a.t * (1.0f - 1e-3f);
             if (shorter.tmin <= shorter.tmax && accel.isOccluded(shorter, occCounters)) {
                 ++report.shrunkOcclusion;
-                example(i, fmt::format("isOccluded true with tmax = {:.9g} below the nearest hit {}", shorter.tmax,
+                occlusionExample(i, fmt::format("isOccluded true with tmax = {:.9g} below the nearest hit {}", shorter.tmax,
                                        describe(a)));
             }
         }
@@ -830,4 +846,4 @@ ComparisonReport compareWithNaive(const Accelerator& accel, const Accelerator& n
     return compareWithReference(accel, computeReference(naive, oracle, rays), oracle, rays, maxExamples);
 }
 
-}  // namespace bvhlab::test
+}  // namespace bvhlab::check
