@@ -67,14 +67,6 @@ std::unique_ptr<Accelerator> buildOn(const Subject& subject, const Scene& scene,
 
 // --- agreement and any-hit: the generated scenes, every ray kind, against the oracle ----------
 
-// Ray counts per kind: scenes are at most ~10k triangles, so the oracle stays O(1e8) tests.
-size_t raysFor(const Scene& scene, RayKind kind) {
-    if (kind == RayKind::Invalid) return 200;
-    const size_t n = scene.validPrimitives.size();
-    if (n <= 3) return 4000;
-    return n > 5000 ? 800 : 1500;
-}
-
 // One scene with its oracle and, per ray kind, the rays and the oracle's answers: computed once
 // per process, shared by every structure and check.
 struct SceneCase {
@@ -98,7 +90,7 @@ const SceneCase& sceneCase(const NamedSceneFactory& factory, const std::vector<R
     uint32_t seed = 2166136261u;  // FNV-1a of the name: the same rays on every platform
     for (const char ch : factory.name) seed = (seed ^ uint8_t(ch)) * 16777619u;
     for (RayKind kind : kAllRayKinds) {
-        const size_t count = std::max<size_t>(1, size_t(std::llround(double(raysFor(scene, kind)) * rayScale)));
+        const size_t count = std::max<size_t>(1, size_t(std::llround(double(raysPerKind(scene, kind)) * rayScale)));
         slot->rays.emplace_back(kind, generateRays(kind, scene.primitives(), scene.bounds, count, ++seed));
     }
     if (!extraRays.empty()) slot->rays.emplace_back(RayKind::Outside, extraRays);
@@ -319,11 +311,6 @@ CheckResult mixedPrimitives(const Subject& subject, const CheckOptions& options)
 
 bool bitEqual(const Hit& a, const Hit& b) { return std::memcmp(&a, &b, sizeof(Hit)) == 0; }
 
-bool sameCounters(const QueryCounters& a, const QueryCounters& b) {
-    return a.queries == b.queries && a.intersectionTests == b.intersectionTests &&
-           a.traversalSteps == b.traversalSteps && a.sphereTests == b.sphereTests && a.coneTests == b.coneTests;
-}
-
 std::string describeCounters(const QueryCounters& c) {
     return fmt::format("queries {}, N_IT {}, N_TR {}, spheres {}, cones {}", c.queries, c.intersectionTests,
                        c.traversalSteps, c.sphereTests, c.coneTests);
@@ -418,7 +405,8 @@ CheckResult watertight(const Subject& subject, const CheckOptions& options) {
             reported += leaks;
         } else {
             result.failures += leaks;
-            for (const std::string& e : s.examples) addExample(result, options, scene.name, e);
+            for (const std::string& e : s.examples)
+                addExample(result, options, scene.name, e + " (tmin 0); reference: a hit in [0, tmax]");
         }
         progress(options, result.scenes, meshes->size());
     }
@@ -477,6 +465,12 @@ CheckResult buildsAtTheEdge(const Subject& subject, const CheckOptions& options)
 }  // namespace
 
 bool isExternal(std::string_view accelerator) { return accelerator.starts_with("embree"); }
+
+bool sameCounters(const QueryCounters& a, const QueryCounters& b) {
+    return a.queries == b.queries && a.intersectionTests == b.intersectionTests &&
+           a.traversalSteps == b.traversalSteps && a.sphereTests == b.sphereTests && a.coneTests == b.coneTests;
+}
+
 
 Scene makeMixedScene(uint32_t seed) {
     StressRng rng(seed);

@@ -67,6 +67,9 @@ CheckResult runCheck(const std::string& name, const Subject& subject, const Chec
 bool isExternal(std::string_view accelerator);
 inline bool batchIsBitExact(std::string_view accelerator) { return !isExternal(accelerator); }
 
+// Every count of a and b is the same.
+bool sameCounters(const QueryCounters& a, const QueryCounters& b);
+
 // The scenes of the mixed-primitives and batch checks, also used by the tests: triangles,
 // spheres (some negative radius) and cones with one degenerate of each kind; closed meshes, a
 // floor, spheres and cones; and random, axis-parallel, behind-the-origin, empty and NaN rays.

@@ -430,6 +430,13 @@ Judgement Oracle::judge(const Ray& ray, const Hit& answer, const OracleHit& near
 
 // ---------------------------------------------------------------------------------------------
 
+size_t raysPerKind(const Scene& scene, RayKind kind) {
+    if (kind == RayKind::Invalid) return 200;
+    const size_t n = scene.validPrimitives.size();
+    if (n <= 3) return 4000;
+    return n > 5000 ? 800 : 1500;
+}
+
 std::vector<Ray> generateRays(RayKind kind, const PrimitiveSet& prims, const Bounds3& sceneBounds, size_t count,
                               uint32_t seed) {
     StressRng rng(seed * 2654435761u + uint32_t(kind) * 40503u + 17u);

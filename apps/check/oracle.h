@@ -95,6 +95,10 @@ inline constexpr RayKind kAllRayKinds[] = {RayKind::Outside,      RayKind::Insid
                                            RayKind::Interval,     RayKind::Invalid};
 const char* rayKindName(RayKind kind);
 
+// How many rays of `kind` the correctness checks send at `scene`: scenes are at most ~10k
+// triangles, so the oracle stays at O(1e8) tests.
+size_t raysPerKind(const Scene& scene, RayKind kind);
+
 // `bounds` is where random rays are aimed (an empty box is replaced by [-1,1]^3). Kinds that
 // need triangles fall back to Outside rays when prims has no valid one.
 std::vector<Ray> generateRays(RayKind kind, const PrimitiveSet& prims, const Bounds3& bounds, size_t count,
