@@ -37,6 +37,13 @@ constexpr double kEdgeBuildSeconds = 120.0;
 constexpr double kEdgeBuildSeconds = 20.0;
 #endif
 
+CheckResult newResult(std::string check, std::string unit = "rays") {
+    CheckResult result;
+    result.check = std::move(check);
+    result.unit = std::move(unit);
+    return result;
+}
+
 size_t scaled(size_t count, const CheckOptions& options) {
     return std::max<size_t>(1, size_t(std::llround(double(count) * options.rayScale)));
 }
@@ -105,7 +112,7 @@ enum class Queries { Nearest, Occlusion, Both };
 CheckResult compareOnScenes(const Subject& subject, const CheckOptions& options, const std::string& check,
                             const std::vector<NamedSceneFactory>& scenes,
                             const std::function<std::vector<Ray>(const Scene&)>& extraRays, Queries queries) {
-    CheckResult result{check};
+    CheckResult result = newResult(check);
     size_t reported = 0, done = 0;
     const size_t total = scenes.size() * std::size(kAllRayKinds);
     for (const NamedSceneFactory& factory : scenes) {
@@ -255,7 +262,7 @@ std::vector<Ray> mixedRays(const Scene& scene, uint32_t seed, double scale) {
 std::string describeReference(const MixedReference& r) { return r.found() ? fmt::format("t={:.17g} prim={}", r.t, r.primitive) : "miss"; }
 
 CheckResult mixedPrimitives(const Subject& subject, const CheckOptions& options) {
-    CheckResult result{"mixed-primitives"};
+    CheckResult result = newResult("mixed-primitives");
     const Scene scene = makeMixedScene(7);
     const PrimitiveSet prims = scene.primitives();
     auto accel = subject.make();
@@ -317,7 +324,7 @@ std::string describeCounters(const QueryCounters& c) {
 }
 
 CheckResult batch(const Subject& subject, const CheckOptions& options) {
-    CheckResult result{"batch"};
+    CheckResult result = newResult("batch");
     const Scene scene = makeBatchScene();
     const auto accel = buildOn(subject, scene, result, options);
     result.scenes = 1;
@@ -376,7 +383,7 @@ CheckResult batch(const Subject& subject, const CheckOptions& options) {
 // --- watertight: probes at the edges and vertices of closed meshes ----------------------------
 
 CheckResult watertight(const Subject& subject, const CheckOptions& options) {
-    CheckResult result{"watertight", "probes"};
+    CheckResult result = newResult("watertight", "probes");
     static std::mutex mutex;
     static std::map<double, std::vector<std::pair<Scene, ProbeSet>>> cache;
     std::vector<std::pair<Scene, ProbeSet>>* meshes;
@@ -445,7 +452,7 @@ const std::vector<EdgeCase>& edgeCases(size_t n) {
 }
 
 CheckResult buildsAtTheEdge(const Subject& subject, const CheckOptions& options) {
-    CheckResult result{"builds-at-the-edge", "builds"};
+    CheckResult result = newResult("builds-at-the-edge", "builds");
     const std::vector<EdgeCase>& cases = edgeCases(options.edgePrimitives);
     const double maxSeconds = options.edgeMaxSeconds > 0 ? options.edgeMaxSeconds : kEdgeBuildSeconds;
     for (const EdgeCase& c : cases) {

@@ -34,6 +34,7 @@ namespace bvhlab {
 namespace {
 
 using namespace bvhlab::check;
+using namespace bvhlab::test;  // polygons and random geometry
 
 // Accelerators whose known deviations are reported, not failed, up to this fraction of rays.
 bool isExternal(const std::string& name) { return name == "embree"; }
