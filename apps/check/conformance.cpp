@@ -74,8 +74,8 @@ std::unique_ptr<Accelerator> buildOn(const Subject& subject, const Scene& scene,
 
 // --- agreement and any-hit: the generated scenes, every ray kind, against the oracle ----------
 
-// One scene with its oracle and, per ray kind, the rays and the oracle's answers: computed once
-// per process, shared by every structure and check.
+// One scene with its oracle and, per ray kind, the rays and (when a check judges answers) the
+// oracle's answers: computed once per process, shared by every structure and check.
 struct SceneCase {
     Scene scene;
     std::unique_ptr<Oracle> oracle;
@@ -83,12 +83,17 @@ struct SceneCase {
     std::vector<Reference> reference;
 };
 
-const SceneCase& sceneCase(const NamedSceneFactory& factory, const std::vector<Ray>& extraRays, double rayScale) {
+const SceneCase& sceneCase(const NamedSceneFactory& factory, const std::vector<Ray>& extraRays, double rayScale,
+                           bool judged) {
     static std::mutex mutex;
     static std::map<std::pair<std::string, double>, std::unique_ptr<SceneCase>> cache;
     const std::lock_guard lock(mutex);
     auto& slot = cache[{factory.name, rayScale}];
-    if (slot) return *slot;
+    if (slot) {
+        if (judged && slot->reference.empty())
+            for (const auto& [kind, rays] : slot->rays) slot->reference.push_back(computeOracleReference(*slot->oracle, rays));
+        return *slot;
+    }
     slot = std::make_unique<SceneCase>();
     slot->scene = factory.make();
     slot->scene.name = factory.name;
@@ -101,7 +106,8 @@ const SceneCase& sceneCase(const NamedSceneFactory& factory, const std::vector<R
         slot->rays.emplace_back(kind, generateRays(kind, scene.primitives(), scene.bounds, count, ++seed));
     }
     if (!extraRays.empty()) slot->rays.emplace_back(RayKind::Outside, extraRays);
-    for (const auto& [kind, rays] : slot->rays) slot->reference.push_back(computeOracleReference(*slot->oracle, rays));
+    if (judged)
+        for (const auto& [kind, rays] : slot->rays) slot->reference.push_back(computeOracleReference(*slot->oracle, rays));
     return *slot;
 }
 
@@ -117,14 +123,17 @@ CheckResult compareOnScenes(const Subject& subject, const CheckOptions& options,
     const size_t total = scenes.size() * std::size(kAllRayKinds);
     for (const NamedSceneFactory& factory : scenes) {
         const std::vector<Ray> extra = extraRays ? extraRays(factory.make()) : std::vector<Ray>{};
-        const SceneCase& c = sceneCase(factory, extra, options.rayScale);
+        const bool nearest = queries != Queries::Occlusion, occlusion = queries != Queries::Nearest;
+        // isOccluded is checked against the structure's own closest hits: no oracle needed.
+        const SceneCase& c = sceneCase(factory, extra, options.rayScale, nearest);
+        static const Reference unjudged;
         const auto accel = buildOn(subject, c.scene, result, options);
         ++result.scenes;
         for (size_t k = 0; k < c.rays.size(); ++k) {
             const auto& [kind, rays] = c.rays[k];
             const std::string label = fmt::format("{}/{}", factory.name, k < std::size(kAllRayKinds) ? rayKindName(kind) : "aimed");
-            const ComparisonReport r = compareWithReference(*accel, c.reference[k], *c.oracle, rays, options.maxExamples);
-            const bool nearest = queries != Queries::Occlusion, occlusion = queries != Queries::Nearest;
+            const ComparisonReport r = compareWithReference(*accel, nearest ? c.reference[k] : unjudged, *c.oracle, rays,
+                                                            options.maxExamples, occlusion);
             const size_t failures = (nearest ? r.nearestFailures() : 0) + (occlusion ? r.occlusionFailures() : 0);
             result.cases += r.rays;
             if (isExternal(subject.name) && double(failures) <= kExternalBound * double(r.rays)) {
@@ -455,17 +464,26 @@ CheckResult buildsAtTheEdge(const Subject& subject, const CheckOptions& options)
     CheckResult result = newResult("builds-at-the-edge", "builds");
     const std::vector<EdgeCase>& cases = edgeCases(options.edgePrimitives);
     const double maxSeconds = options.edgeMaxSeconds > 0 ? options.edgeMaxSeconds : kEdgeBuildSeconds;
+    // Every structure is held to bounded time and memory; an external one's answers (Embree's
+    // float test on a huge triangle among tiny ones) are reported, as `bvhlab stress` does.
+    size_t reported = 0;
     for (const EdgeCase& c : cases) {
         auto accel = subject.make();
         const EdgeBuildCheck check = checkEdgeBuild(*accel, c.scene, c.rays, c.reference, maxSeconds, options.threads,
                                                     options.maxExamples);
         ++result.scenes;
         ++result.cases;
-        result.failures += check.problems.size() + check.differ;
+        result.failures += check.problems.size();
         for (const std::string& p : check.problems) addExample(result, options, c.scene.name, p);
-        for (const std::string& e : check.examples) addExample(result, options, c.scene.name, e);
+        if (isExternal(subject.name)) {
+            reported += check.differ;
+        } else {
+            result.failures += check.differ;
+            for (const std::string& e : check.examples) addExample(result, options, c.scene.name, e);
+        }
         progress(options, result.scenes, cases.size());
     }
+    if (reported) result.note = fmt::format("{} answers unlike naive's reported, not failed", reported);
     return result;
 }
 

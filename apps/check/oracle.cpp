@@ -760,7 +760,7 @@ std::string ComparisonReport::summary() const {
 }
 
 ComparisonReport compareWithReference(const Accelerator& accel, const Reference& ref, const Oracle& oracle,
-                                      std::span<const Ray> rays, size_t maxExamples) {
+                                      std::span<const Ray> rays, size_t maxExamples, bool occlusion) {
     ComparisonReport report;
     report.rays = rays.size();
     auto exampleIn = [&](std::vector<std::string>& list, size_t i, const std::string& what) {
@@ -770,6 +770,8 @@ ComparisonReport compareWithReference(const Accelerator& accel, const Reference&
     auto occlusionExample = [&](size_t i, const std::string& what) { exampleIn(report.occlusionExamples, i, what); };
     // Without naive's answers (computeOracleReference), naive is the oracle.
     const bool withNaive = !ref.naive.empty();
+    // Without the oracle's answers (an empty Reference), the interface contract alone.
+    const bool judged = !ref.oracle.empty();
     const Hit sentinel{-12345.0f, 0xDEADBEEFu, 7.0f, 9.0f};
     for (size_t i = 0; i < rays.size(); ++i) {
         const Ray& ray = rays[i];
@@ -787,31 +789,34 @@ ComparisonReport compareWithReference(const Accelerator& accel, const Reference&
             example(i, fmt::format("findNearest returned {} with hit {}", found, describe(hit)));
         }
         const Hit a = found ? hit : Hit{};
-        const Hit n = withNaive ? ref.naive[i] : ref.oracle[i].toHit();
         report.accelHits += a.found();
-        report.naiveHits += n.found();
-        const bool naiveWrong = withNaive && ref.naiveVerdict[i] == Verdict::Wrong;
-        report.naiveWrong += naiveWrong;
+        if (judged) {
+            const Hit n = withNaive ? ref.naive[i] : ref.oracle[i].toHit();
+            report.naiveHits += n.found();
+            const bool naiveWrong = withNaive && ref.naiveVerdict[i] == Verdict::Wrong;
+            report.naiveWrong += naiveWrong;
 
-        const Judgement ja = oracle.judge(ray, a, ref.oracle[i]);
-        const bool accelWrong = ja.verdict == Verdict::Wrong;
-        report.accelWrong += accelWrong;
-        report.accelVsOracle += !agree(a, ref.oracle[i].toHit());
-        if (!agree(a, n)) {
-            ++report.disagreements;
-            if (accelWrong && naiveWrong) ++report.bothWrong;
-            else if (accelWrong) ++report.accelOnlyWrong;
-            else if (naiveWrong) ++report.naiveOnlyWrong;
-            else ++report.ambiguous;
+            const Judgement ja = oracle.judge(ray, a, ref.oracle[i]);
+            const bool accelWrong = ja.verdict == Verdict::Wrong;
+            report.accelWrong += accelWrong;
+            report.accelVsOracle += !agree(a, ref.oracle[i].toHit());
+            if (!agree(a, n)) {
+                ++report.disagreements;
+                if (accelWrong && naiveWrong) ++report.bothWrong;
+                else if (accelWrong) ++report.accelOnlyWrong;
+                else if (naiveWrong) ++report.naiveOnlyWrong;
+                else ++report.ambiguous;
+            }
+            if (accelWrong && !withNaive)
+                example(i, fmt::format("structure {} [{}: {}]; reference {}", describe(a), verdictName(ja.verdict), ja.reason,
+                                       describe(ref.oracle[i])));
+            else if (accelWrong || naiveWrong)
+                example(i, fmt::format("accelerator {} [{}: {}]; naive {} [{}{}{}]; oracle {}", describe(a),
+                                       verdictName(ja.verdict), ja.reason, describe(n), verdictName(ref.naiveVerdict[i]),
+                                       naiveWrong ? ": " : "", naiveWrong ? ref.naiveReason[i] : "",
+                                       describe(ref.oracle[i])));
         }
-        if (accelWrong && !withNaive)
-            example(i, fmt::format("structure {} [{}: {}]; reference {}", describe(a), verdictName(ja.verdict), ja.reason,
-                                   describe(ref.oracle[i])));
-        else if (accelWrong || naiveWrong)
-            example(i, fmt::format("accelerator {} [{}: {}]; naive {} [{}{}{}]; oracle {}", describe(a),
-                                   verdictName(ja.verdict), ja.reason, describe(n), verdictName(ref.naiveVerdict[i]),
-                                   naiveWrong ? ": " : "", naiveWrong ? ref.naiveReason[i] : "",
-                                   describe(ref.oracle[i])));
+        if (!occlusion) continue;
 
         // isOccluded must answer "is there a hit" exactly as findNearest did, except for a hit
         // within hitsAgree's tolerance of an interval end.

@@ -187,8 +187,10 @@ struct ComparisonReport {
     std::string summary() const;
 };
 
+// With `occlusion` false, isOccluded is not asked; with an empty `reference`, findNearest's
+// answers are not judged (the interface contract and isOccluded alone).
 ComparisonReport compareWithReference(const Accelerator& accel, const Reference& reference, const Oracle& oracle,
-                                      std::span<const Ray> rays, size_t maxExamples = 5);
+                                      std::span<const Ray> rays, size_t maxExamples = 5, bool occlusion = true);
 ComparisonReport compareWithNaive(const Accelerator& accel, const Accelerator& naive, const Oracle& oracle,
                                   std::span<const Ray> rays, size_t maxExamples = 5);
 
