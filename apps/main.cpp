@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
     bvhlab::addStressCommand(app);
     bvhlab::addTradeoffCommand(app);
     bvhlab::addSpdCommand(app);
+    bvhlab::addCheckCommand(app);
     bvhlab::addKeysCommand(app);
     try {
         app.parse(argc, argv);

@@ -14,5 +14,6 @@ void addBatchCommand(CLI::App& app);
 void addStressCommand(CLI::App& app);
 void addTradeoffCommand(CLI::App& app);
 void addSpdCommand(CLI::App& app);
+void addCheckCommand(CLI::App& app);
 
 }  // namespace bvhlab

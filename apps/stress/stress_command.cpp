@@ -62,9 +62,6 @@ struct StressOptions {
     std::string out = "out/stress.json";
 };
 
-// Memory a structure may take per primitive on the edge cases (ours take under 200 bytes).
-constexpr size_t kMaxBytesPerPrimitive = 4096;
-
 bool isExternal(const AccelConfig& config) { return config.name == "embree"; }
 
 class StressRun {
@@ -395,27 +392,16 @@ private:
             for (const AccelConfig& config : configs_) {
                 if (config.name == "naive") continue;
                 fmt::print(stderr, "  {} {}: ", scene.name, config.label);
-                BuildStats stats;
-                const auto start = Clock::now();
-                const auto accel = build(config, scene, stats);
-                const double seconds = secondsSince(start);
-                size_t wrong = 0;
-                QueryCounters counters;
-                std::vector<Hit> hits(rays.size());
-                accel->findNearestBatch(rays, hits, counters, {});
-                for (size_t i = 0; i < rays.size(); ++i) wrong += !hitsAgree(hits[i], reference[i]);
+                auto accel = createAccelerator(config.name, configured(config));
+                const EdgeBuildCheck check =
+                    checkEdgeBuild(*accel, scene, rays, reference, options_.builderMaxSeconds, options_.threads);
+                const BuildStats& stats = check.stats;
+                const size_t wrong = check.differ;
                 fmt::print(stderr, "built in {:.0f} ms, depth {}, {} of {} answers differ from naive\n", stats.buildMs,
                            stats.maxDepth ? fmt::format("{}", *stats.maxDepth) : "n/a", wrong, rays.size());
+                for (const std::string& e : check.examples) fmt::print(stderr, "    {}\n", e);
                 // What the structure promises, and bounded time and memory of every structure.
-                if (stats.maxDepth && stats.depthBound && *stats.maxDepth >= *stats.depthBound)
-                    fail(config, fmt::format("{}: depth {} >= {}", scene.name, *stats.maxDepth, *stats.depthBound));
-                if (stats.maxLeafPrimitives && stats.leafBound && *stats.maxLeafPrimitives > *stats.leafBound)
-                    fail(config, fmt::format("{}: a leaf of {} primitives > {}", scene.name, *stats.maxLeafPrimitives,
-                                             *stats.leafBound));
-                if (stats.bytes && *stats.bytes > kMaxBytesPerPrimitive * stats.primitives + (size_t(1) << 20))
-                    fail(config, fmt::format("{}: {} bytes for {} primitives", scene.name, *stats.bytes, stats.primitives));
-                if (seconds > options_.builderMaxSeconds)
-                    fail(config, fmt::format("{}: build took {:.1f} s", scene.name, seconds));
+                for (const std::string& problem : check.problems) fail(config, fmt::format("{}: {}", scene.name, problem));
                 if (wrong) fail(config, fmt::format("{}: {} of {} answers differ from naive", scene.name, wrong, rays.size()));
                 auto optional = [](const auto& v) { return v ? fmt::format("{}", *v) : std::string("n/a"); };
                 table += fmt::format("{:<18} {:<14} {:>9} {:>10.0f} {:>6} {:>9} {:>9} {:>9}\n", scene.name, config.label,

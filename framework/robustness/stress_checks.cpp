@@ -5,7 +5,10 @@
 
 #include <fmt/format.h>
 
+#include <tbb/task_arena.h>
+
 #include <algorithm>
+#include <chrono>
 
 namespace bvhlab {
 
@@ -60,6 +63,44 @@ AcneCheck checkShadowAcne(const Scene& scene, const Accelerator& accel, int pixe
         ++check.onPlane;
         if (lit.color[i] != unshadowed.color[i]) ++check.selfShadowed;
         if (!(lit.color[i].x > 1.01f * ambient)) ++check.dark;
+    }
+    return check;
+}
+
+EdgeBuildCheck checkEdgeBuild(Accelerator& accel, const Scene& scene, std::span<const Ray> rays,
+                              std::span<const Hit> reference, double maxSeconds, int threads, size_t maxExamples) {
+    EdgeBuildCheck check;
+    const auto start = std::chrono::steady_clock::now();
+    tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+    arena.execute([&] { check.stats = accel.build(scene.primitives()); });
+    check.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const BuildStats& stats = check.stats;
+    if (stats.primitives != scene.validPrimitives.size())
+        check.problems.push_back(fmt::format("built over {} of {} valid primitives", stats.primitives,
+                                             scene.validPrimitives.size()));
+    if (stats.maxDepth && stats.depthBound && *stats.maxDepth >= *stats.depthBound)
+        check.problems.push_back(fmt::format("depth {} >= {}", *stats.maxDepth, *stats.depthBound));
+    if (stats.maxLeafPrimitives && stats.leafBound && *stats.maxLeafPrimitives > *stats.leafBound)
+        check.problems.push_back(fmt::format("a leaf of {} primitives > {}", *stats.maxLeafPrimitives, *stats.leafBound));
+    if (stats.bytes && *stats.bytes > kMaxBytesPerPrimitive * stats.primitives + (size_t(1) << 20))
+        check.problems.push_back(fmt::format("{} bytes for {} primitives", *stats.bytes, stats.primitives));
+    if (check.seconds > maxSeconds)
+        check.problems.push_back(fmt::format("build took {:.1f} s (bound {:.0f} s)", check.seconds, maxSeconds));
+    QueryCounters counters;
+    std::vector<Hit> hits(rays.size());
+    accel.findNearestBatch(rays, hits, counters, {});
+    check.rays = rays.size();
+    for (size_t i = 0; i < rays.size(); ++i) {
+        if (hitsAgree(hits[i], reference[i])) continue;
+        ++check.differ;
+        if (check.examples.size() >= maxExamples) continue;
+        const Ray& r = rays[i];
+        auto answer = [](const Hit& h) {
+            return h.found() ? fmt::format("t={:.9g} prim={}", h.t, h.primitive) : std::string("miss");
+        };
+        check.examples.push_back(fmt::format(
+            "ray org=({:.9g}, {:.9g}, {:.9g}) dir=({:.9g}, {:.9g}, {:.9g}) t in [{:.9g}, {:.9g}]: {}, reference {}", r.org.x,
+            r.org.y, r.org.z, r.dir.x, r.dir.y, r.dir.z, r.tmin, r.tmax, answer(hits[i]), answer(reference[i])));
     }
     return check;
 }

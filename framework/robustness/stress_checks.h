@@ -9,6 +9,8 @@
 #include <cmath>
 #include <optional>
 #include <span>
+#include <string>
+#include <vector>
 
 namespace bvhlab {
 
@@ -52,5 +54,25 @@ struct AcneCheck {
     bool passed() const { return onPlane == pixels && selfShadowed == 0 && dark == 0; }
 };
 AcneCheck checkShadowAcne(const Scene& planeScene, const Accelerator& accel, int pixels, int threads = 0);
+
+// Builders at the edge (identical triangles, centres on one line, a huge triangle among tiny
+// ones: stress_scenes.h): `accel`, not yet built, is built over `scene` and held to bounded
+// time (maxSeconds, a bound against a build that hangs or goes quadratic, not a timing) and
+// memory (kMaxBytesPerPrimitive), to what it promises (BuildStats::depthBound and leafBound), to
+// build over every valid primitive, and to answer `rays` as `reference` does (hitsAgree; naive's
+// answers). Shared by `bvhlab stress`, `bvhlab check` and the tests.
+inline constexpr size_t kMaxBytesPerPrimitive = 4096;  // ours take under 200
+struct EdgeBuildCheck {
+    BuildStats stats;
+    double seconds = 0.0;                // the build, timed around the call
+    size_t rays = 0, differ = 0;         // answers unlike the reference's
+    std::vector<std::string> problems;   // every bound broken, e.g. "depth 70 >= 64"
+    std::vector<std::string> examples;   // the first few differing answers, full precision
+
+    bool passed() const { return problems.empty() && differ == 0; }
+};
+EdgeBuildCheck checkEdgeBuild(Accelerator& accel, const Scene& scene, std::span<const Ray> rays,
+                              std::span<const Hit> reference, double maxSeconds, int threads = 0,
+                              size_t maxExamples = 3);
 
 }  // namespace bvhlab

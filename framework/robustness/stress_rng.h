@@ -1,5 +1,5 @@
 // The random numbers of the stress suite (framework/robustness/watertight_probe.cpp, stress_scenes.cpp)
-// and of the tests' generated scenes and rays (tests/support/oracle.cpp): SplitMix64, small and
+// and of the tests' generated scenes and rays (apps/check/oracle.cpp): SplitMix64, small and
 // fast, and the same sequence on every platform and standard library (std::*_distribution are
 // not), so a seed names the same rays everywhere.
 #pragma once

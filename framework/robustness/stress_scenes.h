@@ -1,7 +1,7 @@
 // Scenes and rays for the robustness stress suite (`bvhlab stress`, tests/framework/robustness/test_stress.cpp):
 // closed meshes for the watertightness probes, the scale/translation transform, a lit plane far
 // from the origin for shadow acne, and the builders' edge cases. All deterministic. The random
-// triangles they are made of build the tests' generated scenes too (tests/support/oracle.cpp).
+// triangles they are made of build the tests' generated scenes too (apps/check/oracle.cpp).
 #pragma once
 
 #include "framework/robustness/stress_rng.h"

@@ -1,7 +1,8 @@
-// Every registered accelerator against naive (float) and the double-precision oracle, on every
-// generated scene and ray kind, on closed meshes for watertightness, and on a few real scene
-// files. Parameterised over acceleratorInfos(), so new accelerators are picked up as they are
-// registered ("naive" included: it is then checked against the oracle).
+// Every registered accelerator against naive (float) and the double-precision oracle, on closed
+// meshes for watertightness (with Embree's bounds), on non-convex polygons and on a few real
+// scene files. The generated scenes and ray kinds are the conformance suite's (`bvhlab check`,
+// tests/accel/test_conformance.cpp). Parameterised over acceleratorInfos(), so new accelerators
+// are picked up as they are registered ("naive" included: it is then checked against the oracle).
 //
 // Failure policy: for our own accelerators every answer the oracle's judge calls Wrong fails,
 // as does any violation of the interface contract (return value vs hit, isOccluded vs
@@ -15,7 +16,7 @@
 #include "framework/core/triangle.h"
 #include "framework/scene/procedural.h"
 #include "framework/scene/scene_loader.h"
-#include "tests/support/oracle.h"
+#include "apps/check/oracle.h"
 #include "tests/support/polygons.h"
 #include "tests/support/random_geometry.h"
 
@@ -32,7 +33,8 @@
 namespace bvhlab {
 namespace {
 
-using namespace bvhlab::test;
+using namespace bvhlab::check;
+using namespace bvhlab::test;  // polygons and random geometry
 
 // Accelerators whose known deviations are reported, not failed, up to this fraction of rays.
 bool isExternal(const std::string& name) { return name == "embree"; }
@@ -42,14 +44,6 @@ std::vector<std::string> registeredAccelerators() {
     std::vector<std::string> names;
     for (const AcceleratorInfo& info : acceleratorInfos()) names.push_back(info.name);
     return names;
-}
-
-// Ray counts per kind: scenes are at most ~10k triangles, so naive + oracle stay O(1e8) tests.
-size_t raysFor(const Scene& scene, RayKind kind) {
-    if (kind == RayKind::Invalid) return 200;
-    const size_t n = scene.validPrimitives.size();
-    if (n <= 3) return 4000;
-    return n > 5000 ? 800 : 1500;
 }
 
 // One scene with its oracle and, per ray kind, the rays and naive's and the oracle's answers:
@@ -111,7 +105,7 @@ protected:
     // Builds the accelerator over the case's scene and runs every ray kind.
     void runScene(const std::string& name, const std::function<Scene()>& makeScene,
                   const std::vector<RayKind>& kinds = std::vector<RayKind>(std::begin(kAllRayKinds), std::end(kAllRayKinds)),
-                  const std::function<size_t(const Scene&, RayKind)>& count = raysFor) {
+                  const std::function<size_t(const Scene&, RayKind)>& count = raysPerKind) {
         SceneCase& c = sceneCase(name, makeScene, kinds, count);
         const auto accel = make();
         const BuildStats stats = accel->build(c.scene->primitives());
@@ -123,74 +117,6 @@ protected:
         }
     }
 };
-
-// One test per generated scene keeps failures and timings readable.
-#define SCENE_TEST(TestName, sceneName)                                                    \
-    TEST_P(AccelCorrectness, TestName) {                                                   \
-        for (const NamedSceneFactory& f : generatedScenes())                               \
-            if (f.name == sceneName) return runScene(f.name, f.make);                      \
-        FAIL() << "no generated scene named " << sceneName;                               \
-    }
-
-SCENE_TEST(SoupMixedSizes, "soup_mixed")
-SCENE_TEST(SoupSmall, "soup_small")
-SCENE_TEST(DefaultScene, "default")
-SCENE_TEST(ClosedMeshes, "closed")
-SCENE_TEST(Terrain, "terrain")
-SCENE_TEST(CoincidentTriangles, "coincident")
-SCENE_TEST(CentroidsOnALine, "centroids_line")
-SCENE_TEST(CentroidsOnAPlane, "centroids_plane")
-SCENE_TEST(CentroidsAtAPoint, "centroids_point")
-SCENE_TEST(NoTriangles, "tiny0")
-SCENE_TEST(OneTriangle, "tiny1")
-SCENE_TEST(TwoTriangles, "tiny2")
-SCENE_TEST(ThreeTriangles, "tiny3")
-SCENE_TEST(DegenerateTrianglesMixedIn, "degenerate_mix")
-
-TEST_P(AccelCorrectness, EveryGeneratedSceneHasATest) {
-    // Guards the SCENE_TEST list above against scenes added to generatedScenes() and forgotten.
-    const std::set<std::string> covered = {"soup_mixed",      "soup_small",      "default", "closed", "terrain",
-                                           "coincident",      "centroids_line", "centroids_plane",
-                                           "centroids_point", "tiny0", "tiny1", "tiny2", "tiny3", "degenerate_mix"};
-    for (const NamedSceneFactory& f : generatedScenes()) EXPECT_TRUE(covered.count(f.name)) << f.name;
-}
-
-TEST_P(AccelCorrectness, RaysAtDegenerateTriangles) {
-    // Rays aimed at the finite vertices of the degenerate triangles (and at their midpoints):
-    // whatever is hit must be a valid primitive (the judge checks every claimed primitive).
-    const Scene scene = makeDegenerateMixScene(2000, 12);
-    std::vector<Ray> rays;
-    std::mt19937 rng(99);
-    std::uniform_real_distribution<float> U(-1.0f, 1.0f);
-    std::vector<char> valid(scene.triangleCount(), 0);
-    for (uint32_t p : scene.validPrimitives) valid[p] = 1;
-    for (size_t i = 0; i < scene.triangleCount(); ++i) {
-        if (valid[i]) continue;
-        const Triangle& t = scene.triangles[i];
-        for (const Vec3& target : {t.v0, t.v1, t.v2, 0.5f * (t.v0 + t.v1)}) {
-            if (!isFinite(target)) continue;
-            for (int k = 0; k < 3; ++k) {
-                Ray r;
-                r.org = target + 30.0f * Vec3(U(rng), U(rng), U(rng));
-                r.dir = target - r.org;
-                rays.push_back(r);
-                if (k == 0) {  // and exactly along an axis
-                    r.org = target - Vec3(0, 0, 40);
-                    r.dir = Vec3(0, 0, 1);
-                    rays.push_back(r);
-                }
-            }
-        }
-    }
-    ASSERT_GT(rays.size(), 500u);
-    ASSERT_GT(scene.report.degenerateTriangles, 300u);
-    NaiveAccelerator naive;
-    naive.build(scene.primitives());
-    const auto accel = make();
-    accel->build(scene.primitives());
-    const Oracle oracle(scene.primitives());
-    check("degenerate_targets", compareWithNaive(*accel, naive, oracle, rays));
-}
 
 // --- Watertightness on closed meshes -----------------------------------------------------------
 

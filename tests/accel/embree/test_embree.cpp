@@ -7,7 +7,7 @@
 #include "accel/registry.h"
 #include "apps/common/program_keys.h"
 #include "framework/scene/procedural.h"
-#include "tests/support/oracle.h"
+#include "apps/check/oracle.h"
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
@@ -352,7 +352,7 @@ TEST(Embree, NativeBatchAnswersAsTheInterface) {
     const Scene scene = smallScene();
     EmbreeAccelerator accel;
     accel.build(scene.primitives());
-    std::vector<Ray> rays = test::generateRays(test::RayKind::Outside, scene.primitives(), scene.bounds, 2000, 5u);
+    std::vector<Ray> rays = check::generateRays(check::RayKind::Outside, scene.primitives(), scene.bounds, 2000, 5u);
     for (Ray& ray : rays) ray.tmax = 4.0f;  // some rays end before what they would hit
     size_t nearest = 0, occluded = 0;
     QueryCounters counters;

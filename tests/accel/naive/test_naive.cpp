@@ -5,7 +5,7 @@
 #include "accel/registry.h"
 #include "apps/common/program_keys.h"
 #include "framework/scene/procedural.h"
-#include "tests/support/oracle.h"
+#include "apps/check/oracle.h"
 
 #include <gtest/gtest.h>
 
@@ -16,7 +16,7 @@
 namespace bvhlab {
 namespace {
 
-using test::sceneFromTriangles;
+using check::sceneFromTriangles;
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
@@ -221,7 +221,7 @@ TEST(Naive, CountersMergedAcrossThreads) {
     NaiveAccelerator naive;
     naive.build(scene.primitives());
     const size_t valid = scene.validPrimitives.size();
-    const std::vector<Ray> rays = test::generateRays(test::RayKind::Outside, scene.primitives(), scene.bounds, 800, 5);
+    const std::vector<Ray> rays = check::generateRays(check::RayKind::Outside, scene.primitives(), scene.bounds, 800, 5);
 
     // Single-threaded reference.
     QueryCounters single;
@@ -276,9 +276,9 @@ TEST(Naive, AgreesWithTheDoubleOracleOnTheDefaultScene) {
     const Scene scene = makeDefaultScene();
     NaiveAccelerator naive;
     naive.build(scene.primitives());
-    const test::Oracle oracle(scene.primitives());
-    const std::vector<Ray> rays = test::generateRays(test::RayKind::Outside, scene.primitives(), scene.bounds, 1500, 9);
-    const test::ComparisonReport report = test::compareWithNaive(naive, naive, oracle, rays);
+    const check::Oracle oracle(scene.primitives());
+    const std::vector<Ray> rays = check::generateRays(check::RayKind::Outside, scene.primitives(), scene.bounds, 1500, 9);
+    const check::ComparisonReport report = check::compareWithNaive(naive, naive, oracle, rays);
     EXPECT_EQ(report.failures(), 0u) << report.summary();
     EXPECT_EQ(report.disagreements, 0u);
     // Random rays from outside: the hits match the oracle's (not merely "not wrong").

@@ -8,7 +8,7 @@
 #include "apps/measure/builders.h"
 #include "apps/measure/tradeoff.h"
 #include "tests/support/cli_run.h"
-#include "tests/support/oracle.h"
+#include "apps/check/oracle.h"
 #include "tests/support/scratch_dir.h"
 
 #include <fmt/core.h>
@@ -41,8 +41,8 @@ fs::path makeScenes() {
     const fs::path dir = test::scratchDir("tradeoff");
     fs::remove_all(dir);
     fs::create_directories(dir);
-    writeObj(test::makeSoupScene(1500, 7, 0.2f, 3.0f, 20.0f), dir / "soup.obj");
-    writeObj(test::makeTerrainScene(24, 3), dir / "terrain.obj");
+    writeObj(check::makeSoupScene(1500, 7, 0.2f, 3.0f, 20.0f), dir / "soup.obj");
+    writeObj(check::makeTerrainScene(24, 3), dir / "terrain.obj");
     for (const char* id : {"soup", "terrain"})
         std::ofstream(dir / (std::string(id) + ".env")) << "Scene::file " << id << ".obj\nScene::dir .\n";
     return dir;

@@ -6,8 +6,8 @@
 //  - scale and translation: the same scene scaled by 1e-3 ... 1e4 and moved by 10x its size:
 //    no leaks, the same primitives hit, t scaling with the scene, the SAH cost unchanged;
 //  - shadow acne on lit planes 1e4 from the origin;
-//  - builders at the edge: 1e5 identical triangles, centres on one line, one huge triangle
-//    among tiny ones: bounded depth and time, right answers;
+//  - builders at the edge (1e5 identical triangles, centres on one line, one huge triangle
+//    among tiny ones) are the conformance suite's builds-at-the-edge check;
 //  - rays starting on a surface, axis-parallel rays in the planes of faces, very short and very
 //    long rays, rays with NaN.
 // Embree is known to leak: its numbers are printed and recorded (RecordProperty), not failed.
@@ -22,7 +22,7 @@
 #include "framework/robustness/stress_scenes.h"
 #include "framework/robustness/watertight_probe.h"
 #include "tests/support/cli_run.h"
-#include "tests/support/oracle.h"
+#include "apps/check/oracle.h"
 #include "tests/support/scratch_dir.h"
 
 #include <fmt/format.h>
@@ -280,7 +280,7 @@ TEST_P(Stress, ScaleAndTranslationChangeNothing) {
 TEST_P(Stress, SahCostIgnoresDecimalScales) {
     // Without exact ties between candidate splits (a soup of random triangles), rounding the
     // coordinates by a decimal scale must not change the normalised SAH cost beyond 1e-3.
-    static const Scene base = test::makeSoupScene(4000, 11, 1e-2f, 1.0f, 50.0f);
+    static const Scene base = check::makeSoupScene(4000, 11, 1e-2f, 1.0f, 50.0f);
     BuildStats baseStats;
     build(base, &baseStats);
     if (!baseStats.sah) GTEST_SKIP() << variant().label << " reports no SAH cost";
@@ -321,80 +321,8 @@ TEST_P(Stress, NoShadowAcneOnAGroundFarFromTheOrigin) {
     }
 }
 
-// --- builders at the edge ---------------------------------------------------------------------
-
-struct EdgeCase {
-    Scene scene;
-    std::vector<Ray> rays;
-    std::vector<Hit> naive;
-};
-
-const std::vector<EdgeCase>& edgeCases() {
-    static const std::vector<EdgeCase> cases = [] {
-        std::vector<EdgeCase> list;
-        constexpr size_t n = 100000;
-        for (Scene scene : {makeIdenticalTrianglesScene(n), makeCollinearCentroidsScene(n, 3), makeHugeAmongTinyScene(n, 4)}) {
-            EdgeCase c{std::move(scene), {}, {}};
-            c.rays = raysTowardTriangles(c.scene, 128, 9);
-            // And some rays that miss the tiny ones but cross the huge triangle or the line.
-            const std::vector<Ray> more = test::generateRays(test::RayKind::Outside, c.scene.primitives(), c.scene.bounds, 64, 10);
-            c.rays.insert(c.rays.end(), more.begin(), more.end());
-            NaiveAccelerator naive;
-            naive.build(c.scene.primitives());
-            QueryCounters counters;
-            c.naive.resize(c.rays.size());
-            for (size_t i = 0; i < c.rays.size(); ++i) naive.findNearest(c.rays[i], c.naive[i], counters);
-            list.push_back(std::move(c));
-        }
-        return list;
-    }();
-    return cases;
-}
-
-// A bound against a build that hangs or goes quadratic, not a timing. The slowest here is sbvh on
-// collinear centres: about 1 s in Release, 21 s under AddressSanitizer (measured in CI's sanitizer
-// pass: sbvh's nodes allocate their reference vectors, which ASan makes expensive).
-#ifdef __SANITIZE_ADDRESS__
-constexpr double kEdgeBuildSeconds = 120.0;
-#else
-constexpr double kEdgeBuildSeconds = 20.0;
-#endif
-
-TEST_P(Stress, BuildersAtTheEdgeEndInBoundedTimeAndDepth) {
-    if (isNaive()) GTEST_SKIP() << "naive builds nothing";
-    for (const EdgeCase& c : edgeCases()) {
-        SCOPED_TRACE(c.scene.name);
-        const auto start = std::chrono::steady_clock::now();
-        BuildStats stats;
-        const auto accel = build(c.scene, &stats);
-        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        RecordProperty(variant().label + "." + c.scene.name + ".build_ms", int(stats.buildMs));
-        EXPECT_LT(seconds, kEdgeBuildSeconds) << "build of " << c.scene.name;
-        EXPECT_EQ(stats.primitives, c.scene.validPrimitives.size());
-        // What the structure promises (a BVH: its depth and leaf bounds), and bounded memory.
-        if (stats.maxDepth && stats.depthBound) {
-            EXPECT_LT(*stats.maxDepth, *stats.depthBound);
-        }
-        if (stats.maxLeafPrimitives && stats.leafBound) {
-            EXPECT_LE(*stats.maxLeafPrimitives, *stats.leafBound);
-        }
-        if (stats.bytes) {
-            EXPECT_LE(*stats.bytes, 4096 * stats.primitives + (size_t(1) << 20));
-        }
-        size_t differ = 0;
-        std::vector<std::string> examples;
-        QueryCounters counters;
-        for (size_t i = 0; i < c.rays.size(); ++i) {
-            Hit h;
-            accel->findNearest(c.rays[i], h, counters);
-            if (!hitsAgree(h, c.naive[i])) {
-                ++differ;
-                if (examples.size() < 3) examples.push_back(test::describe(c.rays[i]) + ": " + test::describe(h) + " vs naive " + test::describe(c.naive[i]));
-            }
-        }
-        expectZero("answers differing from naive on " + c.scene.name, differ, c.rays.size(), examples);
-    }
-}
+// --- builders at the edge: the conformance suite's builds-at-the-edge check -------------------
+// (apps/check/conformance.h, tests/accel/test_conformance.cpp), checkEdgeBuild as `bvhlab stress` runs it.
 
 // --- rays starting on a surface ---------------------------------------------------------------
 
@@ -459,7 +387,7 @@ TEST_P(Stress, RaysStartingOnASurface) {
             Hit h;
             if (accel->findNearest(out, h, counters)) {
                 ++selfHitsLeaving;
-                if (examples.size() < 3) examples.push_back("leaving " + test::describe(out) + " hit " + test::describe(h));
+                if (examples.size() < 3) examples.push_back("leaving " + check::describe(out) + " hit " + check::describe(h));
             }
             if (accel->isOccluded(out, counters)) ++occludedLeaving;
             // Entering it (origin offset inward): the far side, never the start.
@@ -467,10 +395,10 @@ TEST_P(Stress, RaysStartingOnASurface) {
             Hit h2;
             if (!accel->findNearest(in, h2, counters)) {
                 ++missesEntering;
-                if (examples.size() < 3) examples.push_back("entering " + test::describe(in) + " missed");
+                if (examples.size() < 3) examples.push_back("entering " + check::describe(in) + " missed");
             } else if (h2.primitive == s.prim) {
                 ++selfHitsEntering;
-                if (examples.size() < 3) examples.push_back("entering " + test::describe(in) + " hit its start " + test::describe(h2));
+                if (examples.size() < 3) examples.push_back("entering " + check::describe(in) + " hit its start " + check::describe(h2));
             }
         }
         expectZero("hits leaving " + c.scene.name, selfHitsLeaving, points.size(), examples);
@@ -517,10 +445,10 @@ TEST_P(Stress, AxisParallelRaysInThePlanesOfFaces) {
         Hit h;
         if (!accel->findNearest(rays[i], h, counters)) {
             ++misses;
-            if (examples.size() < 3) examples.push_back(test::describe(rays[i]) + " missed");
+            if (examples.size() < 3) examples.push_back(check::describe(rays[i]) + " missed");
         } else if (std::abs(double(h.t) - expectedT[i]) > 1e-6 * expectedT[i]) {
             ++wrongT;
-            if (examples.size() < 3) examples.push_back(test::describe(rays[i]) + " hit " + test::describe(h));
+            if (examples.size() < 3) examples.push_back(check::describe(rays[i]) + " hit " + check::describe(h));
         }
         if (!accel->isOccluded(rays[i], counters)) ++occlusionMisses;
     }
@@ -563,7 +491,7 @@ TEST_P(Stress, NegativeTminSeesBehindTheOrigin) {
         naive.findNearest(r, b, counters);
         if (found != b.found() || !hitsAgree(a, b) || accel->isOccluded(r, counters) != b.found()) {
             ++differ;
-            if (examples.size() < 3) examples.push_back(test::describe(r) + ": " + test::describe(a) + " vs naive " + test::describe(b));
+            if (examples.size() < 3) examples.push_back(check::describe(r) + ": " + check::describe(a) + " vs naive " + check::describe(b));
         }
     }
     expectZero("answers with negative tmin unlike naive", differ, rays, examples);
@@ -607,7 +535,7 @@ TEST_P(Stress, VeryShortAndVeryLongRays) {
         wrong |= accel->findNearest(startsBeyond, h3, counters) && h3.primitive == prim;
         if (wrong) {
             ++shortWrong;
-            if (examples.size() < 3) examples.push_back(fmt::format("{} toward prim {} at t {:.9g}", test::describe(reaches), prim, tPlane));
+            if (examples.size() < 3) examples.push_back(fmt::format("{} toward prim {} at t {:.9g}", check::describe(reaches), prim, tPlane));
         }
     }
     EXPECT_GT(shortRays, 500u);
@@ -629,17 +557,17 @@ TEST_P(Stress, VeryShortAndVeryLongRays) {
         naiveHits += naive.findNearest(r, n, counters);
         if (!hitsAgree(a, n)) {
             ++longDiffer;
-            if (examples.size() < 3) examples.push_back(test::describe(r) + ": " + test::describe(a) + " vs naive " + test::describe(n));
+            if (examples.size() < 3) examples.push_back(check::describe(r) + ": " + check::describe(a) + " vs naive " + check::describe(n));
         }
     }
     EXPECT_GT(naiveHits, toward.size() / 2);
     expectZero("very long rays answered unlike naive", longDiffer, toward.size(), examples);
 
     // NaN anywhere, zero direction, empty intervals: misses, no crash.
-    for (const Ray& r : test::generateRays(test::RayKind::Invalid, scene.primitives(), scene.bounds, 400, 43)) {
+    for (const Ray& r : check::generateRays(check::RayKind::Invalid, scene.primitives(), scene.bounds, 400, 43)) {
         Hit h;
-        EXPECT_FALSE(accel->findNearest(r, h, counters)) << test::describe(r);
-        EXPECT_FALSE(accel->isOccluded(r, counters)) << test::describe(r);
+        EXPECT_FALSE(accel->findNearest(r, h, counters)) << check::describe(r);
+        EXPECT_FALSE(accel->isOccluded(r, counters)) << check::describe(r);
     }
 }
 

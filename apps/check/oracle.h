@@ -1,4 +1,5 @@
-// Test-side helpers shared by the accelerator tests: a double-precision brute-force oracle,
+// The reference of the conformance suite (`bvhlab check`, apps/check/conformance.h), also used
+// by the accelerator tests: a double-precision brute-force oracle,
 // a judge that decides whether an answer is right, wrong, or within rounding of the truth,
 // deterministic ray and scene generators, and the comparison of an accelerator against naive.
 //
@@ -20,7 +21,7 @@
 #include <string>
 #include <vector>
 
-namespace bvhlab::test {
+namespace bvhlab::check {
 
 // ---------------------------------------------------------------------------------------------
 // Double-precision brute force.
@@ -94,6 +95,10 @@ inline constexpr RayKind kAllRayKinds[] = {RayKind::Outside,      RayKind::Insid
                                            RayKind::Interval,     RayKind::Invalid};
 const char* rayKindName(RayKind kind);
 
+// How many rays of `kind` the correctness checks send at `scene`: scenes are at most ~10k
+// triangles, so the oracle stays at O(1e8) tests.
+size_t raysPerKind(const Scene& scene, RayKind kind);
+
 // `bounds` is where random rays are aimed (an empty box is replaced by [-1,1]^3). Kinds that
 // need triangles fall back to Outside rays when prims has no valid one.
 std::vector<Ray> generateRays(RayKind kind, const PrimitiveSet& prims, const Bounds3& bounds, size_t count,
@@ -148,6 +153,9 @@ struct Reference {
     std::vector<OracleHit> oracle;     // double brute-force nearest
 };
 Reference computeReference(const Accelerator& naive, const Oracle& oracle, std::span<const Ray> rays);
+// The oracle's answers alone (naive's left empty): the structure is compared with the oracle,
+// whose judge decides, and naive is taken to agree with it.
+Reference computeOracleReference(const Oracle& oracle, std::span<const Ray> rays);
 
 struct ComparisonReport {
     size_t rays = 0;
@@ -168,16 +176,21 @@ struct ComparisonReport {
     size_t occlusionTies = 0;      // skipped by the tie caveat
     size_t shrunkOcclusion = 0;    // isOccluded true with tmax just below the nearest t
     size_t queriesMiscounted = 0;  // counters.queries did not go up by exactly 1 per query
-    std::vector<std::string> examples;  // the first few problems, with full ray, t and prim
+    size_t occludedMiscounted = 0; // of them, by isOccluded
+    // The first few problems, with full ray, t and prim: of findNearest (and the judge), and of isOccluded.
+    std::vector<std::string> examples, occlusionExamples;
 
-    size_t failures() const {
-        return accelWrong + returnMismatch + occlusionMismatch + shrunkOcclusion + queriesMiscounted;
-    }
+    size_t failures() const { return nearestFailures() + occlusionFailures(); }
+    // What `bvhlab check`'s agreement and any-hit checks count.
+    size_t nearestFailures() const { return accelWrong + returnMismatch + queriesMiscounted - occludedMiscounted; }
+    size_t occlusionFailures() const { return occlusionMismatch + shrunkOcclusion + occludedMiscounted; }
     std::string summary() const;
 };
 
+// With `occlusion` false, isOccluded is not asked; with an empty `reference`, findNearest's
+// answers are not judged (the interface contract and isOccluded alone).
 ComparisonReport compareWithReference(const Accelerator& accel, const Reference& reference, const Oracle& oracle,
-                                      std::span<const Ray> rays, size_t maxExamples = 5);
+                                      std::span<const Ray> rays, size_t maxExamples = 5, bool occlusion = true);
 ComparisonReport compareWithNaive(const Accelerator& accel, const Accelerator& naive, const Oracle& oracle,
                                   std::span<const Ray> rays, size_t maxExamples = 5);
 
@@ -186,4 +199,4 @@ std::string describe(const Ray& ray);
 std::string describe(const Hit& hit);
 std::string describe(const OracleHit& hit);
 
-}  // namespace bvhlab::test
+}  // namespace bvhlab::check

@@ -1,0 +1,80 @@
+// The conformance suite of an accelerator (`bvhlab check`, docs/accuracy.md): named checks, each
+// over a structure built afresh on generated scenes, each held to what the structure promises.
+// The gtest suite (tests/accel/test_conformance.cpp) runs the same checks for every registered
+// accelerator; the reference is the double-precision oracle (apps/check/oracle.h).
+#pragma once
+
+#include "framework/core/accelerator.h"
+#include "framework/scene/scene.h"
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace bvhlab::check {
+
+// The structure under check: its registry name (which decides what it promises) and a way to
+// create it unbuilt, configured.
+struct Subject {
+    std::string name;
+    std::function<std::unique_ptr<Accelerator>()> make;
+};
+
+struct CheckOptions {
+    double rayScale = 1.0;          // multiplies every ray and probe count
+    size_t edgePrimitives = 100000; // of each builders' edge case
+    double edgeMaxSeconds = 0.0;    // a slower edge build fails; 0: the default bound
+    size_t maxExamples = 3;         // failures shown per check
+    int threads = 0;                // builds and probes; 0 = all hardware threads
+    // Called as the check goes, with units done (scenes, ray sets) of `total`.
+    std::function<void(uint64_t done, uint64_t total)> progress;
+};
+
+struct CheckResult {
+    std::string check;
+    std::string unit = "rays";  // what `cases` counts
+    size_t scenes = 0;
+    size_t cases = 0;     // rays, probes or builds checked
+    size_t failures = 0;  // of them, answers (or builds) that break what the structure promises
+    bool skipped = false;
+    std::string note;     // why skipped, or what was reported and not failed
+    // The first few failures, each naming the check, the scene, the ray (org, dir, tmin, tmax,
+    // "%.9g") and the structure's and the reference's answers.
+    std::vector<std::string> examples;
+    double seconds = 0.0;
+
+    bool passed() const { return failures == 0; }
+};
+
+struct CheckInfo {
+    std::string name;
+    std::string description;
+    CheckResult (*run)(const Subject&, const CheckOptions&);
+};
+
+// Every check, in the order `bvhlab check` runs them.
+const std::vector<CheckInfo>& conformanceChecks();
+std::vector<std::string> checkNames();
+// Throws InputError for a name that is no check, listing the known ones.
+const CheckInfo& findCheck(const std::string& name);
+CheckResult runCheck(const std::string& name, const Subject& subject, const CheckOptions& options = {});
+
+// What a structure promises, by its name: ours are watertight and answer batches bit for bit as
+// single rays; Embree (names starting with "embree") is held to bounds instead (docs/accuracy.md).
+bool isExternal(std::string_view accelerator);
+inline bool batchIsBitExact(std::string_view accelerator) { return !isExternal(accelerator); }
+
+// Every count of a and b is the same.
+bool sameCounters(const QueryCounters& a, const QueryCounters& b);
+
+// The scenes of the mixed-primitives and batch checks, also used by the tests: triangles,
+// spheres (some negative radius) and cones with one degenerate of each kind; closed meshes, a
+// floor, spheres and cones; and random, axis-parallel, behind-the-origin, empty and NaN rays.
+Scene makeMixedScene(uint32_t seed);
+Scene makeBatchScene();
+std::vector<Ray> makeBatchRays();
+
+}  // namespace bvhlab::check

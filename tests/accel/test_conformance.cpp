@@ -1,0 +1,110 @@
+// The conformance suite (`bvhlab check`, apps/check/conformance.h) for every registered
+// accelerator, one test per check: Registered/CheckSuite.Passes/<accelerator>_<check>. And the
+// suite must be able to fail: an accelerator that drops hits fails it, naming a ray.
+#include "accel/registry.h"
+#include "apps/check/conformance.h"
+#include "apps/common/program_keys.h"
+#include "framework/core/error.h"
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <atomic>
+#include <tuple>
+
+namespace bvhlab {
+namespace {
+
+using Param = std::tuple<std::string, std::string>;  // accelerator, check
+
+std::vector<Param> everyAcceleratorAndCheck() {
+    std::vector<Param> params;
+    for (const AcceleratorInfo& info : acceleratorInfos())
+        for (const std::string& check : check::checkNames()) params.emplace_back(info.name, check);
+    return params;
+}
+
+check::Subject registered(const std::string& name) {
+    return {name, [name] { return createAccelerator(name, Env(programKeys())); }};
+}
+
+std::string report(const check::CheckResult& r) {
+    std::string s = fmt::format("{} failures of {} {}{}", r.failures, r.cases, r.unit, r.note.empty() ? "" : " (" + r.note + ")");
+    for (const std::string& e : r.examples) s += "\n    " + e;
+    return s;
+}
+
+class CheckSuite : public testing::TestWithParam<Param> {};
+
+TEST_P(CheckSuite, Passes) {
+    const auto& [accel, check] = GetParam();
+    const check::CheckResult r = check::runCheck(check, registered(accel));
+    RecordProperty("cases", int(r.cases));
+    if (!r.note.empty()) std::printf("[ NOTE     ] %s %s: %s\n", accel.c_str(), check.c_str(), r.note.c_str());
+    if (r.skipped) GTEST_SKIP() << r.note;
+    EXPECT_GT(r.cases, 0u);
+    EXPECT_TRUE(r.passed()) << accel << " fails " << check << ": " << report(r);
+}
+
+INSTANTIATE_TEST_SUITE_P(Registered, CheckSuite, testing::ValuesIn(everyAcceleratorAndCheck()),
+                         [](const testing::TestParamInfo<Param>& info) {
+                             std::string name = std::get<0>(info.param) + "_" + std::get<1>(info.param);
+                             std::replace(name.begin(), name.end(), '-', '_');
+                             return name;
+                         });
+
+// A registered structure that answers every third closest-hit query with a miss.
+class DropsEveryThirdHit final : public Accelerator {
+public:
+    DropsEveryThirdHit() : inner_(createAccelerator("sahbvh", Env(programKeys()))) {}
+    std::string_view name() const override { return "drops-hits"; }
+    BuildStats build(const PrimitiveSet& prims) override { return inner_->build(prims); }
+    bool findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const override {
+        if (calls_++ % 3 == 2) {
+            ++counters.queries;
+            return false;
+        }
+        return inner_->findNearest(ray, hit, counters);
+    }
+    bool isOccluded(const Ray& ray, QueryCounters& counters) const override { return inner_->isOccluded(ray, counters); }
+
+private:
+    std::unique_ptr<Accelerator> inner_;
+    mutable std::atomic<uint64_t> calls_{0};
+};
+
+TEST(CheckSuiteCanFail, AnAcceleratorThatDropsHitsFailsNamingARay) {
+    const check::Subject broken{"drops-hits", [] { return std::make_unique<DropsEveryThirdHit>(); }};
+    check::CheckOptions options;
+    options.rayScale = 0.2;
+    for (const char* name : {"agreement", "any-hit", "watertight"}) {
+        SCOPED_TRACE(name);
+        const check::CheckResult r = check::runCheck(name, broken, options);
+        EXPECT_FALSE(r.passed()) << report(r);
+        EXPECT_GT(r.failures, r.cases / 20) << report(r);
+        ASSERT_FALSE(r.examples.empty());
+        const std::string& example = r.examples.front();
+        // The check, the scene, the ray in full precision, and both answers.
+        EXPECT_TRUE(example.starts_with(std::string(name) + " on ")) << example;
+        EXPECT_NE(example.find("org"), std::string::npos) << example;
+        EXPECT_NE(example.find("dir"), std::string::npos) << example;
+        EXPECT_NE(example.find("miss"), std::string::npos) << example;
+    }
+    // The structure it wraps passes the same runs.
+    for (const char* name : {"agreement", "any-hit"})
+        EXPECT_TRUE(check::runCheck(name, registered("sahbvh"), options).passed()) << name;
+}
+
+TEST(CheckSuiteCanFail, UnknownCheckIsAnInputErrorListingTheKnownOnes) {
+    try {
+        check::findCheck("nosuch");
+        FAIL() << "no error";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("unknown check 'nosuch'"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("agreement"), std::string::npos) << e.what();
+    }
+}
+
+}  // namespace
+}  // namespace bvhlab
