@@ -41,7 +41,8 @@ nlohmann::json resultJson(const check::CheckResult& r) {
 }
 
 // Returns the exit code: 0 all passed, 1 a check failed.
-int runChecks(const CheckCommandOptions& options) {
+int runChecks(CheckCommandOptions options) {
+    options.env.accelerators = {options.accel};
     const Env env = options.env.load();
     createAccelerator(options.accel, env);  // an unknown name fails before any work
     std::vector<std::string> names = options.checks.empty() ? check::checkNames() : splitCommaList(options.checks);

@@ -80,6 +80,7 @@ void EnvOptions::loadPlugins(const std::vector<std::string>& layerFiles) const {
         if (name == keys::ASDS::plugins.name()) usePlugins(value, std::filesystem::current_path());
         if (name == keys::ASDS::type.name()) std::tie(type, typeOrigin) = std::pair(value, "-D" + name);
     }
+    for (const std::string& name : accelerators) loadPluginFor(name);  // unknown: the command says so
     if (!type.empty() && !loadPluginFor(type)) {
         std::vector<std::string> known, folders;
         for (const AcceleratorInfo& info : acceleratorInfos()) known.push_back(info.name);

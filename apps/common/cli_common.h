@@ -30,6 +30,9 @@ struct EnvOptions {
     std::vector<std::string> envFiles;
     std::vector<std::string> overrides;
     std::vector<std::string> plugins;  // --plugin
+    // Accelerators a command names outside the env (check --accel): their plugins are found by
+    // name before the layers are checked, so -D may set their keys.
+    std::vector<std::string> accelerators;
     bool noGlobalEnv = false;
     int threads = -1;  // --threads; -1: not given
 

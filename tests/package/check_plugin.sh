@@ -2,7 +2,7 @@
 # The package tests (tests/CMakeLists.txt), on the plugin example of docs/plugins.md as a user
 # pastes it into an empty folder (tests/package/extract_doc_plugin.py):
 #   tests/package/check_plugin.sh out-of-tree BUILD_DIR       find_package(bvhlab) on `cmake --install`
-#       of BUILD_DIR, then the installed bvhlab loads the plugin and `bvhlab check` runs on it
+#       of BUILD_DIR; the installed bvhlab loads the plugin, renders with it, runs `bvhlab check` on it
 #   tests/package/check_plugin.sh add-subdirectory BUILD_DIR  add_subdirectory(bvhlab) in another
 #       project, which builds the plugin; it must export bvhlab's two entry points
 set -euo pipefail
@@ -26,7 +26,11 @@ case "$1" in
     "$bvhlab" keys --plugin "$plugin" | grep -q "| \`$name\` |" || fail "bvhlab keys does not list $name"
     "$bvhlab" render --plugin "$plugin" -DASDS::type="$name" -DCamera::width=32 -DCamera::height=24 \
       --out "$work/render/image" || fail "the installed bvhlab could not render with $name"
-    echo "the installed bvhlab loaded $plugin and rendered with $name"
+    "$bvhlab" check --plugin "$plugin" --accel "$name" || fail "bvhlab check failed on $name"
+    # Found by name in a plugin folder, as docs/plugins.md says.
+    BVHLAB_PLUGIN_PATH="$work/build" "$bvhlab" check --accel "$name" --checks batch \
+      || fail "bvhlab check did not find $name by name in BVHLAB_PLUGIN_PATH"
+    echo "the installed bvhlab loaded $plugin, rendered with $name and checked it"
     ;;
   add-subdirectory)
     cmake -S "$here/add_subdirectory" -B "$work/build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
