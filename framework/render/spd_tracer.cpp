@@ -11,6 +11,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <vector>
 
 namespace bvhlab {
 
@@ -33,6 +34,10 @@ namespace {
 
 struct ThreadState {
     SpdResult result;
+    // One row of eye rays, traced as one batch.
+    std::vector<Ray> rays;
+    std::vector<Hit> hits;
+    std::vector<RayCost> costs;
 };
 
 // What one corner ray brings back to its pixels.
@@ -54,13 +59,14 @@ public:
         lightIntensity_ = n > 0.0f ? std::sqrt(n) / (2.0f * n) : 0.0f;
     }
 
-    Sample eyeRay(const Ray& ray, ThreadState& ts) const {
+    // The eye ray `ray`, whose closest hit `hit` (Hit{} on a miss) a batch found at `cost`.
+    Sample eyeRay(const Ray& ray, const Hit& hit, RayCost cost, ThreadState& ts) const {
         Sample sample;
         const QueryCounters before = total(ts);
-        sample.color = trace(ray, 1, ts, &sample);
+        sample.color = shade(ray, hit, 1, ts, &sample);
         const QueryCounters after = total(ts);
-        sample.steps = float(after.traversalSteps - before.traversalSteps);
-        sample.tests = float(after.intersectionTests - before.intersectionTests);
+        sample.steps = float(cost.traversalSteps + after.traversalSteps - before.traversalSteps);
+        sample.tests = float(cost.intersectionTests + after.intersectionTests - before.intersectionTests);
         return sample;
     }
 
@@ -73,10 +79,16 @@ private:
 
     // The colour seen along `ray`, a ray of tree depth `depth` (the eye ray is 1).
     Vec3 trace(const Ray& ray, int depth, ThreadState& ts, Sample* eye) const {
+        Hit hit;
+        accel_.findNearest(ray, hit, ts.result.closest);
+        return shade(ray, hit, depth, ts, eye);
+    }
+
+    // The colour seen along `ray`, whose closest hit is `hit`.
+    Vec3 shade(const Ray& ray, const Hit& hit, int depth, ThreadState& ts, Sample* eye) const {
         SpdCounts& counts = ts.result.counts;
         ++(depth == 1 ? counts.primaryRays : counts.secondaryRays);
-        Hit hit;
-        if (!accel_.findNearest(ray, hit, ts.result.closest)) return background_;
+        if (!hit.found()) return background_;
         ++(depth == 1 ? counts.usedIntPrimRays : counts.usedIntSecRays);
 
         const SurfacePoint surface = surfaceAt(scene_, ray, hit);
@@ -188,8 +200,14 @@ SpdResult traceSpd(const Scene& scene, const Accelerator& accel, const SpdRules&
         tbb::parallel_for(0, cornersY, [&](int y) {
             ThreadState& ts = states.local();
             const uint64_t before = ts.result.closest.queries + ts.result.shadow.queries;
+            ts.rays.resize(size_t(cornersX));
+            ts.hits.resize(size_t(cornersX));
+            ts.costs.resize(size_t(cornersX));
+            for (int x = 0; x < cornersX; ++x) ts.rays[size_t(x)] = camera.generateRay(float(x), float(y));
+            accel.findNearestBatch(ts.rays, ts.hits, ts.result.closest, ts.costs);
             for (int x = 0; x < cornersX; ++x)
-                corners[size_t(y) * size_t(cornersX) + size_t(x)] = tracer.eyeRay(camera.generateRay(float(x), float(y)), ts);
+                corners[size_t(y) * size_t(cornersX) + size_t(x)] =
+                    tracer.eyeRay(ts.rays[size_t(x)], ts.hits[size_t(x)], ts.costs[size_t(x)], ts);
             if (onRow) onRow(ts.result.closest.queries + ts.result.shadow.queries - before);
         });
     });
