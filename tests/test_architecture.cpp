@@ -29,10 +29,10 @@ const std::map<std::string, std::vector<std::string>> kMayInclude = {
     {"accel/embree", {"framework/core", "framework/config"}},
     {"accel/bvh/simd", {"framework/core"}},
     {"accel/bvh/layout", {"framework/core", "accel/bvh/simd"}},
-    {"accel/bvh/build", {"framework/core", "accel/bvh/simd", "accel/bvh/layout"}},
+    {"accel/bvh/builders", {"framework/core", "accel/bvh/simd", "accel/bvh/layout"}},
     {"accel/bvh/traverse", {"framework/core", "accel/bvh/simd", "accel/bvh/layout"}},
     {"accel/bvh",
-     {"framework/core", "framework/config", "accel/bvh/simd", "accel/bvh/layout", "accel/bvh/build",
+     {"framework/core", "framework/config", "accel/bvh/simd", "accel/bvh/layout", "accel/bvh/builders",
       "accel/bvh/traverse"}},
     {"accel", {"framework/core", "framework/config", "framework/plugin", "accel/naive", "accel/embree", "accel/bvh"}},
 };

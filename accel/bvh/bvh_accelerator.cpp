@@ -1,5 +1,5 @@
 #include "accel/bvh/bvh_accelerator.h"
-#include "accel/bvh/build/build_threads.h"
+#include "accel/bvh/builders/build_threads.h"
 
 #include "accel/bvh/layout/end_point_overlap.h"
 #include "accel/bvh/traverse/bvh_traversal.h"

@@ -7,7 +7,7 @@
 // their own by the same builder (layout/quadric_leaves.h), traversed after the triangles'.
 #pragma once
 
-#include "accel/bvh/build/bvh_builder.h"
+#include "accel/bvh/builders/bvh_builder.h"
 #include "accel/bvh/layout/wide_bvh.h"
 #include "accel/bvh/traverse/traversal_config.h"
 #include "framework/core/accelerator.h"

@@ -1,7 +1,7 @@
 // The env keys of the BVH accelerators (tdbvh, sahbvh, sweepbvh, sbvh, ploc), all in section BVH::.
 #pragma once
 
-#include "accel/bvh/build/bvh_builder.h"
+#include "accel/bvh/builders/bvh_builder.h"
 #include "accel/bvh/bvh_accelerator.h"
 #include "accel/bvh/traverse/traversal_config.h"
 #include "framework/config/common_keys.h"

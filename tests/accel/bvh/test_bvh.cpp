@@ -4,7 +4,7 @@
 // check of both queries against brute force. Hit agreement on whole scenes is tested, for
 // every registered accelerator, in the cross-accelerator suite.
 #include "accel/bvh/bvh_accelerator.h"
-#include "accel/bvh/build/prim_ref.h"
+#include "accel/bvh/builders/prim_ref.h"
 #include "accel/bvh/bvh_env.h"
 #include "accel/bvh/layout/end_point_overlap.h"
 #include "accel/bvh/layout/wide_bvh.h"

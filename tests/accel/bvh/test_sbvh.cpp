@@ -4,7 +4,7 @@
 // where they must (long thin diagonal triangles), no budget giving sahbvh's tree, one tree
 // whatever the thread count, and both queries against brute force where references are split.
 // The whole-scene oracle runs over every registered accelerator, sbvh and sbvh8 included.
-#include "accel/bvh/build/reference_split.h"
+#include "accel/bvh/builders/reference_split.h"
 #include "accel/bvh/bvh_accelerator.h"
 #include "accel/naive/naive_accelerator.h"
 #include "framework/scene/scene.h"

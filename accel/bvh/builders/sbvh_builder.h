@@ -15,10 +15,10 @@
 // whole in leafTriangles, so every traversal and the wide collapse read it unchanged.
 #pragma once
 
-#include "accel/bvh/build/build_jobs.h"
-#include "accel/bvh/build/bvh_builder.h"
-#include "accel/bvh/build/object_binning.h"
-#include "accel/bvh/build/spatial_binning.h"
+#include "accel/bvh/builders/build_jobs.h"
+#include "accel/bvh/builders/bvh_builder.h"
+#include "accel/bvh/builders/object_binning.h"
+#include "accel/bvh/builders/spatial_binning.h"
 
 #include <span>
 #include <vector>

@@ -1,13 +1,13 @@
-#include "accel/bvh/build/bvh_builder.h"
+#include "accel/bvh/builders/bvh_builder.h"
 
-#include "accel/bvh/build/binned_sah_builder.h"
-#include "accel/bvh/build/build_jobs.h"
-#include "accel/bvh/build/insertion_optimizer.h"
-#include "accel/bvh/build/ploc_builder.h"
-#include "accel/bvh/build/sbvh_builder.h"
-#include "accel/bvh/build/spatial_median_builder.h"
-#include "accel/bvh/build/sweep_sah_builder.h"
-#include "accel/bvh/build/top_down_recursion.h"
+#include "accel/bvh/builders/binned_sah_builder.h"
+#include "accel/bvh/builders/build_jobs.h"
+#include "accel/bvh/builders/insertion_optimizer.h"
+#include "accel/bvh/builders/ploc_builder.h"
+#include "accel/bvh/builders/sbvh_builder.h"
+#include "accel/bvh/builders/spatial_median_builder.h"
+#include "accel/bvh/builders/sweep_sah_builder.h"
+#include "accel/bvh/builders/top_down_recursion.h"
 
 #include <fmt/core.h>
 #include <tbb/blocked_range.h>

@@ -5,7 +5,7 @@
 // ploc's tree of clusters (cluster_tree.cpp).
 #pragma once
 
-#include "accel/bvh/build/build_threads.h"
+#include "accel/bvh/builders/build_threads.h"
 #include "accel/bvh/layout/bvh.h"
 
 #include <cassert>

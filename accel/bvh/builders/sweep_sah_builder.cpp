@@ -1,4 +1,4 @@
-#include "accel/bvh/build/sweep_sah_builder.h"
+#include "accel/bvh/builders/sweep_sah_builder.h"
 
 #include <algorithm>
 

@@ -5,7 +5,7 @@
 // the object median along the widest axis of the centres instead.
 #pragma once
 
-#include "accel/bvh/build/bvh_builder.h"
+#include "accel/bvh/builders/bvh_builder.h"
 
 namespace bvhlab {
 

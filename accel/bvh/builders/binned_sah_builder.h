@@ -3,8 +3,8 @@
 // the SIMD layer's vector or scalar backend (config.simd), with identical results.
 #pragma once
 
-#include "accel/bvh/build/bvh_builder.h"
-#include "accel/bvh/build/object_binning.h"
+#include "accel/bvh/builders/bvh_builder.h"
+#include "accel/bvh/builders/object_binning.h"
 
 namespace bvhlab {
 

@@ -6,7 +6,7 @@
 // cuts go to both sides, so N_L + N_R - N references are new.
 #pragma once
 
-#include "accel/bvh/build/bvh_builder.h"
+#include "accel/bvh/builders/bvh_builder.h"
 
 #include <optional>
 #include <span>

@@ -1,6 +1,6 @@
-#include "accel/bvh/build/spatial_binning.h"
+#include "accel/bvh/builders/spatial_binning.h"
 
-#include "accel/bvh/build/reference_split.h"
+#include "accel/bvh/builders/reference_split.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "accel/bvh/build/spatial_median_builder.h"
+#include "accel/bvh/builders/spatial_median_builder.h"
 
 namespace bvhlab {
 

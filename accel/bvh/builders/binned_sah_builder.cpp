@@ -1,4 +1,4 @@
-#include "accel/bvh/build/binned_sah_builder.h"
+#include "accel/bvh/builders/binned_sah_builder.h"
 
 namespace bvhlab {
 

@@ -4,7 +4,7 @@
 // in place and returns the two halves, or declines (the range becomes a leaf).
 #pragma once
 
-#include "accel/bvh/build/prim_ref.h"
+#include "accel/bvh/builders/prim_ref.h"
 #include "accel/bvh/layout/bvh.h"
 #include "accel/bvh/layout/quadric_leaves.h"
 

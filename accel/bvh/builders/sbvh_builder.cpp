@@ -1,7 +1,7 @@
-#include "accel/bvh/build/sbvh_builder.h"
+#include "accel/bvh/builders/sbvh_builder.h"
 
-#include "accel/bvh/build/reference_split.h"
-#include "accel/bvh/build/top_down_recursion.h"
+#include "accel/bvh/builders/reference_split.h"
+#include "accel/bvh/builders/top_down_recursion.h"
 
 #include <tbb/parallel_for.h>
 

@@ -3,7 +3,7 @@
 // multi-primitive leaves by SAH and keeps the depth below kBvhMaxDepth.
 #pragma once
 
-#include "accel/bvh/build/bvh_builder.h"
+#include "accel/bvh/builders/bvh_builder.h"
 
 #include <span>
 #include <vector>

@@ -1,4 +1,4 @@
-#include "accel/bvh/build/object_binning.h"
+#include "accel/bvh/builders/object_binning.h"
 
 #include <algorithm>
 #include <cmath>

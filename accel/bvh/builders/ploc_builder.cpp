@@ -1,9 +1,9 @@
-#include "accel/bvh/build/ploc_builder.h"
+#include "accel/bvh/builders/ploc_builder.h"
 
-#include "accel/bvh/build/build_threads.h"
-#include "accel/bvh/build/cluster_tree.h"
-#include "accel/bvh/build/morton_code.h"
-#include "accel/bvh/build/radix_sort.h"
+#include "accel/bvh/builders/build_threads.h"
+#include "accel/bvh/builders/cluster_tree.h"
+#include "accel/bvh/builders/morton_code.h"
+#include "accel/bvh/builders/radix_sort.h"
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>

@@ -1,6 +1,6 @@
-#include "accel/bvh/build/cluster_tree.h"
+#include "accel/bvh/builders/cluster_tree.h"
 
-#include "accel/bvh/build/build_jobs.h"
+#include "accel/bvh/builders/build_jobs.h"
 
 #include <tbb/parallel_for.h>
 

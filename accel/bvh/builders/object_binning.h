@@ -8,7 +8,7 @@
 // results.
 #pragma once
 
-#include "accel/bvh/build/bvh_builder.h"
+#include "accel/bvh/builders/bvh_builder.h"
 
 #include <optional>
 #include <vector>

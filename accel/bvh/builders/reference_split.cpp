@@ -1,4 +1,4 @@
-#include "accel/bvh/build/reference_split.h"
+#include "accel/bvh/builders/reference_split.h"
 
 #include <bit>
 #include <cstdint>

@@ -1,4 +1,4 @@
-#include "accel/bvh/build/insertion_optimizer.h"
+#include "accel/bvh/builders/insertion_optimizer.h"
 
 #include <algorithm>
 #include <limits>

@@ -8,7 +8,7 @@
 //   makeLeaf(range, node): sets the leaf's index and count.
 #pragma once
 
-#include "accel/bvh/build/build_jobs.h"
+#include "accel/bvh/builders/build_jobs.h"
 
 #include <fmt/core.h>
 

@@ -4,7 +4,7 @@
 // of the right boxes, then a prefix sweep). O(N log^2 N) overall: slow is fine here.
 #pragma once
 
-#include "accel/bvh/build/bvh_builder.h"
+#include "accel/bvh/builders/bvh_builder.h"
 
 #include <vector>
 

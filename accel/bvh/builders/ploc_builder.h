@@ -7,7 +7,7 @@
 // results do not depend on the chunking: one tree whatever BvhBuildConfig::threads.
 #pragma once
 
-#include "accel/bvh/build/bvh_builder.h"
+#include "accel/bvh/builders/bvh_builder.h"
 
 namespace bvhlab {
 
