@@ -1,0 +1,19 @@
+// The env keys of the `grid` plugin.
+#pragma once
+
+#include "framework/config/env.h"
+
+#include <string_view>
+
+namespace bvhlab::keys::Grid {
+inline constexpr std::string_view kSettings[] = {"woo", "regular", "heterogeneous"};
+inline constexpr FloatKey density{"Grid::density", "1", 0.001, 1000,
+                                  "voxel density D: the grid has about D*N cells for N objects (Havran: usually 1)"};
+inline constexpr ChoiceKey setting{
+    "Grid::setting", "woo", kSettings,
+    "resolution method of Havran's text: woo (D*N cubic cells), regular (D*N^(1/3) per axis), "
+    "heterogeneous (Klimaszewski's formulas)"};
+inline constexpr IntKey objects{"Grid::objects", "0", 0, 2000000000,
+                                "N for the resolution: 0 counts the primitives built over; give the NFF object "
+                                "count to size the grid as Havran did (docs/spd.md)"};
+}  // namespace bvhlab::keys::Grid

@@ -1,0 +1,20 @@
+// The plugin's entry point: `grid`, Havran's uniform grid, with its keys. Built as
+// build/plugins/grid.so and found by name (-DASDS::type=grid); docs/spd.md measures it.
+#include "accel/grid/grid_accelerator.h"
+#include "accel/grid/grid_env.h"
+#include "framework/plugin/plugin_api.h"
+
+#include <stdexcept>
+
+BVHLAB_PLUGIN(registrar) {
+    using namespace bvhlab;
+    registrar.addAccelerator(
+        {"grid", "Havran's uniform grid: Woo's resolution, 3D-DDA, no mailboxes (a plugin: accel/grid/, docs/spd.md)",
+         {keys::Grid::density.declaration(), keys::Grid::setting.declaration(), keys::Grid::objects.declaration()},
+         [](const Env& env) -> std::unique_ptr<Accelerator> {
+             const auto setting = grid::parseGridSetting(env.get(keys::Grid::setting));
+             if (!setting) throw std::invalid_argument("Grid::setting: unknown setting");
+             return std::make_unique<grid::GridAccelerator>(*setting, double(env.get(keys::Grid::density)),
+                                                            double(env.get(keys::Grid::objects)));
+         }});
+}
