@@ -58,6 +58,14 @@ struct SahCost {
     double cIntersect = 1.0;
 };
 
+// A figure of a structure's own, beside the common ones: a grid's resolution and references
+// per voxel, a kd-tree's empty leaves.
+struct NamedFigure {
+    std::string name;     // one word, as the JSON key: "voxels"
+    double value = 0.0;
+    std::string meaning;  // one line: "N_V, cells of the grid"
+};
+
 // What a build reports. Structures without a visible tree (Embree) leave the tree fields
 // unset: unavailable, not zero.
 struct BuildStats {
@@ -86,6 +94,8 @@ struct BuildStats {
     // leafSizes[k]: the leaves holding k primitives; empty when the tree is invisible.
     std::vector<size_t> leafSizes;
     std::optional<size_t> bytes;
+    // The structure's own figures, printed under the statistics row and in the JSON ("figures").
+    std::vector<NamedFigure> figures;
 };
 
 class Accelerator {

@@ -14,8 +14,8 @@
 #include <vector>
 
 // Raised when anything a plugin compiles against changes shape; a plugin built for another
-// version is refused at load time with both versions named.
-#define BVHLAB_PLUGIN_API_VERSION 1
+// version is refused at load time with both versions named. 2: BuildStats::figures.
+#define BVHLAB_PLUGIN_API_VERSION 2
 
 namespace bvhlab {
 

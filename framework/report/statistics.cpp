@@ -70,7 +70,14 @@ std::string formatStatsTable(const StatsRow& row) {
                        row.load.degenerateTriangles, row.load.degenerateSpheres, row.load.degenerateCones,
                        row.load.skippedPolygons, shadowsNotCast, row.render.bouncesSkipped, row.render.threads);
     if (b.sah) out += fmt::format("; SAH and EPO with C_trav={} C_isect={}", b.sah->cTraversal, b.sah->cIntersect);
+    for (const NamedFigure& f : b.figures) out += fmt::format("\n{} {}: {} ({})", row.accel, f.name, f.value, f.meaning);
     return out;
+}
+
+nlohmann::json figuresJson(const std::vector<NamedFigure>& figures) {
+    nlohmann::json j = nlohmann::json::object();
+    for (const NamedFigure& f : figures) j[f.name] = {{"value", f.value}, {"meaning", f.meaning}};
+    return j;
 }
 
 nlohmann::json statsJson(const StatsRow& row) {
@@ -95,6 +102,7 @@ nlohmann::json statsJson(const StatsRow& row) {
         {"sah_c_isect", b.sah ? nlohmann::json(b.sah->cIntersect) : nlohmann::json()},
         {"epo", optionalJson(b.epo)},
         {"leaf_sizes", b.leafSizes.empty() ? nlohmann::json() : nlohmann::json(b.leafSizes)},
+        {"figures", figuresJson(b.figures)},
         {"build_ms", b.buildMs},
         {"render_ms", row.render.renderMs},
         {"threads", row.render.threads},

@@ -26,8 +26,10 @@ struct StatsRow {
 std::string formatStatsTable(const StatsRow& row);
 
 // JSON with keys scene, accel, prims, degenerate, degenerate_spheres, degenerate_cones,
-// nodes, leaves, sah, epo, leaf_sizes ([k]: leaves of k primitives), build_ms, render_ms, threads and objects primary/shadow {queries, n_it,
+// nodes, leaves, sah, epo, leaf_sizes ([k]: leaves of k primitives), figures, build_ms, render_ms, threads and objects primary/shadow {queries, n_it,
 // n_it_sphere, n_it_cone, n_tr, t_r_us}; unavailable values are null.
 nlohmann::json statsJson(const StatsRow& row);
+// A structure's own figures: {"name": {"value", "meaning"}, ...}.
+nlohmann::json figuresJson(const std::vector<NamedFigure>& figures);
 
 }  // namespace bvhlab
