@@ -21,7 +21,6 @@ BuildStats GridAccelerator::build(const PrimitiveSet& prims) {
     stats.avgLeafPrimitives = cells > 0 ? double(refs) / double(cells) : 0.0;
     stats.maxLeafPrimitives = grid_.maxCellReferences();
     stats.bytes = grid_.bytes();
-#if BVHLAB_PLUGIN_API_VERSION >= 2
     stats.figures = {
         {"res_x", double(grid_.res.x), "cells along x"},
         {"res_y", double(grid_.res.y), "cells along y"},
@@ -31,7 +30,6 @@ BuildStats GridAccelerator::build(const PrimitiveSet& prims) {
         {"N_OIV", double(refs), "object references in the elementary cells (Havran)"},
         {"D", grid_.densityUsed, "density used: Grid::density, or less where the reference budget lowered it"},
     };
-#endif
     return stats;
 }
 
