@@ -9,7 +9,7 @@ namespace bvhlab::grid {
 BuildStats GridAccelerator::build(const PrimitiveSet& prims) {
     const auto start = std::chrono::steady_clock::now();
     prims_ = prims;
-    grid_ = buildGridCells(prims, setting_, density_, objects_);
+    grid_ = buildGridCells(prims, parameters_);
     BuildStats stats;
     stats.buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     stats.primitives = prims.valid.size();

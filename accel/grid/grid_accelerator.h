@@ -10,9 +10,7 @@ namespace bvhlab::grid {
 
 class GridAccelerator final : public Accelerator {
 public:
-    // objects: Havran's N for the resolution (0: the primitives built over).
-    GridAccelerator(GridSetting setting, double density, double objects)
-        : setting_(setting), density_(density), objects_(objects) {}
+    explicit GridAccelerator(const GridParameters& parameters) : parameters_(parameters) {}
 
     std::string_view name() const override { return "grid"; }
     BuildStats build(const PrimitiveSet& prims) override;
@@ -22,9 +20,7 @@ public:
     const GridCells& cells() const { return grid_; }
 
 private:
-    GridSetting setting_;
-    double density_;
-    double objects_;
+    GridParameters parameters_;
     PrimitiveSet prims_;
     GridCells grid_;
 };

@@ -139,7 +139,7 @@ void setResolution(GridCells& g, const GridResolution& res) {
 
 }  // namespace
 
-GridCells buildGridCells(const PrimitiveSet& prims, GridSetting setting, double density, double objects) {
+GridCells buildGridCells(const PrimitiveSet& prims, const GridParameters& parameters) {
     GridCells g;
     const Bounds3 box = primitiveBounds(prims);
     if (prims.valid.empty() || box.isEmpty()) return g;
@@ -152,12 +152,19 @@ GridCells buildGridCells(const PrimitiveSet& prims, GridSetting setting, double 
     const double pad = 1e-5 * longest + 1e-5 * magnitude + 1e-30;
     g.lower = lower - pad;
     g.upper = upper + pad;
-    if (!(objects > 0.0)) objects = double(prims.valid.size());
+    const double objects = parameters.objects > 0.0 ? parameters.objects : double(prims.valid.size());
+    const double density = parameters.density;
 
     const uint64_t budget = std::max(kMinReferenceBudget, kReferencesPerPrimitive * uint64_t(prims.valid.size()));
     double d = density;
     for (;;) {
-        setResolution(g, gridResolution(setting, d, objects, extent));
+        if (parameters.fixed) {
+            const double scale = std::cbrt(d / density);
+            const GridResolution& f = *parameters.fixed;
+            setResolution(g, {std::max(1, int(f.x * scale)), std::max(1, int(f.y * scale)), std::max(1, int(f.z * scale))});
+        } else {
+            setResolution(g, gridResolution(parameters.setting, d, objects, extent));
+        }
         bool fits = g.cells() <= kMaxCells;
         if (fits) {
             const Builder builder(prims, g);

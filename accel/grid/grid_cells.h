@@ -13,6 +13,7 @@
 #include "framework/core/primitive_set.h"
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace bvhlab::grid {
@@ -48,9 +49,18 @@ struct GridCells {
 // The exact extent of the valid primitives' bounds (empty box: no valid primitive).
 Bounds3 primitiveBounds(const PrimitiveSet& prims);
 
-// Builds the grid over prims.valid. `objects` is Havran's N (0: the number of valid
-// primitives); the resolution is gridResolution(setting, density, objects, extent).
-GridCells buildGridCells(const PrimitiveSet& prims, GridSetting setting, double density, double objects);
+// How the resolution is chosen: Havran's N (0: the number of valid primitives), the density
+// and setting of gridResolution(), or a fixed resolution that overrides them.
+struct GridParameters {
+    GridSetting setting = GridSetting::Woo;
+    double density = 1.0;
+    double objects = 0.0;
+    std::optional<GridResolution> fixed;
+};
+
+// Builds the grid over prims.valid. Where the reference budget is exceeded, the density (or a
+// fixed resolution's cells, by the same factor) is halved until it fits.
+GridCells buildGridCells(const PrimitiveSet& prims, const GridParameters& parameters);
 
 // The overlap tests, for the tests: does the primitive touch the closed box [lo, hi]?
 bool triangleOverlapsBox(const Triangle& tri, const DVec3& lo, const DVec3& hi);

@@ -16,4 +16,7 @@ inline constexpr ChoiceKey setting{
 inline constexpr IntKey objects{"Grid::objects", "0", 0, 2000000000,
                                 "N for the resolution: 0 counts the primitives built over; give the NFF object "
                                 "count to size the grid as Havran did (docs/spd.md)"};
+inline constexpr Vec3Key resolution{"Grid::resolution", "",
+                                   "cells per axis (x y z), instead of the setting's: to build at a published "
+                                   "resolution (docs/spd.md); not given: the setting decides"};
 }  // namespace bvhlab::keys::Grid

@@ -81,7 +81,7 @@ TEST(GridCells, EveryPointOfATriangleIsInACellReferencingIt) {
     std::vector<uint32_t> valid(tris.size());
     for (uint32_t i = 0; i < valid.size(); ++i) valid[i] = i;
     const PrimitiveSet prims{tris, valid};
-    const grid::GridCells g = grid::buildGridCells(prims, GridSetting::Woo, 5.0, 0.0);
+    const grid::GridCells g = grid::buildGridCells(prims, {GridSetting::Woo, 5.0, 0.0, std::nullopt});
     EXPECT_EQ(g.cells(), uint64_t(g.res.x) * g.res.y * g.res.z);
     EXPECT_EQ(g.cells(), g.cellStart.size() - 1);
     EXPECT_GT(g.res.x, 10);
@@ -102,6 +102,17 @@ TEST(GridCells, EveryPointOfATriangleIsInACellReferencingIt) {
     }
 }
 
+TEST(GridCells, AFixedResolutionOverridesTheSetting) {
+    const std::vector<Triangle> tris = {{Vec3(0.0f), Vec3(1.0f, 0.0f, 0.0f), Vec3(0.0f, 1.0f, 1.0f)}};
+    const std::vector<uint32_t> valid = {0};
+    const grid::GridCells g =
+        grid::buildGridCells(PrimitiveSet{tris, valid}, {GridSetting::Woo, 1.0, 0.0, GridResolution{3, 4, 5}});
+    EXPECT_EQ(g.res, (GridResolution{3, 4, 5}));
+    EXPECT_EQ(g.cells(), 60u);
+    EXPECT_GT(g.references(), 3u);
+    EXPECT_LT(g.emptyCells(), 60u);
+}
+
 TEST(GridCells, ABudgetBoundsTheReferencesOfHugeOverlappingTriangles) {
     // 20000 triangles each spanning the whole scene: D*N cells would make 20000 * 20000 references.
     std::vector<Triangle> tris;
@@ -111,7 +122,7 @@ TEST(GridCells, ABudgetBoundsTheReferencesOfHugeOverlappingTriangles) {
     }
     std::vector<uint32_t> valid(tris.size());
     for (uint32_t i = 0; i < valid.size(); ++i) valid[i] = i;
-    const grid::GridCells g = grid::buildGridCells(PrimitiveSet{tris, valid}, GridSetting::Woo, 1.0, 0.0);
+    const grid::GridCells g = grid::buildGridCells(PrimitiveSet{tris, valid}, {GridSetting::Woo, 1.0, 0.0, std::nullopt});
     EXPECT_LE(g.references(), std::max<uint64_t>(grid::kMinReferenceBudget, 32 * tris.size()));
     EXPECT_LT(g.densityUsed, 1.0);
 }
