@@ -80,7 +80,7 @@ struct CellRange {
 
 class Builder {
 public:
-    Builder(const PrimitiveSet& prims, GridCells& grid) : prims_(prims), g_(grid) {
+    Builder(const PrimitiveSet& prims, GridCells& grid, bool exact) : prims_(prims), g_(grid), exact_(exact) {
         const double magnitude = std::max({std::abs(g_.lower.x), std::abs(g_.lower.y), std::abs(g_.lower.z),
                                            std::abs(g_.upper.x), std::abs(g_.upper.y), std::abs(g_.upper.z)});
         for (int a = 0; a < 3; ++a) margin_[a] = kCellMargin * g_.cellSize[a] + 1e-6 * magnitude;
@@ -99,6 +99,7 @@ public:
     }
 
     bool overlaps(uint32_t prim, int x, int y, int z) const {
+        if (!exact_) return true;  // the cell is in the range of the primitive's box
         const DVec3 lo = g_.lower + DVec3(x, y, z) * g_.cellSize - margin_;
         const DVec3 hi = g_.lower + DVec3(x + 1, y + 1, z + 1) * g_.cellSize + margin_;
         switch (prims_.kind(prim)) {
@@ -126,6 +127,7 @@ private:
 
     const PrimitiveSet& prims_;
     GridCells& g_;
+    bool exact_;
     DVec3 margin_;
 };
 
@@ -167,7 +169,7 @@ GridCells buildGridCells(const PrimitiveSet& prims, const GridParameters& parame
         }
         bool fits = g.cells() <= kMaxCells;
         if (fits) {
-            const Builder builder(prims, g);
+            const Builder builder(prims, g, parameters.exactOverlap);
             uint64_t bound = 0;
             for (uint32_t p : prims.valid) {
                 bound += builder.range(p).count();
@@ -180,7 +182,7 @@ GridCells buildGridCells(const PrimitiveSet& prims, const GridParameters& parame
     }
     g.densityUsed = d;
 
-    const Builder builder(prims, g);
+    const Builder builder(prims, g, parameters.exactOverlap);
     std::vector<uint32_t> count(g.cells() + 1, 0);
     for (uint32_t p : prims.valid) builder.forEachCell(p, [&](size_t c) { ++count[c + 1]; });
     for (size_t c = 1; c < count.size(); ++c) count[c] += count[c - 1];

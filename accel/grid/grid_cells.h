@@ -1,5 +1,7 @@
 // The grid's cells and their object references: every primitive is referenced in each cell it
-// overlaps, tested conservatively (docs/spd.md, "The uniform grid"):
+// overlaps, tested conservatively (docs/spd.md, "The uniform grid"). Either by its bounding box
+// (GridParameters::exactOverlap false, Havran's rule: his N_OIV and N_EV on tetra at 35^3 are
+// those of bounding boxes to the reference), or exactly:
 // - triangles by the separating-axis test of triangle and box (Akenine-Möller 2001: the box's
 //   three axes, the triangle's normal, the nine edge-by-axis cross products), in double;
 // - spheres by the distance from the centre to the box against the radius, in double;
@@ -56,6 +58,7 @@ struct GridParameters {
     double density = 1.0;
     double objects = 0.0;
     std::optional<GridResolution> fixed;
+    bool exactOverlap = false;  // false: a primitive's bounding box decides (Havran)
 };
 
 // Builds the grid over prims.valid. Where the reference budget is exceeded, the density (or a

@@ -13,12 +13,13 @@ BVHLAB_PLUGIN(registrar) {
     registrar.addAccelerator(
         {"grid", "Havran's uniform grid: Woo's resolution, 3D-DDA, no mailboxes (a plugin: accel/grid/, docs/spd.md)",
          {keys::Grid::density.declaration(), keys::Grid::setting.declaration(), keys::Grid::objects.declaration(),
-          keys::Grid::resolution.declaration()},
+          keys::Grid::resolution.declaration(), keys::Grid::overlap.declaration()},
          [](const Env& env) -> std::unique_ptr<Accelerator> {
              const auto setting = grid::parseGridSetting(env.get(keys::Grid::setting));
              if (!setting) throw std::invalid_argument("Grid::setting: unknown setting");
              grid::GridParameters parameters{*setting, double(env.get(keys::Grid::density)),
-                                             double(env.get(keys::Grid::objects)), std::nullopt};
+                                             double(env.get(keys::Grid::objects)), std::nullopt,
+                                             env.get(keys::Grid::overlap) == "exact"};
              if (const std::optional<Vec3> r = env.get(keys::Grid::resolution)) {
                  const auto cells = [](float v) { return int(std::clamp(std::round(v), 1.0f, float(grid::kMaxAxisCells))); };
                  parameters.fixed = grid::GridResolution{cells(r->x), cells(r->y), cells(r->z)};

@@ -81,7 +81,7 @@ TEST(GridCells, EveryPointOfATriangleIsInACellReferencingIt) {
     std::vector<uint32_t> valid(tris.size());
     for (uint32_t i = 0; i < valid.size(); ++i) valid[i] = i;
     const PrimitiveSet prims{tris, valid};
-    const grid::GridCells g = grid::buildGridCells(prims, {GridSetting::Woo, 5.0, 0.0, std::nullopt});
+    const grid::GridCells g = grid::buildGridCells(prims, {GridSetting::Woo, 5.0, 0.0, std::nullopt, true});
     EXPECT_EQ(g.cells(), uint64_t(g.res.x) * g.res.y * g.res.z);
     EXPECT_EQ(g.cells(), g.cellStart.size() - 1);
     EXPECT_GT(g.res.x, 10);
