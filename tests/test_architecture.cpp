@@ -27,6 +27,7 @@ const std::map<std::string, std::vector<std::string>> kMayInclude = {
     {"framework/plugin", {"framework/core", "framework/config"}},
     {"accel/naive", {"framework/core"}},
     {"accel/embree", {"framework/core", "framework/config"}},
+    {"accel/grid", {"framework/core", "framework/config", "framework/plugin"}},
     {"accel/bvh/simd", {"framework/core"}},
     {"accel/bvh/layout", {"framework/core", "accel/bvh/simd"}},
     {"accel/bvh/builders", {"framework/core", "accel/bvh/simd", "accel/bvh/layout"}},

@@ -13,6 +13,7 @@
 #include "framework/io/image_io.h"
 #include "framework/render/spd_tracer.h"
 #include "framework/report/provenance.h"
+#include "framework/report/statistics.h"
 
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
@@ -35,6 +36,7 @@ nlohmann::json accelJson(const std::string& label, const BuildStats& build, cons
     const auto counter = [&](uint64_t v) { return counted ? nlohmann::json(perRay(v, rays)) : nlohmann::json(); };
     return {{"accel", label},
             {"build_ms", build.buildMs},
+            {"figures", figuresJson(build.figures)},  // the structure's own (a grid's N_V, N_EV, N_OIV)
             {"trace_ms", r.traceMs},
             {"threads", r.threads},
             {"invariants", invariantsJson(r.counts)},

@@ -1,0 +1,103 @@
+#include "accel/grid/grid_accelerator.h"
+
+#include "accel/grid/grid_traversal.h"
+
+#include <chrono>
+
+namespace bvhlab::grid {
+
+BuildStats GridAccelerator::build(const PrimitiveSet& prims) {
+    const auto start = std::chrono::steady_clock::now();
+    prims_ = prims;
+    grid_ = buildGridCells(prims, parameters_);
+    BuildStats stats;
+    stats.buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    stats.primitives = prims.valid.size();
+    const uint64_t cells = grid_.cells(), empty = grid_.emptyCells(), refs = grid_.references();
+    // A grid has no tree: its cells are the leaves (nodes = leaves = N_V, empty ones included),
+    // and nothing of a tree's depth or SAH applies.
+    stats.nodes = cells;
+    stats.leaves = cells;
+    stats.avgLeafPrimitives = cells > 0 ? double(refs) / double(cells) : 0.0;
+    stats.maxLeafPrimitives = grid_.maxCellReferences();
+    stats.bytes = grid_.bytes();
+    stats.figures = {
+        {"res_x", double(grid_.res.x), "cells along x"},
+        {"res_y", double(grid_.res.y), "cells along y"},
+        {"res_z", double(grid_.res.z), "cells along z"},
+        {"N_V", double(cells), "elementary cells (Havran)"},
+        {"N_EV", double(empty), "empty elementary cells (Havran)"},
+        {"N_OIV", double(refs), "object references in the elementary cells (Havran)"},
+        {"D", grid_.densityUsed, "density used: Grid::density, or less where the reference budget lowered it"},
+    };
+    return stats;
+}
+
+namespace {
+
+// Tests every reference of cell `c` in [ray.tmin, tmax]; onHit(t, prim, u, v) returns true to stop.
+template <typename OnHit>
+bool testCell(const GridCells& g, const PrimitiveSet& prims, size_t c, const Ray& ray, const ShearedRay& sheared,
+              float& tmax, QueryCounters& counters, OnHit&& onHit) {
+    for (uint32_t i = g.cellStart[c]; i < g.cellStart[c + 1]; ++i) {
+        const uint32_t prim = g.refs[i];
+        if (prims.kind(prim) == PrimitiveKind::Triangle) {
+            ++counters.intersectionTests;
+            TriangleHitT<float> h;
+            if (intersectTriangle(sheared, prims.triangles[prim], ray.tmin, tmax, h)) {
+                tmax = h.t;
+                if (onHit(h.t, prim, h.u, h.v)) return true;
+            }
+        } else {
+            const QuadricShape shape = prims.quadric(prim);
+            counters.countQuadricTest(shape);
+            QuadricHitT<float> h;
+            if (intersectQuadric(ray, shape, ray.tmin, tmax, h)) {
+                tmax = h.t;
+                if (onHit(h.t, prim, 0.0f, 0.0f)) return true;
+            }
+        }
+    }
+    return false;
+}
+
+}  // namespace
+
+bool GridAccelerator::findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const {
+    ++counters.queries;
+    if (!ray.isValid() || grid_.refs.empty()) return false;
+    const ShearedRay sheared(ray);
+    float tmax = ray.tmax;
+    Hit best;
+    walkCells(grid_, ray, [&](size_t c, double exit) {
+        ++counters.traversalSteps;
+        testCell(grid_, prims_, c, ray, sheared, tmax, counters, [&](float t, uint32_t prim, float u, float v) {
+            best = {t, prim, u, v};
+            return false;
+        });
+        // A hit beyond this cell's exit is kept (tmax) but answered only once the walk reaches
+        // its cell: a closer one may lie in the cells between. Cells are closed and enlarged
+        // (grid_cells.h), so a hit on a face is referenced by the cell before it.
+        return !(best.found() && double(best.t) <= exit);
+    });
+    if (!best.found()) return false;
+    hit = best;
+    return true;
+}
+
+bool GridAccelerator::isOccluded(const Ray& ray, QueryCounters& counters) const {
+    ++counters.queries;
+    if (!ray.isValid() || grid_.refs.empty()) return false;
+    const ShearedRay sheared(ray);
+    float tmax = ray.tmax;
+    bool occluded = false;
+    walkCells(grid_, ray, [&](size_t c, double) {
+        ++counters.traversalSteps;
+        occluded = testCell(grid_, prims_, c, ray, sheared, tmax, counters,
+                            [](float, uint32_t, float, float) { return true; });
+        return !occluded;
+    });
+    return occluded;
+}
+
+}  // namespace bvhlab::grid
