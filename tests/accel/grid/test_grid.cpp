@@ -57,7 +57,7 @@ TEST(GridResolution, RegularAndHeterogeneousFollowHavransFormulas) {
 TEST(GridCells, OverlapTestsSeparateAndTouch) {
     const DVec3 lo(0.0), hi(1.0);
     // A triangle whose box overlaps the cell's but which passes by its corner.
-    const Triangle corner{Vec3(1.5f, 0.4f, 0.5f), Vec3(0.4f, 1.5f, 0.5f), Vec3(1.5f, 1.5f, 0.5f)};
+    const Triangle corner{Vec3(1.5f, 0.6f, 0.5f), Vec3(0.6f, 1.5f, 0.5f), Vec3(1.5f, 1.5f, 0.5f)};
     EXPECT_FALSE(grid::triangleOverlapsBox(corner, lo, hi));
     const Triangle through{Vec3(1.2f, 0.4f, 0.5f), Vec3(0.4f, 1.2f, 0.5f), Vec3(1.5f, 1.5f, 0.5f)};
     EXPECT_TRUE(grid::triangleOverlapsBox(through, lo, hi));
