@@ -1,7 +1,9 @@
 #include "accel/registry.h"
 
+#include "accel/bvh/builder_table.h"
 #include "accel/bvh/bvh_accelerator.h"
 #include "accel/bvh/bvh_env.h"
+#include "accel/bvh/plugin_builder.h"
 #include "accel/embree/embree_accelerator.h"
 #include "accel/embree/embree_env.h"
 #include "accel/guarded_accelerator.h"
@@ -14,53 +16,63 @@ namespace bvhlab {
 
 namespace {
 
-// A BVH accelerator: the builder `kind` over the node layout `Layout`.
-template <typename Layout>
-AcceleratorInfo bvhInfo(std::string name, std::string description, BvhKind kind) {
-    return {std::move(name), std::move(description), bvhEnvKeys(kind), [kind](const Env& env) {
-                return std::make_unique<BvhAccelerator<Layout>>(kind, bvhConfigFromEnv(env), traversalConfigFromEnv(env),
-                                                                statsConfigFromEnv(env));
-            },
-            {}};
+std::string wideDescription(const std::string& builder, int width) {
+    return width == 4 ? fmt::format("{}'s tree (leaves charged by blocks of eight) in 4-wide nodes, four child boxes tested "
+                                    "at once (SSE), leaves eight triangles at once (AVX2); N_TR counts wide steps",
+                                    builder)
+                      : fmt::format("{}'s tree (leaves charged by blocks of eight) in {}-wide nodes, eight child boxes "
+                                    "tested at once (AVX2; scalar lanes without it), leaves eight triangles at once; "
+                                    "N_TR counts wide steps",
+                                    builder, width);
 }
 
-std::vector<AcceleratorInfo>& registeredInfos() {
-    static std::vector<AcceleratorInfo> infos = {
+// The accelerator of a builder over one layout: NAME (binary), NAME4 or NAME8. `makeBuilder`
+// gives the builder with the env's values and the layout's leaf block.
+using BuilderMaker = std::function<BvhBuilder(const Env&, uint32_t leafBlock)>;
+
+template <typename Layout>
+std::unique_ptr<Accelerator> makeBvhAccelerator(const BuilderMaker& makeBuilder, const Env& env, uint32_t leafBlock) {
+    return std::make_unique<BvhAccelerator<Layout>>(makeBuilder(env, leafBlock), bvhConfigFromEnv(env),
+                                                    traversalConfigFromEnv(env), statsConfigFromEnv(env));
+}
+
+std::vector<AcceleratorInfo> bvhInfos(const std::string& name, const std::string& description,
+                                      std::vector<std::string> keys, const std::vector<int>& wideLayouts,
+                                      const BuilderMaker& makeBuilder) {
+    for (std::string_view key : bvhCommonKeys()) keys.emplace_back(key);
+    std::vector<AcceleratorInfo> infos = {
+        {name, description, keys, [makeBuilder](const Env& env) { return makeBvhAccelerator<Bvh>(makeBuilder, env, 1); }, {}}};
+    for (int width : wideLayouts) {
+        auto create = [makeBuilder, width](const Env& env) {
+            return width == 4 ? makeBvhAccelerator<WideBvh<4>>(makeBuilder, env, TriangleBlock::kLanes)
+                              : makeBvhAccelerator<WideBvh<8>>(makeBuilder, env, TriangleBlock::kLanes);
+        };
+        infos.push_back({name + std::to_string(width), wideDescription(name, width), keys, create, {}});
+    }
+    return infos;
+}
+
+// bvhlab's own: brute force, Embree, and the accelerators of each builder of the table.
+std::vector<AcceleratorInfo> ownInfos() {
+    std::vector<AcceleratorInfo> infos = {
         {"naive", "brute force: tests every triangle; the reference the others are tested against", {},
          [](const Env&) { return std::make_unique<NaiveAccelerator>(); }, {}},
         {"embree", "Intel Embree 3 (rtcIntersect1/rtcOccluded1): the speed reference; no counters, no visible tree",
          {std::string(keys::Embree::quality.name()), std::string(keys::Embree::robust.name()),
           std::string(keys::Embree::threads.name())},
          [](const Env& env) { return std::make_unique<EmbreeAccelerator>(env); }, {}},
-        bvhInfo<Bvh>("tdbvh", "BVH by spatial median: the middle of the longest axis (BVH::tdbvhSplit), object median fallback",
-                     BvhKind::SpatialMedian),
-        bvhInfo<Bvh>("sahbvh", "BVH by binned SAH (Wald 2007): BVH::bins bins along the widest centre axis, SSE binning",
-                     BvhKind::BinnedSah),
-        bvhInfo<WideBvh<4>>(
-            "sahbvh4", "sahbvh's tree (leaves charged by blocks of eight) in 4-wide nodes, four child boxes tested at once (SSE), "
-            "leaves eight triangles at once (AVX2); N_TR counts wide steps",
-            BvhKind::BinnedSah),
-        bvhInfo<WideBvh<8>>("sahbvh8",
-                            "sahbvh's tree (leaves charged by blocks of eight) in 8-wide nodes, eight child boxes tested at "
-                            "once (AVX2; scalar lanes without it), leaves eight triangles at once; N_TR counts wide steps",
-                            BvhKind::BinnedSah),
-        bvhInfo<Bvh>("sbvh",
-                     "split BVH (Stich et al. 2009): sahbvh's object splits and, where their children overlap "
-                     "(BVH::sbvhAlpha), spatial splits that clip triangles to bins, within BVH::sbvhGrowth more references",
-                     BvhKind::Sbvh),
-        bvhInfo<WideBvh<8>>("sbvh8",
-                            "sbvh's tree (leaves charged by blocks of eight) in 8-wide nodes, as sahbvh8; N_TR counts wide steps",
-                            BvhKind::Sbvh),
-        bvhInfo<Bvh>("ploc",
-                     "BVH by PLOC (Meister & Bittner 2018): Morton order, mutual nearest neighbours within BVH::plocRadius "
-                     "merged bottom-up in parallel, leaves formed by SAH",
-                     BvhKind::Ploc),
-        bvhInfo<WideBvh<8>>("ploc8",
-                            "ploc's tree (leaves charged by blocks of eight) in 8-wide nodes, as sahbvh8; N_TR counts wide steps",
-                            BvhKind::Ploc),
-        bvhInfo<Bvh>("sweepbvh", "BVH by full-sweep SAH over all N-1 planes per axis: the exact reference for sahbvh; slow build",
-                     BvhKind::SweepSah),
     };
+    for (const BvhBuilderEntry& entry : bvhBuilderTable()) {
+        const BvhBuilder& builder = entry.builder;
+        for (AcceleratorInfo& info : bvhInfos(builder.name, entry.description, {entry.keys.begin(), entry.keys.end()},
+                                              entry.wideLayouts, [&builder](const Env&, uint32_t) { return builder; }))
+            infos.push_back(std::move(info));
+    }
+    return infos;
+}
+
+std::vector<AcceleratorInfo>& registeredInfos() {
+    static std::vector<AcceleratorInfo> infos = ownInfos();
     return infos;
 }
 
@@ -84,6 +96,18 @@ void addAccelerator(AcceleratorInfo info) {
         return guardAccelerator(std::move(accel), plugin, name);
     };
     registeredInfos().push_back(std::move(info));
+}
+
+void addBvhBuilder(const PluginBuilder& builder, const std::string& plugin) {
+    std::vector<std::string> keys;
+    for (const EnvKey& key : builder.keys) keys.push_back(key.name);
+    for (AcceleratorInfo& info : bvhInfos(builder.name, builder.description, keys, {4, 8},
+                                          [builder](const Env& env, uint32_t leafBlock) {
+                                              return pluginBvhBuilder(builder, env, leafBlock);
+                                          })) {
+        info.plugin = plugin;
+        addAccelerator(std::move(info));
+    }
 }
 
 void registerAcceleratorKeys(EnvRegistry& registry) {

@@ -1,9 +1,11 @@
 // Creates accelerators by name. `ASDS::type` in env chooses one; adding an accelerator
-// means one entry in registry.cpp (see docs/adding-an-accelerator.md).
+// means one entry in registry.cpp, adding a BVH builder one entry in accel/bvh/builder_table.cpp
+// (see docs/adding-an-accelerator.md).
 #pragma once
 
 #include "framework/config/env.h"
 #include "framework/core/accelerator.h"
+#include "framework/plugin/builder_api.h"
 
 #include <functional>
 #include <memory>
@@ -36,6 +38,10 @@ const AcceleratorInfo* findAccelerator(const std::string& name);
 // thrown inside reaches the caller as a PluginError naming the plugin and the accelerator.
 // Throws InputError if the name is taken.
 void addAccelerator(AcceleratorInfo info);
+
+// Adds a plugin's builder as the accelerators NAME, NAME4 and NAME8 (accel/bvh/plugin_builder.h),
+// guarded as addAccelerator's are.
+void addBvhBuilder(const PluginBuilder& builder, const std::string& plugin);
 
 // Throws InputError naming the unknown accelerator and the known ones.
 std::unique_ptr<Accelerator> createAccelerator(const std::string& name, const Env& env);

@@ -33,8 +33,8 @@ const std::map<std::string, std::vector<std::string>> kMayInclude = {
     {"accel/bvh/builders", {"framework/core", "accel/bvh/simd", "accel/bvh/layout"}},
     {"accel/bvh/traverse", {"framework/core", "accel/bvh/simd", "accel/bvh/layout"}},
     {"accel/bvh",
-     {"framework/core", "framework/config", "accel/bvh/simd", "accel/bvh/layout", "accel/bvh/builders",
-      "accel/bvh/traverse"}},
+     {"framework/core", "framework/config", "framework/plugin", "accel/bvh/simd", "accel/bvh/layout",
+      "accel/bvh/builders", "accel/bvh/traverse"}},
     {"accel", {"framework/core", "framework/config", "framework/plugin", "accel/naive", "accel/embree", "accel/bvh"}},
 };
 

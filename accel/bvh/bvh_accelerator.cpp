@@ -26,9 +26,9 @@ struct LayoutWidth<WideBvh<N>> {
 }  // namespace
 
 template <typename Layout>
-BvhAccelerator<Layout>::BvhAccelerator(BvhKind kind, const BvhBuildConfig& build, const TraversalConfig& traversal,
+BvhAccelerator<Layout>::BvhAccelerator(BvhBuilder builder, const BvhBuildConfig& build, const TraversalConfig& traversal,
                                        const BvhStatsConfig& stats)
-    : kind_(kind), build_(build), traversal_(traversal), stats_(stats), name_(bvhKindName(kind)) {
+    : builder_(std::move(builder)), build_(build), traversal_(traversal), stats_(stats), name_(builder_.name) {
     if constexpr (LayoutWidth<Layout>::value > 2) {
         name_ += std::to_string(LayoutWidth<Layout>::value);
         // The leaves test a block of triangles at a time: the SAH charges them so.
@@ -46,7 +46,7 @@ BuildStats BvhAccelerator<Layout>::build(const PrimitiveSet& prims) {
     quadrics_ = QuadricBvh();
     const auto start = std::chrono::steady_clock::now();
     const double cpuStart = processCpuMs();
-    Bvh binary = buildBvh(kind_, build_, prims);
+    Bvh binary = buildBvh(builder_, build_, prims);
     const auto built = std::chrono::steady_clock::now();
     const double cpuBuilt = processCpuMs();
     BuildStats stats;
@@ -66,7 +66,7 @@ BuildStats BvhAccelerator<Layout>::build(const PrimitiveSet& prims) {
     if (prims.hasQuadrics()) {
         BvhBuildConfig config = build_;
         config.sahBlockShift = 0;  // quadrics are tested one at a time
-        quadrics_ = buildQuadricBvh(kind_, config, prims);
+        quadrics_ = buildQuadricBvh(builder_, config, prims);
     }
     const auto end = std::chrono::steady_clock::now();
     const double cpuEnd = processCpuMs();

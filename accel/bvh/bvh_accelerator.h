@@ -1,5 +1,5 @@
 // The BVH accelerators behind our interface: one class over a node layout, parameterised by the
-// builder (tdbvh, sahbvh, sweepbvh, ploc) and the traversal setting. Layout = Bvh is the binary tree
+// builder (builder_table.h, or a plugin's) and the traversal setting. Layout = Bvh is the binary tree
 // the builders emit; Layout = WideBvh<N> collapses it by SAH into N-wide nodes (sahbvh4,
 // sahbvh8) whose leaves hold their triangles in SIMD blocks of eight. For them the SAH builders
 // charge a leaf by the blocks it fills (BvhBuildConfig::sahBlockShift), so their binary tree is
@@ -24,7 +24,7 @@ struct BvhStatsConfig {
 template <typename Layout>
 class BvhAccelerator final : public Accelerator {
 public:
-    BvhAccelerator(BvhKind kind, const BvhBuildConfig& build, const TraversalConfig& traversal = {},
+    BvhAccelerator(BvhBuilder builder, const BvhBuildConfig& build, const TraversalConfig& traversal = {},
                    const BvhStatsConfig& stats = {});
 
     std::string_view name() const override { return name_; }
@@ -54,7 +54,7 @@ private:
     void isOccludedRange(std::span<const Ray> rays, std::span<uint8_t> occluded, QueryCounters& counters,
                          std::span<RayCost> costs) const;
 
-    BvhKind kind_;
+    BvhBuilder builder_;
     BvhBuildConfig build_;
     TraversalConfig traversal_;
     BvhStatsConfig stats_;

@@ -11,21 +11,10 @@ void registerBvhKeys(EnvRegistry& r) {
     r.add(optimize);
 }
 
-std::vector<std::string> bvhEnvKeys(BvhKind kind) {
+std::vector<std::string_view> bvhCommonKeys() {
     using namespace keys::BVH;
-    std::vector<std::string_view> read = {maxLeaf.name(), leafCap.name(), cTraversal.name(),
-                                          cIntersect.name(), keys::BVH::simd.name(), robust.name(), threads.name(),
-                                          epoMaxTriangles.name(), optimize.name(), optimizeIterations.name()};
-    switch (kind) {
-    case BvhKind::SpatialMedian: read.push_back(tdbvhSplit.name()); break;
-    case BvhKind::BinnedSah: read.insert(read.end(), {sahTermination.name(), bins.name(), allAxes.name()}); break;
-    case BvhKind::SweepSah: read.push_back(sahTermination.name()); break;
-    case BvhKind::Sbvh:
-        read.insert(read.end(), {sahTermination.name(), bins.name(), allAxes.name(), sbvhAlpha.name(), sbvhGrowth.name()});
-        break;
-    case BvhKind::Ploc: read.insert(read.end(), {sahTermination.name(), plocRadius.name()}); break;
-    }
-    return {read.begin(), read.end()};
+    return {maxLeaf.name(), leafCap.name(), cTraversal.name(),      cIntersect.name(), keys::BVH::simd.name(),
+            robust.name(),  threads.name(), epoMaxTriangles.name(), optimize.name(),   optimizeIterations.name()};
 }
 
 BvhBuildConfig bvhConfigFromEnv(const Env& env) {

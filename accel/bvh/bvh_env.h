@@ -1,4 +1,4 @@
-// The env keys of the BVH accelerators (tdbvh, sahbvh, sweepbvh, sbvh, ploc), all in section BVH::.
+// The env keys of the BVH accelerators (builder_table.h), all in section BVH::.
 #pragma once
 
 #include "accel/bvh/builders/bvh_builder.h"
@@ -69,8 +69,9 @@ inline constexpr IntKey optimizeIterations{
 
 void registerBvhKeys(EnvRegistry& registry);
 
-// The keys each builder reads (for AcceleratorInfo::envKeys).
-std::vector<std::string> bvhEnvKeys(BvhKind kind);
+// The keys every BVH accelerator reads, whatever its builder (builder_table.h lists each
+// builder's own).
+std::vector<std::string_view> bvhCommonKeys();
 
 BvhBuildConfig bvhConfigFromEnv(const Env& env);
 BvhStatsConfig statsConfigFromEnv(const Env& env);

@@ -26,31 +26,51 @@ std::deque<LoadedPlugin>& pluginList() {
 
 class Registrar final : public PluginRegistrar {
 public:
-    void addAccelerator(PluginAccelerator accelerator) override { added.push_back(std::move(accelerator)); }
-    std::vector<PluginAccelerator> added;
+    void addAccelerator(PluginAccelerator accelerator) override { accelerators.push_back(std::move(accelerator)); }
+    void addBuilder(PluginBuilder builder) override { builders.push_back(std::move(builder)); }
+    std::vector<PluginAccelerator> accelerators;
+    std::vector<PluginBuilder> builders;
 };
 
+// The accelerators a builder adds.
+std::vector<std::string> acceleratorsOf(const PluginBuilder& builder) {
+    return {builder.name, builder.name + "4", builder.name + "8"};
+}
+
 // What a plugin adds, checked before any of it is registered.
-void checkAdditions(const std::string& plugin, const std::vector<PluginAccelerator>& added) {
-    if (added.empty()) throw InputError(fmt::format("{}: the plugin adds no accelerator", plugin));
+void checkAdditions(const std::string& plugin, const Registrar& added) {
+    if (added.accelerators.empty() && added.builders.empty())
+        throw InputError(fmt::format("{}: the plugin adds no accelerator and no builder", plugin));
     std::vector<std::string> names, keyNames;
-    for (const PluginAccelerator& a : added) {
-        if (a.name.empty() || a.name.find_first_of(" \t,:=") != std::string::npos)
-            throw InputError(fmt::format("{}: accelerator name '{}' must be one word without , : or =", plugin, a.name));
-        if (!a.create) throw InputError(fmt::format("{}: accelerator '{}' has no factory", plugin, a.name));
-        if (const AcceleratorInfo* taken = findAccelerator(a.name); taken || std::count(names.begin(), names.end(), a.name))
-            throw InputError(fmt::format("{}: accelerator '{}' is already defined by {}", plugin, a.name,
+    auto checkName = [&](const std::string& name) {
+        if (name.empty() || name.find_first_of(" \t,:=/") != std::string::npos)
+            throw InputError(fmt::format("{}: accelerator name '{}' must be one word without , : = or /", plugin, name));
+        if (const AcceleratorInfo* taken = findAccelerator(name); taken || std::count(names.begin(), names.end(), name))
+            throw InputError(fmt::format("{}: accelerator '{}' is already defined by {}", plugin, name,
                                          taken && !taken->plugin.empty() ? taken->plugin
                                          : taken                         ? "bvhlab"
                                                                          : "this plugin"));
-        names.push_back(a.name);
-        for (const EnvKey& key : a.keys) {
+        names.push_back(name);
+    };
+    auto checkKeys = [&](const std::string& name, const std::vector<EnvKey>& keys) {
+        for (const EnvKey& key : keys) {
             if (key.name.find("::") == std::string::npos)
-                throw InputError(fmt::format("{}: env key '{}' of '{}' is not 'Section::key'", plugin, key.name, a.name));
+                throw InputError(fmt::format("{}: env key '{}' of '{}' is not 'Section::key'", plugin, key.name, name));
             if (programKeys().find(key.name) || std::count(keyNames.begin(), keyNames.end(), key.name))
-                throw InputError(fmt::format("{}: env key '{}' of '{}' is already declared", plugin, key.name, a.name));
+                throw InputError(fmt::format("{}: env key '{}' of '{}' is already declared", plugin, key.name, name));
             keyNames.push_back(key.name);
         }
+    };
+    for (const PluginAccelerator& a : added.accelerators) {
+        checkName(a.name);
+        if (!a.create) throw InputError(fmt::format("{}: accelerator '{}' has no factory", plugin, a.name));
+        checkKeys(a.name, a.keys);
+    }
+    for (const PluginBuilder& b : added.builders) {
+        for (const std::string& name : acceleratorsOf(b)) checkName(name);
+        if (bool(b.splitRule) == bool(b.mergeTree))
+            throw InputError(fmt::format("{}: builder '{}' must give exactly one of splitRule and mergeTree", plugin, b.name));
+        checkKeys(b.name, b.keys);
     }
 }
 
@@ -92,19 +112,24 @@ const LoadedPlugin& loadPlugin(const std::filesystem::path& given) {
     } catch (...) {
         throw refuse("its entry point threw an exception that is not a std::exception");
     }
-    checkAdditions(name, registrar.added);
+    checkAdditions(name, registrar);
 
     const SceneCacheKey checksum = sceneCacheKey(file);
     LoadedPlugin plugin{file, checksum.size, checksum.crc32, apiVersion, {}};
     std::vector<EnvKey> keys;
-    for (PluginAccelerator& a : registrar.added) {
+    for (PluginAccelerator& a : registrar.accelerators) {
         std::vector<std::string> keyNames;
-        for (EnvKey& key : a.keys) {
+        for (const EnvKey& key : a.keys) {
             keyNames.push_back(key.name);
-            keys.push_back(std::move(key));
+            keys.push_back(key);
         }
         plugin.accelerators.push_back(a.name);
         addAccelerator({a.name, std::move(a.description), std::move(keyNames), std::move(a.create), name});
+    }
+    for (const PluginBuilder& b : registrar.builders) {
+        keys.insert(keys.end(), b.keys.begin(), b.keys.end());
+        for (const std::string& accelerator : acceleratorsOf(b)) plugin.accelerators.push_back(accelerator);
+        addBvhBuilder(b, name);
     }
     registerPluginKeys(name, keys);
     recordLoadedPlugin({{"path", name},
@@ -138,13 +163,18 @@ std::vector<std::filesystem::path> pluginFolders() {
 bool loadPluginFor(const std::string& accelerator) {
     if (findAccelerator(accelerator)) return true;
     if (accelerator.empty() || accelerator.find('/') != std::string::npos) return false;
-    for (const std::filesystem::path& folder : pluginFolders()) {
-        const std::filesystem::path file = folder / (accelerator + ".so");
-        std::error_code ec;
-        if (!std::filesystem::is_regular_file(file, ec)) continue;
-        loadPlugin(file);
-        return findAccelerator(accelerator) != nullptr;
-    }
+    // NAME4 and NAME8 come with a builder's NAME.
+    std::vector<std::string> files = {accelerator};
+    if (accelerator.size() > 1 && (accelerator.ends_with('4') || accelerator.ends_with('8')))
+        files.push_back(accelerator.substr(0, accelerator.size() - 1));
+    for (const std::string& file : files)
+        for (const std::filesystem::path& folder : pluginFolders()) {
+            const std::filesystem::path path = folder / (file + ".so");
+            std::error_code ec;
+            if (!std::filesystem::is_regular_file(path, ec)) continue;
+            loadPlugin(path);
+            return findAccelerator(accelerator) != nullptr;
+        }
     return false;
 }
 

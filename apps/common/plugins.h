@@ -32,7 +32,7 @@ const std::deque<LoadedPlugin>& loadedPlugins();  // in load order
 std::vector<std::filesystem::path> pluginFolders();
 
 // If `accelerator` is not known, loads `accelerator`.so from the first plugin folder holding
-// one. False when it is still unknown (the caller then reports the unknown name).
+// one, or for NAME4 and NAME8 (a builder's wide layouts) NAME.so. False when it is still unknown (the caller then reports the unknown name).
 bool loadPluginFor(const std::string& accelerator);
 
 }  // namespace bvhlab

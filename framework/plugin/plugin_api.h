@@ -1,12 +1,14 @@
 // The plugin API: what a shared library needs to add acceleration structures to bvhlab at run
 // time (docs/plugins.md). A plugin defines its entry point with BVHLAB_PLUGIN(registrar) and adds
-// one or more accelerators to the registrar. It compiles against the installed headers (the
-// accelerator interface, rays, hits, counters, primitives and their watertight tests, typed env
-// keys) and links bvhlab::plugin_api, which carries the floating-point flags those tests need.
+// one or more accelerators, or builders (builder_api.h), to the registrar. It compiles against
+// the installed headers (the accelerator interface, rays, hits, counters, primitives and their
+// watertight tests, typed env keys) and links bvhlab::plugin_api, which carries the
+// floating-point flags those tests need.
 #pragma once
 
 #include "framework/config/env.h"
 #include "framework/core/accelerator.h"
+#include "framework/plugin/builder_api.h"
 
 #include <functional>
 #include <memory>
@@ -14,8 +16,9 @@
 #include <vector>
 
 // Raised when anything a plugin compiles against changes shape; a plugin built for another
-// version is refused at load time with both versions named. 2: BuildStats::figures.
-#define BVHLAB_PLUGIN_API_VERSION 2
+// version is refused at load time with both versions named. 2: BuildStats::figures. 3: builders
+// (builder_api.h).
+#define BVHLAB_PLUGIN_API_VERSION 3
 
 namespace bvhlab {
 
@@ -33,6 +36,7 @@ class PluginRegistrar {
 public:
     virtual ~PluginRegistrar() = default;
     virtual void addAccelerator(PluginAccelerator accelerator) = 0;
+    virtual void addBuilder(PluginBuilder builder) = 0;
 };
 
 }  // namespace bvhlab

@@ -16,6 +16,7 @@ namespace {
 
 const std::string kPlugins = BVHLAB_TEST_PLUGINS;
 const std::string kThrowing = kPlugins + "/throwing.so";
+const std::string kBuilders = kPlugins + "/builders.so";
 
 // A small render of the default scene, into a scratch folder.
 Result render(const std::string& args) {
@@ -107,6 +108,28 @@ TEST(Plugins, TheJsonProvenanceNamesEveryPluginLoaded) {
     EXPECT_EQ(plugins[0]["api_version"], BVHLAB_PLUGIN_API_VERSION);
     EXPECT_EQ(plugins[0]["crc32"].get<std::string>().size(), 8u);
     EXPECT_EQ(plugins[0]["accelerators"], nlohmann::json({"throwing", "throwing_query", "throwing_factory"}));
+}
+
+TEST(Plugins, ABuilderBecomesThreeAcceleratorsThatAnswerAsTheReference) {
+    for (const char* name : {"pairs", "pairs4", "pairs8"}) {
+        const Result r = run(fmt::format("check --plugin {} --accel {} --checks agreement,mixed-primitives", kBuilders, name));
+        EXPECT_EQ(r.exitCode, 0) << name << "\n" << r.output;
+        EXPECT_NE(r.output.find("all checks passed"), std::string::npos) << r.output;
+    }
+    const Result keys = run("keys --plugin " + kBuilders);
+    EXPECT_NE(keys.output.find("| `pairs8` | pairs's tree"), std::string::npos) << keys.output;
+}
+
+TEST(Plugins, ABuilderThatBreaksItsContractFailsTheBuildNamingIt) {
+    Result r = render("--plugin " + kBuilders + " -DASDS::type=lossy8");
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("accelerator 'lossy8': build() threw: builder 'lossy' changed the primitives"),
+              std::string::npos)
+        << r.output;
+    r = render("--plugin " + kBuilders + " -DASDS::type=twice");
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("builder 'twice': its merge tree over"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("uses node"), std::string::npos) << r.output;
 }
 
 }  // namespace

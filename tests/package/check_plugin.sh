@@ -1,36 +1,44 @@
 #!/usr/bin/env bash
-# The package tests (tests/CMakeLists.txt), on the plugin example of docs/plugins.md as a user
-# pastes it into an empty folder (tests/package/extract_doc_plugin.py):
-#   tests/package/check_plugin.sh out-of-tree BUILD_DIR       find_package(bvhlab) on `cmake --install`
-#       of BUILD_DIR; the installed bvhlab loads the plugin, renders with it, runs `bvhlab check` on it
-#   tests/package/check_plugin.sh add-subdirectory BUILD_DIR  add_subdirectory(bvhlab) in another
-#       project, which builds the plugin; it must export bvhlab's two entry points
+# The package tests (tests/CMakeLists.txt), on a plugin example of docs/plugins.md as a user
+# pastes it into an empty folder (tests/package/extract_doc_plugin.py; EXAMPLE: 1, the default, is
+# the accelerator, 2 the builder):
+#   tests/package/check_plugin.sh out-of-tree BUILD_DIR [EXAMPLE]       find_package(bvhlab) on
+#       `cmake --install` of BUILD_DIR; the installed bvhlab loads the plugin, renders with it, runs
+#       `bvhlab check` on what it adds (a builder: NAME, NAME4 and NAME8)
+#   tests/package/check_plugin.sh add-subdirectory BUILD_DIR [EXAMPLE]  add_subdirectory(bvhlab)
+#       in another project, which builds the plugin; it must export bvhlab's two entry points
 set -euo pipefail
 
 fail() { echo "check_plugin: $*" >&2; exit 1; }
 
-[ $# -eq 2 ] || fail "usage: $0 out-of-tree|add-subdirectory BUILD_DIR"
+[ $# -eq 2 ] || [ $# -eq 3 ] || fail "usage: $0 out-of-tree|add-subdirectory BUILD_DIR [EXAMPLE]"
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/../.." && pwd)
 build=$(cd "$2" && pwd)
-work="$build/package-tests/$1"
+example=${3:-1}
+work="$build/package-tests/$1-$example"
 rm -rf "$work" && mkdir -p "$work"
-name=$(/usr/bin/python3 "$here/extract_doc_plugin.py" "$root/docs/plugins.md" "$work/plugin") \
-  || fail "could not take the example from docs/plugins.md"
+name=$(/usr/bin/python3 "$here/extract_doc_plugin.py" "$root/docs/plugins.md" "$work/plugin" "$example") \
+  || fail "could not take example $example from docs/plugins.md"
 
 case "$1" in
   out-of-tree)
     plugin=$(BVHLAB_BUILD="$build" "$here/build_plugin_out_of_tree.sh" "$work/plugin" "$work")
     [ "$plugin" = "$work/build/$name.so" ] || fail "expected $work/build/$name.so, built: $plugin"
     bvhlab="$work/prefix/bin/bvhlab"
-    "$bvhlab" keys --plugin "$plugin" | grep -q "| \`$name\` |" || fail "bvhlab keys does not list $name"
+    keys=$("$bvhlab" keys --plugin "$plugin")
+    grep -q "| \`$name\` |" <<< "$keys" || fail "bvhlab keys does not list $name"
+    accelerators=$name
+    grep -q "| \`${name}8\` |" <<< "$keys" && accelerators="$name ${name}4 ${name}8"  # a builder's
     "$bvhlab" render --plugin "$plugin" -DASDS::type="$name" -DCamera::width=32 -DCamera::height=24 \
       --out "$work/render/image" || fail "the installed bvhlab could not render with $name"
-    "$bvhlab" check --plugin "$plugin" --accel "$name" || fail "bvhlab check failed on $name"
-    # Found by name in a plugin folder, as docs/plugins.md says.
-    BVHLAB_PLUGIN_PATH="$work/build" "$bvhlab" check --accel "$name" --checks batch \
-      || fail "bvhlab check did not find $name by name in BVHLAB_PLUGIN_PATH"
-    echo "the installed bvhlab loaded $plugin, rendered with $name and checked it"
+    for accelerator in $accelerators; do
+      "$bvhlab" check --plugin "$plugin" --accel "$accelerator" || fail "bvhlab check failed on $accelerator"
+      # Found by name in a plugin folder, as docs/plugins.md says.
+      BVHLAB_PLUGIN_PATH="$work/build" "$bvhlab" check --accel "$accelerator" --checks batch \
+        || fail "bvhlab check did not find $accelerator by name in BVHLAB_PLUGIN_PATH"
+    done
+    echo "the installed bvhlab loaded $plugin, rendered with $name and checked $accelerators"
     ;;
   add-subdirectory)
     cmake -S "$here/add_subdirectory" -B "$work/build" -G Ninja -DCMAKE_BUILD_TYPE=Release \

@@ -3,10 +3,6 @@
 #include "accel/bvh/builders/binned_sah_builder.h"
 #include "accel/bvh/builders/build_jobs.h"
 #include "accel/bvh/builders/insertion_optimizer.h"
-#include "accel/bvh/builders/ploc_builder.h"
-#include "accel/bvh/builders/sbvh_builder.h"
-#include "accel/bvh/builders/spatial_median_builder.h"
-#include "accel/bvh/builders/sweep_sah_builder.h"
 #include "accel/bvh/builders/top_down_recursion.h"
 
 #include <fmt/core.h>
@@ -123,45 +119,21 @@ BuildRange preparePrimRefs(const PrimitiveSet& prims, PrimRef* out, bool simd) {
     return simd::withFloats4(simd, [&](auto f) { return preparePrimRefsWith<decltype(f)>(prims, out); });
 }
 
-const char* bvhKindName(BvhKind kind) {
-    switch (kind) {
-    case BvhKind::SpatialMedian: return "tdbvh";
-    case BvhKind::BinnedSah: return "sahbvh";
-    case BvhKind::SweepSah: return "sweepbvh";
-    case BvhKind::Sbvh: return "sbvh";
-    case BvhKind::Ploc: return "ploc";
-    }
-    return "bvh";
-}
-
-std::unique_ptr<TopDownBuilder> makeBvhBuilder(BvhKind kind, const BvhBuildConfig& config) {
-    switch (kind) {
-    case BvhKind::SpatialMedian: return std::make_unique<SpatialMedianBuilder>(config);
-    case BvhKind::BinnedSah: return std::make_unique<BinnedSahBuilder>(config);
-    case BvhKind::SweepSah: return std::make_unique<SweepSahBuilder>(config);
-    // sbvh's own recursion (sbvh_builder.h) builds the triangles' tree; this in-place one
-    // serves its spheres and cones, by binned SAH (object splits only: no triangle to clip).
-    case BvhKind::Sbvh: return std::make_unique<BinnedSahBuilder>(config);
-    case BvhKind::Ploc: break;
-    }
-    // Every BvhKind is a case above; a value outside the enum is a programming error.
-    throw std::logic_error(fmt::format("makeBvhBuilder: unknown BvhKind {}", int(kind)));
-}
-
 namespace {
 
 // The nodes over `all` (prepared PrimRefs whose boxes and centres `root` bounds), which it
 // reorders into leaf order: the nodes above the jobs, then the jobs' subtrees appended in the
 // order they were deferred, so the same tree whatever the thread count and the schedule.
-std::vector<BvhNode, TraversalAllocator<BvhNode>> buildNodes(BvhKind kind, const BvhBuildConfig& config,
-                                                            std::span<PrimRef> all, const BuildRange& root) {
+std::vector<BvhNode, TraversalAllocator<BvhNode>> buildNodes(const SplitRuleFactory& makeBuilder,
+                                                            const BvhBuildConfig& config, std::span<PrimRef> all,
+                                                            const BuildRange& root) {
     std::vector<DeferredRange> jobs;
     std::vector<BvhNode, TraversalAllocator<BvhNode>> nodes =
-        makeBvhBuilder(kind, config)->build(all, root, 0, &jobs, kJobPrimitives);
+        makeBuilder(config)->build(all, root, 0, &jobs, kJobPrimitives);
     std::vector<std::vector<BvhNode, TraversalAllocator<BvhNode>>> subtrees(jobs.size());
     onThreads(config.threads, [&] {
         tbb::enumerable_thread_specific<std::unique_ptr<TopDownBuilder>> builders(
-            [&] { return makeBvhBuilder(kind, config); });
+            [&] { return makeBuilder(config); });
         tbb::parallel_for(size_t(0), jobs.size(), [&](size_t j) {
             subtrees[j] = builders.local()->build(all, jobs[j].range, jobs[j].depth);
         });
@@ -191,42 +163,64 @@ void copyLeafTriangles(const PrimitiveSet& prims, int threads, Bvh& bvh) {
 
 namespace {
 
+// A plugin's split rule may reorder the PrimRefs, nothing else: each valid triangle once, with
+// the box it was given.
+void checkPrimRefsOf(const BvhBuilder& builder, const PrimRef* refs, const PrimitiveSet& prims) {
+    const std::span<const uint32_t> valid = prims.validTriangles();
+    std::vector<uint8_t> seen(prims.triangles.size(), 0);
+    for (const uint32_t prim : valid) seen[prim] = 1;
+    for (size_t i = 0; i < valid.size(); ++i) {
+        const PrimRef& ref = refs[i];
+        const bool known = ref.prim < seen.size() && seen[ref.prim] == 1;
+        if (known) seen[ref.prim] = 2;
+        Bounds3 box;
+        if (known)
+            for (const Vec3& v : {prims.triangles[ref.prim].v0, prims.triangles[ref.prim].v1, prims.triangles[ref.prim].v2})
+                box.extend(v);
+        if (!known || ref.box().lower != box.lower || ref.box().upper != box.upper)
+            throw std::runtime_error(fmt::format("builder '{}' changed the primitives it was to reorder (at index {}: "
+                                                 "primitive {}{})",
+                                                 builder.name, i, ref.prim, known ? ", another box" : ", not one of them once"));
+    }
+}
+
 // The builder's tree, before any optimisation.
-Bvh buildBinary(BvhKind kind, const BvhBuildConfig& config, const PrimitiveSet& prims) {
-    if (kind == BvhKind::Sbvh) return buildSbvh(config, prims);
-    if (kind == BvhKind::Ploc) return buildPlocBvh(config, prims);
+Bvh buildBinary(const BvhBuilder& builder, const BvhBuildConfig& config, const PrimitiveSet& prims) {
+    if (builder.wholeTree) return builder.wholeTree(config, prims);
     const size_t n = prims.validTriangles().size();
     // Uninitialised storage: every PrimRef is written by preparePrimRefs.
     const std::unique_ptr<PrimRef[]> refs = std::make_unique_for_overwrite<PrimRef[]>(n);
     const BuildRange root = preparePrimRefs(prims, refs.get(), config.simd);
     Bvh bvh;
-    bvh.nodes = buildNodes(kind, config, std::span<PrimRef>(refs.get(), n), root);
+    bvh.nodes = buildNodes(builder.splitRule, config, std::span<PrimRef>(refs.get(), n), root);
+    if (builder.fromPlugin) checkPrimRefsOf(builder, refs.get(), prims);
     fillLeafArrays(bvh, refs.get(), prims, config.threads);
     return bvh;
 }
 
 }  // namespace
 
-Bvh buildBvh(BvhKind kind, const BvhBuildConfig& config, const PrimitiveSet& prims) {
-    Bvh bvh = buildBinary(kind, config, prims);
+Bvh buildBvh(const BvhBuilder& builder, const BvhBuildConfig& config, const PrimitiveSet& prims) {
+    Bvh bvh = buildBinary(builder, config, prims);
     if (config.optimize == BvhOptimize::Insertion) optimizeByInsertion(bvh, config.optimizeIterations);
     return bvh;
 }
 
-QuadricBvh buildQuadricBvh(BvhKind kind, const BvhBuildConfig& config, const PrimitiveSet& prims) {
-    // Few primitives as a rule (the SPD scenes have thousands, not millions): plain loops. ploc's
-    // clustering is for the millions of triangles; its spheres and cones get binned SAH.
-    if (kind == BvhKind::Ploc) kind = BvhKind::BinnedSah;
+QuadricBvh buildQuadricBvh(const BvhBuilder& builder, const BvhBuildConfig& config, const PrimitiveSet& prims) {
+    // Few primitives as a rule (the SPD scenes have thousands, not millions): plain loops. The
+    // builders of whole trees are for the millions of triangles (ploc) or clip them (sbvh); their
+    // spheres and cones get binned SAH, as a plugin's do.
+    const SplitRuleFactory binnedSah = [](const BvhBuildConfig& c) { return std::make_unique<BinnedSahBuilder>(c); };
     const std::span<const uint32_t> valid = prims.validQuadrics();
     std::vector<PrimRef> refs(valid.size());
     BoundsAccumulator<simd::Scalar<4>> acc;
     for (size_t i = 0; i < valid.size(); ++i) {
-        const Bounds3 b = boundsOf(prims.quadric(valid[i]));
-        refs[i] = {{b.lower.x, b.lower.y, b.lower.z}, valid[i], {b.upper.x, b.upper.y, b.upper.z}, 0};
+        refs[i] = PrimRef::of(boundsOf(prims.quadric(valid[i])), valid[i]);
         acc.add(refs[i]);
     }
     QuadricBvh bvh;
-    bvh.nodes = buildNodes(kind, config, refs, {0, uint32_t(refs.size()), acc.bounds(), acc.centroidBounds()});
+    bvh.nodes = buildNodes(builder.splitRule && !builder.fromPlugin ? builder.splitRule : binnedSah, config, refs,
+                           {0, uint32_t(refs.size()), acc.bounds(), acc.centroidBounds()});
     for (const PrimRef& ref : refs) {
         bvh.primIndices.push_back(ref.prim);
         bvh.leafShapes.push_back(prims.quadric(ref.prim));

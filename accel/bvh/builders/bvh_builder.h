@@ -4,28 +4,18 @@
 // in place and returns the two halves, or declines (the range becomes a leaf).
 #pragma once
 
-#include "accel/bvh/builders/prim_ref.h"
+#include "accel/bvh/builders/bounds_accumulator.h"
 #include "accel/bvh/layout/bvh.h"
 #include "accel/bvh/layout/quadric_leaves.h"
 
 #include <algorithm>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
+#include <string>
 
 namespace bvhlab {
-
-enum class BvhKind {
-    SpatialMedian,  // tdbvh: spatial median
-    BinnedSah,  // sahbvh: binned SAH (Wald 2007)
-    SweepSah,   // sweepbvh: full-sweep SAH, the exact reference for the binning
-    Sbvh,       // sbvh: binned SAH with spatial splits (Stich et al. 2009), sbvh_builder.h
-    Ploc,       // ploc: bottom-up clustering (Meister & Bittner 2018), not a TopDownBuilder
-};
-
-// The registered name of a binary BVH by this builder: "tdbvh", "sahbvh", "sweepbvh", "sbvh",
-// "ploc".
-const char* bvhKindName(BvhKind kind);
 
 // What runs after the builder on its binary tree.
 enum class BvhOptimize {
@@ -177,16 +167,28 @@ Split TopDownBuilder::partition(const BuildRange& range, IsLeft isLeft) {
     });
 }
 
-// The whole build: PrimRefs from the valid triangles (SIMD or scalar), the recursion of the
-// chosen builder (sbvh's own, or ploc's clustering), then the leaf arrays (primitive indices
-// and triangles in leaf order), then the optimisation the config asks for.
-Bvh buildBvh(BvhKind kind, const BvhBuildConfig& config, const PrimitiveSet& prims);
+// A builder: how the binary tree is made, by a split rule under the shared recursion
+// (TopDownBuilder) or by a whole tree of its own (sbvh's growing ranges, ploc's clustering).
+// accel/bvh/builder_table.cpp names ours; a plugin's comes from framework/plugin/builder_api.h.
+using SplitRuleFactory = std::function<std::unique_ptr<TopDownBuilder>(const BvhBuildConfig&)>;
+struct BvhBuilder {
+    std::string name;  // "sahbvh": the binary accelerator's name
+    // Exactly one of the two. splitRule is called once per build thread.
+    SplitRuleFactory splitRule;
+    // The triangles' tree; spheres and cones then get binned SAH (no triangle to clip, and few).
+    std::function<Bvh(const BvhBuildConfig&, const PrimitiveSet&)> wholeTree;
+    // A plugin's: after its split rule, the triangles' PrimRefs are checked to be the ones it was
+    // given, reordered; spheres and cones get binned SAH (unchecked, a rule could lose one).
+    bool fromPlugin = false;
+};
+
+// The whole build: PrimRefs from the valid triangles (SIMD or scalar), the builder's recursion
+// or its own tree, then the leaf arrays (primitive indices and triangles in leaf order), then
+// the optimisation the config asks for.
+Bvh buildBvh(const BvhBuilder& builder, const BvhBuildConfig& config, const PrimitiveSet& prims);
 
 // buildBvh over the valid spheres and cones (their boxes), with their shapes in leaf order.
-QuadricBvh buildQuadricBvh(BvhKind kind, const BvhBuildConfig& config, const PrimitiveSet& prims);
-
-// A top-down builder; not for BvhKind::Ploc, which is bottom-up.
-std::unique_ptr<TopDownBuilder> makeBvhBuilder(BvhKind kind, const BvhBuildConfig& config);
+QuadricBvh buildQuadricBvh(const BvhBuilder& builder, const BvhBuildConfig& config, const PrimitiveSet& prims);
 
 // The steps of buildBvh that the builders with their own recursion (sbvh, ploc) share:
 // one PrimRef per valid triangle into `out` (its size), and the range over them;

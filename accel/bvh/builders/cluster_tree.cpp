@@ -1,5 +1,6 @@
 #include "accel/bvh/builders/cluster_tree.h"
 
+#include "accel/bvh/builders/binned_sah_builder.h"
 #include "accel/bvh/builders/build_jobs.h"
 
 #include <tbb/parallel_for.h>
@@ -135,8 +136,8 @@ private:
         gather(c);
         BoundsAccumulator<simd::Scalar<4>> acc;
         for (uint32_t i = first; i < written_; ++i) acc.add(ordered_[i]);
-        const Nodes subtree = makeBvhBuilder(BvhKind::BinnedSah, config_)
-                                  ->build(ordered_, {first, written_, acc.bounds(), acc.centroidBounds()}, item.depth);
+        const Nodes subtree =
+            BinnedSahBuilder(config_).build(ordered_, {first, written_, acc.bounds(), acc.centroidBounds()}, item.depth);
         appendSubtree(nodes, item.slot, subtree);
     }
 

@@ -3,8 +3,9 @@
 // sweep, the SAH statistic itself, SIMD and scalar builds agreeing bit for bit, and a quick
 // check of both queries against brute force. Hit agreement on whole scenes is tested, for
 // every registered accelerator, in the cross-accelerator suite.
+#include "accel/bvh/builder_table.h"
+#include "accel/bvh/builders/bounds_accumulator.h"
 #include "accel/bvh/bvh_accelerator.h"
-#include "accel/bvh/builders/prim_ref.h"
 #include "accel/bvh/bvh_env.h"
 #include "accel/bvh/layout/end_point_overlap.h"
 #include "accel/bvh/layout/wide_bvh.h"
@@ -28,7 +29,10 @@
 namespace bvhlab {
 namespace {
 
-constexpr BvhKind kAllKinds[] = {BvhKind::SpatialMedian, BvhKind::BinnedSah, BvhKind::SweepSah, BvhKind::Ploc};
+// The builders of the table that build with the shared recursion or as ploc (sbvh: test_sbvh.cpp).
+std::vector<BvhBuilder> allBuilders() {
+    return {bvhBuilder("tdbvh"), bvhBuilder("sahbvh"), bvhBuilder("sweepbvh"), bvhBuilder("ploc")};
+}
 
 using test::checkTree;
 using test::expectAgreesWithNaive;
@@ -82,9 +86,9 @@ TEST(Bvh, NodeIsThirtyTwoBytes) {
 
 TEST(Bvh, InvariantsOnRandomScenes) {
     const Soup soup = randomSoup(3000, 1);
-    for (BvhKind kind : kAllKinds) {
+    for (const BvhBuilder& kind : allBuilders()) {
         for (bool simd : {true, false}) {
-            SCOPED_TRACE(std::string(bvhKindName(kind)) + (simd ? " simd" : " scalar"));
+            SCOPED_TRACE(kind.name + (simd ? " simd" : " scalar"));
             BvhBuildConfig config;
             config.simd = simd;
             BvhAccelerator<Bvh> accel(kind, config);
@@ -99,8 +103,8 @@ TEST(Bvh, InvariantsOnRandomScenes) {
     nodeBox.medianSplitBox = MedianSplitBox::NodeBox;
     BvhBuildConfig manyBins;
     manyBins.bins = 256;
-    for (const auto& [kind, config] : {std::pair{BvhKind::BinnedSah, allAxes}, std::pair{BvhKind::SpatialMedian, nodeBox},
-                                       std::pair{BvhKind::BinnedSah, manyBins}}) {
+    for (const auto& [kind, config] : {std::pair{bvhBuilder("sahbvh"), allAxes}, std::pair{bvhBuilder("tdbvh"), nodeBox},
+                                       std::pair{bvhBuilder("sahbvh"), manyBins}}) {
         BvhAccelerator<Bvh> accel(kind, config);
         buildAndCheck(accel, soup);
     }
@@ -112,7 +116,7 @@ TEST(Bvh, NonRobustTraversalAgreesAwayFromEdges) {
     const Soup soup = randomSoup(3000, 5);
     TraversalConfig traversal;
     traversal.robust = false;
-    BvhAccelerator<Bvh> accel(BvhKind::BinnedSah, defaultConfig(), traversal);
+    BvhAccelerator<Bvh> accel(bvhBuilder("sahbvh"), defaultConfig(), traversal);
     buildAndCheck(accel, soup);
     expectAgreesWithNaive(accel, soup, 3000, 2.0f, 11);
 }
@@ -120,8 +124,8 @@ TEST(Bvh, NonRobustTraversalAgreesAwayFromEdges) {
 TEST(Bvh, TinyScenes) {
     for (size_t n : {0, 1, 2, 3}) {
         const Soup soup = randomSoup(n, 7 + uint32_t(n));
-        for (BvhKind kind : kAllKinds) {
-            SCOPED_TRACE(std::string(bvhKindName(kind)) + " with " + std::to_string(n) + " triangles");
+        for (const BvhBuilder& kind : allBuilders()) {
+            SCOPED_TRACE(kind.name + " with " + std::to_string(n) + " triangles");
             BvhBuildConfig config;
             config.maxLeaf = 1;
             config.sahTermination = false;
@@ -160,7 +164,7 @@ TEST(Bvh, DegeneratePrimitivesAreNotBuiltOver) {
     // primitive index of the full list.
     Soup soup = randomSoup(50, 3);
     soup.valid = {4, 9, 10, 31, 49};
-    for (BvhKind kind : kAllKinds) {
+    for (const BvhBuilder& kind : allBuilders()) {
         BvhAccelerator<Bvh> accel(kind, defaultConfig());
         buildAndCheck(accel, soup);
         expectAgreesWithNaive(accel, soup, 300, 10.0f, 5);
@@ -175,7 +179,7 @@ TEST(Bvh, ReportsTheBoundsItPromisesAndKeepsThem) {
     for (int i = 0; i < 3000; ++i) soup.add(soup.triangles[0]);
     BvhBuildConfig config = defaultConfig();
     config.leafCap = 5;
-    for (BvhKind kind : kAllKinds) {
+    for (const BvhBuilder& kind : allBuilders()) {
         BvhAccelerator<Bvh> accel(kind, config);
         buildAndCheck(accel, soup);
         const BuildStats stats = accel.build(soup.prims());
@@ -193,8 +197,8 @@ TEST(Bvh, BuildCpuTimeLeavesTheStatisticsOut) {
     // around the call, for our structures). EPO costs several times the build here, so a
     // clock that took it in would leave less than half of it outside.
     const Soup soup = randomSoup(5000, 17);
-    for (BvhKind kind : kAllKinds) {
-        SCOPED_TRACE(bvhKindName(kind));
+    for (const BvhBuilder& kind : allBuilders()) {
+        SCOPED_TRACE(kind.name);
         BvhAccelerator<Bvh> accel(kind, defaultConfig());
         const double before = processCpuMs();
         const BuildStats stats = accel.build(soup.prims());
@@ -210,15 +214,15 @@ TEST(Bvh, BuildCpuTimeLeavesTheStatisticsOut) {
         EXPECT_GE(aroundCall - *stats.buildCpuMs, 0.5 * epoCpu)
             << "build " << *stats.buildCpuMs << " ms, around the call " << aroundCall << " ms, EPO " << epoCpu << " ms";
     }
-    BvhAccelerator<WideBvh<8>> wide(BvhKind::BinnedSah, defaultConfig());
+    BvhAccelerator<WideBvh<8>> wide(bvhBuilder("sahbvh"), defaultConfig());
     EXPECT_TRUE(wide.build(soup.prims()).buildCpuMs.has_value());
 }
 
 TEST(Bvh, HundredThousandCoincidentTriangles) {
     Soup soup;
     for (int i = 0; i < 100000; ++i) soup.add({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
-    for (BvhKind kind : kAllKinds) {
-        SCOPED_TRACE(bvhKindName(kind));
+    for (const BvhBuilder& kind : allBuilders()) {
+        SCOPED_TRACE(kind.name);
         BvhAccelerator<Bvh> accel(kind, defaultConfig());
         const BuildStats stats = accel.build(soup.prims());
         EXPECT_LT(stats.buildMs, 2000.0);
@@ -240,7 +244,7 @@ TEST(Bvh, HundredThousandCoincidentTriangles) {
     strict.maxLeaf = 1;
     strict.leafCap = 1;
     strict.sahTermination = false;
-    BvhAccelerator<Bvh> accel(BvhKind::BinnedSah, strict);
+    BvhAccelerator<Bvh> accel(bvhBuilder("sahbvh"), strict);
     accel.build(soup.prims());
     EXPECT_EQ(checkTree(accel.bvh(), soup).maxLeaf, 1u);
 }
@@ -257,9 +261,9 @@ TEST(Bvh, CentresOnALineOnAPlaneAndClustered) {
         clusters.add({{c - 1, -1, 0}, {c + 1, -1, 0}, {c, 2, 0}});
     }
     for (const Soup* soup : {&line, &plane, &clusters}) {
-        for (BvhKind kind : kAllKinds) {
+        for (const BvhBuilder& kind : allBuilders()) {
             for (MedianSplitBox box : {MedianSplitBox::CentroidBox, MedianSplitBox::NodeBox}) {
-                if (kind != BvhKind::SpatialMedian && box == MedianSplitBox::NodeBox) continue;
+                if (kind.name != "tdbvh" && box == MedianSplitBox::NodeBox) continue;
                 BvhBuildConfig config;
                 config.medianSplitBox = box;
                 BvhAccelerator<Bvh> accel(kind, config);
@@ -278,9 +282,9 @@ TEST(Bvh, DepthStaysBoundedOnGeometricSpacing) {
         const float x = std::pow(1.5f, float(i) - 100.0f);
         soup.add({{x, 0, 0}, {x * 1.01f, 0, 0}, {x, 1e-3f, 1e-3f}});
     }
-    for (BvhKind kind : kAllKinds) {
+    for (const BvhBuilder& kind : allBuilders()) {
         for (MedianSplitBox box : {MedianSplitBox::CentroidBox, MedianSplitBox::NodeBox}) {
-            SCOPED_TRACE(bvhKindName(kind));
+            SCOPED_TRACE(kind.name);
             BvhBuildConfig config;
             config.maxLeaf = 1;
             config.sahTermination = false;
@@ -289,7 +293,7 @@ TEST(Bvh, DepthStaysBoundedOnGeometricSpacing) {
             const TreeFacts facts = buildAndCheck(accel, soup);
             EXPECT_EQ(facts.leaves, soup.valid.size());
             EXPECT_LT(facts.maxDepth, kBvhMaxDepth);
-            if (kind == BvhKind::SpatialMedian && box == MedianSplitBox::CentroidBox) {
+            if (kind.name == "tdbvh" && box == MedianSplitBox::CentroidBox) {
                 EXPECT_GE(facts.maxDepth, 40) << "the chain this test is about did not occur";
             }
         }
@@ -298,7 +302,7 @@ TEST(Bvh, DepthStaysBoundedOnGeometricSpacing) {
 
 TEST(Bvh, SizesFromMicrometresToKilometres) {
     const Soup soup = mixedScaleSoup(3000, 17);
-    for (BvhKind kind : kAllKinds) {
+    for (const BvhBuilder& kind : allBuilders()) {
         BvhAccelerator<Bvh> accel(kind, defaultConfig());
         buildAndCheck(accel, soup);
         expectAgreesWithNaive(accel, soup, 1000, 1000.0f, 19);
@@ -307,7 +311,7 @@ TEST(Bvh, SizesFromMicrometresToKilometres) {
 
 TEST(Bvh, AgreesWithNaiveOnRandomRays) {
     const Soup soup = randomSoup(2000, 23);
-    for (BvhKind kind : kAllKinds) {
+    for (const BvhBuilder& kind : allBuilders()) {
         for (int maxLeaf : {1, 4}) {
             BvhBuildConfig config;
             config.maxLeaf = maxLeaf;
@@ -339,7 +343,7 @@ TEST(Bvh, AxisParallelRaysAlongBoxFaces) {
     }
     NaiveAccelerator naive;
     naive.build(soup.prims());
-    for (BvhKind kind : kAllKinds) {
+    for (const BvhBuilder& kind : allBuilders()) {
         BvhBuildConfig config;
         config.maxLeaf = 1;
         BvhAccelerator<Bvh> accel(kind, config);
@@ -360,7 +364,7 @@ TEST(Bvh, AxisParallelRaysAlongBoxFaces) {
                         const bool found = naive.findNearest(ray, expected, counters);
                         hits += found;
                         EXPECT_EQ(found, accel.findNearest(ray, actual, counters))
-                            << bvhKindName(kind) << " axis " << axis << " at " << a << ", " << b << " sign " << sign;
+                            << kind.name << " axis " << axis << " at " << a << ", " << b << " sign " << sign;
                         EXPECT_TRUE(hitsAgree(expected, actual));
                         EXPECT_EQ(naive.isOccluded(ray, counters), accel.isOccluded(ray, counters));
                     }
@@ -383,7 +387,7 @@ TEST(Bvh, FlatBoxesBehindTheOrigin) {
     naive.build(soup.prims());
     std::mt19937 rng(53);
     std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-    for (BvhKind kind : kAllKinds) {
+    for (const BvhBuilder& kind : allBuilders()) {
         BvhAccelerator<Bvh> accel(kind, defaultConfig());
         accel.build(soup.prims());
         int hits = 0;
@@ -397,7 +401,7 @@ TEST(Bvh, FlatBoxesBehindTheOrigin) {
             QueryCounters counters;
             const bool found = naive.findNearest(ray, expected, counters);
             hits += found;
-            ASSERT_EQ(found, accel.findNearest(ray, actual, counters)) << bvhKindName(kind) << " ray " << i;
+            ASSERT_EQ(found, accel.findNearest(ray, actual, counters)) << kind.name << " ray " << i;
             EXPECT_TRUE(hitsAgree(expected, actual));
             EXPECT_EQ(naive.isOccluded(ray, counters), accel.isOccluded(ray, counters));
         }
@@ -412,7 +416,7 @@ TEST(Bvh, NegativeTminCullsAxisParallelRaysLikeTminZero) {
     const Soup soup = randomSoup(3000, 29);  // in [-1, 11]^3
     std::mt19937 rng(31);
     std::uniform_real_distribution<float> across(0.0f, 10.0f);
-    BvhAccelerator<Bvh> accel(BvhKind::BinnedSah, defaultConfig());
+    BvhAccelerator<Bvh> accel(bvhBuilder("sahbvh"), defaultConfig());
     accel.build(soup.prims());
     for (int i = 0; i < 300; ++i) {
         const int axis = i % 3;
@@ -433,7 +437,7 @@ TEST(Bvh, NegativeTminCullsAxisParallelRaysLikeTminZero) {
 
 TEST(Bvh, InvalidRaysMissAndCountAQuery) {
     const Soup soup = randomSoup(100, 31);
-    BvhAccelerator<Bvh> accel(BvhKind::BinnedSah, defaultConfig());
+    BvhAccelerator<Bvh> accel(bvhBuilder("sahbvh"), defaultConfig());
     accel.build(soup.prims());
     Ray zero;
     zero.dir = Vec3(0.0f);
@@ -452,16 +456,16 @@ TEST(Bvh, InvalidRaysMissAndCountAQuery) {
     }
 }
 
-double sahOf(BvhKind kind, const BvhBuildConfig& config, const Soup& soup) {
+double sahOf(const BvhBuilder& kind, const BvhBuildConfig& config, const Soup& soup) {
     BvhAccelerator<Bvh> accel(kind, config);
     return accel.build(soup.prims()).sah->cost;
 }
 
 TEST(Bvh, BinnedSahIsCloseToTheSweep) {
     const Soup soup = randomSoup(4000, 37, 10.0f, 0.5f);
-    const double binned = sahOf(BvhKind::BinnedSah, defaultConfig(), soup);
-    const double sweep = sahOf(BvhKind::SweepSah, defaultConfig(), soup);
-    const double median = sahOf(BvhKind::SpatialMedian, defaultConfig(), soup);
+    const double binned = sahOf(bvhBuilder("sahbvh"), defaultConfig(), soup);
+    const double sweep = sahOf(bvhBuilder("sweepbvh"), defaultConfig(), soup);
+    const double median = sahOf(bvhBuilder("tdbvh"), defaultConfig(), soup);
     EXPECT_LE(sweep, binned * 1.001);
     EXPECT_LE(binned, sweep * 1.03);
     EXPECT_LT(sweep, median);
@@ -469,19 +473,19 @@ TEST(Bvh, BinnedSahIsCloseToTheSweep) {
     BvhBuildConfig fine;
     fine.bins = 64;
     fine.allAxes = true;
-    EXPECT_LE(sahOf(BvhKind::BinnedSah, fine, soup), sweep * 1.015);
+    EXPECT_LE(sahOf(bvhBuilder("sahbvh"), fine, soup), sweep * 1.015);
 }
 
 TEST(Bvh, SahTerminationMakesMultiPrimitiveLeaves) {
     // Dense, overlapping triangles: splitting does not pay near the bottom.
     const Soup soup = randomSoup(3000, 41, 5.0f, 1.0f);
-    for (BvhKind kind : {BvhKind::BinnedSah, BvhKind::SweepSah}) {
+    for (const BvhBuilder& kind : {bvhBuilder("sahbvh"), bvhBuilder("sweepbvh")}) {
         BvhBuildConfig config;
         config.maxLeaf = 1;
         config.cTraversal = 2.0f;
         BvhAccelerator<Bvh> accel(kind, config);
         const BuildStats stats = accel.build(soup.prims());
-        EXPECT_GT(*stats.avgLeafPrimitives, 1.5) << bvhKindName(kind);
+        EXPECT_GT(*stats.avgLeafPrimitives, 1.5) << kind.name;
         EXPECT_LE(*stats.maxLeafPrimitives, size_t(config.leafCap));
         checkTree(accel.bvh(), soup);
 
@@ -499,9 +503,9 @@ TEST(Bvh, SahTerminationMakesMultiPrimitiveLeaves) {
 TEST(Bvh, SimdAndScalarBuildTheSameTree) {
     const Soup soups[] = {randomSoup(5000, 43), mixedScaleSoup(3000, 47)};
     for (const Soup& soup : soups) {
-        for (BvhKind kind : kAllKinds) {
+        for (const BvhBuilder& kind : allBuilders()) {
             for (bool allAxes : {false, true}) {
-                if (allAxes && kind != BvhKind::BinnedSah) continue;
+                if (allAxes && kind.name != "sahbvh") continue;
                 BvhBuildConfig config;
                 config.allAxes = allAxes;
                 BvhAccelerator<Bvh> simd(kind, config);
@@ -510,9 +514,9 @@ TEST(Bvh, SimdAndScalarBuildTheSameTree) {
                 simd.build(soup.prims());
                 scalar.build(soup.prims());
                 const Bvh &a = simd.bvh(), &b = scalar.bvh();
-                ASSERT_EQ(a.nodes.size(), b.nodes.size()) << bvhKindName(kind);
+                ASSERT_EQ(a.nodes.size(), b.nodes.size()) << kind.name;
                 EXPECT_EQ(std::memcmp(a.nodes.data(), b.nodes.data(), a.nodes.size() * sizeof(BvhNode)), 0)
-                    << bvhKindName(kind) << (allAxes ? " all axes" : "");
+                    << kind.name << (allAxes ? " all axes" : "");
                 EXPECT_EQ(a.primIndices, b.primIndices);
             }
         }
@@ -526,7 +530,7 @@ TEST(Bvh, SahCostFollowsTheStatedFormula) {
     config.maxLeaf = 1;
     config.cTraversal = 2.0f;
     config.cIntersect = 3.0f;
-    BvhAccelerator<Bvh> accel(BvhKind::BinnedSah, config);
+    BvhAccelerator<Bvh> accel(bvhBuilder("sahbvh"), config);
     const BuildStats stats = accel.build(soup.prims());
     ASSERT_EQ(*stats.nodes, 3u);
     const double rootArea = Bounds3({0, 0, 0}, {10, 10, 9}).halfArea();
@@ -545,7 +549,7 @@ TEST(Bvh, CountersCountVisitsAndTests) {
     BvhBuildConfig config;
     config.maxLeaf = 1;
     config.sahTermination = false;
-    BvhAccelerator<Bvh> accel(BvhKind::BinnedSah, config);
+    BvhAccelerator<Bvh> accel(bvhBuilder("sahbvh"), config);
     accel.build(soup.prims());
     QueryCounters counters;
     Hit hit;
@@ -609,7 +613,7 @@ void expectCollapseKeepsEveryTriangleOnce(size_t n, uint32_t seed) {
     using Leaf = std::vector<uint32_t>;  // primitives in lane order
     constexpr uint32_t kLeafCap = 16;
     const Soup soup = randomSoup(n, seed);
-    Bvh binary = buildBvh(BvhKind::BinnedSah, defaultConfig(), soup.prims());
+    Bvh binary = buildBvh(bvhBuilder("sahbvh"), defaultConfig(), soup.prims());
     // Every binary subtree's primitives, left to right (children come after their parent).
     std::vector<Leaf> below(binary.nodes.size());
     size_t binaryBlocks = 0;
@@ -746,8 +750,8 @@ TEST(WideBvh, CollapseMergesSiblingLeavesWhenOneBlockPays) {
 // depth-first build up to the order of its nodes (same node count, leaves and SAH).
 TEST(Bvh, SameTreeWhateverTheThreadCount) {
     const Soup soup = randomSoup(60000, 67);
-    for (BvhKind kind : {BvhKind::SpatialMedian, BvhKind::BinnedSah}) {
-        SCOPED_TRACE(bvhKindName(kind));
+    for (const BvhBuilder& kind : {bvhBuilder("tdbvh"), bvhBuilder("sahbvh")}) {
+        SCOPED_TRACE(kind.name);
         std::vector<Bvh> trees;
         for (int threads : {1, 2, 0}) {
             BvhBuildConfig config = defaultConfig();
@@ -771,7 +775,7 @@ TEST(Bvh, SameTreeWhateverTheThreadCount) {
             acc.add(refs[i]);
         }
         Bvh depthFirst;
-        depthFirst.nodes = makeBvhBuilder(kind, defaultConfig())->build(refs, {0, uint32_t(refs.size()), acc.bounds(), acc.centroidBounds()});
+        depthFirst.nodes = kind.splitRule(defaultConfig())->build(refs, {0, uint32_t(refs.size()), acc.bounds(), acc.centroidBounds()});
         depthFirst.primIndices.resize(refs.size());
         for (size_t i = 0; i < refs.size(); ++i) depthFirst.primIndices[i] = refs[i].prim;
         depthFirst.leafTriangles.resize(refs.size());
@@ -790,7 +794,7 @@ TEST(Bvh, SameWideTreeWhateverTheThreadCount) {
     const Soup soup = randomSoup(60000, 69);
     BvhBuildConfig config = defaultConfig();
     config.sahBlockShift = 3;
-    const Bvh binary = buildBvh(BvhKind::BinnedSah, config, soup.prims());
+    const Bvh binary = buildBvh(bvhBuilder("sahbvh"), config, soup.prims());
     const CollapseCosts costs{1.0f, 1.0f, uint32_t(config.leafCap)};
     std::vector<WideBvh<8>> trees;
     for (int threads : {1, 2}) {
@@ -813,8 +817,8 @@ TEST(Bvh, SameWideTreeWhateverTheThreadCount) {
 // per triangle (the binary layout), the same builders do split such ranges.
 TEST(Bvh, SahChargedByBlocksKeepsABlockOfTrianglesTogether) {
     const Soup soup = randomSoup(3000, 61);
-    for (BvhKind kind : {BvhKind::BinnedSah, BvhKind::SweepSah}) {
-        SCOPED_TRACE(bvhKindName(kind));
+    for (const BvhBuilder& kind : {bvhBuilder("sahbvh"), bvhBuilder("sweepbvh")}) {
+        SCOPED_TRACE(kind.name);
         for (int shift : {0, 2, 3}) {
             BvhBuildConfig config = defaultConfig();
             config.sahBlockShift = shift;
@@ -845,8 +849,8 @@ TEST(WideBvh, FourAndEightWideAgreeWithNaive) {
         SCOPED_TRACE(robust ? "robust" : "not robust");
         TraversalConfig traversal;
         traversal.robust = robust;
-        BvhAccelerator<WideBvh<4>> four(BvhKind::BinnedSah, defaultConfig(), traversal);
-        BvhAccelerator<WideBvh<8>> eight(BvhKind::BinnedSah, defaultConfig(), traversal);
+        BvhAccelerator<WideBvh<4>> four(bvhBuilder("sahbvh"), defaultConfig(), traversal);
+        BvhAccelerator<WideBvh<8>> eight(bvhBuilder("sahbvh"), defaultConfig(), traversal);
         four.build(soup.prims());
         const BuildStats stats = eight.build(soup.prims());
         EXPECT_EQ(four.name(), "sahbvh4");
@@ -905,7 +909,7 @@ TEST(Ploc, SameTreeWhateverTheThreadCount) {
     for (int threads : {1, 2, 0}) {
         BvhBuildConfig config = defaultConfig();
         config.threads = threads;
-        trees.push_back(buildBvh(BvhKind::Ploc, config, soup.prims()));
+        trees.push_back(buildBvh(bvhBuilder("ploc"), config, soup.prims()));
     }
     for (size_t t = 1; t < trees.size(); ++t) {
         ASSERT_EQ(trees[t].nodes.size(), trees[0].nodes.size());
@@ -927,7 +931,7 @@ TEST(Ploc, ChainOfClustersIsRebuiltWithinTheDepthBound) {
     BvhBuildConfig config;
     config.maxLeaf = 1;
     config.sahTermination = false;
-    BvhAccelerator<Bvh> accel(BvhKind::Ploc, config);
+    BvhAccelerator<Bvh> accel(bvhBuilder("ploc"), config);
     const TreeFacts facts = buildAndCheck(accel, soup);
     EXPECT_EQ(facts.leaves, soup.valid.size());
     EXPECT_LT(facts.maxDepth, kBvhMaxDepth);
@@ -942,7 +946,7 @@ TEST(Ploc, CoincidentTrianglesPairUp) {
     BvhBuildConfig config;
     config.maxLeaf = 1;
     config.sahTermination = false;
-    BvhAccelerator<Bvh> accel(BvhKind::Ploc, config);
+    BvhAccelerator<Bvh> accel(bvhBuilder("ploc"), config);
     const TreeFacts facts = buildAndCheck(accel, soup);
     EXPECT_EQ(facts.maxDepth, 10);
 }
@@ -951,7 +955,7 @@ TEST(Ploc, CoincidentTrianglesPairUp) {
 // on a soup (within 15 %), and its leaves hold up to leafCap primitives.
 TEST(Ploc, SahNearTheBinnedBuild) {
     const Soup soup = randomSoup(20000, 73);
-    BvhAccelerator<Bvh> ploc(BvhKind::Ploc, defaultConfig()), sah(BvhKind::BinnedSah, defaultConfig());
+    BvhAccelerator<Bvh> ploc(bvhBuilder("ploc"), defaultConfig()), sah(bvhBuilder("sahbvh"), defaultConfig());
     const double plocSah = ploc.build(soup.prims()).sah->cost, binnedSah = sah.build(soup.prims()).sah->cost;
     EXPECT_LT(plocSah, 1.15 * binnedSah);
     const TreeFacts facts = checkTree(ploc.bvh(), soup);

@@ -1,6 +1,7 @@
 // EPO (accel/bvh/layout/end_point_overlap.h): the clipping on hand-made cases with known areas,
 // the tree walk against a brute force over every node and triangle, its independence of the
 // thread count, and what the accelerators report.
+#include "accel/bvh/builder_table.h"
 #include "accel/bvh/bvh_accelerator.h"
 #include "accel/bvh/layout/end_point_overlap.h"
 #include "framework/scene/scene.h"
@@ -89,8 +90,8 @@ TEST(EndPointOverlap, TreeWalkEqualsTheDefinitionAndIgnoresThreads) {
     const std::vector<Triangle> soup = randomSoup(600, 3, 2.0f);
     std::vector<uint32_t> valid(soup.size());
     for (uint32_t i = 0; i < valid.size(); ++i) valid[i] = i;
-    for (BvhKind kind : {BvhKind::SpatialMedian, BvhKind::BinnedSah, BvhKind::Ploc}) {
-        SCOPED_TRACE(bvhKindName(kind));
+    for (const BvhBuilder& kind : {bvhBuilder("tdbvh"), bvhBuilder("sahbvh"), bvhBuilder("ploc")}) {
+        SCOPED_TRACE(kind.name);
         const Bvh bvh = buildBvh(kind, BvhBuildConfig{}, {soup, valid});
         const double epo = endPointOverlap(bvh.nodes, bvh.leafTriangles, 1.0, 1.5, 1).value();
         EXPECT_NEAR(epo, bruteForceEpo(bvh, 1.0, 1.5), 1e-9 * epo);
@@ -107,7 +108,7 @@ TEST(EndPointOverlap, SpatialMedianAboveSahOnASoup) {
     std::vector<uint32_t> valid(soup.size());
     for (uint32_t i = 0; i < valid.size(); ++i) valid[i] = i;
     const PrimitiveSet prims{soup, valid};
-    BvhAccelerator<Bvh> median(BvhKind::SpatialMedian, {}), sah(BvhKind::BinnedSah, {});
+    BvhAccelerator<Bvh> median(bvhBuilder("tdbvh"), {}), sah(bvhBuilder("sahbvh"), {});
     const BuildStats m = median.build(prims), s = sah.build(prims);
     ASSERT_TRUE(m.epo && s.epo);
     std::printf("[ NOTE     ] EPO spatial median %.3f, binned SAH %.3f\n", *m.epo, *s.epo);
@@ -120,7 +121,7 @@ TEST(EndPointOverlap, LeftOutWhereBoxesOverlapEverything) {
     const std::vector<Triangle> soup(100000, kUnit);
     std::vector<uint32_t> valid(soup.size());
     for (uint32_t i = 0; i < valid.size(); ++i) valid[i] = i;
-    const Bvh bvh = buildBvh(BvhKind::BinnedSah, BvhBuildConfig{}, {soup, valid});
+    const Bvh bvh = buildBvh(bvhBuilder("sahbvh"), BvhBuildConfig{}, {soup, valid});
     EXPECT_FALSE(endPointOverlap(bvh.nodes, bvh.leafTriangles, 1.0, 1.0, 1).has_value());
 }
 
@@ -129,7 +130,7 @@ TEST(EndPointOverlap, ReportedUpToTheTriangleLimit) {
     std::vector<uint32_t> valid(soup.size());
     for (uint32_t i = 0; i < valid.size(); ++i) valid[i] = i;
     const PrimitiveSet prims{soup, valid};
-    BvhAccelerator<WideBvh<8>> within(BvhKind::Ploc, {}, {}, {3000}), above(BvhKind::Ploc, {}, {}, {2999});
+    BvhAccelerator<WideBvh<8>> within(bvhBuilder("ploc"), {}, {}, {3000}), above(bvhBuilder("ploc"), {}, {}, {2999});
     const BuildStats in = within.build(prims), out = above.build(prims);
     ASSERT_TRUE(in.epo.has_value());
     EXPECT_GT(*in.epo, 0.0);

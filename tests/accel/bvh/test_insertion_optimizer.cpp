@@ -2,6 +2,7 @@
 // invariants, its SAH drops (a lot after the spatial median) and never rises, it is the same
 // tree whatever the thread count, both queries agree with brute force (binary and wide), and
 // scenes of 0 to 3 triangles pass through.
+#include "accel/bvh/builder_table.h"
 #include "accel/bvh/bvh_accelerator.h"
 #include "accel/bvh/layout/wide_bvh.h"
 #include "tests/support/bvh_checks.h"
@@ -29,10 +30,10 @@ TEST(InsertionOptimizer, LowersTheSahAndKeepsTheInvariants) {
     // How far below the builder's SAH the optimised tree must at least be. On uniform random
     // triangles the spatial median is already close to the SAH builders (-5.5 % measured); on
     // the scenes of docs/builders.md it drops far more.
-    const std::pair<BvhKind, double> kinds[] = {
-        {BvhKind::SpatialMedian, 0.97}, {BvhKind::BinnedSah, 1.0}, {BvhKind::SweepSah, 1.0}, {BvhKind::Ploc, 1.0}};
+    const std::pair<BvhBuilder, double> kinds[] = {
+        {bvhBuilder("tdbvh"), 0.97}, {bvhBuilder("sahbvh"), 1.0}, {bvhBuilder("sweepbvh"), 1.0}, {bvhBuilder("ploc"), 1.0}};
     for (const auto& [kind, bound] : kinds) {
-        SCOPED_TRACE(bvhKindName(kind));
+        SCOPED_TRACE(kind.name);
         const double before = sahOf(buildBvh(kind, BvhBuildConfig{}, soup.prims()));
         const Bvh optimised = buildBvh(kind, insertionConfig(), soup.prims());
         test::checkTree(optimised, soup);
@@ -44,9 +45,9 @@ TEST(InsertionOptimizer, LowersTheSahAndKeepsTheInvariants) {
 // not rise either. Leaves charged by blocks (the wide layouts) change nothing for the pass.
 TEST(InsertionOptimizer, NeverRaisesTheSah) {
     const Soup soup = randomSoup(3000, 5, 10.0f, 3.0f);
-    for (BvhKind kind : {BvhKind::SpatialMedian, BvhKind::BinnedSah, BvhKind::Sbvh, BvhKind::Ploc}) {
+    for (const BvhBuilder& kind : {bvhBuilder("tdbvh"), bvhBuilder("sahbvh"), bvhBuilder("sbvh"), bvhBuilder("ploc")}) {
         for (int shift : {0, 3}) {
-            SCOPED_TRACE(std::string(bvhKindName(kind)) + " block shift " + std::to_string(shift));
+            SCOPED_TRACE(kind.name + " block shift " + std::to_string(shift));
             BvhBuildConfig plain;
             plain.sahBlockShift = shift;
             BvhBuildConfig optimised = insertionConfig();
@@ -59,8 +60,8 @@ TEST(InsertionOptimizer, NeverRaisesTheSah) {
 
 TEST(InsertionOptimizer, SameTreeWhateverTheThreadCount) {
     const Soup soup = randomSoup(20000, 7);
-    for (BvhKind kind : {BvhKind::BinnedSah, BvhKind::Ploc}) {
-        SCOPED_TRACE(bvhKindName(kind));
+    for (const BvhBuilder& kind : {bvhBuilder("sahbvh"), bvhBuilder("ploc")}) {
+        SCOPED_TRACE(kind.name);
         std::vector<Bvh> trees;
         for (int threads : {1, 2}) {
             BvhBuildConfig config = insertionConfig();
@@ -75,10 +76,10 @@ TEST(InsertionOptimizer, SameTreeWhateverTheThreadCount) {
 
 TEST(InsertionOptimizer, AgreesWithNaiveOnRandomRays) {
     const Soup soup = randomSoup(3000, 11);
-    BvhAccelerator<Bvh> binary(BvhKind::SpatialMedian, insertionConfig());
+    BvhAccelerator<Bvh> binary(bvhBuilder("tdbvh"), insertionConfig());
     binary.build(soup.prims());
     test::expectAgreesWithNaive(binary, soup, 2000, 10.0f, 13);
-    BvhAccelerator<WideBvh<8>> wide(BvhKind::BinnedSah, insertionConfig());
+    BvhAccelerator<WideBvh<8>> wide(bvhBuilder("sahbvh"), insertionConfig());
     wide.build(soup.prims());
     test::expectAgreesWithNaive(wide, soup, 2000, 10.0f, 17);
 }
@@ -97,24 +98,24 @@ TEST(InsertionOptimizer, StaysWithinTheDepthBound) {
         BvhBuildConfig config = insertionConfig();
         config.maxLeaf = 1;
         config.sahTermination = false;
-        const Bvh bvh = buildBvh(BvhKind::SpatialMedian, config, soup->prims());
+        const Bvh bvh = buildBvh(bvhBuilder("tdbvh"), config, soup->prims());
         EXPECT_LT(test::checkTree(bvh, *soup).maxDepth, kBvhMaxDepth);
         config.optimize = BvhOptimize::None;
-        EXPECT_LE(sahOf(bvh), sahOf(buildBvh(BvhKind::SpatialMedian, config, soup->prims())));
+        EXPECT_LE(sahOf(bvh), sahOf(buildBvh(bvhBuilder("tdbvh"), config, soup->prims())));
     }
 }
 
 TEST(InsertionOptimizer, TinyScenes) {
     for (size_t n : {0, 1, 2, 3}) {
         const Soup soup = randomSoup(n, 19 + uint32_t(n));
-        for (BvhKind kind : {BvhKind::SpatialMedian, BvhKind::BinnedSah, BvhKind::Sbvh, BvhKind::Ploc}) {
-            SCOPED_TRACE(std::string(bvhKindName(kind)) + " with " + std::to_string(n) + " triangles");
+        for (const BvhBuilder& kind : {bvhBuilder("tdbvh"), bvhBuilder("sahbvh"), bvhBuilder("sbvh"), bvhBuilder("ploc")}) {
+            SCOPED_TRACE(kind.name + " with " + std::to_string(n) + " triangles");
             BvhBuildConfig config = insertionConfig();
             config.maxLeaf = 1;
             config.sahTermination = false;
             const Bvh bvh = buildBvh(kind, config, soup.prims());
             // sbvh may split a reference, which the walk does not accept: it only must not crash.
-            if (kind != BvhKind::Sbvh) {
+            if (kind.name != "sbvh") {
                 EXPECT_EQ(test::checkTree(bvh, soup).leaves, n);
             }
         }

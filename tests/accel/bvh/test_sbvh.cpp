@@ -5,6 +5,7 @@
 // whatever the thread count, and both queries against brute force where references are split.
 // The whole-scene oracle runs over every registered accelerator, sbvh and sbvh8 included.
 #include "accel/bvh/builders/reference_split.h"
+#include "accel/bvh/builder_table.h"
 #include "accel/bvh/bvh_accelerator.h"
 #include "accel/naive/naive_accelerator.h"
 #include "framework/scene/scene.h"
@@ -114,7 +115,7 @@ TEST(Sbvh, InvariantsWithSplitReferences) {
                 BvhBuildConfig config;
                 config.simd = simd;
                 config.allAxes = allAxes;
-                const size_t refs = checkSbvh(buildBvh(BvhKind::Sbvh, config, soup.prims()), soup, config.sbvhGrowth);
+                const size_t refs = checkSbvh(buildBvh(bvhBuilder("sbvh"), config, soup.prims()), soup, config.sbvhGrowth);
                 EXPECT_GT(refs, soup.valid.size()) << "no spatial split";
             }
         }
@@ -124,7 +125,7 @@ TEST(Sbvh, InvariantsWithSplitReferences) {
 // BuildStats: primitives are the distinct triangles; the tree's counts are of references.
 TEST(Sbvh, StatsCountPrimitivesAndReferences) {
     const Soup soup = diagonalSlivers(2000, 3);
-    BvhAccelerator<Bvh> accel(BvhKind::Sbvh, BvhBuildConfig{});
+    BvhAccelerator<Bvh> accel(bvhBuilder("sbvh"), BvhBuildConfig{});
     const BuildStats stats = accel.build(soup.prims());
     EXPECT_EQ(stats.primitives, soup.valid.size());
     EXPECT_NEAR(stats.avgLeafPrimitives.value() * double(stats.leaves.value()), double(accel.bvh().primIndices.size()), 1e-6);
@@ -137,8 +138,8 @@ TEST(Sbvh, StatsCountPrimitivesAndReferences) {
 TEST(Sbvh, SpatialSplitsLowerTheSahOnLongThinDiagonalTriangles) {
     const Soup soup = mixedSoup(20000, 4);
     const BvhBuildConfig config;
-    const Bvh sbvh = buildBvh(BvhKind::Sbvh, config, soup.prims());
-    const Bvh sahbvh = buildBvh(BvhKind::BinnedSah, config, soup.prims());
+    const Bvh sbvh = buildBvh(bvhBuilder("sbvh"), config, soup.prims());
+    const Bvh sahbvh = buildBvh(bvhBuilder("sahbvh"), config, soup.prims());
     checkSbvh(sbvh, soup, config.sbvhGrowth);
     EXPECT_GT(sbvh.primIndices.size(), soup.valid.size() * 11 / 10) << "few spatial splits";
     EXPECT_LT(sahOf(sbvh), 0.7 * sahOf(sahbvh));
@@ -151,9 +152,9 @@ TEST(Sbvh, WithoutSpatialSplitsItIsSahbvh) {
     BvhBuildConfig noBudget, alphaOne;
     noBudget.sbvhGrowth = 0.0f;
     alphaOne.sbvhAlpha = 1.0f;
-    const Bvh sahbvh = buildBvh(BvhKind::BinnedSah, BvhBuildConfig{}, soup.prims());
+    const Bvh sahbvh = buildBvh(bvhBuilder("sahbvh"), BvhBuildConfig{}, soup.prims());
     for (const BvhBuildConfig& config : {noBudget, alphaOne}) {
-        const Bvh sbvh = buildBvh(BvhKind::Sbvh, config, soup.prims());
+        const Bvh sbvh = buildBvh(bvhBuilder("sbvh"), config, soup.prims());
         EXPECT_EQ(checkSbvh(sbvh, soup, 0.0f), soup.valid.size());
         ASSERT_EQ(sbvh.nodes.size(), sahbvh.nodes.size());
         EXPECT_EQ(std::memcmp(sbvh.nodes.data(), sahbvh.nodes.data(), sbvh.nodes.size() * sizeof(BvhNode)), 0);
@@ -166,7 +167,7 @@ TEST(Sbvh, SameTreeWhateverTheThreadCount) {
     for (int threads : {1, 2}) {
         BvhBuildConfig config;
         config.threads = threads;
-        trees.push_back(buildBvh(BvhKind::Sbvh, config, soup.prims()));
+        trees.push_back(buildBvh(bvhBuilder("sbvh"), config, soup.prims()));
     }
     ASSERT_EQ(trees[1].nodes.size(), trees[0].nodes.size());
     EXPECT_EQ(std::memcmp(trees[1].nodes.data(), trees[0].nodes.data(), trees[0].nodes.size() * sizeof(BvhNode)), 0);
@@ -228,8 +229,8 @@ TEST(Sbvh, QueriesAgreeWithBruteForceOnSplitReferences) {
     const Soup soup = mixedSoup(3000, 8);
     NaiveAccelerator naive;
     naive.build(soup.prims());
-    BvhAccelerator<Bvh> binary(BvhKind::Sbvh, BvhBuildConfig{});
-    BvhAccelerator<WideBvh<8>> wide(BvhKind::Sbvh, BvhBuildConfig{});
+    BvhAccelerator<Bvh> binary(bvhBuilder("sbvh"), BvhBuildConfig{});
+    BvhAccelerator<WideBvh<8>> wide(bvhBuilder("sbvh"), BvhBuildConfig{});
     binary.build(soup.prims());
     wide.build(soup.prims());
     for (const Accelerator* accel : {static_cast<const Accelerator*>(&binary), static_cast<const Accelerator*>(&wide)}) {

@@ -1,0 +1,64 @@
+#include "accel/bvh/builder_table.h"
+
+#include "accel/bvh/builders/binned_sah_builder.h"
+#include "accel/bvh/builders/ploc_builder.h"
+#include "accel/bvh/builders/sbvh_builder.h"
+#include "accel/bvh/builders/spatial_median_builder.h"
+#include "accel/bvh/builders/sweep_sah_builder.h"
+#include "accel/bvh/bvh_env.h"
+
+#include <fmt/core.h>
+
+#include <stdexcept>
+
+namespace bvhlab {
+
+namespace {
+
+template <typename SplitRule>
+BvhBuilder splitRule(std::string name) {
+    return {std::move(name), [](const BvhBuildConfig& config) { return std::make_unique<SplitRule>(config); }, {}};
+}
+
+BvhBuilder wholeTree(std::string name, Bvh (*build)(const BvhBuildConfig&, const PrimitiveSet&)) {
+    return {std::move(name), {}, build};
+}
+
+}  // namespace
+
+const std::vector<BvhBuilderEntry>& bvhBuilderTable() {
+    using namespace keys::BVH;
+    static const std::vector<BvhBuilderEntry> table = {
+        {splitRule<SpatialMedianBuilder>("tdbvh"),
+         "BVH by spatial median: the middle of the longest axis (BVH::tdbvhSplit), object median fallback",
+         {tdbvhSplit.name()},
+         {}},
+        {splitRule<BinnedSahBuilder>("sahbvh"),
+         "BVH by binned SAH (Wald 2007): BVH::bins bins along the widest centre axis, SSE binning",
+         {sahTermination.name(), bins.name(), allAxes.name()},
+         {4, 8}},
+        {wholeTree("sbvh", buildSbvh),
+         "split BVH (Stich et al. 2009): sahbvh's object splits and, where their children overlap "
+         "(BVH::sbvhAlpha), spatial splits that clip triangles to bins, within BVH::sbvhGrowth more references",
+         {sahTermination.name(), bins.name(), allAxes.name(), sbvhAlpha.name(), sbvhGrowth.name()},
+         {8}},
+        {wholeTree("ploc", buildPlocBvh),
+         "BVH by PLOC (Meister & Bittner 2018): Morton order, mutual nearest neighbours within BVH::plocRadius "
+         "merged bottom-up in parallel, leaves formed by SAH",
+         {sahTermination.name(), plocRadius.name()},
+         {8}},
+        {splitRule<SweepSahBuilder>("sweepbvh"),
+         "BVH by full-sweep SAH over all N-1 planes per axis: the exact reference for sahbvh; slow build",
+         {sahTermination.name()},
+         {}},
+    };
+    return table;
+}
+
+const BvhBuilder& bvhBuilder(std::string_view name) {
+    for (const BvhBuilderEntry& entry : bvhBuilderTable())
+        if (entry.builder.name == name) return entry.builder;
+    throw std::invalid_argument(fmt::format("no BVH builder named '{}'", name));
+}
+
+}  // namespace bvhlab

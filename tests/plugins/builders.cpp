@@ -1,0 +1,48 @@
+// A plugin of builders (tests/apps/test_plugins.cpp): `pairs`, a merge tree joining neighbours
+// in the order given, round after round (a valid tree, not a good one); `lossy`, a split rule
+// that overwrites a primitive index; `twice`, a merge tree that uses a node twice.
+#include "framework/plugin/plugin_api.h"
+
+#include <algorithm>
+
+namespace {
+
+using namespace bvhlab;
+
+std::vector<Merge> pairs(std::span<const PrimRef> prims, const BuilderSettings&) {
+    std::vector<uint32_t> level(prims.size());
+    for (uint32_t i = 0; i < level.size(); ++i) level[i] = i;
+    std::vector<Merge> merges;
+    uint32_t next = uint32_t(prims.size());
+    while (level.size() > 1) {
+        std::vector<uint32_t> up;
+        for (size_t i = 0; i + 1 < level.size(); i += 2) {
+            merges.push_back({level[i], level[i + 1]});
+            up.push_back(next++);
+        }
+        if (level.size() % 2) up.push_back(level.back());
+        level = std::move(up);
+    }
+    return merges;
+}
+
+class Lossy final : public SplitRule {
+public:
+    size_t split(std::span<PrimRef> prims, const Bounds3&, const Bounds3&, bool) override {
+        prims[1].prim = prims[0].prim;
+        return prims.size() / 2;
+    }
+};
+
+}  // namespace
+
+BVHLAB_PLUGIN(registrar) {
+    registrar.addBuilder({"pairs", "neighbours joined round after round", {}, {}, pairs});
+    registrar.addBuilder(
+        {"lossy", "overwrites a primitive index", {}, [](const BuilderSettings&) { return std::make_unique<Lossy>(); }, {}});
+    registrar.addBuilder({"twice", "uses a node twice", {}, {}, [](std::span<const PrimRef> prims, const BuilderSettings& s) {
+                              std::vector<Merge> merges = pairs(prims, s);
+                              if (!merges.empty()) merges.back().right = merges.back().left;
+                              return merges;
+                          }});
+}
