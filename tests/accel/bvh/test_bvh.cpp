@@ -795,9 +795,9 @@ TEST(Bvh, SameWideTreeWhateverTheThreadCount) {
     std::vector<WideBvh<8>> trees;
     for (int threads : {1, 2}) {
         tbb::task_arena arena(threads);
-        arena.execute([&] { trees.push_back(collapseToWide<8>(Bvh(binary), costs)); });
+        arena.execute([&] { trees.push_back(collapseToWide<8>(binary, costs)); });
     }
-    trees.push_back(collapseToWide<8>(Bvh(binary), costs));  // outside any arena: all threads
+    trees.push_back(collapseToWide<8>(binary, costs));  // outside any arena: all threads
     ASSERT_GT(trees[0].blocks.size(), 8 * 512u);  // the root's lanes reach wide_bvh.cpp's kParallelBlocks
     for (size_t t = 1; t < trees.size(); ++t) {
         ASSERT_EQ(trees[t].nodes.size(), trees[0].nodes.size());
