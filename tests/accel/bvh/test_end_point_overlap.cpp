@@ -3,6 +3,7 @@
 // thread count, and what the accelerators report.
 #include "accel/bvh/bvh_accelerator.h"
 #include "accel/bvh/layout/end_point_overlap.h"
+#include "framework/core/timed_build.h"
 #include "framework/scene/scene.h"
 
 #include <gtest/gtest.h>
@@ -108,7 +109,7 @@ TEST(EndPointOverlap, SpatialMedianAboveSahOnASoup) {
     for (uint32_t i = 0; i < valid.size(); ++i) valid[i] = i;
     const PrimitiveSet prims{soup, valid};
     BvhAccelerator<Bvh> median(BvhKind::SpatialMedian, {}), sah(BvhKind::BinnedSah, {});
-    const BuildStats m = median.build(prims), s = sah.build(prims);
+    const BuildStats m = timedBuild(median, prims), s = timedBuild(sah, prims);
     ASSERT_TRUE(m.epo && s.epo);
     std::printf("[ NOTE     ] EPO spatial median %.3f, binned SAH %.3f\n", *m.epo, *s.epo);
     EXPECT_GT(*m.epo, *s.epo);
@@ -130,7 +131,7 @@ TEST(EndPointOverlap, ReportedUpToTheTriangleLimit) {
     for (uint32_t i = 0; i < valid.size(); ++i) valid[i] = i;
     const PrimitiveSet prims{soup, valid};
     BvhAccelerator<WideBvh<8>> within(BvhKind::Ploc, {}, {}, {3000}), above(BvhKind::Ploc, {}, {}, {2999});
-    const BuildStats in = within.build(prims), out = above.build(prims);
+    const BuildStats in = timedBuild(within, prims), out = timedBuild(above, prims);
     ASSERT_TRUE(in.epo.has_value());
     EXPECT_GT(*in.epo, 0.0);
     EXPECT_FALSE(out.epo.has_value());
