@@ -12,8 +12,11 @@ public:
 
     std::string_view name() const override { return accelerator_; }
 
-    BuildStats build(const PrimitiveSet& prims) override {
-        return guard("build()", [&] { return inner_->build(prims); });
+    void build(const PrimitiveSet& prims) override {
+        guard("build()", [&] { inner_->build(prims); });
+    }
+    BuildStats statistics() const override {
+        return guard("statistics()", [&] { return inner_->statistics(); });
     }
     bool findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const override {
         return guard("findNearest()", [&] { return inner_->findNearest(ray, hit, counters); });

@@ -4,10 +4,8 @@
 #include "accel/bvh/layout/end_point_overlap.h"
 #include "accel/bvh/traverse/bvh_traversal.h"
 #include "accel/bvh/traverse/wide_bvh_traversal.h"
-#include "framework/core/cpu_clock.h"
 
 #include <bit>
-#include <chrono>
 #include <type_traits>
 
 namespace bvhlab {
@@ -37,51 +35,57 @@ BvhAccelerator<Layout>::BvhAccelerator(BvhBuilder builder, const BvhBuildConfig&
 }
 
 template <typename Layout>
-BuildStats BvhAccelerator<Layout>::build(const PrimitiveSet& prims) {
-    // Build time: from the first read of the primitives (PrimRef preparation: boxes and centre
-    // bounds) to the finished node arrays and leaf arrays (primitive indices and the primitives
-    // copied in leaf order), including a collapse and the quadric tree. The statistics are not
-    // part of it, nor is EPO: both clocks leave them out.
+void BvhAccelerator<Layout>::build(const PrimitiveSet& prims) {
+    // T_B: from the first read of the primitives (PrimRef preparation: boxes and centre bounds)
+    // to the finished node arrays and leaf arrays (primitive indices and the primitives copied
+    // in leaf order), including a collapse and the quadric tree.
     tree_ = Layout();
+    binary_ = Bvh();
+    statistics_.reset();
     quadrics_ = QuadricBvh();
-    const auto start = std::chrono::steady_clock::now();
-    const double cpuStart = processCpuMs();
+    triangles_ = prims.validTriangles().size();
     Bvh binary = buildBvh(builder_, build_, prims);
-    const auto built = std::chrono::steady_clock::now();
-    const double cpuBuilt = processCpuMs();
-    BuildStats stats;
-    fillTreeStats(binary, build_.cTraversal, build_.cIntersect, stats);
-    stats.leafBound = build_.effectiveLeafCap();  // every builder's leaves, and the collapse's
-    if (!binary.empty() && binary.leafTriangles.size() <= stats_.epoMaxTriangles)
-        stats.epo = endPointOverlap(binary.nodes, binary.leafTriangles, build_.cTraversal, build_.cIntersect, build_.threads);
-    const Bounds3 triangleRoot = binary.empty() ? Bounds3() : binary.nodes[0].box();
-    const auto statsEnd = std::chrono::steady_clock::now();
-    const double cpuStatsEnd = processCpuMs();
     if constexpr (std::is_same_v<Layout, Bvh>) {
         tree_ = std::move(binary);
     } else {
         const CollapseCosts costs{build_.cTraversal, build_.cIntersect, build_.effectiveLeafCap()};
-        onThreads(build_.threads, [&] { tree_ = collapseToWide<LayoutWidth<Layout>::value>(std::move(binary), costs); });
+        onThreads(build_.threads, [&] { tree_ = collapseToWide<LayoutWidth<Layout>::value>(binary, costs); });
+        binary_ = std::move(binary);
     }
     if (prims.hasQuadrics()) {
         BvhBuildConfig config = build_;
         config.sahBlockShift = 0;  // quadrics are tested one at a time
         quadrics_ = buildQuadricBvh(builder_, config, prims);
     }
-    const auto end = std::chrono::steady_clock::now();
-    const double cpuEnd = processCpuMs();
+}
 
-    stats.buildMs = std::chrono::duration<double, std::milli>((built - start) + (end - statsEnd)).count();
-    stats.buildCpuMs = (cpuBuilt - cpuStart) + (cpuEnd - cpuStatsEnd);
-    stats.primitives = prims.validTriangles().size();
+template <typename Layout>
+BuildStats BvhAccelerator<Layout>::statistics() const {
+    if (statistics_) return *statistics_;
+    const Bvh& binary = binaryTree();
+    BuildStats stats;
+    fillTreeStats(binary, build_.cTraversal, build_.cIntersect, stats);
+    stats.leafBound = build_.effectiveLeafCap();  // every builder's leaves, and the collapse's
+    if (!binary.empty() && binary.leafTriangles.size() <= stats_.epoMaxTriangles)
+        stats.epo = endPointOverlap(binary.nodes, binary.leafTriangles, build_.cTraversal, build_.cIntersect, build_.threads);
+    stats.primitives = triangles_;
     stats.bytes = tree_.bytes();
     if (!quadrics_.empty()) {
         BuildStats quadricStats;
         fillTreeStats(quadrics_, build_.cTraversal, build_.cIntersect, quadricStats);
         quadricStats.primitives = quadrics_.primIndices.size();
+        const Bounds3 triangleRoot = binary.empty() ? Bounds3() : binary.nodes[0].box();
         combineTreeStats(stats, triangleRoot, quadricStats, quadrics_.nodes[0].box());
     }
+    statistics_ = stats;
+    binary_ = Bvh();
     return stats;
+}
+
+template <typename Layout>
+const Bvh& BvhAccelerator<Layout>::binaryTree() const {
+    if constexpr (std::is_same_v<Layout, Bvh>) return tree_;
+    else return binary_;
 }
 
 // The triangles' tree first, then the quadrics' up to the closest hit found so far. One query

@@ -12,6 +12,7 @@
 #include "accel/bvh/traverse/traversal_config.h"
 #include "framework/core/accelerator.h"
 
+#include <optional>
 #include <string>
 
 namespace bvhlab {
@@ -28,10 +29,12 @@ public:
                    const BvhStatsConfig& stats = {});
 
     std::string_view name() const override { return name_; }
-    // Build time includes a collapse to wide nodes. #Nodes, #Leaves, depth, SAH and EPO are the
-    // binary tree's (the same formula for every builder), with the quadric tree's added
-    // (combineTreeStats); memory is the layouts'.
-    BuildStats build(const PrimitiveSet& prims) override;
+    // The build includes a collapse to wide nodes and the quadric tree.
+    void build(const PrimitiveSet& prims) override;
+    // #Nodes, #Leaves, depth, SAH and EPO are the binary tree's (the same formula for every
+    // builder), with the quadric tree's added (combineTreeStats); memory is the layouts'.
+    // Computed on the first call after a build, then kept.
+    BuildStats statistics() const override;
     bool findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const override;
     bool isOccluded(const Ray& ray, QueryCounters& counters) const override;
     // The robustness setting is chosen once per batch; the quadric tree's part is skipped as
@@ -44,6 +47,8 @@ public:
     const Layout& bvh() const { return tree_; }
 
 private:
+    // The binary tree the statistics describe: the layout itself, or the one collapsed into it.
+    const Bvh& binaryTree() const;
     // The quadric tree's part of a query (after the triangles'), kept out of the hot path.
     [[gnu::noinline]] bool findNearestQuadric(const Ray& ray, bool found, Hit& hit, QueryCounters& counters) const;
     [[gnu::noinline]] bool isOccludedQuadric(const Ray& ray, QueryCounters& counters) const;
@@ -60,6 +65,13 @@ private:
     BvhStatsConfig stats_;
     std::string name_;  // the builder's name, with the width of a wide layout: sahbvh, sahbvh4
     Layout tree_;
+    // A wide layout's binary tree, kept from build() to the first statistics() call: the figures
+    // are the binary tree's, and computing them in build() would time them. It holds about the
+    // memory of the wide tree again, so that call keeps the figures and frees it. Empty for
+    // Layout = Bvh (tree_ is the binary tree). Not for statistics() on two threads at once.
+    mutable Bvh binary_;
+    mutable std::optional<BuildStats> statistics_;
+    size_t triangles_ = 0;  // valid triangles built over
     QuadricBvh quadrics_;  // the spheres and cones, when the scene has any (quadric_leaves.h)
 };
 

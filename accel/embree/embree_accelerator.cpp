@@ -7,7 +7,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -240,7 +239,7 @@ EmbreeAccelerator::EmbreeAccelerator(const EmbreeConfig& config)
 
 EmbreeAccelerator::~EmbreeAccelerator() = default;
 
-BuildStats EmbreeAccelerator::build(const PrimitiveSet& prims) {
+void EmbreeAccelerator::build(const PrimitiveSet& prims) {
     RTCDevice device = device_.get();
     const std::span<const uint32_t> validTriangles = prims.validTriangles();
     const size_t count = validTriangles.size();
@@ -250,6 +249,8 @@ BuildStats EmbreeAccelerator::build(const PrimitiveSet& prims) {
 
     // Drop the previous structure first: a failed build leaves an empty (always missing) one.
     scene_.reset();
+    primitives_ = prims.valid.size();
+    bytes_.reset();
     for (auto& map : primitiveOf_) map.clear();
     primitiveOf_[kTriangleGeometry].assign(validTriangles.begin(), validTriangles.end());
     cones_.clear();
@@ -267,7 +268,6 @@ BuildStats EmbreeAccelerator::build(const PrimitiveSet& prims) {
     }
     const RTCBuildQuality quality = toRtc(config_.quality);
 
-    const auto start = std::chrono::steady_clock::now();
     std::unique_ptr<RTCSceneTy, SceneDeleter> scene(rtcNewScene(device));
     check(*state_, device, "rtcNewScene");
     rtcSetSceneFlags(scene.get(), config_.robust ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE);
@@ -332,18 +332,19 @@ BuildStats EmbreeAccelerator::build(const PrimitiveSet& prims) {
     // ours included); rays can then pass through them.
     rtcCommitScene(scene.get());
     check(*state_, device, "rtcCommitScene");
-    const auto end = std::chrono::steady_clock::now();
     const int64_t bytesAfter = state_->bytes.load();
     scene_ = std::move(scene);
+    // What Embree's memory monitor saw rtcCommitScene keep (allocated minus freed): BVH nodes
+    // and Embree's own copies of the triangles in its leaves, in whole allocator blocks; not
+    // our vertex and index buffers, which only copy the input.
+    if (bytesAfter > bytesBefore) bytes_ = size_t(bytesAfter - bytesBefore);
+}
 
+BuildStats EmbreeAccelerator::statistics() const {
+    // nodes, leaves, depth, SAH: Embree's tree is not visible.
     BuildStats stats;
-    stats.buildMs = std::chrono::duration<double, std::milli>(end - start).count();
-    stats.primitives = prims.valid.size();
-    // nodes, leaves, depth, SAH: Embree's tree is not visible. bytes: what Embree's memory
-    // monitor saw rtcCommitScene keep (allocated minus freed): BVH nodes and Embree's own
-    // copies of the triangles in its leaves, in whole allocator blocks; not our vertex and
-    // index buffers, which only copy the input.
-    if (bytesAfter > bytesBefore) stats.bytes = size_t(bytesAfter - bytesBefore);
+    stats.primitives = primitives_;
+    stats.bytes = bytes_;
     return stats;
 }
 

@@ -27,6 +27,7 @@
 
 #include <array>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
@@ -66,7 +67,8 @@ public:
     EmbreeAccelerator& operator=(const EmbreeAccelerator&) = delete;
 
     std::string_view name() const override { return "embree"; }
-    BuildStats build(const PrimitiveSet& prims) override;
+    void build(const PrimitiveSet& prims) override;
+    BuildStats statistics() const override;
     bool findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const override;
     bool isOccluded(const Ray& ray, QueryCounters& counters) const override;
     // Through Embree's stream API (rtcIntersect1M / rtcOccluded1M) in chunks converted on the
@@ -101,6 +103,8 @@ private:
     // Per Embree geometry (triangles, spheres, cones): its primID -> our primitive index.
     std::array<std::vector<uint32_t>, 3> primitiveOf_;
     std::vector<Cone> cones_;  // the user geometry's primitives, read by its callbacks
+    size_t primitives_ = 0;  // the last build's, for statistics()
+    std::optional<size_t> bytes_;
 };
 
 }  // namespace bvhlab

@@ -2,17 +2,16 @@
 
 #include "accel/grid/grid_traversal.h"
 
-#include <chrono>
-
 namespace bvhlab::grid {
 
-BuildStats GridAccelerator::build(const PrimitiveSet& prims) {
-    const auto start = std::chrono::steady_clock::now();
+void GridAccelerator::build(const PrimitiveSet& prims) {
     prims_ = prims;
     grid_ = buildGridCells(prims, parameters_);
+}
+
+BuildStats GridAccelerator::statistics() const {
     BuildStats stats;
-    stats.buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    stats.primitives = prims.valid.size();
+    stats.primitives = prims_.valid.size();
     const uint64_t cells = grid_.cells(), empty = grid_.emptyCells(), refs = grid_.references();
     // A grid has no tree: its cells are the leaves (nodes = leaves = N_V, empty ones included),
     // and nothing of a tree's depth or SAH applies.

@@ -13,7 +13,8 @@ public:
     explicit GridAccelerator(const GridParameters& parameters) : parameters_(parameters) {}
 
     std::string_view name() const override { return "grid"; }
-    BuildStats build(const PrimitiveSet& prims) override;
+    void build(const PrimitiveSet& prims) override;
+    BuildStats statistics() const override;
     bool findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const override;
     bool isOccluded(const Ray& ray, QueryCounters& counters) const override;
 

@@ -1,22 +1,20 @@
 #include "accel/naive/naive_accelerator.h"
 
-#include <chrono>
-
 namespace bvhlab {
 
-BuildStats NaiveAccelerator::build(const PrimitiveSet& prims) {
-    const auto start = std::chrono::steady_clock::now();
-    prims_ = prims;
+void NaiveAccelerator::build(const PrimitiveSet& prims) { prims_ = prims; }
+
+BuildStats NaiveAccelerator::statistics() const {
+    const size_t n = prims_.valid.size();
     BuildStats stats;
-    stats.buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    stats.primitives = prims.valid.size();
+    stats.primitives = n;
     // One leaf holding everything: the SAH cost of brute force is C_isect * N.
     stats.nodes = 1;
     stats.leaves = 1;
-    stats.avgLeafPrimitives = double(prims.valid.size());
-    stats.maxLeafPrimitives = prims.valid.size();
+    stats.avgLeafPrimitives = double(n);
+    stats.maxLeafPrimitives = n;
     stats.maxDepth = 0;
-    stats.sah = SahCost{double(prims.valid.size()), 1.0, 1.0};
+    stats.sah = SahCost{double(n), 1.0, 1.0};
     stats.bytes = 0;
     return stats;
 }

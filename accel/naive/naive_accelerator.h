@@ -11,7 +11,8 @@ namespace bvhlab {
 class NaiveAccelerator final : public Accelerator {
 public:
     std::string_view name() const override { return "naive"; }
-    BuildStats build(const PrimitiveSet& prims) override;
+    void build(const PrimitiveSet& prims) override;
+    BuildStats statistics() const override;
     bool findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const override;
     bool isOccluded(const Ray& ray, QueryCounters& counters) const override;
 

@@ -4,6 +4,7 @@
 #include "apps/check/oracle.h"
 #include "apps/common/program_keys.h"
 #include "framework/core/error.h"
+#include "framework/core/timed_build.h"
 #include "framework/robustness/stress_checks.h"
 #include "framework/robustness/stress_rng.h"
 #include "framework/robustness/stress_scenes.h"
@@ -61,7 +62,7 @@ void addExample(CheckResult& result, const CheckOptions& options, const std::str
 std::unique_ptr<Accelerator> buildOn(const Subject& subject, const Scene& scene, CheckResult& result,
                                      const CheckOptions& options, BuildStats* stats = nullptr) {
     auto accel = subject.make();
-    const BuildStats s = accel->build(scene.primitives());
+    const BuildStats s = timedBuild(*accel, scene.primitives());
     if (s.primitives != scene.validPrimitives.size()) {
         ++result.failures;
         addExample(result, options, scene.name,
@@ -275,7 +276,8 @@ CheckResult mixedPrimitives(const Subject& subject, const CheckOptions& options)
     const Scene scene = makeMixedScene(7);
     const PrimitiveSet prims = scene.primitives();
     auto accel = subject.make();
-    const BuildStats stats = accel->build(prims);
+    accel->build(prims);
+    const BuildStats stats = accel->statistics();
     result.scenes = 1;
     if (stats.primitives == prims.validTriangles().size() && stats.primitives < prims.valid.size()) {
         result.skipped = true;

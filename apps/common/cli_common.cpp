@@ -6,6 +6,7 @@
 #include "apps/common/program_keys.h"
 #include "framework/config/common_keys.h"
 #include "framework/core/error.h"
+#include "framework/core/timed_build.h"
 #include "framework/scene/procedural.h"
 #include "framework/scene/scene_cache.h"
 #include "framework/scene/scene_loader.h"
@@ -193,7 +194,7 @@ Scene loadSceneFor(const Env& env, bool useCache, SceneLoadInfo* info) {
 
 BuiltAccelerator buildAccelerator(const Scene& scene, const Env& env) {
     BuiltAccelerator built{createAccelerator(env), {}};
-    built.stats = built.accel->build(scene.primitives());
+    built.stats = timedBuild(*built.accel, scene.primitives());
     fmt::print(stderr, "{}: built over {} primitives in {:.1f} ms\n", built.accel->name(), built.stats.primitives,
                built.stats.buildMs);
     return built;

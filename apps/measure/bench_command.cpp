@@ -14,6 +14,7 @@
 #include "framework/config/common_keys.h"
 #include "framework/core/error.h"
 #include "framework/core/parse_number.h"
+#include "framework/core/timed_build.h"
 #include "framework/render/renderer.h"
 #include "framework/report/provenance.h"
 
@@ -80,7 +81,7 @@ std::vector<nlohmann::json> measureRounds(const Scene& scene, const RaySets& ray
         for (Contender& k : contenders) {
             k.accel.reset();  // the new structure replaces the old one, not beside it
             k.accel = createAccelerator(k.config.name, k.env);
-            arena.execute([&] { k.stats = k.accel->build(scene.primitives()); });
+            arena.execute([&] { k.stats = timedBuild(*k.accel, scene.primitives()); });
             k.buildMs.push_back(k.stats.buildMs);
         }
     }

@@ -81,8 +81,8 @@ TradeoffScene prepareTradeoffScene(const std::string& id, const Env& sceneEnv, c
 struct TimedBuilds {
     std::unique_ptr<Accelerator> accel;
     BuildStats stats;  // of the last build
-    // Wall time (the structure's own timer) and the process's CPU time over the same work (the
-    // structure's BuildStats::buildCpuMs where it has one: our builds leave their statistics out).
+    // Wall time and the process's CPU time over each build() (timedBuild: BuildStats::buildMs
+    // and buildCpuMs).
     std::vector<double> buildMs, buildCpuMs;
 };
 TimedBuilds timedBuilds(const Scene& scene, const AccelConfig& config, const Env& env, const TradeoffSettings& settings);

@@ -6,6 +6,7 @@
 #include "apps/measure/tradeoff.h"
 #include "framework/config/common_keys.h"
 #include "framework/core/error.h"
+#include "framework/core/timed_build.h"
 #include "framework/io/image_io.h"
 #include "framework/render/render_keys.h"
 #include "framework/report/provenance.h"
@@ -96,10 +97,8 @@ TimedBuilds timedBuilds(const Scene& scene, const AccelConfig& config, const Env
     for (int i = 0; i < settings.builds && (i == 0 || total < settings.buildBudgetMs); ++i) {
         b.accel.reset();  // one structure (and one Embree device) alive at a time
         b.accel = createAccelerator(config.name, env);
-        const double cpu = processCpuMs();
-        arena.execute([&] { b.stats = b.accel->build(scene.primitives()); });
-        const double aroundCall = processCpuMs() - cpu;
-        b.buildCpuMs.push_back(b.stats.buildCpuMs.value_or(aroundCall));
+        arena.execute([&] { b.stats = timedBuild(*b.accel, scene.primitives()); });
+        b.buildCpuMs.push_back(b.stats.buildCpuMs);
         b.buildMs.push_back(b.stats.buildMs);
         total += b.stats.buildMs;
     }

@@ -10,6 +10,7 @@
 #include "apps/common/progress.h"
 #include "apps/spd/havran_reference.h"
 #include "framework/config/common_keys.h"
+#include "framework/core/timed_build.h"
 #include "framework/io/image_io.h"
 #include "framework/render/spd_tracer.h"
 #include "framework/report/provenance.h"
@@ -148,7 +149,7 @@ void addSpdCommand(CLI::App& app) {
                     const Env accelEnv = accelConfigEnv(config, env);
                     progress.phase(fmt::format("{} {}: building", scene.name, config.label));
                     auto accel = createAccelerator(config.name, accelEnv);
-                    const BuildStats build = accel->build(scene.primitives());
+                    const BuildStats build = timedBuild(*accel, scene.primitives());
                     const uint64_t rows = uint64_t(scene.camera ? scene.camera->height + 1 : 0);
                     progress.phase(fmt::format("{} {}: tracing", scene.name, config.label), rows);
                     Framebuffer fb(scene.camera ? scene.camera->width : 1, scene.camera ? scene.camera->height : 1);

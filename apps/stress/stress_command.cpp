@@ -19,6 +19,7 @@
 #include "apps/common/scene_list.h"
 #include "framework/config/common_keys.h"
 #include "framework/core/error.h"
+#include "framework/core/timed_build.h"
 #include "framework/render/camera.h"
 #include "framework/render/renderer.h"
 #include "framework/report/provenance.h"
@@ -108,7 +109,7 @@ private:
     std::unique_ptr<Accelerator> build(const AccelConfig& config, const Scene& scene, BuildStats& stats) const {
         auto accel = createAccelerator(config.name, configured(config));
         tbb::task_arena arena(options_.threads > 0 ? options_.threads : tbb::task_arena::automatic);
-        arena.execute([&] { stats = accel->build(scene.primitives()); });
+        arena.execute([&] { stats = timedBuild(*accel, scene.primitives()); });
         return accel;
     }
 

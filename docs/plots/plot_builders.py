@@ -98,7 +98,7 @@ def main():
     rows = read_csv(os.path.join(args.data, "builders.csv"))
     scene_ids = list(dict.fromkeys(r["scene"] for r in rows))
     one_thread = all(r["threads"] == "1" for r in rows)
-    # T_B: the structure's own timer (the command's choice: CPU time would include the EPO).
+    # T_B: wall time around build(), as the command's tables.
     build_key, trace_key = "build_ms", "t_r_primary_cpu_us" if one_thread else "t_r_primary_us"
     cols = min(3, len(scene_ids))
     rows_n = math.ceil(len(scene_ids) / cols)

@@ -66,14 +66,14 @@ struct NamedFigure {
     std::string meaning;  // one line: "N_V, cells of the grid"
 };
 
-// What a build reports. Structures without a visible tree (Embree) leave the tree fields
-// unset: unavailable, not zero.
+// What a build reports: its times, measured by the caller around build() (timed_build.h), and
+// the structure's statistics(). Structures without a visible tree (Embree) leave the tree
+// fields unset: unavailable, not zero.
 struct BuildStats {
+    // T_B in wall time, and the process's CPU time over the same call (all threads). Left 0
+    // by statistics(): the caller times build(), so every structure is timed alike.
     double buildMs = 0.0;
-    // The process's CPU time over what buildMs times, where the structure times itself work
-    // that build() does besides the build (ours: tree statistics and EPO, not part of T_B);
-    // unset where build() does nothing else, and a timer around the call measures the build.
-    std::optional<double> buildCpuMs;
+    double buildCpuMs = 0.0;
     size_t primitives = 0;  // primitives built over (degenerate ones excluded)
     std::optional<size_t> nodes;  // all nodes, leaves included
     std::optional<size_t> leaves;
@@ -104,8 +104,14 @@ public:
 
     virtual std::string_view name() const = 0;
 
-    // Builds over prims.valid; keeps views of prims' arrays, which must outlive it.
-    virtual BuildStats build(const PrimitiveSet& prims) = 0;
+    // Builds over prims.valid; keeps views of prims' arrays, which must outlive it. Does the
+    // build and nothing else: the caller's clocks around this call are T_B (timed_build.h).
+    virtual void build(const PrimitiveSet& prims) = 0;
+
+    // The statistics of the last build (primitives built over, and the tree's figures where it
+    // has a tree: nodes, leaves, SAH, EPO, bytes, its own figures), leaving the times 0. Never
+    // timed, so computing them (EPO takes seconds on large scenes) costs T_B nothing.
+    virtual BuildStats statistics() const = 0;
 
     // Closest hit in [ray.tmin, ray.tmax]; on a miss returns false and leaves `hit` unchanged.
     virtual bool findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const = 0;

@@ -16,8 +16,9 @@
 #include <vector>
 
 // Raised when anything a plugin compiles against changes shape; a plugin built for another
-// version is refused at load time with both versions named. 2: BuildStats::figures. 3: builders
-// (builder_api.h).
+// version is refused at load time with both versions named. 2: BuildStats::figures. 3: build()
+// returns nothing and is timed by bvhlab; statistics() reports the tree; BuildStats::buildCpuMs
+// is a double; builders (builder_api.h).
 #define BVHLAB_PLUGIN_API_VERSION 3
 
 namespace bvhlab {

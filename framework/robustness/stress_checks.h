@@ -64,7 +64,7 @@ AcneCheck checkShadowAcne(const Scene& planeScene, const Accelerator& accel, int
 inline constexpr size_t kMaxBytesPerPrimitive = 4096;  // ours take under 200
 struct EdgeBuildCheck {
     BuildStats stats;
-    double seconds = 0.0;                // the build, timed around the call: the lesser of wall and CPU time
+    double seconds = 0.0;                // the build (timedBuild): the lesser of wall and CPU time
     size_t rays = 0, differ = 0;         // answers unlike the reference's
     std::vector<std::string> problems;   // every bound broken, e.g. "depth 70 >= 64"
     std::vector<std::string> examples;   // the first few differing answers, full precision

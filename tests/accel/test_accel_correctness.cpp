@@ -13,6 +13,7 @@
 #include "accel/naive/naive_accelerator.h"
 #include "accel/registry.h"
 #include "apps/common/program_keys.h"
+#include "framework/core/timed_build.h"
 #include "framework/core/triangle.h"
 #include "framework/scene/procedural.h"
 #include "framework/scene/scene_loader.h"
@@ -108,7 +109,7 @@ protected:
                   const std::function<size_t(const Scene&, RayKind)>& count = raysPerKind) {
         SceneCase& c = sceneCase(name, makeScene, kinds, count);
         const auto accel = make();
-        const BuildStats stats = accel->build(c.scene->primitives());
+        const BuildStats stats = timedBuild(*accel, c.scene->primitives());
         EXPECT_EQ(stats.primitives, c.scene->validPrimitives.size()) << name;
         for (RayKind kind : kinds) {
             const std::string label = name + "/" + rayKindName(kind);
@@ -321,7 +322,7 @@ public:
     explicit FaultyAccelerator(Fault f) : fault_(f) {}
 
     std::string_view name() const override { return "faulty"; }
-    BuildStats build(const PrimitiveSet& prims) override {
+    void build(const PrimitiveSet& prims) override {
         kept_.clear();
         for (size_t i = 0; i < prims.valid.size(); ++i)
             if (fault_ != Fault::DropsTriangles || i % 50 != 7) kept_.push_back(prims.valid[i]);
@@ -330,8 +331,11 @@ public:
             for (size_t i = 0; i < kept_.size(); ++i) kept_[i] = uint32_t(i);
         }
         prims_ = {prims.triangles, kept_};
+        validCount_ = prims.valid.size();
+    }
+    BuildStats statistics() const override {
         BuildStats stats;
-        stats.primitives = prims.valid.size();
+        stats.primitives = validCount_;  // what it was given, whatever it kept
         return stats;
     }
     bool findNearest(const Ray& input, Hit& hit, QueryCounters& counters) const override {
@@ -377,6 +381,7 @@ private:
     Fault fault_;
     std::vector<uint32_t> kept_;
     PrimitiveSet prims_;
+    size_t validCount_ = 0;
 };
 
 using Fault = FaultyAccelerator::Fault;
@@ -465,10 +470,8 @@ TEST(CorrectnessHarness, WatertightProbesCatchEdgeLeaksAndPassTheOracle) {
     class OracleAccelerator final : public Accelerator {
     public:
         std::string_view name() const override { return "oracle"; }
-        BuildStats build(const PrimitiveSet& prims) override {
-            oracle_ = std::make_unique<Oracle>(prims);
-            return {};
-        }
+        void build(const PrimitiveSet& prims) override { oracle_ = std::make_unique<Oracle>(prims); }
+        BuildStats statistics() const override { return {}; }
         bool findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const override {
             ++counters.queries;
             const OracleHit h = oracle_->nearest(ray);

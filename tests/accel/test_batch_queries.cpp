@@ -24,7 +24,8 @@ class SingleRayCalls final : public Accelerator {
 public:
     explicit SingleRayCalls(const Accelerator& inner) : inner_(inner) {}
     std::string_view name() const override { return inner_.name(); }
-    BuildStats build(const PrimitiveSet&) override { return {}; }
+    void build(const PrimitiveSet&) override {}
+    BuildStats statistics() const override { return {}; }
     bool findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const override {
         return inner_.findNearest(ray, hit, counters);
     }

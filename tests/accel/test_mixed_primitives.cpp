@@ -6,6 +6,7 @@
 #include "accel/registry.h"
 #include "apps/check/conformance.h"
 #include "apps/common/program_keys.h"
+#include "framework/core/timed_build.h"
 #include "framework/scene/surface_point.h"
 #include "tests/support/random_geometry.h"
 
@@ -37,7 +38,7 @@ TEST(MixedPrimitives, NaiveCountsEveryKind) {
 TEST(MixedPrimitives, BvhCountsQuadricTestsByKind) {
     const Scene scene = check::makeMixedScene(5);
     const auto accel = createAccelerator("sahbvh8", Env(programKeys()));
-    const BuildStats stats = accel->build(scene.primitives());
+    const BuildStats stats = timedBuild(*accel, scene.primitives());
     EXPECT_EQ(stats.primitives, scene.validPrimitives.size());
     ASSERT_TRUE(stats.leaves && stats.nodes && stats.sah);
     QueryCounters counters;

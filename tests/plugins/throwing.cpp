@@ -11,10 +11,10 @@ class Throwing final : public bvhlab::Accelerator {
 public:
     explicit Throwing(bool inBuild) : inBuild_(inBuild) {}
     std::string_view name() const override { return inBuild_ ? "throwing" : "throwing_query"; }
-    bvhlab::BuildStats build(const bvhlab::PrimitiveSet&) override {
+    void build(const bvhlab::PrimitiveSet&) override {
         if (inBuild_) throw std::runtime_error("no build today");
-        return {};
     }
+    bvhlab::BuildStats statistics() const override { return {}; }
     bool findNearest(const bvhlab::Ray&, bvhlab::Hit&, bvhlab::QueryCounters&) const override {
         throw std::runtime_error("no queries today");
     }

@@ -228,7 +228,7 @@ private:
 }  // namespace
 
 template <int N>
-WideBvh<N> collapseToWide(Bvh&& bvh, const CollapseCosts& costs) {
+WideBvh<N> collapseToWide(const Bvh& bvh, const CollapseCosts& costs) {
     WideBvh<N> wide;
     if (bvh.empty()) return wide;
     const CollapsePlan<N> plan(bvh.nodes, costs);
@@ -248,11 +248,10 @@ WideBvh<N> collapseToWide(Bvh&& bvh, const CollapseCosts& costs) {
         wide.resizeLeaves(size.blocks);
         emitter.emit(0, 0, 1, 0);
     }
-    bvh = Bvh();
     return wide;
 }
 
-template WideBvh<4> collapseToWide<4>(Bvh&&, const CollapseCosts&);
-template WideBvh<8> collapseToWide<8>(Bvh&&, const CollapseCosts&);
+template WideBvh<4> collapseToWide<4>(const Bvh&, const CollapseCosts&);
+template WideBvh<8> collapseToWide<8>(const Bvh&, const CollapseCosts&);
 
 }  // namespace bvhlab

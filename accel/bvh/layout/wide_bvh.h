@@ -37,7 +37,7 @@ struct CollapseCosts {
     uint32_t leafCap;
 };
 
-// Collapses `bvh` (consumed) by SAH, after Ylitie, Karras and Laine 2017 ("Efficient incoherent
+// Collapses `bvh` (left as it is: BvhAccelerator keeps it for its statistics) by SAH, after Ylitie, Karras and Laine 2017 ("Efficient incoherent
 // ray traversal on GPUs through compressed wide BVHs", section 4.1): bottom up, each binary
 // node's subtree gets its cheapest form as at most 1..N lanes of a wide node, where one lane is
 // the node itself, either a leaf of all its triangles (at most leafCap, charged by blocks) or a
@@ -49,6 +49,6 @@ struct CollapseCosts {
 // subtrees are written as TBB tasks (in the caller's arena), each at a place fixed beforehand:
 // the layout does not depend on the thread count. Instantiated for N = 4 and 8.
 template <int N>
-WideBvh<N> collapseToWide(Bvh&& bvh, const CollapseCosts& costs);
+WideBvh<N> collapseToWide(const Bvh& bvh, const CollapseCosts& costs);
 
 }  // namespace bvhlab

@@ -4,6 +4,7 @@
 #include "accel/bvh/builder_table.h"
 #include "accel/bvh/bvh_accelerator.h"
 #include "accel/bvh/layout/end_point_overlap.h"
+#include "framework/core/timed_build.h"
 #include "framework/scene/scene.h"
 
 #include <gtest/gtest.h>
@@ -109,7 +110,7 @@ TEST(EndPointOverlap, SpatialMedianAboveSahOnASoup) {
     for (uint32_t i = 0; i < valid.size(); ++i) valid[i] = i;
     const PrimitiveSet prims{soup, valid};
     BvhAccelerator<Bvh> median(bvhBuilder("tdbvh"), {}), sah(bvhBuilder("sahbvh"), {});
-    const BuildStats m = median.build(prims), s = sah.build(prims);
+    const BuildStats m = timedBuild(median, prims), s = timedBuild(sah, prims);
     ASSERT_TRUE(m.epo && s.epo);
     std::printf("[ NOTE     ] EPO spatial median %.3f, binned SAH %.3f\n", *m.epo, *s.epo);
     EXPECT_GT(*m.epo, *s.epo);
@@ -131,7 +132,7 @@ TEST(EndPointOverlap, ReportedUpToTheTriangleLimit) {
     for (uint32_t i = 0; i < valid.size(); ++i) valid[i] = i;
     const PrimitiveSet prims{soup, valid};
     BvhAccelerator<WideBvh<8>> within(bvhBuilder("ploc"), {}, {}, {3000}), above(bvhBuilder("ploc"), {}, {}, {2999});
-    const BuildStats in = within.build(prims), out = above.build(prims);
+    const BuildStats in = timedBuild(within, prims), out = timedBuild(above, prims);
     ASSERT_TRUE(in.epo.has_value());
     EXPECT_GT(*in.epo, 0.0);
     EXPECT_FALSE(out.epo.has_value());

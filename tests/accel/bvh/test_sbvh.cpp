@@ -8,6 +8,7 @@
 #include "accel/bvh/builder_table.h"
 #include "accel/bvh/bvh_accelerator.h"
 #include "accel/naive/naive_accelerator.h"
+#include "framework/core/timed_build.h"
 #include "framework/scene/scene.h"
 #include "tests/support/bvh_checks.h"
 #include "tests/support/triangle_soup.h"
@@ -126,7 +127,7 @@ TEST(Sbvh, InvariantsWithSplitReferences) {
 TEST(Sbvh, StatsCountPrimitivesAndReferences) {
     const Soup soup = diagonalSlivers(2000, 3);
     BvhAccelerator<Bvh> accel(bvhBuilder("sbvh"), BvhBuildConfig{});
-    const BuildStats stats = accel.build(soup.prims());
+    const BuildStats stats = timedBuild(accel, soup.prims());
     EXPECT_EQ(stats.primitives, soup.valid.size());
     EXPECT_NEAR(stats.avgLeafPrimitives.value() * double(stats.leaves.value()), double(accel.bvh().primIndices.size()), 1e-6);
     EXPECT_GT(accel.bvh().primIndices.size(), soup.valid.size());

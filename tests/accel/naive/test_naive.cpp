@@ -6,6 +6,7 @@
 #include "apps/common/program_keys.h"
 #include "framework/scene/procedural.h"
 #include "apps/check/oracle.h"
+#include "framework/core/timed_build.h"
 
 #include <gtest/gtest.h>
 
@@ -39,7 +40,7 @@ TEST(Naive, QuadBehindDegenerateTriangles) {
     EXPECT_EQ(scene.report.degenerateTriangles, 5u);
 
     NaiveAccelerator naive;
-    const BuildStats stats = naive.build(scene.primitives());
+    const BuildStats stats = timedBuild(naive, scene.primitives());
     EXPECT_EQ(stats.primitives, 2u);
     EXPECT_EQ(stats.nodes, 1u);
     EXPECT_EQ(stats.leaves, 1u);
@@ -187,7 +188,7 @@ TEST(Naive, EmptyAndUnbuilt) {
 
     const Scene empty = sceneFromTriangles({}, "empty");
     NaiveAccelerator naive;
-    EXPECT_EQ(naive.build(empty.primitives()).primitives, 0u);
+    EXPECT_EQ(timedBuild(naive, empty.primitives()).primitives, 0u);
     counters = {};
     EXPECT_FALSE(naive.findNearest(Ray({0, 0, 0}, {0, 0, 1}), hit, counters));
     EXPECT_EQ(counters.intersectionTests, 0u);

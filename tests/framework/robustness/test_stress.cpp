@@ -17,6 +17,7 @@
 #include "accel/registry.h"
 #include "apps/common/program_keys.h"
 #include "framework/core/ray_offset.h"
+#include "framework/core/timed_build.h"
 #include "framework/robustness/stress_checks.h"
 #include "framework/robustness/stress_rng.h"
 #include "framework/robustness/stress_scenes.h"
@@ -76,7 +77,7 @@ protected:
         Env env(programKeys());
         for (const auto& [key, value] : variant().env) env.set(key, value, "test");
         auto accel = createAccelerator(variant().name, env);
-        const BuildStats s = accel->build(scene.primitives());
+        const BuildStats s = timedBuild(*accel, scene.primitives());
         if (stats) *stats = s;
         return accel;
     }

@@ -1,0 +1,15 @@
+// The one clock around a build: every caller (render, bench, tradeoff, stress, check, spd)
+// times Accelerator::build() here, so that T_B means the same for every structure, ours and a
+// plugin's, and no structure times itself or has to leave its statistics out of its own time.
+#pragma once
+
+#include "framework/core/accelerator.h"
+
+namespace bvhlab {
+
+// Builds `accel` over `prims`, timing build() alone in wall time and process CPU time, then
+// returns its statistics() with buildMs and buildCpuMs set. Runs on the calling thread (inside
+// the caller's tbb::task_arena, which then bounds the build's threads and the statistics').
+BuildStats timedBuild(Accelerator& accel, const PrimitiveSet& prims);
+
+}  // namespace bvhlab
