@@ -1,0 +1,166 @@
+#include "apps/python/numpy_rays.h"
+
+#include "apps/python/bindings.h"
+#include "framework/core/error.h"
+#include "framework/io/ray_file.h"
+
+#include <fmt/core.h>
+#include <pybind11/stl/filesystem.h>
+
+#include <limits>
+#include <string>
+
+namespace py = pybind11;
+
+namespace bvhlab {
+namespace {
+
+// `object` as a NumPy array of float32 or float64 in native byte order, C-contiguous, of shape
+// (N, columns) (columns 0: (N,)) with N > 0, and N == rows when rows >= 0. Else InputError.
+py::array checkedFloats(const py::handle& object, const std::string& name, py::ssize_t rows, int columns) {
+    const std::string shape = columns ? fmt::format("(N, {})", columns) : "(N,)";
+    if (!py::isinstance<py::array>(object))
+        throw InputError(fmt::format("{}: expected a NumPy array of shape {}, got {}", name, shape,
+                                     py::str(py::type::of(object)).cast<std::string>()));
+    const auto array = py::reinterpret_borrow<py::array>(object);
+    const py::dtype dtype = array.dtype();
+    if (dtype.kind() != 'f' || (dtype.itemsize() != 4 && dtype.itemsize() != 8) || !dtype.attr("isnative").cast<bool>())
+        throw InputError(fmt::format("{}: expected float32 or float64, got {}", name, py::str(static_cast<py::handle>(dtype)).cast<std::string>()));
+    if (array.ndim() != (columns ? 2 : 1) || (columns && array.shape(1) != columns))
+        throw InputError(fmt::format("{}: expected shape {}, got {}", name, shape,
+                                     py::str(array.attr("shape")).cast<std::string>()));
+    if (!(array.flags() & py::array::c_style))
+        throw InputError(fmt::format("{}: not C-contiguous (np.ascontiguousarray(a) is)", name));
+    if (array.shape(0) == 0) throw InputError(fmt::format("{}: empty, no rays", name));
+    if (rows >= 0 && array.shape(0) != rows)
+        throw InputError(fmt::format("{}: {} rows where origins has {}", name, array.shape(0), rows));
+    return array;
+}
+
+float floatAt(const py::array& array, size_t i) {
+    return array.itemsize() == 4 ? static_cast<const float*>(array.data())[i]
+                                 : float(static_cast<const double*>(array.data())[i]);
+}
+
+// tmin or tmax: a number for every ray, or an (N,) array of one per ray, written by `assign`.
+template <typename Assign>
+void readInterval(const py::handle& object, const std::string& name, size_t n, Assign&& assign) {
+    if (py::isinstance<py::array>(object) && py::reinterpret_borrow<py::array>(object).ndim() > 0) {
+        const py::array array = checkedFloats(object, name, py::ssize_t(n), 0);
+        for (size_t i = 0; i < n; ++i) assign(i, floatAt(array, i));
+        return;
+    }
+    float value = 0.0f;
+    try {
+        value = py::cast<float>(object);
+    } catch (const py::cast_error&) {
+        throw InputError(fmt::format("{}: expected a number or an (N,) float array, got {}", name,
+                                     py::str(py::type::of(object)).cast<std::string>()));
+    }
+    for (size_t i = 0; i < n; ++i) assign(i, value);
+}
+
+py::array_t<float> floatArray(size_t rows, size_t columns) {
+    return columns ? py::array_t<float>({rows, columns}) : py::array_t<float>(rows);
+}
+
+template <typename Record>
+py::array_t<Record> recordsOf(const std::vector<Hit>& hits, const std::vector<RayCost>& costs) {
+    py::array_t<Record> array(py::ssize_t(hits.size()));
+    Record* out = array.mutable_data();
+    for (size_t i = 0; i < hits.size(); ++i) {
+        const Hit& h = hits[i];
+        out[i].t = h.t;
+        out[i].prim = h.found() ? int64_t(h.primitive) : -1;
+        out[i].u = h.u;
+        out[i].v = h.v;
+        if constexpr (std::is_same_v<Record, CountedHitRecord>) {
+            out[i].n_it = costs[i].intersectionTests;
+            out[i].n_tr = costs[i].traversalSteps;
+        }
+    }
+    return array;
+}
+
+}  // namespace
+
+std::vector<Ray> raysFromArrays(const py::handle& origins, const py::handle& directions, const py::handle& tmin,
+                                const py::handle& tmax) {
+    const py::array org = checkedFloats(origins, "origins", -1, 3);
+    const py::array dir = checkedFloats(directions, "directions", org.shape(0), 3);
+    std::vector<Ray> rays(size_t(org.shape(0)));
+    for (size_t i = 0; i < rays.size(); ++i) {
+        rays[i].org = {floatAt(org, 3 * i), floatAt(org, 3 * i + 1), floatAt(org, 3 * i + 2)};
+        rays[i].dir = {floatAt(dir, 3 * i), floatAt(dir, 3 * i + 1), floatAt(dir, 3 * i + 2)};
+    }
+    readInterval(tmin, "tmin", rays.size(), [&](size_t i, float t) { rays[i].tmin = t; });
+    readInterval(tmax, "tmax", rays.size(), [&](size_t i, float t) { rays[i].tmax = t; });
+    return rays;
+}
+
+py::dict raysToArrays(const std::vector<Ray>& rays) {
+    py::array_t<float> origins = floatArray(rays.size(), 3), directions = floatArray(rays.size(), 3);
+    py::array_t<float> tmin = floatArray(rays.size(), 0), tmax = floatArray(rays.size(), 0);
+    float *o = origins.mutable_data(), *d = directions.mutable_data();
+    for (size_t i = 0; i < rays.size(); ++i) {
+        for (int k = 0; k < 3; ++k) {
+            o[3 * i + k] = rays[i].org[k];
+            d[3 * i + k] = rays[i].dir[k];
+        }
+        tmin.mutable_data()[i] = rays[i].tmin;
+        tmax.mutable_data()[i] = rays[i].tmax;
+    }
+    py::dict arrays;
+    arrays["origins"] = origins;
+    arrays["directions"] = directions;
+    arrays["tmin"] = tmin;
+    arrays["tmax"] = tmax;
+    return arrays;
+}
+
+py::array hitsToArray(const std::vector<Hit>& hits, const std::vector<RayCost>& costs) {
+    if (costs.empty()) return recordsOf<HitRecord>(hits, costs);
+    return recordsOf<CountedHitRecord>(hits, costs);
+}
+
+std::vector<Hit> hitsFromArray(const py::handle& object) {
+    if (!py::isinstance<py::array>(object) || py::reinterpret_borrow<py::array>(object).dtype().attr("names").is_none())
+        throw InputError("hits: expected a NumPy structured array with fields t, prim, u, v (as accel.intersect returns)");
+    const auto array = py::reinterpret_borrow<py::array>(object);
+    const auto names = array.dtype().attr("names").cast<py::tuple>();
+    auto field = [&]<typename T>(const char* name, T) {
+        if (!names.contains(name)) throw InputError(fmt::format("hits: no field '{}' (fields t, prim, u, v)", name));
+        return py::array_t<T, py::array::c_style | py::array::forcecast>::ensure(py::object(array[py::str(name)]));
+    };
+    const auto t = field("t", 0.0f), u = field("u", 0.0f), v = field("v", 0.0f);
+    const auto prim = field("prim", int64_t(0));
+    if (array.ndim() != 1) throw InputError("hits: expected one dimension, one record per ray");
+    std::vector<Hit> hits(size_t(array.shape(0)));
+    for (size_t i = 0; i < hits.size(); ++i) {
+        const int64_t p = prim.at(py::ssize_t(i));
+        if (p >= int64_t(kInvalidPrimitive)) throw InputError(fmt::format("hits: prim {} out of range", p));
+        hits[i] = {t.at(py::ssize_t(i)), p < 0 ? kInvalidPrimitive : uint32_t(p), u.at(py::ssize_t(i)),
+                   v.at(py::ssize_t(i))};
+    }
+    return hits;
+}
+
+void bindRayFiles(py::module_& m) {
+    m.def("read_rays", [](const std::filesystem::path& file) { return raysToArrays(readRayFile(file)); },
+          py::arg("path"), "The rays of a BVHRAYS1 file as {origins, directions, tmin, tmax}: accel.intersect(**rays).");
+    m.def(
+        "write_rays",
+        [](const std::filesystem::path& file, const py::handle& origins, const py::handle& directions,
+           const py::handle& tmin, const py::handle& tmax) {
+            writeRayFile(file, raysFromArrays(origins, directions, tmin, tmax));
+        },
+        py::arg("path"), py::arg("origins"), py::arg("directions"), py::arg("tmin") = 0.0f,
+        py::arg("tmax") = std::numeric_limits<float>::infinity(), "Writes rays as a BVHRAYS1 file (bvhlab raycast --rays).");
+    m.def("read_hits", [](const std::filesystem::path& file) { return hitsToArray(readHitFile(file), {}); },
+          py::arg("path"), "The hits of a BVHHITS1 file (bvhlab raycast --out) as accel.intersect returns them.");
+    m.def("write_hits",
+          [](const std::filesystem::path& file, const py::handle& hits) { writeHitFile(file, hitsFromArray(hits)); },
+          py::arg("path"), py::arg("hits"), "Writes hits (fields t, prim, u, v) as a BVHHITS1 file.");
+}
+
+}  // namespace bvhlab
