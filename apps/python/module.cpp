@@ -18,4 +18,5 @@ PYBIND11_MODULE(bvhlab, m) {
     bvhlab::bindScene(m);
     bvhlab::bindAccelerator(m);
     bvhlab::bindRayFiles(m);
+    bvhlab::bindRender(m);
 }

@@ -5,7 +5,7 @@
 #include "apps/common/trace_rays.h"
 #include "apps/python/bindings.h"
 #include "apps/python/numpy_rays.h"
-#include "apps/python/python_scene.h"
+#include "apps/python/python_accelerator.h"
 #include "framework/config/common_keys.h"
 #include "framework/core/error.h"
 #include "framework/core/timed_build.h"
@@ -22,12 +22,6 @@ namespace py = pybind11;
 
 namespace bvhlab {
 namespace {
-
-struct PythonAccelerator {
-    std::shared_ptr<PythonScene> scene;  // the primitives the structure keeps views of
-    std::unique_ptr<Accelerator> accel;
-    BuildStats stats;
-};
 
 // The build statistics under the names of the statistics JSON (framework/report/statistics.h);
 // an unset figure (std::optional) is None.
@@ -60,11 +54,8 @@ void checkThreads(int threads) {
 
 PythonAccelerator build(std::shared_ptr<PythonScene> scene, const std::string& name, const py::object& envDict,
                         int threads) {
-    checkThreads(threads);
     loadPluginFor(name);  // unknown: createAccelerator names the known ones
-    Env env = scene->env;
-    env.set(keys::SetRayTracing::threads, std::to_string(threads), "threads");
-    for (const std::string& assignment : envAssignments(envDict)) env.setOverride(assignment);
+    const Env env = envWith(*scene, envDict, threads);
     PythonAccelerator built{scene, createAccelerator(name, env), {}};
     py::gil_scoped_release release;
     tbb::task_arena(threads > 0 ? threads : tbb::info::default_concurrency()).execute([&] {
@@ -108,6 +99,14 @@ py::array occluded(const PythonAccelerator& self, const py::handle& origins, con
 }
 
 }  // namespace
+
+Env envWith(const PythonScene& scene, const py::object& envDict, int threads) {
+    checkThreads(threads);
+    Env env = scene.env;
+    env.set(keys::SetRayTracing::threads, std::to_string(threads), "threads");
+    for (const std::string& assignment : envAssignments(envDict)) env.setOverride(assignment);
+    return env;
+}
 
 void bindAccelerator(py::module_& m) {
     static const std::string queryArguments =
