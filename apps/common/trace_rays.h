@@ -20,6 +20,12 @@ struct RayAnswers {
     std::span<RayCost> costs;
 };
 
+// The loop of traceRays, for rays and answers kept in other layouts (NumPy arrays): calls
+// traceRange(begin, end, counters) over [0, n) in ranges of at most kRaysPerRange rays, with
+// `threads` threads (0: all hardware threads), each with its thread's counters; returns their sum.
+QueryCounters forEachRayRange(size_t n, int threads,
+                              const std::function<void(size_t begin, size_t end, QueryCounters&)>& traceRange);
+
 // Answers every ray (any-hit when `anyHit`) with `threads` threads (0: all hardware threads),
 // calling onRange(rays) after each range; returns the counters of all threads.
 QueryCounters traceRays(const Accelerator& accel, std::span<const Ray> rays, bool anyHit, int threads,

@@ -37,64 +37,55 @@ py::array checkedFloats(const py::handle& object, const std::string& name, py::s
     return array;
 }
 
-float floatAt(const py::array& array, size_t i) {
-    return array.itemsize() == 4 ? static_cast<const float*>(array.data())[i]
-                                 : float(static_cast<const double*>(array.data())[i]);
-}
-
-// tmin or tmax: a number for every ray, or an (N,) array of one per ray, written by `assign`.
-template <typename Assign>
-void readInterval(const py::handle& object, const std::string& name, size_t n, Assign&& assign) {
-    if (py::isinstance<py::array>(object) && py::reinterpret_borrow<py::array>(object).ndim() > 0) {
-        const py::array array = checkedFloats(object, name, py::ssize_t(n), 0);
-        for (size_t i = 0; i < n; ++i) assign(i, floatAt(array, i));
-        return;
-    }
-    float value = 0.0f;
-    try {
-        value = py::cast<float>(object);
-    } catch (const py::cast_error&) {
-        throw InputError(fmt::format("{}: expected a number or an (N,) float array, got {}", name,
-                                     py::str(py::type::of(object)).cast<std::string>()));
-    }
-    for (size_t i = 0; i < n; ++i) assign(i, value);
-}
-
 py::array_t<float> floatArray(size_t rows, size_t columns) {
     return columns ? py::array_t<float>({rows, columns}) : py::array_t<float>(rows);
 }
 
-template <typename Record>
-py::array_t<Record> recordsOf(const std::vector<Hit>& hits, const std::vector<RayCost>& costs) {
-    py::array_t<Record> array(py::ssize_t(hits.size()));
-    Record* out = array.mutable_data();
-    for (size_t i = 0; i < hits.size(); ++i) {
-        const Hit& h = hits[i];
-        out[i].t = h.t;
-        out[i].prim = h.found() ? int64_t(h.primitive) : -1;
-        out[i].u = h.u;
-        out[i].v = h.v;
-        if constexpr (std::is_same_v<Record, CountedHitRecord>) {
-            out[i].n_it = costs[i].intersectionTests;
-            out[i].n_tr = costs[i].traversalSteps;
-        }
-    }
-    return array;
-}
-
 }  // namespace
 
-std::vector<Ray> raysFromArrays(const py::handle& origins, const py::handle& directions, const py::handle& tmin,
-                                const py::handle& tmax) {
-    const py::array org = checkedFloats(origins, "origins", -1, 3);
-    const py::array dir = checkedFloats(directions, "directions", org.shape(0), 3);
-    std::vector<Ray> rays(size_t(org.shape(0)));
-    for (size_t i = 0; i < rays.size(); ++i) {
-        rays[i].org = {floatAt(org, 3 * i), floatAt(org, 3 * i + 1), floatAt(org, 3 * i + 2)};
-        rays[i].dir = {floatAt(dir, 3 * i), floatAt(dir, 3 * i + 1), floatAt(dir, 3 * i + 2)};
+RayArrays::Values RayArrays::valuesOf(py::array array) {
+    Values values;
+    values.data = array.data();
+    values.isDouble = array.itemsize() == 8;
+    values.array = std::move(array);
+    return values;
+}
+
+RayArrays::Values RayArrays::intervalOf(const py::handle& object, const std::string& name, size_t n) {
+    if (py::isinstance<py::array>(object) && py::reinterpret_borrow<py::array>(object).ndim() > 0)
+        return valuesOf(checkedFloats(object, name, py::ssize_t(n), 0));
+    Values values;
+    try {
+        values.constant = py::cast<float>(object);
+    } catch (const py::cast_error&) {
+        throw InputError(fmt::format("{}: expected a number or an (N,) float array, got {}", name,
+                                     py::str(py::type::of(object)).cast<std::string>()));
     }
-    readInterval(tmin, "tmin", rays.size(), [&](size_t i, float t) { rays[i].tmin = t; });
-    readInterval(tmax, "tmax", rays.size(), [&](size_t i, float t) { rays[i].tmax = t; });
+    return values;
+}
+
+RayArrays::RayArrays(const py::handle& origins, const py::handle& directions, const py::handle& tmin,
+                     const py::handle& tmax) {
+    origins_ = valuesOf(checkedFloats(origins, "origins", -1, 3));
+    size_ = size_t(origins_.array.shape(0));
+    directions_ = valuesOf(checkedFloats(directions, "directions", py::ssize_t(size_), 3));
+    tmin_ = intervalOf(tmin, "tmin", size_);
+    tmax_ = intervalOf(tmax, "tmax", size_);
+}
+
+void RayArrays::read(size_t begin, std::span<Ray> out) const {
+    for (size_t k = 0; k < out.size(); ++k) {
+        const size_t i = begin + k;
+        out[k].org = {origins_[3 * i], origins_[3 * i + 1], origins_[3 * i + 2]};
+        out[k].dir = {directions_[3 * i], directions_[3 * i + 1], directions_[3 * i + 2]};
+        out[k].tmin = tmin_[i];
+        out[k].tmax = tmax_[i];
+    }
+}
+
+std::vector<Ray> RayArrays::all() const {
+    std::vector<Ray> rays(size_);
+    read(0, rays);
     return rays;
 }
 
@@ -118,9 +109,10 @@ py::dict raysToArrays(const std::vector<Ray>& rays) {
     return arrays;
 }
 
-py::array hitsToArray(const std::vector<Hit>& hits, const std::vector<RayCost>& costs) {
-    if (costs.empty()) return recordsOf<HitRecord>(hits, costs);
-    return recordsOf<CountedHitRecord>(hits, costs);
+py::array hitsToArray(const std::vector<Hit>& hits) {
+    py::array_t<HitRecord> array(py::ssize_t(hits.size()));
+    writeHitRecords<HitRecord>(hits, {}, array.mutable_data());
+    return array;
 }
 
 std::vector<Hit> hitsFromArray(const py::handle& object) {
@@ -152,11 +144,11 @@ void bindRayFiles(py::module_& m) {
         "write_rays",
         [](const std::filesystem::path& file, const py::handle& origins, const py::handle& directions,
            const py::handle& tmin, const py::handle& tmax) {
-            writeRayFile(file, raysFromArrays(origins, directions, tmin, tmax));
+            writeRayFile(file, RayArrays(origins, directions, tmin, tmax).all());
         },
         py::arg("path"), py::arg("origins"), py::arg("directions"), py::arg("tmin") = 0.0f,
         py::arg("tmax") = std::numeric_limits<float>::infinity(), "Writes rays as a BVHRAYS1 file (bvhlab raycast --rays).");
-    m.def("read_hits", [](const std::filesystem::path& file) { return hitsToArray(readHitFile(file), {}); },
+    m.def("read_hits", [](const std::filesystem::path& file) { return hitsToArray(readHitFile(file)); },
           py::arg("path"), "The hits of a BVHHITS1 file (bvhlab raycast --out) as accel.intersect returns them.");
     m.def("write_hits",
           [](const std::filesystem::path& file, const py::handle& hits) { writeHitFile(file, hitsFromArray(hits)); },

@@ -13,6 +13,7 @@
 #include <fmt/core.h>
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/info.h>
 #include <tbb/task_arena.h>
 
@@ -64,38 +65,55 @@ PythonAccelerator build(std::shared_ptr<PythonScene> scene, const std::string& n
     return built;
 }
 
-// The GIL is released while the rays are traced.
-void trace(const PythonAccelerator& self, const std::vector<Ray>& rays, bool anyHit, int threads,
-           const RayAnswers& answers) {
+// Answers the arrays' rays into a new array of Record, one per ray, as bvhlab raycast answers
+// them (forEachRayRange), with the GIL released: each range is read into its thread's buffers,
+// answered by the batch call, and written in place by write(answers, costs, records).
+template <typename Record, typename Answer, typename Write>
+py::array answerInto(const PythonAccelerator& self, const RayArrays& rays, int threads, bool counters, Write&& write) {
     checkThreads(threads);
+    py::array_t<Record> result(py::ssize_t(rays.size()));
+    Record* records = result.mutable_data();
+    struct Buffers {
+        std::vector<Ray> rays;
+        std::vector<Answer> answers;
+        std::vector<RayCost> costs;
+    };
+    tbb::enumerable_thread_specific<Buffers> perThread;
     py::gil_scoped_release release;
-    traceRays(*self.accel, rays, anyHit, threads, answers);
+    forEachRayRange(rays.size(), threads, [&](size_t begin, size_t end, QueryCounters& queryCounters) {
+        Buffers& b = perThread.local();
+        b.rays.resize(end - begin);
+        b.answers.resize(end - begin);
+        b.costs.resize(counters ? end - begin : 0);
+        rays.read(begin, b.rays);
+        if constexpr (std::is_same_v<Answer, Hit>)
+            self.accel->findNearestBatch(b.rays, b.answers, queryCounters, b.costs);
+        else
+            self.accel->isOccludedBatch(b.rays, b.answers, queryCounters, b.costs);
+        write(std::span<const Answer>(b.answers), std::span<const RayCost>(b.costs), records + begin);
+    });
+    return result;
 }
 
 py::array intersect(const PythonAccelerator& self, const py::handle& origins, const py::handle& directions,
                     const py::handle& tmin, const py::handle& tmax, int threads, bool counters) {
-    const std::vector<Ray> rays = raysFromArrays(origins, directions, tmin, tmax);
-    std::vector<Hit> hits(rays.size());
-    std::vector<RayCost> costs(counters ? rays.size() : 0);
-    trace(self, rays, false, threads, {hits, {}, costs});
-    return hitsToArray(hits, costs);
+    const RayArrays rays(origins, directions, tmin, tmax);
+    if (counters) return answerInto<CountedHitRecord, Hit>(self, rays, threads, true, writeHitRecords<CountedHitRecord>);
+    return answerInto<HitRecord, Hit>(self, rays, threads, false, writeHitRecords<HitRecord>);
 }
 
 py::array occluded(const PythonAccelerator& self, const py::handle& origins, const py::handle& directions,
                    const py::handle& tmin, const py::handle& tmax, int threads, bool counters) {
-    const std::vector<Ray> rays = raysFromArrays(origins, directions, tmin, tmax);
-    std::vector<uint8_t> answers(rays.size());
-    std::vector<RayCost> costs(counters ? rays.size() : 0);
-    trace(self, rays, true, threads, {{}, answers, costs});
-    if (!counters) {
-        py::array_t<bool> result(py::ssize_t(rays.size()));
-        for (size_t i = 0; i < rays.size(); ++i) result.mutable_data()[i] = answers[i] != 0;
-        return result;
-    }
-    py::array_t<CountedOcclusionRecord> result(py::ssize_t(rays.size()));
-    for (size_t i = 0; i < rays.size(); ++i)
-        result.mutable_data()[i] = {answers[i] != 0, costs[i].intersectionTests, costs[i].traversalSteps};
-    return result;
+    const RayArrays rays(origins, directions, tmin, tmax);
+    if (counters)
+        return answerInto<CountedOcclusionRecord, uint8_t>(
+            self, rays, threads, true, [](auto answers, auto costs, CountedOcclusionRecord* out) {
+                for (size_t i = 0; i < answers.size(); ++i)
+                    out[i] = {answers[i] != 0, costs[i].intersectionTests, costs[i].traversalSteps};
+            });
+    return answerInto<bool, uint8_t>(self, rays, threads, false, [](auto answers, auto, bool* out) {
+        for (size_t i = 0; i < answers.size(); ++i) out[i] = answers[i] != 0;
+    });
 }
 
 }  // namespace
