@@ -15,20 +15,21 @@ namespace py = pybind11;
 namespace bvhlab {
 namespace {
 
+std::string text(const py::handle& object) { return py::str(object).cast<std::string>(); }
+
 // `object` as a NumPy array of float32 or float64 in native byte order, C-contiguous, of shape
 // (N, columns) (columns 0: (N,)) with N > 0, and N == rows when rows >= 0. Else InputError.
 py::array checkedFloats(const py::handle& object, const std::string& name, py::ssize_t rows, int columns) {
     const std::string shape = columns ? fmt::format("(N, {})", columns) : "(N,)";
     if (!py::isinstance<py::array>(object))
         throw InputError(fmt::format("{}: expected a NumPy array of shape {}, got {}", name, shape,
-                                     py::str(py::type::of(object)).cast<std::string>()));
+                                     text(py::type::of(object))));
     const auto array = py::reinterpret_borrow<py::array>(object);
     const py::dtype dtype = array.dtype();
     if (dtype.kind() != 'f' || (dtype.itemsize() != 4 && dtype.itemsize() != 8) || !dtype.attr("isnative").cast<bool>())
-        throw InputError(fmt::format("{}: expected float32 or float64, got {}", name, py::str(static_cast<py::handle>(dtype)).cast<std::string>()));
+        throw InputError(fmt::format("{}: expected float32 or float64, got {}", name, text(dtype)));
     if (array.ndim() != (columns ? 2 : 1) || (columns && array.shape(1) != columns))
-        throw InputError(fmt::format("{}: expected shape {}, got {}", name, shape,
-                                     py::str(array.attr("shape")).cast<std::string>()));
+        throw InputError(fmt::format("{}: expected shape {}, got {}", name, shape, text(array.attr("shape"))));
     if (!(array.flags() & py::array::c_style))
         throw InputError(fmt::format("{}: not C-contiguous (np.ascontiguousarray(a) is)", name));
     if (array.shape(0) == 0) throw InputError(fmt::format("{}: empty, no rays", name));
@@ -58,8 +59,8 @@ RayArrays::Values RayArrays::intervalOf(const py::handle& object, const std::str
     try {
         values.constant = py::cast<float>(object);
     } catch (const py::cast_error&) {
-        throw InputError(fmt::format("{}: expected a number or an (N,) float array, got {}", name,
-                                     py::str(py::type::of(object)).cast<std::string>()));
+        throw InputError(
+            fmt::format("{}: expected a number or an (N,) float array, got {}", name, text(py::type::of(object))));
     }
     return values;
 }
