@@ -29,10 +29,14 @@ if ((${#missing[@]})); then
   fi
 fi
 
-targets=(bvhlab bvhlab_python)
+targets=(bvhlab)
 cmake_args=()
 for arg in "$@"; do
   if [ "$arg" = --tests ]; then targets=(all); else cmake_args+=("$arg"); fi
 done
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release ${cmake_args[@]+"${cmake_args[@]}"}
+# The Python module too (docs/python.md), unless -DBVHLAB_PYTHON=OFF left it out.
+if [ "${targets[*]}" = bvhlab ] && ninja -C build -t query bvhlab_python >/dev/null 2>&1; then
+  targets+=(bvhlab_python)
+fi
 cmake --build build -j "$(nproc)" --target "${targets[@]}"
