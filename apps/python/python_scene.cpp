@@ -61,6 +61,14 @@ EnvOptions optionsWith(const py::object& env) {
     return options;
 }
 
+// What --scene names (a file or a scene's name), with env's keys over its layers.
+std::shared_ptr<PythonScene> loadNamedScene(const std::string& scene, const py::object& env) {
+    const EnvOptions options = optionsWith(env);
+    Env resolved = chooseScene(scene, "", options).load(options);
+    Scene loaded = loadSceneFor(resolved);
+    return std::make_shared<PythonScene>(PythonScene{std::move(loaded), std::move(resolved)});
+}
+
 }  // namespace
 
 std::vector<std::string> envAssignments(const py::object& env) {
@@ -103,25 +111,29 @@ void bindScene(py::module_& m) {
         });
 
     m.def(
-        "load_scene",
-        [](const std::string& scene, const py::object& env) {
-            const EnvOptions options = optionsWith(env);
-            Env resolved = chooseScene(scene, "", options).load(options);
-            Scene loaded = loadSceneFor(resolved);
-            return std::make_shared<PythonScene>(PythonScene{std::move(loaded), std::move(resolved)});
-        },
-        py::arg("scene") = "", py::arg("env") = py::none(),
+        "load_scene", &loadNamedScene, py::arg("scene") = "", py::arg("env") = py::none(),
         "A scene file (.obj .ply .off .nff, optionally .gz) or a scene's name (env/scenes/NAME.env), as "
-        "bvhlab --scene reads it, with env/global.env, the scene's env file and `env` layered; empty: Scene::file, else the embedded scene.");
+        "bvhlab --scene reads it, with env/global.env, the scene's env file and `env` layered; empty: "
+        "Scene::file, else the embedded scene.");
 
     m.def(
         "rays",
-        [](const PythonScene& scene, const std::string& kind) {
-            return raysToArrays(benchRays(scene.scene, scene.env, kind));
+        [](const PythonScene& scene, const std::string& kind, const py::object& env) {
+            Env resolved = scene.env;
+            for (const std::string& assignment : envAssignments(env)) resolved.setOverride(assignment);
+            return raysToArrays(benchRays(scene.scene, resolved, kind));
         },
-        py::arg("scene"), py::arg("kind") = "primary",
-        "The bench's rays of the scene's camera and lights (primary, shadow or incoherent), as bvhlab rays "
-        "writes them: {origins, directions, tmin, tmax}.");
+        py::arg("scene"), py::arg("kind") = "primary", py::arg("env") = py::none(),
+        "The bench's rays of the scene's camera and lights (primary, shadow or incoherent), env keys as a dict "
+        "over the scene's ({\"Camera::width\": 400}), as bvhlab rays writes them: {origins, directions, tmin, tmax}.");
+    m.def(
+        "rays",
+        [](const std::string& scene, const std::string& kind, const py::object& env) {
+            const std::shared_ptr<PythonScene> loaded = loadNamedScene(scene, env);
+            return raysToArrays(benchRays(loaded->scene, loaded->env, kind));
+        },
+        py::arg("scene"), py::arg("kind") = "primary", py::arg("env") = py::none(),
+        "The same of a scene file or a scene's name, loaded as load_scene(scene, env) loads it.");
 }
 
 }  // namespace bvhlab

@@ -45,3 +45,8 @@ def test_bench_rays(default_scene):
     with pytest.raises(bvhlab.InputError, match="primary, shadow or incoherent"):
         bvhlab.rays(scene, "secondary")
     assert math.isinf(primary["tmax"][0])
+    # By name, and with the camera's size given to rays() instead of the load: the same rays.
+    for rays in (bvhlab.rays("", env={"Camera::width": 16, "Camera::height": 8}),
+                 bvhlab.rays(default_scene, env={"Camera::width": 16, "Camera::height": 8})):
+        for name in primary:
+            np.testing.assert_array_equal(rays[name], primary[name])
