@@ -79,19 +79,21 @@ py::array answerInto(const PythonAccelerator& self, const RayArrays& rays, int t
         std::vector<RayCost> costs;
     };
     tbb::enumerable_thread_specific<Buffers> perThread;
-    py::gil_scoped_release release;
-    forEachRayRange(rays.size(), threads, [&](size_t begin, size_t end, QueryCounters& queryCounters) {
-        Buffers& b = perThread.local();
-        b.rays.resize(end - begin);
-        b.answers.resize(end - begin);
-        b.costs.resize(counters ? end - begin : 0);
-        rays.read(begin, b.rays);
-        if constexpr (std::is_same_v<Answer, Hit>)
-            self.accel->findNearestBatch(b.rays, b.answers, queryCounters, b.costs);
-        else
-            self.accel->isOccludedBatch(b.rays, b.answers, queryCounters, b.costs);
-        write(std::span<const Answer>(b.answers), std::span<const RayCost>(b.costs), records + begin);
-    });
+    {
+        py::gil_scoped_release release;  // held again before `result`, a Python object, is returned
+        forEachRayRange(rays.size(), threads, [&](size_t begin, size_t end, QueryCounters& queryCounters) {
+            Buffers& b = perThread.local();
+            b.rays.resize(end - begin);
+            b.answers.resize(end - begin);
+            b.costs.resize(counters ? end - begin : 0);
+            rays.read(begin, b.rays);
+            if constexpr (std::is_same_v<Answer, Hit>)
+                self.accel->findNearestBatch(b.rays, b.answers, queryCounters, b.costs);
+            else
+                self.accel->isOccludedBatch(b.rays, b.answers, queryCounters, b.costs);
+            write(std::span<const Answer>(b.answers), std::span<const RayCost>(b.costs), records + begin);
+        });
+    }
     return result;
 }
 
