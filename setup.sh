@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs what bvhlab needs on Debian 12 (only what is missing), then configures and builds
-# it into build/ (Release): the bvhlab program, and with --tests everything (the test suite too).
+# it into build/ (Release): the bvhlab program and its Python module (build/python), and with
+# --tests everything (the test suite too).
 # Other arguments go to CMake, e.g. ./setup.sh -DBVHLAB_NATIVE=OFF
 set -euo pipefail
 cd "$(dirname "$0")"
@@ -8,7 +9,8 @@ cd "$(dirname "$0")"
 packages=(g++ cmake ninja-build pkg-config git
           libembree-dev libopenexr-dev libglm-dev libgtest-dev libtbb-dev libtinyobjloader-dev
           libstb-dev zlib1g-dev libcli11-dev nlohmann-json3-dev libfmt-dev
-          python3-matplotlib   # docs/plots/plot_tradeoff.py, with /usr/bin/python3
+          python3-matplotlib   # docs/plots/plot_tradeoff.py and docs/python.md, with /usr/bin/python3
+          python3-dev pybind11-dev python3-numpy python3-pytest  # the Python module (docs/python.md)
           slurmctld slurmd slurm-client munge)  # the SlurmCluster test (tests/slurm/with_local_slurm.sh)
 missing=()
 for p in "${packages[@]}"; do
@@ -27,10 +29,14 @@ if ((${#missing[@]})); then
   fi
 fi
 
-target=bvhlab
+targets=(bvhlab)
 cmake_args=()
 for arg in "$@"; do
-  if [ "$arg" = --tests ]; then target=all; else cmake_args+=("$arg"); fi
+  if [ "$arg" = --tests ]; then targets=(all); else cmake_args+=("$arg"); fi
 done
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release ${cmake_args[@]+"${cmake_args[@]}"}
-cmake --build build -j "$(nproc)" --target "$target"
+# The Python module too (docs/python.md), unless -DBVHLAB_PYTHON=OFF left it out.
+if [ "${targets[*]}" = bvhlab ] && ninja -C build -t query bvhlab_python >/dev/null 2>&1; then
+  targets+=(bvhlab_python)
+fi
+cmake --build build -j "$(nproc)" --target "${targets[@]}"

@@ -1,8 +1,11 @@
 #include "apps/measure/ray_sets.h"
 
+#include "accel/registry.h"
+#include "framework/core/error.h"
 #include "framework/render/renderer.h"
 #include "framework/scene/surface_point.h"
 
+#include <fmt/core.h>
 #include <glm/gtc/constants.hpp>
 #include <tbb/parallel_for.h>
 
@@ -55,6 +58,16 @@ RaySets sceneRaySets(const Scene& scene, const Env& env, const Accelerator& refe
     const Camera camera(resolveCamera(scene, env));
     const RenderSettings render = RenderSettings::fromEnv(env, scene, camera.spec());
     return makeRaySets(scene, camera, render.lights, reference);
+}
+
+std::vector<Ray> benchRays(const Scene& scene, const Env& env, const std::string& kind) {
+    if (kind != "primary" && kind != "shadow" && kind != "incoherent")
+        throw InputError(fmt::format("unknown kind of rays '{}' (primary, shadow or incoherent)", kind));
+    // Embree finds the surfaces the shadow and incoherent rays leave from, as in the bench.
+    const std::unique_ptr<Accelerator> reference = createAccelerator("embree", env);
+    reference->build(scene.primitives());
+    RaySets sets = sceneRaySets(scene, env, *reference);
+    return std::move(kind == "primary" ? sets.primary : kind == "shadow" ? sets.shadow : sets.incoherent);
 }
 
 }  // namespace bvhlab

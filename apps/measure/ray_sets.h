@@ -26,4 +26,8 @@ RaySets makeRaySets(const Scene& scene, const Camera& camera, const std::vector<
 // view), made from the reference's hits: what `bench`, `tradeoff` and `rays` trace and write.
 RaySets sceneRaySets(const Scene& scene, const Env& env, const Accelerator& reference);
 
+// One set of sceneRaySets, `kind` primary, shadow or incoherent (else InputError), with Embree
+// as the reference: what `bvhlab rays` writes and bvhlab.rays (Python) returns.
+std::vector<Ray> benchRays(const Scene& scene, const Env& env, const std::string& kind);
+
 }  // namespace bvhlab

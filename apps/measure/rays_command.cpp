@@ -1,7 +1,6 @@
 // `bvhlab rays`: the ray sets the bench traces (primary, shadow, incoherent; apps/measure/ray_sets.h)
 // of a scene's camera and lights, written as a BVHRAYS1 file for `bvhlab raycast` or a
 // structure of one's own.
-#include "accel/registry.h"
 #include "apps/common/cli_common.h"
 #include "apps/common/commands.h"
 #include "apps/measure/ray_sets.h"
@@ -34,14 +33,8 @@ void addRaysCommand(CLI::App& app) {
         const int code = runGuarded([&] {
             Progress progress;
             const auto [env, scene] = loadChosenScene(options->scene, options->env, options->out, progress);
-            // Embree finds the surfaces the shadow and incoherent rays leave from, as in the bench.
             progress.phase("making the rays");
-            const std::unique_ptr<Accelerator> reference = createAccelerator("embree", env);
-            reference->build(scene.primitives());
-            const RaySets sets = sceneRaySets(scene, env, *reference);
-            const std::vector<Ray>& rays = options->kind == "primary" ? sets.primary
-                                           : options->kind == "shadow" ? sets.shadow
-                                                                       : sets.incoherent;
+            const std::vector<Ray> rays = benchRays(scene, env, options->kind);
             writeRayFile(options->out, rays);
             fmt::print(stderr, "wrote {} {} rays of {} to {}{}\n", rays.size(), options->kind, scene.name, options->out,
                        options->kind == "primary" ? "" : " (any-hit queries: raycast --any)");

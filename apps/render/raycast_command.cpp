@@ -2,15 +2,11 @@
 #include "accel/registry.h"
 #include "apps/common/cli_common.h"
 #include "apps/common/commands.h"
+#include "apps/common/trace_rays.h"
 #include "framework/config/common_keys.h"
 #include "framework/io/ray_file.h"
 
 #include <fmt/core.h>
-#include <tbb/enumerable_thread_specific.h>
-#include <tbb/info.h>
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
-
 #include <chrono>
 
 namespace bvhlab {
@@ -37,34 +33,21 @@ void addRaycastCommand(CLI::App& app) {
             progress.phase(fmt::format("building {}", env.get(keys::ASDS::type)));
             const BuiltAccelerator built = buildAccelerator(scene, env);
             const std::vector<Ray> rays = readRayFile(options->rays);
-            constexpr size_t kRaysPerStep = 1024;
-            progress.phase(fmt::format("tracing {} rays", rays.size()), (rays.size() + kRaysPerStep - 1) / kRaysPerStep);
+            progress.phase(fmt::format("tracing {} rays", rays.size()), (rays.size() + kRaysPerRange - 1) / kRaysPerRange);
             std::vector<Hit> hits(rays.size());
             std::vector<uint8_t> occluded(options->any ? rays.size() : 0);
-            const int threads = env.get(keys::SetRayTracing::threads);
-            tbb::enumerable_thread_specific<QueryCounters> perThread;
 
             const auto start = std::chrono::steady_clock::now();
-            tbb::task_arena(threads > 0 ? threads : tbb::info::default_concurrency()).execute([&] {
-                tbb::parallel_for(tbb::blocked_range<size_t>(0, rays.size(), kRaysPerStep), [&](const auto& range) {
-                    QueryCounters& counters = perThread.local();
-                    const auto part = std::span<const Ray>(rays).subspan(range.begin(), range.size());
-                    if (!options->any) {
-                        built.accel->findNearestBatch(part, std::span(hits).subspan(range.begin(), range.size()), counters, {});
-                    } else {
-                        built.accel->isOccludedBatch(part, std::span(occluded).subspan(range.begin(), range.size()), counters, {});
-                        for (size_t i = range.begin(); i < range.end(); ++i)
-                            if (occluded[i]) hits[i] = {0.0f, 0, 0.0f, 0.0f};
-                    }
-                    progress.advance((range.size() + kRaysPerStep - 1) / kRaysPerStep, range.size());
-                });
-            });
+            const QueryCounters total =
+                traceRays(*built.accel, rays, options->any, env.get(keys::SetRayTracing::threads), {hits, occluded, {}},
+                          [&](size_t traced) { progress.advance(1, traced); });
             const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             progress.finish();
+            // An any-hit answer is written as a hit at t = 0 on primitive 0 (docs/file-formats.md).
+            for (size_t i = 0; i < occluded.size(); ++i)
+                if (occluded[i]) hits[i] = {0.0f, 0, 0.0f, 0.0f};
             writeHitFile(options->out, hits);
 
-            QueryCounters total;
-            for (const QueryCounters& c : perThread) total += c;
             const double n = std::max<double>(1.0, double(total.queries));
             const std::string nit = built.accel->hasCounters() ? fmt::format("{:.2f}", total.intersectionTests / n) : "n/a";
             const std::string ntr = built.accel->hasCounters() ? fmt::format("{:.2f}", total.traversalSteps / n) : "n/a";

@@ -1,0 +1,36 @@
+#include "apps/common/trace_rays.h"
+
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/info.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+namespace bvhlab {
+
+QueryCounters forEachRayRange(size_t n, int threads,
+                              const std::function<void(size_t begin, size_t end, QueryCounters&)>& traceRange) {
+    tbb::enumerable_thread_specific<QueryCounters> perThread;
+    tbb::task_arena(threads > 0 ? threads : tbb::info::default_concurrency()).execute([&] {
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, n, kRaysPerRange), [&](const auto& range) {
+            traceRange(range.begin(), range.end(), perThread.local());
+        });
+    });
+    QueryCounters total;
+    for (const QueryCounters& c : perThread) total += c;
+    return total;
+}
+
+QueryCounters traceRays(const Accelerator& accel, std::span<const Ray> rays, bool anyHit, int threads,
+                        const RayAnswers& answers, const std::function<void(size_t)>& onRange) {
+    return forEachRayRange(rays.size(), threads, [&](size_t begin, size_t end, QueryCounters& counters) {
+        const size_t size = end - begin;
+        const std::span<RayCost> costs = answers.costs.empty() ? answers.costs : answers.costs.subspan(begin, size);
+        if (anyHit)
+            accel.isOccludedBatch(rays.subspan(begin, size), answers.occluded.subspan(begin, size), counters, costs);
+        else
+            accel.findNearestBatch(rays.subspan(begin, size), answers.hits.subspan(begin, size), counters, costs);
+        if (onRange) onRange(size);
+    });
+}
+
+}  // namespace bvhlab

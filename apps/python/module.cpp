@@ -1,0 +1,22 @@
+// The Python module bvhlab (docs/python.md): scenes, every accelerator of the registry, rays and
+// hits as NumPy arrays. bvhlab::InputError, the CLI's one-line message, becomes bvhlab.InputError,
+// a ValueError.
+#include "apps/python/bindings.h"
+#include "apps/python/numpy_rays.h"
+#include "framework/core/error.h"
+
+#include <pybind11/numpy.h>
+
+namespace py = pybind11;
+
+PYBIND11_MODULE(bvhlab, m) {
+    m.doc() = "bvhlab: load scenes, build any acceleration structure, trace NumPy arrays of rays";
+    py::register_exception<bvhlab::InputError>(m, "InputError", PyExc_ValueError);
+    PYBIND11_NUMPY_DTYPE(bvhlab::HitRecord, t, prim, u, v);
+    PYBIND11_NUMPY_DTYPE(bvhlab::CountedHitRecord, t, prim, u, v, n_it, n_tr);
+    PYBIND11_NUMPY_DTYPE(bvhlab::CountedOcclusionRecord, occluded, n_it, n_tr);
+    bvhlab::bindScene(m);
+    bvhlab::bindAccelerator(m);
+    bvhlab::bindRayFiles(m);
+    bvhlab::bindRender(m);
+}

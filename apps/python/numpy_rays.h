@@ -1,0 +1,94 @@
+// Rays and hits between NumPy arrays and the framework's Ray and Hit: the arrays are checked
+// (shape, dtype, contiguity, length), and every problem is an InputError naming the argument.
+#pragma once
+
+#include "framework/core/accelerator.h"
+
+#include <pybind11/numpy.h>
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace bvhlab {
+
+// One answer of accel.intersect: prim is -1 and t is inf on a miss. The counted kinds add the
+// ray's N_IT and N_TR (counters=True).
+struct HitRecord {
+    float t;
+    int64_t prim;
+    float u;
+    float v;
+};
+struct CountedHitRecord {
+    float t;
+    int64_t prim;
+    float u;
+    float v;
+    uint32_t n_it;
+    uint32_t n_tr;
+};
+struct CountedOcclusionRecord {
+    bool occluded;
+    uint32_t n_it;
+    uint32_t n_tr;
+};
+
+// Rays in NumPy arrays, checked once (with the GIL held) and read in place, range by range,
+// without calling Python (so with the GIL released): origins and directions (N, 3) float32 or
+// float64, C-contiguous, N > 0; tmin and tmax a number or an (N,) float array.
+class RayArrays {
+public:
+    RayArrays(const pybind11::handle& origins, const pybind11::handle& directions, const pybind11::handle& tmin,
+              const pybind11::handle& tmax);
+    size_t size() const { return size_; }
+    // Rays [begin, begin + out.size()).
+    void read(size_t begin, std::span<Ray> out) const;
+    std::vector<Ray> all() const;
+
+private:
+    // The values of a float32 or float64 array, or `constant` for every ray.
+    struct Values {
+        pybind11::array array;  // keeps `data` alive
+        const void* data = nullptr;
+        bool isDouble = false;
+        float constant = 0.0f;
+        float operator[](size_t i) const {
+            if (!data) return constant;
+            return isDouble ? float(static_cast<const double*>(data)[i]) : static_cast<const float*>(data)[i];
+        }
+    };
+    static Values valuesOf(pybind11::array array);
+    static Values intervalOf(const pybind11::handle& object, const std::string& name, size_t n);
+
+    size_t size_ = 0;
+    Values origins_, directions_, tmin_, tmax_;
+};
+
+// {"origins", "directions", "tmin", "tmax"}: float32 arrays, the arguments of accel.intersect.
+pybind11::dict raysToArrays(const std::vector<Ray>& rays);
+
+// Writes hits[i] (and costs[i] for a CountedHitRecord) as out[i].
+template <typename Record>
+void writeHitRecords(std::span<const Hit> hits, std::span<const RayCost> costs, Record* out) {
+    for (size_t i = 0; i < hits.size(); ++i) {
+        const Hit& h = hits[i];
+        out[i].t = h.t;
+        out[i].prim = h.found() ? int64_t(h.primitive) : -1;
+        out[i].u = h.u;
+        out[i].v = h.v;
+        if constexpr (std::is_same_v<Record, CountedHitRecord>) {
+            out[i].n_it = costs[i].intersectionTests;
+            out[i].n_tr = costs[i].traversalSteps;
+        }
+    }
+}
+
+// A structured array of HitRecord.
+pybind11::array hitsToArray(const std::vector<Hit>& hits);
+
+// Hits from an array with fields t, prim, u, v (prim < 0: a miss).
+std::vector<Hit> hitsFromArray(const pybind11::handle& hits);
+
+}  // namespace bvhlab

@@ -1,0 +1,193 @@
+// bvhlab.build and the Accelerator it returns: a structure of the registry built over a scene
+// (timed as the CLI times it) and its queries over NumPy arrays, the GIL released while they run.
+#include "accel/registry.h"
+#include "apps/common/plugins.h"
+#include "apps/common/trace_rays.h"
+#include "apps/python/bindings.h"
+#include "apps/python/numpy_rays.h"
+#include "apps/python/python_accelerator.h"
+#include "framework/config/common_keys.h"
+#include "framework/core/error.h"
+#include "framework/core/timed_build.h"
+
+#include <fmt/core.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+#include <tbb/enumerable_thread_specific.h>
+#include <tbb/info.h>
+#include <tbb/task_arena.h>
+
+#include <limits>
+
+namespace py = pybind11;
+
+namespace bvhlab {
+namespace {
+
+// The build statistics under the names of the statistics JSON (framework/report/statistics.h);
+// an unset figure (std::optional) is None.
+py::dict statsDict(const BuildStats& b) {
+    py::dict stats;
+    stats["build_ms"] = b.buildMs;
+    stats["build_cpu_ms"] = b.buildCpuMs;
+    stats["primitives"] = b.primitives;
+    stats["nodes"] = py::cast(b.nodes);
+    stats["leaves"] = py::cast(b.leaves);
+    stats["avg_leaf_prims"] = py::cast(b.avgLeafPrimitives);
+    stats["max_leaf_prims"] = py::cast(b.maxLeafPrimitives);
+    stats["max_depth"] = py::cast(b.maxDepth);
+    stats["bytes"] = py::cast(b.bytes);
+    const py::object none = py::none();
+    stats["sah"] = b.sah ? py::cast(b.sah->cost) : none;
+    stats["sah_c_trav"] = b.sah ? py::cast(b.sah->cTraversal) : none;
+    stats["sah_c_isect"] = b.sah ? py::cast(b.sah->cIntersect) : none;
+    stats["epo"] = py::cast(b.epo);
+    stats["leaf_sizes"] = b.leafSizes.empty() ? none : py::cast(b.leafSizes);
+    py::dict figures;
+    for (const NamedFigure& figure : b.figures) figures[py::str(figure.name)] = figure.value;
+    stats["figures"] = figures;
+    return stats;
+}
+
+void checkThreads(int threads) {
+    if (threads < 0) throw InputError(fmt::format("threads {}: expected 0 (all hardware threads) or more", threads));
+}
+
+PythonAccelerator build(std::shared_ptr<PythonScene> scene, const std::string& name, const py::object& envDict,
+                        int threads) {
+    loadPluginFor(name);  // unknown: createAccelerator names the known ones
+    const Env env = envWith(*scene, envDict, threads);
+    PythonAccelerator built{scene, createAccelerator(name, env), {}};
+    py::gil_scoped_release release;
+    tbb::task_arena(threads > 0 ? threads : tbb::info::default_concurrency()).execute([&] {
+        built.stats = timedBuild(*built.accel, scene->scene.primitives());
+    });
+    return built;
+}
+
+// Answers the arrays' rays into a new array of Record, one per ray, as bvhlab raycast answers
+// them (forEachRayRange), with the GIL released: each range is read into its thread's buffers,
+// answered by the batch call, and written in place by write(answers, costs, records).
+template <typename Record, typename Answer, typename Write>
+py::array answerInto(const PythonAccelerator& self, const RayArrays& rays, int threads, bool counters, Write&& write) {
+    checkThreads(threads);
+    py::array_t<Record> result(py::ssize_t(rays.size()));
+    Record* records = result.mutable_data();
+    struct Buffers {
+        std::vector<Ray> rays;
+        std::vector<Answer> answers;
+        std::vector<RayCost> costs;
+    };
+    tbb::enumerable_thread_specific<Buffers> perThread;
+    {
+        py::gil_scoped_release release;  // held again before `result`, a Python object, is returned
+        forEachRayRange(rays.size(), threads, [&](size_t begin, size_t end, QueryCounters& queryCounters) {
+            Buffers& b = perThread.local();
+            b.rays.resize(end - begin);
+            b.answers.resize(end - begin);
+            b.costs.resize(counters ? end - begin : 0);
+            rays.read(begin, b.rays);
+            if constexpr (std::is_same_v<Answer, Hit>)
+                self.accel->findNearestBatch(b.rays, b.answers, queryCounters, b.costs);
+            else
+                self.accel->isOccludedBatch(b.rays, b.answers, queryCounters, b.costs);
+            write(std::span<const Answer>(b.answers), std::span<const RayCost>(b.costs), records + begin);
+        });
+    }
+    return result;
+}
+
+py::array intersect(const PythonAccelerator& self, const py::handle& origins, const py::handle& directions,
+                    const py::handle& tmin, const py::handle& tmax, int threads, bool counters) {
+    const RayArrays rays(origins, directions, tmin, tmax);
+    if (counters) return answerInto<CountedHitRecord, Hit>(self, rays, threads, true, writeHitRecords<CountedHitRecord>);
+    return answerInto<HitRecord, Hit>(self, rays, threads, false, writeHitRecords<HitRecord>);
+}
+
+py::array occluded(const PythonAccelerator& self, const py::handle& origins, const py::handle& directions,
+                   const py::handle& tmin, const py::handle& tmax, int threads, bool counters) {
+    const RayArrays rays(origins, directions, tmin, tmax);
+    if (counters)
+        return answerInto<CountedOcclusionRecord, uint8_t>(
+            self, rays, threads, true, [](auto answers, auto costs, CountedOcclusionRecord* out) {
+                for (size_t i = 0; i < answers.size(); ++i)
+                    out[i] = {answers[i] != 0, costs[i].intersectionTests, costs[i].traversalSteps};
+            });
+    return answerInto<bool, uint8_t>(self, rays, threads, false, [](auto answers, auto, bool* out) {
+        for (size_t i = 0; i < answers.size(); ++i) out[i] = answers[i] != 0;
+    });
+}
+
+}  // namespace
+
+Env envWith(const PythonScene& scene, const py::object& envDict, int threads) {
+    checkThreads(threads);
+    Env env = scene.env;
+    env.set(keys::SetRayTracing::threads, std::to_string(threads), "threads");
+    for (const std::string& assignment : envAssignments(envDict)) env.setOverride(assignment);
+    return env;
+}
+
+void bindAccelerator(py::module_& m) {
+    static const std::string queryArguments =
+        "origins and directions: (N, 3) float32 or float64, C-contiguous; tmin, tmax: numbers or (N,) arrays; "
+        "threads: 0 for all hardware threads. Rays with a NaN are misses.";
+    // Static: pybind11 keeps the pointer.
+    static const std::string intersectDoc =
+        "Closest hits: a structured array t (inf on a miss), prim (-1 on a miss), u, v, and with counters n_it, "
+        "n_tr per ray. " + queryArguments;
+    static const std::string occludedDoc =
+        "Any-hit answers: a bool array, or with counters a structured array occluded, n_it, n_tr. " + queryArguments;
+    py::class_<PythonAccelerator>(m, "Accelerator", "An acceleration structure built over a scene (bvhlab.build).")
+        .def_property_readonly("name", [](const PythonAccelerator& a) { return std::string(a.accel->name()); })
+        .def_property_readonly("stats", [](const PythonAccelerator& a) { return statsDict(a.stats); },
+                               "build_ms, nodes, leaves, sah, epo, bytes, ... and the structure's figures; None "
+                               "where the structure has no such figure")
+        .def_property_readonly("has_counters", [](const PythonAccelerator& a) { return a.accel->hasCounters(); })
+        .def("intersect", &intersect, py::arg("origins"), py::arg("directions"), py::arg("tmin") = 0.0f,
+             py::arg("tmax") = std::numeric_limits<float>::infinity(), py::arg("threads") = 0,
+             py::arg("counters") = false,
+             intersectDoc.c_str())
+        .def("occluded", &occluded, py::arg("origins"), py::arg("directions"), py::arg("tmin") = 0.0f,
+             py::arg("tmax") = std::numeric_limits<float>::infinity(), py::arg("threads") = 0,
+             py::arg("counters") = false,
+             occludedDoc.c_str())
+        .def("__repr__", [](const PythonAccelerator& a) {
+            return fmt::format("<bvhlab.Accelerator {} over '{}'>", a.accel->name(), a.scene->scene.name);
+        });
+
+    m.def("build", &build, py::arg("scene"), py::arg("accelerator") = "sahbvh8", py::arg("env") = py::none(),
+          py::arg("threads") = 0,
+          "Builds a structure of the registry (bvhlab.accelerators()) over the scene, env keys as a dict "
+          "({\"BVH::bins\": 32}) over the scene's env; the build timed as bvhlab times it.");
+
+    m.def(
+        "accelerators",
+        [] {
+            py::list list;
+            for (const AcceleratorInfo& info : acceleratorInfos()) {
+                py::dict entry;
+                entry["name"] = info.name;
+                entry["description"] = info.description;
+                entry["keys"] = info.envKeys;
+                entry["plugin"] = info.plugin;
+                list.append(entry);
+            }
+            return list;
+        },
+        "Every accelerator: {name, description, keys, plugin} (plugin: its file, empty for bvhlab's own).");
+
+    m.def(
+        "load_plugin",
+        [](const std::filesystem::path& file) {
+            const LoadedPlugin& plugin = loadPlugin(file);
+            py::dict loaded;
+            loaded["file"] = plugin.file;
+            loaded["api_version"] = plugin.apiVersion;
+            loaded["accelerators"] = plugin.accelerators;
+            return loaded;
+        },
+        py::arg("path"), "Loads a plugin's accelerators (docs/plugins.md); again: nothing happens.");
+}
+
+}  // namespace bvhlab

@@ -1,0 +1,22 @@
+// An accelerator as Python holds it: the structure, its build statistics, and the scene it was
+// built over (its primitives, of which the structure keeps views, and the env it reads).
+#pragma once
+
+#include "apps/python/python_scene.h"
+#include "framework/core/accelerator.h"
+
+#include <memory>
+
+namespace bvhlab {
+
+struct PythonAccelerator {
+    std::shared_ptr<PythonScene> scene;
+    std::unique_ptr<Accelerator> accel;
+    BuildStats stats;
+};
+
+// The scene's env with `threads` (0: all hardware threads; else InputError below 0) and the
+// dict's keys over it, as bvhlab.build and bvhlab.render read it.
+Env envWith(const PythonScene& scene, const pybind11::object& env, int threads);
+
+}  // namespace bvhlab
