@@ -9,6 +9,7 @@
 #include "framework/config/common_keys.h"
 #include "framework/core/error.h"
 #include "framework/core/timed_build.h"
+#include "framework/report/statistics.h"
 
 #include <fmt/core.h>
 #include <pybind11/stl.h>
@@ -26,27 +27,12 @@ namespace {
 
 // The build statistics under the names of the statistics JSON (framework/report/statistics.h);
 // an unset figure (std::optional) is None.
-py::dict statsDict(const BuildStats& b) {
-    py::dict stats;
-    stats["build_ms"] = b.buildMs;
-    stats["build_cpu_ms"] = b.buildCpuMs;
-    stats["primitives"] = b.primitives;
-    stats["nodes"] = py::cast(b.nodes);
-    stats["leaves"] = py::cast(b.leaves);
-    stats["avg_leaf_prims"] = py::cast(b.avgLeafPrimitives);
-    stats["max_leaf_prims"] = py::cast(b.maxLeafPrimitives);
-    stats["max_depth"] = py::cast(b.maxDepth);
-    stats["bytes"] = py::cast(b.bytes);
-    const py::object none = py::none();
-    stats["sah"] = b.sah ? py::cast(b.sah->cost) : none;
-    stats["sah_c_trav"] = b.sah ? py::cast(b.sah->cTraversal) : none;
-    stats["sah_c_isect"] = b.sah ? py::cast(b.sah->cIntersect) : none;
-    stats["epo"] = py::cast(b.epo);
-    stats["leaf_sizes"] = b.leafSizes.empty() ? none : py::cast(b.leafSizes);
-    py::dict figures;
-    for (const NamedFigure& figure : b.figures) figures[py::str(figure.name)] = figure.value;
-    stats["figures"] = figures;
-    return stats;
+py::object statsDict(const BuildStats& b) {
+    nlohmann::json j = treeStatsJson(b);
+    j["build_ms"] = b.buildMs;
+    j["build_cpu_ms"] = b.buildCpuMs;
+    j["primitives"] = b.primitives;
+    return pythonFromJson(j);
 }
 
 void checkThreads(int threads) {

@@ -52,7 +52,7 @@ py::dict renderAccelerator(const PythonAccelerator& accel, const py::object& env
     result["normal"] = imageArray<float>(fb.normal, fb.width, fb.height, 3);
     result["heatmap"] = imageArray<float>(fb.traversalSteps, fb.width, fb.height, 0);
     result["n_it"] = imageArray<float>(fb.intersectionTests, fb.width, fb.height, 0);
-    result["stats"] = py::module_::import("json").attr("loads")(statsJson(row).dump());
+    result["stats"] = pythonFromJson(statsJson(row));
     return result;
 }
 

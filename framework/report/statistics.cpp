@@ -80,17 +80,8 @@ nlohmann::json figuresJson(const std::vector<NamedFigure>& figures) {
     return j;
 }
 
-nlohmann::json statsJson(const StatsRow& row) {
-    const BuildStats& b = row.build;
-    nlohmann::json j = {
-        {"scene", row.scene},
-        {"accel", row.accel},
-        {"prims", row.prims},
-        {"degenerate", row.load.degenerateTriangles},
-        {"degenerate_spheres", row.load.degenerateSpheres},
-        {"degenerate_cones", row.load.degenerateCones},
-        {"skipped_polygons", row.load.skippedPolygons},
-        {"ear_clipped_polygons", row.load.earClippedPolygons},
+nlohmann::json treeStatsJson(const BuildStats& b) {
+    return {
         {"nodes", optionalJson(b.nodes)},
         {"leaves", optionalJson(b.leaves)},
         {"avg_leaf_prims", optionalJson(b.avgLeafPrimitives)},
@@ -103,6 +94,20 @@ nlohmann::json statsJson(const StatsRow& row) {
         {"epo", optionalJson(b.epo)},
         {"leaf_sizes", b.leafSizes.empty() ? nlohmann::json() : nlohmann::json(b.leafSizes)},
         {"figures", figuresJson(b.figures)},
+    };
+}
+
+nlohmann::json statsJson(const StatsRow& row) {
+    const BuildStats& b = row.build;
+    nlohmann::json j = {
+        {"scene", row.scene},
+        {"accel", row.accel},
+        {"prims", row.prims},
+        {"degenerate", row.load.degenerateTriangles},
+        {"degenerate_spheres", row.load.degenerateSpheres},
+        {"degenerate_cones", row.load.degenerateCones},
+        {"skipped_polygons", row.load.skippedPolygons},
+        {"ear_clipped_polygons", row.load.earClippedPolygons},
         {"build_ms", b.buildMs},
         {"render_ms", row.render.renderMs},
         {"threads", row.render.threads},
@@ -112,6 +117,7 @@ nlohmann::json statsJson(const StatsRow& row) {
                      {"shadow_backfacing", row.render.shadowRaysSkippedBackfacing},
                      {"bounces", row.render.bouncesSkipped}}},
     };
+    j.update(treeStatsJson(b));
     return j;
 }
 
