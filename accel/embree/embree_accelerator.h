@@ -29,6 +29,7 @@
 #include <memory>
 #include <optional>
 #include <stdexcept>
+#include <string_view>
 #include <vector>
 
 // Embree's opaque handles (embree3/rtcore_device.h, rtcore_geometry.h; the Debian build has no
@@ -48,6 +49,20 @@ public:
 
 enum class EmbreeQuality { Low, Medium, High };
 
+// Rays prepared for one of Embree's APIs, whose answers can be read after trace(): what the
+// tests compare across the APIs. The APIs: "single", one rtcIntersect1 / rtcOccluded1 per ray;
+// "stream", one rtcIntersect1M / rtcOccluded1M per range; "packet8" and "packet16", SoA packets
+// through rtcIntersect8/16 and rtcOccluded8/16. A packet API traces whole packets, so
+// trace(begin, end) needs begin to be a multiple of packetWidth() (ranges of 4096 are).
+class EmbreePreparedRays : public NativeRayBatch {
+public:
+    virtual size_t packetWidth() const = 0;  // 1 but for packets
+    // Ray i after the last trace: whether it hit (closest hit) or is occluded (any hit), and,
+    // after a closest-hit trace, Embree's distance of the hit.
+    virtual bool hit(size_t i) const = 0;
+    virtual float t(size_t i) const = 0;
+};
+
 struct EmbreeConfig {
     EmbreeQuality quality = EmbreeQuality::Medium;
     bool robust = false;
@@ -57,7 +72,7 @@ struct EmbreeConfig {
     static EmbreeConfig fromEnv(const Env& env);
 };
 
-class EmbreeAccelerator final : public Accelerator {
+class EmbreeAccelerator final : public Accelerator, public NativeBatchApis {
 public:
     // Creates the device; throws EmbreeError when Embree refuses (e.g. unsupported CPU).
     explicit EmbreeAccelerator(const EmbreeConfig& config = {});
@@ -80,7 +95,20 @@ public:
                          std::span<RayCost> costs) const override;
     bool hasCounters() const override { return false; }
     // Rays with tmin >= 0 and coordinates within Embree's range, as RTCRayHit; see the .cpp.
+    // The bare loop: prepareRays(rays, "single", false).
     std::unique_ptr<NativeRayBatch> prepareNativeBatch(const std::vector<Ray>& rays) const override;
+
+    // Embree's batch APIs (bvhlab bench's embree-batch): "stream" always, and "packet8" and
+    // "packet16" where the device says it traces such packets natively.
+    std::vector<std::string> batchApis() const override;
+    std::unique_ptr<NativeRayBatch> prepareBatchApi(const std::vector<Ray>& rays, std::string_view api,
+                                                    bool coherent) const override {
+        return prepareRays(rays, api, coherent);
+    }
+    // The rays prepared for `api`, "single" or one of batchApis() (else std::invalid_argument),
+    // refused as prepareNativeBatch refuses them; `coherent` sets
+    // RTC_INTERSECT_CONTEXT_FLAG_COHERENT in the context of every call (else INCOHERENT).
+    std::unique_ptr<EmbreePreparedRays> prepareRays(const std::vector<Ray>& rays, std::string_view api, bool coherent) const;
 
     const EmbreeConfig& config() const { return config_; }
     // The device's configuration string, e.g. "threads=1".

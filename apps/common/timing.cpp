@@ -15,9 +15,11 @@ double median(std::vector<double> values) {
     return n == 0 ? 0.0 : n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
+std::string_view toString(QueryKind kind) { return kind == QueryKind::Single ? "single" : "batch"; }
+
 namespace {
 
-// Times `passes` passes over n rays with `threads` threads, in ranges of 4096 handed to
+// Times `passes` passes over n rays with `threads` threads, in ranges of kQueryRange handed to
 // traceRange(begin, end, counters); beforePass runs outside the timing. The first pass's
 // counters are kept.
 template <typename BeforePass, typename TraceRange>
@@ -26,14 +28,17 @@ PassResult timePasses(size_t n, int threads, int passes, BeforePass&& beforePass
     if (n == 0) return result;
     std::vector<double> times, cpuTimes;
     tbb::task_arena arena(threads);
+    const size_t ranges = (n + kQueryRange - 1) / kQueryRange;
     for (int pass = 0; pass < passes; ++pass) {
         beforePass();
         tbb::enumerable_thread_specific<QueryCounters> counters;
         const auto start = std::chrono::steady_clock::now();
         const double cpuStart = processCpuMs();
         arena.execute([&] {
-            tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096),
-                              [&](const auto& range) { traceRange(range.begin(), range.end(), counters.local()); });
+            tbb::parallel_for(tbb::blocked_range<size_t>(0, ranges), [&](const auto& r) {
+                for (size_t i = r.begin(); i < r.end(); ++i)
+                    traceRange(i * kQueryRange, std::min(n, (i + 1) * kQueryRange), counters.local());
+            });
         });
         times.push_back(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count() /
                         double(n));
@@ -48,16 +53,25 @@ PassResult timePasses(size_t n, int threads, int passes, BeforePass&& beforePass
 
 }  // namespace
 
-PassResult tracePasses(const Accelerator& accel, const std::vector<Ray>& rays, bool anyHit, int threads, int passes) {
-    // Through the batch calls, one per range, into answers allocated outside the timing.
+PassResult tracePasses(const Accelerator& accel, const std::vector<Ray>& rays, bool anyHit, int threads, int passes,
+                       QueryKind kind) {
+    // Into answers allocated outside the timing.
     std::vector<Hit> hits(anyHit ? 0 : rays.size());
     std::vector<uint8_t> occluded(anyHit ? rays.size() : 0);
     const std::span<const Ray> all(rays);
     return timePasses(
         rays.size(), threads, passes, [] {},
         [&](size_t begin, size_t end, QueryCounters& local) {
-            if (anyHit) accel.isOccludedBatch(all.subspan(begin, end - begin), std::span(occluded).subspan(begin, end - begin), local, {});
-            else accel.findNearestBatch(all.subspan(begin, end - begin), std::span(hits).subspan(begin, end - begin), local, {});
+            if (kind == QueryKind::Single) {
+                if (anyHit)
+                    for (size_t i = begin; i < end; ++i) occluded[i] = accel.isOccluded(rays[i], local) ? 1 : 0;
+                else
+                    for (size_t i = begin; i < end; ++i) accel.findNearest(rays[i], hits[i], local);
+            } else if (anyHit) {
+                accel.isOccludedBatch(all.subspan(begin, end - begin), std::span(occluded).subspan(begin, end - begin), local, {});
+            } else {
+                accel.findNearestBatch(all.subspan(begin, end - begin), std::span(hits).subspan(begin, end - begin), local, {});
+            }
         });
 }
 

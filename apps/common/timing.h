@@ -5,6 +5,7 @@
 #include "framework/core/accelerator.h"
 #include "framework/core/cpu_clock.h"
 
+#include <string_view>
 #include <vector>
 
 namespace bvhlab {
@@ -17,11 +18,23 @@ struct PassResult {
     QueryCounters counters;      // of one pass
 };
 
-// Answers every ray `passes` times with `threads` threads through the interface's batch calls
-// (one per range of 4096 rays); the first pass also counts.
-PassResult tracePasses(const Accelerator& accel, const std::vector<Ray>& rays, bool anyHit, int threads, int passes);
+// How a structure is asked: ray by ray through findNearest / isOccluded (single), or through the
+// batch calls findNearestBatch / isOccludedBatch, one call per range of kQueryRange rays (batch).
+enum class QueryKind { Single, Batch };
 
-// The same passes over a native batch (reset before each pass, untimed); counts queries only.
+std::string_view toString(QueryKind kind);  // "single", "batch"
+
+// The rays of a pass are split over the threads in ranges of this many (the last one shorter),
+// each starting at a multiple of it: a batch call's size, and whole packets of 8 or 16 rays.
+constexpr size_t kQueryRange = 4096;
+
+// Answers every ray `passes` times with `threads` threads, asked as `kind` says; the first pass
+// also counts.
+PassResult tracePasses(const Accelerator& accel, const std::vector<Ray>& rays, bool anyHit, int threads, int passes,
+                       QueryKind kind);
+
+// The same passes over a native batch (reset before each pass, untimed), one trace() per
+// range; counts queries only.
 PassResult traceNativePasses(NativeRayBatch& batch, bool anyHit, int threads, int passes);
 
 }  // namespace bvhlab

@@ -1,8 +1,11 @@
 // `bvhlab bench`: build time and query time of several structures on several scenes, each as a
 // median of repeated runs and as a ratio to Embree measured in the same run (the machine is
-// shared and noisy: absolute times drift, ratios hold). The yardstick is embree-bare, Embree as
-// its users call it (rays converted once, a bare rtcIntersect1 loop); embree and embree-robust
-// go through our interface, as every structure of ours does. A benchmark, not a test.
+// shared and noisy: absolute times drift, ratios hold). Each structure is asked in one or both of
+// two ways (--queries): single rays, one findNearest / isOccluded per ray, against embree-bare
+// (Embree as its users call it: rays converted once, a bare rtcIntersect1 loop); and batches,
+// findNearestBatch / isOccludedBatch per range of kQueryRange rays, against embree-batch (the same
+// prepared rays through Embree's stream or packet API, whichever is faster). embree and
+// embree-robust go through our interface, as every structure of ours does. A benchmark, not a test.
 #include "accel/registry.h"
 #include "apps/common/accel_config.h"
 #include "apps/common/cli_common.h"
@@ -32,21 +35,36 @@
 namespace bvhlab {
 namespace {
 
-// One structure of the contest, with what the rounds measured.
-struct Contender {
+// One structure of the contest: its builds, measured in rounds.
+struct Structure {
     AccelConfig config;
     Env env{programKeys()};  // the scene's, with the config's overrides and the thread count
     std::unique_ptr<Accelerator> accel;
     BuildStats stats;
-    std::vector<double> buildMs;                 // one per round
+    std::vector<double> buildMs;  // one per round
+};
+
+// One row of the results: a structure asked as `queries` says (or Embree through its own API:
+// embree-bare, embree-batch), with what the rounds measured.
+struct Contender {
+    Contender(std::string label, QueryKind queries, const Structure* structure)
+        : label(std::move(label)), queries(queries), structure(structure) {}
+
+    std::string label;
+    QueryKind queries;
+    const Structure* structure;                  // its builds; embree's for embree-bare and -batch
     std::vector<std::vector<double>> usPerQuery; // per ray set: one per round
     std::vector<QueryCounters> counters;         // per ray set: of the first round
+    // embree-batch: per ray set, each batch API's series and the one kept (the lowest median).
+    std::vector<std::map<std::string, std::vector<double>>> byApi;
+    std::vector<std::string> kept;
 };
 
 struct NamedRaySet {
     const char* name;
     const std::vector<Ray>* rays;
     bool anyHit;
+    bool coherent;  // Embree's context hint for its stream and packet calls
 };
 
 // Median over rounds of the ratio of two series measured round by round.
@@ -57,78 +75,118 @@ double pairedRatio(const std::vector<double>& values, const std::vector<double>&
     return median(ratios);
 }
 
+// The yardstick of each kind of query: Embree as its users call it, ray by ray (a bare loop of
+// rtcIntersect1) or in batches (the faster of its stream and packet APIs).
+const char* yardstick(QueryKind kind) { return kind == QueryKind::Single ? "embree-bare" : "embree-batch"; }
+
 // Every structure of one scene at one thread count, measured in rounds: a round builds each
-// structure once, then traces each ray set once with each structure, always in the same order.
-// A slowdown of the shared machine thus hits all structures of a round alike, and the medians
-// of the per-round ratios to Embree hold where absolute times drift by tens of percent.
+// structure once, then traces each ray set once with each contender (every structure through
+// each kind of query, and Embree's own APIs), always in the same order. A slowdown of the shared
+// machine thus hits all contenders of a round alike, and the medians of the per-round ratios to
+// Embree hold where absolute times drift by tens of percent.
 std::vector<nlohmann::json> measureRounds(const Scene& scene, const RaySets& rays, const Env& sceneEnv,
-                                          const std::vector<AccelConfig>& configs, int threads, int builds,
-                                          int passes) {
-    const NamedRaySet raySets[] = {{"primary", &rays.primary, false},
-                                   {"shadow", &rays.shadow, true},
-                                   {"incoherent", &rays.incoherent, true}};
-    std::vector<Contender> contenders(configs.size());
+                                          const std::vector<AccelConfig>& configs, const std::vector<QueryKind>& kinds,
+                                          int threads, int builds, int passes) {
+    const NamedRaySet raySets[] = {{"primary", &rays.primary, false, true},
+                                   {"shadow", &rays.shadow, true, true},
+                                   {"incoherent", &rays.incoherent, true, false}};
+    constexpr size_t kSets = std::size(raySets);
+    std::vector<Structure> structures(configs.size());
     for (size_t c = 0; c < configs.size(); ++c) {
-        Contender& k = contenders[c];
+        Structure& k = structures[c];
         k.config = configs[c];
         k.env = accelConfigEnv(k.config, sceneEnv);
         k.env.set(keys::SetRayTracing::threads, std::to_string(threads), "bvhlab bench --threads");
-        k.usPerQuery.resize(std::size(raySets));
-        k.counters.resize(std::size(raySets));
     }
     tbb::task_arena arena(threads);
     for (int round = 0; round < builds; ++round) {
-        for (Contender& k : contenders) {
+        for (Structure& k : structures) {
             k.accel.reset();  // the new structure replaces the old one, not beside it
             k.accel = createAccelerator(k.config.name, k.env);
             arena.execute([&] { k.stats = timedBuild(*k.accel, scene.primitives()); });
             k.buildMs.push_back(k.stats.buildMs);
         }
     }
-    auto find = [&](const char* label) -> Contender& {
-        return *std::find_if(contenders.begin(), contenders.end(), [&](const Contender& k) { return k.config.label == label; });
-    };
-    // embree-bare: the last build of `embree` queried as Embree's users do (NativeRayBatch), a
-    // contender of its own in every round; its build is embree's (the same calls).
-    Contender bare;
-    bare.config.label = "embree-bare";
-    bare.stats = find("embree").stats;
-    bare.buildMs = find("embree").buildMs;
-    bare.usPerQuery.resize(std::size(raySets));
-    bare.counters.resize(std::size(raySets));
-    std::vector<std::unique_ptr<NativeRayBatch>> bareRays;
-    for (const NamedRaySet& set : raySets) bareRays.push_back(find("embree").accel->prepareNativeBatch(*set.rays));
+    const Structure& embree =
+        *std::find_if(structures.begin(), structures.end(), [](const Structure& k) { return k.config.label == "embree"; });
+    // embree-bare and embree-batch: the last build of `embree` queried as Embree's users do
+    // (rays prepared once, outside the timing: prepareNativeBatch, and NativeBatchApis for each
+    // of its batch APIs), contenders of their own in every round; their build is embree's.
+    const auto* embreeApis = dynamic_cast<const NativeBatchApis*>(embree.accel.get());
+    if (!embreeApis) throw std::logic_error("bvhlab bench: embree has no NativeBatchApis");
+    const std::vector<std::string> batchApis = embreeApis->batchApis();
 
-    for (size_t set = 0; set < std::size(raySets); ++set) {
+    std::vector<Contender> contenders;
+    for (QueryKind kind : kinds) {
+        for (const Structure& k : structures) contenders.emplace_back(k.config.label, kind, &k);
+        contenders.emplace_back(yardstick(kind), kind, &embree);
+    }
+    for (Contender& k : contenders) {
+        k.usPerQuery.resize(kSets);
+        k.counters.resize(kSets);
+        if (k.label == "embree-batch") k.byApi.resize(kSets);
+    }
+    for (size_t set = 0; set < kSets; ++set) {
+        const NamedRaySet& s = raySets[set];
+        // Embree's prepared rays of this set only (a copy per API, and another to reset from).
+        const auto asked = [&](QueryKind kind) { return std::find(kinds.begin(), kinds.end(), kind) != kinds.end(); };
+        std::unique_ptr<NativeRayBatch> bare;
+        std::map<std::string, std::unique_ptr<NativeRayBatch>> prepared;
+        if (asked(QueryKind::Single)) bare = embree.accel->prepareNativeBatch(*s.rays);
+        if (asked(QueryKind::Batch))
+            for (const std::string& api : batchApis) prepared[api] = embreeApis->prepareBatchApi(*s.rays, api, s.coherent);
         for (int round = 0; round < passes; ++round) {
             for (Contender& k : contenders) {
-                const PassResult r = tracePasses(*k.accel, *raySets[set].rays, raySets[set].anyHit, threads, 1);
-                k.usPerQuery[set].push_back(r.usPerQuery);
+                PassResult r;
+                if (k.label == "embree-bare") {
+                    r = traceNativePasses(*bare, s.anyHit, threads, 1);
+                } else if (k.label == "embree-batch") {
+                    for (const std::string& api : batchApis) {
+                        r = traceNativePasses(*prepared[api], s.anyHit, threads, 1);
+                        k.byApi[set][api].push_back(r.usPerQuery);
+                    }
+                } else {
+                    r = tracePasses(*k.structure->accel, *s.rays, s.anyHit, threads, 1, k.queries);
+                }
+                if (k.label != "embree-batch") k.usPerQuery[set].push_back(r.usPerQuery);
                 if (round == 0) k.counters[set] = r.counters;
             }
-            const PassResult r = traceNativePasses(*bareRays[set], raySets[set].anyHit, threads, 1);
-            bare.usPerQuery[set].push_back(r.usPerQuery);
-            if (round == 0) bare.counters[set] = r.counters;
         }
     }
-    contenders.push_back(std::move(bare));
+    for (Contender& k : contenders)
+        for (size_t set = 0; set < k.byApi.size(); ++set) {
+            const auto fastest = std::min_element(k.byApi[set].begin(), k.byApi[set].end(), [](const auto& a, const auto& b) {
+                return median(a.second) < median(b.second);
+            });
+            k.kept.push_back(fastest->first);
+            k.usPerQuery[set] = fastest->second;
+        }
+
+    auto find = [&](const std::string& label, QueryKind kind) -> const Contender* {
+        const auto it = std::find_if(contenders.begin(), contenders.end(),
+                                     [&](const Contender& k) { return k.label == label && k.queries == kind; });
+        return it == contenders.end() ? nullptr : &*it;
+    };
     auto optional = [](const auto& v) { return v ? nlohmann::json(*v) : nlohmann::json(); };
     std::vector<nlohmann::json> rows;
     for (const Contender& k : contenders) {
-        const bool counted = k.accel && k.accel->hasCounters();
+        const Structure& structure = *k.structure;
+        const bool native = k.label == yardstick(k.queries);
+        const bool counted = !native && structure.accel->hasCounters();
         nlohmann::json row = {{"scene", scene.name},
-                              {"accel", k.config.label},
+                              {"accel", k.label},
+                              {"queries", toString(k.queries)},
                               {"threads", threads},
                               {"prims", scene.triangleCount()},
-                              {"build_ms", median(k.buildMs)},
-                              {"build_ms_all", k.buildMs},
-                              {"nodes", optional(k.stats.nodes)},
-                              {"leaves", optional(k.stats.leaves)},
-                              {"sah", k.stats.sah ? nlohmann::json(k.stats.sah->cost) : nlohmann::json()},
-                              {"epo", optional(k.stats.epo)},
-                              {"leaf_sizes", k.stats.leafSizes.empty() ? nlohmann::json() : nlohmann::json(k.stats.leafSizes)},
-                              {"bytes", optional(k.stats.bytes)}};
-        for (size_t set = 0; set < std::size(raySets); ++set) {
+                              {"build_ms", median(structure.buildMs)},
+                              {"build_ms_all", structure.buildMs},
+                              {"nodes", optional(structure.stats.nodes)},
+                              {"leaves", optional(structure.stats.leaves)},
+                              {"sah", structure.stats.sah ? nlohmann::json(structure.stats.sah->cost) : nlohmann::json()},
+                              {"epo", optional(structure.stats.epo)},
+                              {"leaf_sizes", structure.stats.leafSizes.empty() ? nlohmann::json() : nlohmann::json(structure.stats.leafSizes)},
+                              {"bytes", optional(structure.stats.bytes)}};
+        for (size_t set = 0; set < kSets; ++set) {
             const double q = std::max<double>(1.0, double(k.counters[set].queries));
             row[raySets[set].name] = {
                 {"t_r_us", median(k.usPerQuery[set])},
@@ -136,16 +194,25 @@ std::vector<nlohmann::json> measureRounds(const Scene& scene, const RaySets& ray
                 {"queries", k.counters[set].queries},
                 {"n_it", counted ? nlohmann::json(double(k.counters[set].intersectionTests) / q) : nlohmann::json()},
                 {"n_tr", counted ? nlohmann::json(double(k.counters[set].traversalSteps) / q) : nlohmann::json()}};
+            if (!k.kept.empty()) {
+                row["embree_batch_api"][raySets[set].name] = k.kept[set];
+                for (const auto& [api, series] : k.byApi[set]) row[raySets[set].name]["t_r_us_by_api"][api] = median(series);
+            }
         }
-        // ratio_to_embree-bare, ratio_to_embree and ratio_to_embree-robust: medians of the
-        // per-round ratios.
-        for (const char* label : {"embree-bare", "embree", "embree-robust"}) {
-            const Contender& ref = find(label);
-            nlohmann::json ratios = {{"build", pairedRatio(k.buildMs, ref.buildMs)}};
-            for (size_t set = 0; set < std::size(raySets); ++set) {
+        // Medians of the per-round ratios: to embree-bare and embree-batch (whichever this run
+        // measured), and to embree and embree-robust asked as this row is.
+        const std::pair<const char*, const Contender*> references[] = {
+            {"embree-bare", find("embree-bare", QueryKind::Single)},
+            {"embree-batch", find("embree-batch", QueryKind::Batch)},
+            {"embree", find("embree", k.queries)},
+            {"embree-robust", find("embree-robust", k.queries)}};
+        for (const auto& [label, ref] : references) {
+            if (!ref) continue;
+            nlohmann::json ratios = {{"build", pairedRatio(structure.buildMs, ref->structure->buildMs)}};
+            for (size_t set = 0; set < kSets; ++set) {
                 ratios[raySets[set].name] = raySets[set].rays->empty()
                                                 ? nlohmann::json()
-                                                : nlohmann::json(pairedRatio(k.usPerQuery[set], ref.usPerQuery[set]));
+                                                : nlohmann::json(pairedRatio(k.usPerQuery[set], ref->usPerQuery[set]));
             }
             row[std::string("ratio_to_") + label] = ratios;
         }
@@ -158,44 +225,69 @@ std::string numberOrNa(const nlohmann::json& v, const char* format) {
     return v.is_null() ? "n/a" : fmt::format(fmt::runtime(format), v.get<double>());
 }
 
-// One line per scene x threads x structure, then the geometric means of the ratios. xE is the
-// ratio to embree-bare (Embree as its users call it), xER to embree-robust (through our interface).
+// A row's ratios to `label`'s row (null where this run did not measure it).
+const nlohmann::json& ratiosTo(const nlohmann::json& row, const std::string& label) {
+    static const nlohmann::json none = {{"build", nullptr}, {"primary", nullptr}, {"shadow", nullptr}, {"incoherent", nullptr}};
+    const auto it = row.find("ratio_to_" + label);
+    return it == row.end() ? none : *it;
+}
+
+// The yardstick of a row: embree-bare for single queries, embree-batch for batch queries.
+std::string yardstickOf(const nlohmann::json& row) {
+    return yardstick(row["queries"] == "single" ? QueryKind::Single : QueryKind::Batch);
+}
+
+// One line per scene x threads x structure x kind of query, then the geometric means of the
+// ratios. xE is the ratio to the row's yardstick (embree-bare for single rows, embree-batch for
+// batch rows: Embree as its users call it), xER to embree-robust asked the same way (through
+// our interface); embree-batch's line ends with the API it kept per ray set.
 std::string benchTable(const nlohmann::json& results) {
     size_t accelWidth = 14;
     for (const nlohmann::json& row : results["rows"]) accelWidth = std::max(accelWidth, row["accel"].get<std::string>().size());
-    std::string out = fmt::format("{:<16} {:>3} {:<{}} {:>9} {:>6} {:>8} {:>6} {:>6} {:>8} {:>6} {:>6} {:>8} {:>6} {:>6} "
+    std::string out = fmt::format("{:<16} {:>3} {:<{}} {:<6} {:>9} {:>6} {:>8} {:>6} {:>6} {:>8} {:>6} {:>6} {:>8} {:>6} {:>6} "
                                   "{:>6} {:>6} {:>8} {:>7} {:>7}\n",
-                                  "scene", "thr", "accel", accelWidth, "T_B ms", "xE", "prim us", "xE", "xER", "shad us", "xE",
-                                  "xER", "incoh us", "xE", "xER", "N_IT", "N_TR", "SAH", "EPO", "MB");
+                                  "scene", "thr", "accel", accelWidth, "query", "T_B ms", "xE", "prim us", "xE", "xER", "shad us",
+                                  "xE", "xER", "incoh us", "xE", "xER", "N_IT", "N_TR", "SAH", "EPO", "MB");
     std::map<std::string, std::vector<nlohmann::json>> byConfig;
     for (const nlohmann::json& row : results["rows"]) {
-        const nlohmann::json& e = row["ratio_to_embree-bare"];
-        const nlohmann::json& er = row["ratio_to_embree-robust"];
-        out += fmt::format("{:<16} {:>3} {:<{}} {:>9.1f} {:>6} {:>8.3f} {:>6} {:>6} {:>8.3f} {:>6} {:>6} "
-                           "{:>8.3f} {:>6} {:>6} {:>6} {:>6} {:>8} {:>7} {:>7}\n",
+        const nlohmann::json& e = ratiosTo(row, yardstickOf(row));
+        const nlohmann::json& er = ratiosTo(row, "embree-robust");
+        out += fmt::format("{:<16} {:>3} {:<{}} {:<6} {:>9.1f} {:>6} {:>8.3f} {:>6} {:>6} {:>8.3f} {:>6} {:>6} "
+                           "{:>8.3f} {:>6} {:>6} {:>6} {:>6} {:>8} {:>7} {:>7}",
                            row["scene"].get<std::string>(), row["threads"].get<int>(), row["accel"].get<std::string>(),
-                           accelWidth, row["build_ms"].get<double>(), numberOrNa(e["build"], "{:.2f}"),
-                           row["primary"]["t_r_us"].get<double>(), numberOrNa(e["primary"], "{:.2f}"),
-                           numberOrNa(er["primary"], "{:.2f}"), row["shadow"]["t_r_us"].get<double>(),
-                           numberOrNa(e["shadow"], "{:.2f}"), numberOrNa(er["shadow"], "{:.2f}"),
-                           row["incoherent"]["t_r_us"].get<double>(), numberOrNa(e["incoherent"], "{:.2f}"),
-                           numberOrNa(er["incoherent"], "{:.2f}"), numberOrNa(row["primary"]["n_it"], "{:.1f}"),
-                           numberOrNa(row["primary"]["n_tr"], "{:.1f}"), numberOrNa(row["sah"], "{:.2f}"),
-                           numberOrNa(row["epo"], "{:.2f}"), row["bytes"].is_null() ? "n/a" : fmt::format("{:.1f}", row["bytes"].get<double>() / 1048576.0));
-        byConfig[fmt::format("{} threads={}", row["accel"].get<std::string>(), row["threads"].get<int>())].push_back(row);
+                           accelWidth, row["queries"].get<std::string>(), row["build_ms"].get<double>(),
+                           numberOrNa(e["build"], "{:.2f}"), row["primary"]["t_r_us"].get<double>(),
+                           numberOrNa(e["primary"], "{:.2f}"), numberOrNa(er["primary"], "{:.2f}"),
+                           row["shadow"]["t_r_us"].get<double>(), numberOrNa(e["shadow"], "{:.2f}"),
+                           numberOrNa(er["shadow"], "{:.2f}"), row["incoherent"]["t_r_us"].get<double>(),
+                           numberOrNa(e["incoherent"], "{:.2f}"), numberOrNa(er["incoherent"], "{:.2f}"),
+                           numberOrNa(row["primary"]["n_it"], "{:.1f}"), numberOrNa(row["primary"]["n_tr"], "{:.1f}"),
+                           numberOrNa(row["sah"], "{:.2f}"), numberOrNa(row["epo"], "{:.2f}"),
+                           row["bytes"].is_null() ? "n/a" : fmt::format("{:.1f}", row["bytes"].get<double>() / 1048576.0));
+        if (row.contains("embree_batch_api"))
+            for (const char* set : {"primary", "shadow", "incoherent"})
+                out += fmt::format("  {} {}", set, row["embree_batch_api"][set].get<std::string>());
+        out += "\n";
+        byConfig[fmt::format("{} {} threads={}", row["accel"].get<std::string>(), row["queries"].get<std::string>(),
+                             row["threads"].get<int>())]
+            .push_back(row);
     }
-    out += "\ngeometric means over scenes of the ratios to embree-bare (embree-robust):\n";
+    out += "\ngeometric means over scenes of the ratios to embree-bare (single rows) or embree-batch (batch rows), "
+           "to embree-robust asked the same way in brackets:\n";
     for (const auto& [config, rows] : byConfig) {
-        out += fmt::format("  {:<{}}", config, accelWidth + 14);
+        out += fmt::format("  {:<{}}", config, accelWidth + 21);
         for (const char* kind : {"build", "primary", "shadow", "incoherent"}) {
             double logE = 0, logER = 0;
             int n = 0;
-            for (const nlohmann::json& row : rows)
-                if (!row["ratio_to_embree-bare"][kind].is_null() && !row["ratio_to_embree-robust"][kind].is_null()) {
-                    logE += std::log(row["ratio_to_embree-bare"][kind].get<double>());
-                    logER += std::log(row["ratio_to_embree-robust"][kind].get<double>());
+            for (const nlohmann::json& row : rows) {
+                const nlohmann::json& e = ratiosTo(row, yardstickOf(row))[kind];
+                const nlohmann::json& er = ratiosTo(row, "embree-robust")[kind];
+                if (!e.is_null() && !er.is_null()) {
+                    logE += std::log(e.get<double>());
+                    logER += std::log(er.get<double>());
                     ++n;
                 }
+            }
             out += n ? fmt::format("  {} {:.2f} ({:.2f})", kind, std::exp(logE / n), std::exp(logER / n)) : "";
         }
         out += "\n";
@@ -211,6 +303,7 @@ void addBenchCommand(CLI::App& app) {
         std::vector<std::string> scenes;
         std::string accels = "tdbvh,sahbvh,embree,embree:Embree::robust=true";
         std::string threads = "1,0";
+        std::string queries = "single,batch";
         int builds = 5, passes = 5;
         std::string out = "out/bench.json";
     };
@@ -219,7 +312,12 @@ void addBenchCommand(CLI::App& app) {
     options->env.addTo(*command);
     command->add_option("--scenes", options->scenes, "scene env files, .list files or scene files (default env/scenes.list)");
     command->add_option("--accel", options->accels,
-                        "comma-separated NAME or NAME:Key=value:... (embree, embree-robust and embree-bare are always added)")
+                        "comma-separated NAME or NAME:Key=value:... (embree, embree-robust, embree-bare and embree-batch are "
+                        "always added)")
+        ->capture_default_str();
+    command->add_option("--queries", options->queries,
+                        "single (ray by ray, against embree-bare), batch (the batch calls, against embree-batch) or both, "
+                        "comma-separated")
         ->capture_default_str();
     command->add_option("--threads", options->threads, "threads N (0 = all hardware threads), or a comma-separated list of them to measure each")
         ->capture_default_str();
@@ -242,6 +340,15 @@ void addBenchCommand(CLI::App& app) {
                 threadCounts.push_back(t > 0 ? t : tbb::info::default_concurrency());
             }
             if (threadCounts.empty()) throw InputError("--threads: no thread count given");
+            std::vector<QueryKind> kinds;
+            for (const std::string& item : splitCommaList(options->queries)) {
+                const QueryKind kind = item == "single" ? QueryKind::Single : QueryKind::Batch;
+                if ((item != "single" && item != "batch") || std::find(kinds.begin(), kinds.end(), kind) != kinds.end())
+                    throw InputError(fmt::format("--queries {}: '{}' is not single or batch (or is given twice)",
+                                                 options->queries, item));
+                kinds.push_back(kind);
+            }
+            if (kinds.empty()) throw InputError("--queries: no kind of query given (single, batch)");
 
             nlohmann::json results = {{"provenance", provenanceJson()},
                                       {"builds", options->builds},
@@ -262,13 +369,14 @@ void addBenchCommand(CLI::App& app) {
                                            scene.name, rays.primary.size(), rays.shadow.size(), rays.incoherent.size()));
 
                 for (int threads : threadCounts) {
-                    for (nlohmann::json& row : measureRounds(scene, rays, env, configs, threads, options->builds,
+                    for (nlohmann::json& row : measureRounds(scene, rays, env, configs, kinds, threads, options->builds,
                                                              options->passes)) {
-                        fmt::print(stderr, "  {} threads={} {}: build {:.1f} ms, primary {:.3f} us/query ({:.2f}x embree-bare)\n",
-                                   scene.name, threads, row["accel"].get<std::string>(), row["build_ms"].get<double>(),
-                                   row["primary"]["t_r_us"].get<double>(),
-                                   row["ratio_to_embree-bare"]["primary"].is_null() ? 0.0
-                                                                                    : row["ratio_to_embree-bare"]["primary"].get<double>());
+                        const std::string reference = yardstickOf(row);
+                        const nlohmann::json& ratio = ratiosTo(row, reference)["primary"];
+                        fmt::print(stderr, "  {} threads={} {} {}: build {:.1f} ms, primary {:.3f} us/query ({:.2f}x {})\n",
+                                   scene.name, threads, row["accel"].get<std::string>(), row["queries"].get<std::string>(),
+                                   row["build_ms"].get<double>(), row["primary"]["t_r_us"].get<double>(),
+                                   ratio.is_null() ? 0.0 : ratio.get<double>(), reference);
                         results["rows"].push_back(std::move(row));
                     }
                 }

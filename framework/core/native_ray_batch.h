@@ -1,10 +1,16 @@
 // Rays in an accelerator's own format, made once outside any timing and answered by its own
 // call in a bare loop: what a user of its native API writes (Embree: an array of RTCRayHit and
-// a loop of rtcIntersect1). The yardstick of `bvhlab bench` (its embree-bare row); what the
-// interface's per-ray conversion and checks cost is the wrapped row's ratio to it.
+// a loop of rtcIntersect1). The yardstick of `bvhlab bench`'s single rows (its embree-bare row);
+// what the interface's per-ray conversion and checks cost is the wrapped row's ratio to it.
 #pragma once
 
+#include "framework/core/ray.h"
+
 #include <cstddef>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
 
 namespace bvhlab {
 
@@ -21,6 +27,25 @@ public:
     // Answers rays [begin, end), closest hit or any hit, and returns how many hit (which also
     // keeps the loop from being optimised away). Disjoint ranges may run concurrently.
     virtual size_t trace(size_t begin, size_t end, bool anyHit) = 0;
+};
+
+// The batch APIs of an outside library (Embree: its stream, and packets of 8 or 16 rays), which
+// its wrapper implements beside Accelerator; `bvhlab bench` finds them with dynamic_cast and
+// keeps the fastest as the yardstick of its batch rows (embree-batch). Kept out of Accelerator so
+// that the plugin API (its vtable) stays as it is: a plugin's accelerator cannot offer them.
+class NativeBatchApis {
+public:
+    virtual ~NativeBatchApis() = default;
+
+    // The APIs' names, e.g. "stream", "packet8", "packet16": those this machine runs natively.
+    virtual std::vector<std::string> batchApis() const = 0;
+
+    // The rays prepared for `api` (one of batchApis(), else std::invalid_argument), after
+    // build(); refused as prepareNativeBatch refuses them. `coherent`: the rays share an origin
+    // or an end (primary and shadow rays), a hint the API may take. A packet API traces whole
+    // packets: trace()'s ranges must start at multiples of 16.
+    virtual std::unique_ptr<NativeRayBatch> prepareBatchApi(const std::vector<Ray>& rays, std::string_view api,
+                                                            bool coherent) const = 0;
 };
 
 }  // namespace bvhlab

@@ -172,8 +172,10 @@ TEST(Cli, RaysWritesTheBenchRaySetsForRaycast) {
     EXPECT_NE(bad.output.find("sideways"), std::string::npos) << bad.output;
 }
 
-// `bvhlab bench`, tiny: a row per structure with every round kept; Embree's counters are
-// unavailable (null), not zero; a paired ratio of a series to itself is exactly 1.
+// `bvhlab bench`, tiny: a row per structure and kind of query with every round kept; Embree's
+// counters are unavailable (null), not zero; a paired ratio of a series to itself is exactly 1.
+// Single rows are measured against embree-bare, batch rows against embree-batch, which names the
+// Embree API it kept per ray set.
 TEST(Cli, BenchMeasuresInRoundsWithPairedRatios) {
     const auto env = scratchFile("tiny.env", "Camera::width 24\nCamera::height 16\n");
     const auto out = tempDir() / "bench.json";
@@ -185,8 +187,8 @@ TEST(Cli, BenchMeasuresInRoundsWithPairedRatios) {
     const nlohmann::json j = nlohmann::json::parse(in);
     std::vector<std::string> labels;
     for (const nlohmann::json& row : j["rows"]) {
-        const std::string accel = row["accel"];
-        labels.push_back(accel);
+        const std::string accel = row["accel"], queries = row["queries"];
+        labels.push_back(accel + " " + queries);
         EXPECT_EQ(row["build_ms_all"].size(), 2u) << accel;
         EXPECT_EQ(row["primary"]["t_r_us_all"].size(), 3u) << accel;
         EXPECT_EQ(row["primary"]["queries"], 24 * 16) << accel;
@@ -194,12 +196,55 @@ TEST(Cli, BenchMeasuresInRoundsWithPairedRatios) {
         if (accel == "embree") {
             EXPECT_EQ(row["ratio_to_embree"]["primary"], 1.0);
         }
-        // Every row has its ratio to Embree as its users call it; embree-bare's is itself.
+        // Every row has its ratios to Embree as its users call it, ray by ray and in batches.
         EXPECT_TRUE(row["ratio_to_embree-bare"]["shadow"].is_number()) << accel;
+        EXPECT_TRUE(row["ratio_to_embree-batch"]["incoherent"].is_number()) << accel;
         if (accel == "embree-bare") {
+            EXPECT_EQ(queries, "single");
             EXPECT_EQ(row["ratio_to_embree-bare"]["primary"], 1.0);
         }
+        if (accel == "embree-batch") {
+            EXPECT_EQ(queries, "batch");
+            EXPECT_EQ(row["ratio_to_embree-batch"]["primary"], 1.0);
+            for (const char* set : {"primary", "shadow", "incoherent"}) {
+                const std::string api = row["embree_batch_api"][set];
+                EXPECT_TRUE(api == "stream" || api == "packet8" || api == "packet16") << set << ": " << api;
+                EXPECT_TRUE(row[set]["t_r_us_by_api"]["stream"].is_number()) << set;
+                EXPECT_EQ(row[set]["t_r_us"], row[set]["t_r_us_by_api"][api]) << set;
+            }
+        } else {
+            EXPECT_FALSE(row.contains("embree_batch_api")) << accel;
+        }
     }
-    EXPECT_EQ(labels, (std::vector<std::string>{"sahbvh", "sahbvh:BVH::robust=false", "embree", "embree-robust",
-                                                "embree-bare"}));
+    EXPECT_EQ(labels, (std::vector<std::string>{"sahbvh single", "sahbvh:BVH::robust=false single", "embree single",
+                                                "embree-robust single", "embree-bare single", "sahbvh batch",
+                                                "sahbvh:BVH::robust=false batch", "embree batch", "embree-robust batch",
+                                                "embree-batch batch"}));
+    EXPECT_NE(r.output.find("embree-batch"), std::string::npos) << r.output;
+}
+
+// --queries single or batch alone measures that kind only (and its yardstick); a kind it does not
+// know is an error naming it.
+TEST(Cli, BenchQueriesChoosesTheKinds) {
+    const auto env = scratchFile("tiny.env", "Camera::width 24\nCamera::height 16\n");
+    const auto out = tempDir() / "bench.json";
+    for (const std::string kind : {"single", "batch"}) {
+        const Result r = run("bench --scenes " + env.string() + " --accel sahbvh --queries " + kind +
+                             " --threads 1 --builds 1 --passes 1 --out " + out.string());
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        std::ifstream in(out);
+        const nlohmann::json j = nlohmann::json::parse(in);
+        std::vector<std::string> labels;
+        for (const nlohmann::json& row : j["rows"]) {
+            EXPECT_EQ(row["queries"], kind);
+            labels.push_back(row["accel"]);
+            EXPECT_EQ(row.contains("ratio_to_embree-bare"), kind == "single");
+            EXPECT_EQ(row.contains("ratio_to_embree-batch"), kind == "batch");
+        }
+        EXPECT_EQ(labels, (std::vector<std::string>{"sahbvh", "embree", "embree-robust",
+                                                    kind == "single" ? "embree-bare" : "embree-batch"}));
+    }
+    const Result bad = run("bench --scenes " + env.string() + " --accel sahbvh --queries single,packets --out " + out.string());
+    EXPECT_NE(bad.exitCode, 0);
+    EXPECT_NE(bad.output.find("packets"), std::string::npos) << bad.output;
 }

@@ -9,6 +9,8 @@
 #include "framework/core/timed_build.h"
 #include "framework/scene/procedural.h"
 #include "apps/check/oracle.h"
+#include "apps/measure/ray_sets.h"
+#include "framework/render/camera.h"
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
@@ -375,6 +377,60 @@ TEST(Embree, NativeBatchAnswersAsTheInterface) {
     behind[0].tmin = -1.0f;
     EXPECT_THROW(accel.prepareNativeBatch(behind), std::invalid_argument);
     EXPECT_EQ(NaiveAccelerator().prepareNativeBatch(rays), nullptr);
+}
+
+// Embree's batch APIs (bench's embree-batch: its stream, and its packets of the widths the device
+// traces natively) answer the prepared rays as its single-ray call does: closest hits within
+// hitsAgree, occlusion equal; on a camera's primary rays (hinted coherent) and on incoherent
+// ones, in ranges of 4096 as the bench traces them, pass after pass.
+TEST(Embree, BatchApisAnswerAsTheSingleRayCall) {
+    const Scene scene = smallScene();
+    EmbreeAccelerator accel;
+    accel.build(scene.primitives());
+    const std::vector<std::string> apis = accel.batchApis();
+    ASSERT_FALSE(apis.empty());
+    EXPECT_EQ(apis[0], "stream");
+    const Camera camera(framingCamera(scene.bounds, 60.0f, 101, 83));  // 8383 rays: a partial packet and range
+    const RaySets sets = makeRaySets(scene, camera, {PointLight{Vec3(0.0f, 5.0f, 4.0f)}}, accel, 0.3f);
+    struct Case {
+        const char* name;
+        const std::vector<Ray>* rays;
+        bool coherent;
+    };
+    for (const Case& c : {Case{"primary", &sets.primary, true}, Case{"incoherent", &sets.incoherent, false}}) {
+        const std::vector<Ray>& rays = *c.rays;
+        const std::unique_ptr<EmbreePreparedRays> single = accel.prepareRays(rays, "single", false);
+        for (bool anyHit : {false, true}) {
+            single->reset();
+            const size_t hits = single->trace(0, rays.size(), anyHit);
+            ASSERT_GT(hits, rays.size() / 20) << c.name;
+            ASSERT_LT(hits, rays.size()) << c.name;
+            for (const std::string& api : apis) {
+                SCOPED_TRACE(::testing::Message() << c.name << " " << api << (anyHit ? " any hit" : " closest"));
+                const std::unique_ptr<EmbreePreparedRays> batch = accel.prepareRays(rays, api, c.coherent);
+                ASSERT_EQ(batch->size(), rays.size());
+                for (int pass = 0; pass < 2; ++pass) {
+                    batch->reset();
+                    size_t batchHits = 0;
+                    for (size_t begin = 0; begin < rays.size(); begin += 4096)
+                        batchHits += batch->trace(begin, std::min(rays.size(), begin + 4096), anyHit);
+                    size_t disagree = 0;
+                    for (size_t i = 0; i < rays.size(); ++i) {
+                        const Hit a = single->hit(i) ? Hit{single->t(i), 0} : Hit{};
+                        const Hit b = batch->hit(i) ? Hit{batch->t(i), 0} : Hit{};
+                        disagree += anyHit ? a.found() != b.found() : !hitsAgree(a, b);
+                    }
+                    EXPECT_EQ(disagree, 0u);
+                    EXPECT_EQ(batchHits, hits);
+                }
+            }
+        }
+    }
+    if (apis.size() > 1) {  // a packet range must start on a packet
+        const std::unique_ptr<EmbreePreparedRays> packets = accel.prepareRays(sets.primary, apis[1], true);
+        EXPECT_THROW(packets->trace(1, 9, false), std::logic_error);
+    }
+    EXPECT_THROW(accel.prepareRays(sets.primary, "packet4", true), std::invalid_argument);
 }
 
 TEST(Embree, ConfigFromEnv) {
