@@ -264,6 +264,13 @@ LeakStats countLeaks(const Accelerator& accel, std::span<const WatertightProbeRa
         tbb::parallel_for(tbb::blocked_range<size_t>(0, probes.size(), 1024), [&](const tbb::blocked_range<size_t>& range) {
             Partial& local = partials.local();
             QueryCounters counters;
+            const size_t n = range.size();
+            std::vector<Ray> rays(n);
+            for (size_t i = 0; i < n; ++i) rays[i] = probes[range.begin() + i].ray;
+            std::vector<Hit> hits(n);
+            std::vector<uint8_t> occluded(n);
+            accel.findNearestBatch(rays, hits, counters, {});
+            accel.isOccludedBatch(rays, occluded, counters, {});
             for (size_t i = range.begin(); i < range.end(); ++i) {
                 const WatertightProbeRay& p = probes[i];
                 Hit hit;
@@ -277,7 +284,12 @@ LeakStats countLeaks(const Accelerator& accel, std::span<const WatertightProbeRa
                     ++(p.atVertex ? s.vertexLeaks : s.edgeLeaks);
                 }
                 if (notOccluded) ++s.occlusionLeaks;
-                if ((missed || notOccluded) && local.leaked.size() < maxExamples) local.leaked.push_back(i);
+                const bool batchMissed = !hits[i - range.begin()].found();
+                const bool batchNotOccluded = occluded[i - range.begin()] == 0;
+                s.batchLeaks += batchMissed;
+                s.batchOcclusionLeaks += batchNotOccluded;
+                if ((missed || notOccluded || batchMissed || batchNotOccluded) && local.leaked.size() < maxExamples)
+                    local.leaked.push_back(i);
             }
         });
     });
@@ -291,6 +303,8 @@ LeakStats countLeaks(const Accelerator& accel, std::span<const WatertightProbeRa
         total.vertexRays += p.stats.vertexRays;
         total.vertexLeaks += p.stats.vertexLeaks;
         total.occlusionLeaks += p.stats.occlusionLeaks;
+        total.batchLeaks += p.stats.batchLeaks;
+        total.batchOcclusionLeaks += p.stats.batchOcclusionLeaks;
         leaked.insert(leaked.end(), p.leaked.begin(), p.leaked.end());
     }
     std::sort(leaked.begin(), leaked.end());
