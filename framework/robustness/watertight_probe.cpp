@@ -45,13 +45,22 @@ double distanceAcross(const DVec3& p, const DVec3& u, const DVec3& a, const DVec
     return glm::length(wa + s * e);
 }
 
-std::string describeProbe(size_t index, const WatertightProbeRay& p, bool closestMissed, bool anyMissed) {
+// A probe that leaked, with the calls that missed it (as they answered while counting).
+struct Leak {
+    size_t index;
+    bool missed[4];  // findNearest, isOccluded, findNearestBatch, isOccludedBatch
+};
+
+std::string describeProbe(const WatertightProbeRay& p, const Leak& leak) {
     const Ray& r = p.ray;
+    std::string missed;
+    const char* calls[4] = {"findNearest", "isOccluded", "findNearestBatch", "isOccludedBatch"};
+    for (int c = 0; c < 4; ++c)
+        if (leak.missed[c]) missed += fmt::format("{}{} missed", missed.empty() ? "" : ", ", calls[c]);
     return fmt::format("probe #{} at {} {}: org ({:.9g}, {:.9g}, {:.9g}) dir ({:.9g}, {:.9g}, {:.9g}) tmax {:.9g} "
-                       "aimed at ({:.17g}, {:.17g}, {:.17g}); {}{}",
-                       index, p.atVertex ? "vertex" : "edge", p.feature, r.org.x, r.org.y, r.org.z, r.dir.x, r.dir.y,
-                       r.dir.z, r.tmax, p.target.x, p.target.y, p.target.z, closestMissed ? "findNearest missed" : "",
-                       anyMissed ? (closestMissed ? ", isOccluded missed" : "isOccluded missed") : "");
+                       "aimed at ({:.17g}, {:.17g}, {:.17g}); {}",
+                       leak.index, p.atVertex ? "vertex" : "edge", p.feature, r.org.x, r.org.y, r.org.z, r.dir.x,
+                       r.dir.y, r.dir.z, r.tmax, p.target.x, p.target.y, p.target.z, missed);
 }
 
 }  // namespace
@@ -256,7 +265,7 @@ LeakStats countLeaks(const Accelerator& accel, std::span<const WatertightProbeRa
                      size_t maxExamples) {
     struct Partial {
         LeakStats stats;
-        std::vector<size_t> leaked;  // indices, for the examples
+        std::vector<Leak> leaked;  // for the examples
     };
     tbb::enumerable_thread_specific<Partial> partials;
     tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
@@ -289,12 +298,12 @@ LeakStats countLeaks(const Accelerator& accel, std::span<const WatertightProbeRa
                 s.batchLeaks += batchMissed;
                 s.batchOcclusionLeaks += batchNotOccluded;
                 if ((missed || notOccluded || batchMissed || batchNotOccluded) && local.leaked.size() < maxExamples)
-                    local.leaked.push_back(i);
+                    local.leaked.push_back({i, {missed, notOccluded, batchMissed, batchNotOccluded}});
             }
         });
     });
     LeakStats total;
-    std::vector<size_t> leaked;
+    std::vector<Leak> leaked;
     for (const Partial& p : partials) {
         total.rays += p.stats.rays;
         total.leaks += p.stats.leaks;
@@ -307,14 +316,9 @@ LeakStats countLeaks(const Accelerator& accel, std::span<const WatertightProbeRa
         total.batchOcclusionLeaks += p.stats.batchOcclusionLeaks;
         leaked.insert(leaked.end(), p.leaked.begin(), p.leaked.end());
     }
-    std::sort(leaked.begin(), leaked.end());
+    std::sort(leaked.begin(), leaked.end(), [](const Leak& a, const Leak& b) { return a.index < b.index; });
     leaked.resize(std::min(leaked.size(), maxExamples));
-    for (size_t i : leaked) {
-        QueryCounters counters;
-        Hit hit;
-        const bool missed = !accel.findNearest(probes[i].ray, hit, counters);
-        total.examples.push_back(describeProbe(i, probes[i], missed, !accel.isOccluded(probes[i].ray, counters)));
-    }
+    for (const Leak& leak : leaked) total.examples.push_back(describeProbe(probes[leak.index], leak));
     return total;
 }
 
