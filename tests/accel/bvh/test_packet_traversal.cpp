@@ -7,6 +7,7 @@
 // must add up to the totals.
 #include "accel/bvh/builder_table.h"
 #include "accel/bvh/bvh_accelerator.h"
+#include "accel/bvh/traverse/packet_traversal.h"
 #include "tests/support/triangle_soup.h"
 
 #include <gtest/gtest.h>
@@ -213,6 +214,38 @@ TEST(PacketTraversal, TiesOnDuplicatesAnswerAsSingleRays) {
 // The binary layout keeps its single loop, and the tie rule is the same there: of four
 // duplicates the first in leaf order, whichever leaf is visited first.
 TEST(PacketTraversal, BinaryBatchAnswersAsSingleRays) { expectPacketsAsSingle<Bvh>(duplicatesScene()); }
+
+// Packets of 16 (AVX-512's width; here whatever backend Floats<16> is, Scalar<16> on AVX2
+// machines) answer as single rays too: tracePacket for every width the batch entry may pick.
+TEST(PacketTraversal, SixteenRayPacketsAnswerAsSingleRays) {
+    BvhAccelerator<WideBvh<8>> accel(bvhBuilder("sahbvh"), BvhBuildConfig{});
+    accel.build(randomScene(3).prims());
+    const WideBvh<8>& tree = accel.bvh();
+    std::vector<Ray> rays;
+    for (const Ray& r : primaryRays(Vec3(3, 14, 22), 64, 48))
+        if (r.isValid() && r.tmin >= 0.0f) rays.push_back(r);
+    for (const int fallback : {0, 2, 6}) {
+        size_t compared = 0;
+        for (size_t begin = 0; begin < rays.size(); begin += 16) {
+            const int count = int(std::min<size_t>(16, rays.size() - begin));
+            tracePacket<ClosestHitQuery, true, 16>(
+                tree, rays.data() + begin, count, fallback, [&](int k, const ClosestHitQuery& query, const QueryCounters&) {
+                    QueryCounters counters;
+                    Hit packet, single;
+                    answerOf(tree, query, packet);
+                    accel.findNearest(rays[begin + k], single, counters);
+                    EXPECT_TRUE(bitEqual(packet, single)) << "ray " << begin + k << ", fallback " << fallback;
+                    ++compared;
+                });
+            tracePacket<AnyHitQuery, true, 16>(tree, rays.data() + begin, count, fallback,
+                                               [&](int k, const AnyHitQuery& query, const QueryCounters&) {
+                                                   QueryCounters counters;
+                                                   EXPECT_EQ(query.occluded, accel.isOccluded(rays[begin + k], counters));
+                                               });
+        }
+        EXPECT_EQ(compared, rays.size());
+    }
+}
 
 }  // namespace
 }  // namespace bvhlab
