@@ -3,7 +3,7 @@
 
 #include "accel/bvh/layout/end_point_overlap.h"
 #include "accel/bvh/traverse/bvh_traversal.h"
-#include "accel/bvh/traverse/wide_bvh_traversal.h"
+#include "accel/bvh/traverse/packet_traversal.h"
 
 #include <bit>
 #include <type_traits>
@@ -120,19 +120,36 @@ void BvhAccelerator<Layout>::isOccludedBatch(std::span<const Ray> rays, std::spa
     else isOccludedRange<false>(rays, occluded, counters, costs);
 }
 
+// The wide layouts trace a batch in packets (packet_traversal.h), the binary one ray by ray;
+// either hands each ray's query and work to the same answer.
+template <typename Layout>
+template <typename Query, bool Robust, typename Answer>
+void BvhAccelerator<Layout>::traceRange(std::span<const Ray> rays, Answer&& answer) const {
+    if constexpr (LayoutWidth<Layout>::value > 2) {
+        traceAsPackets<Query, Robust>(tree_, rays, traversal_.packetFallback, answer);
+    } else {
+        for (size_t i = 0; i < rays.size(); ++i) {
+            QueryCounters work;
+            const Query query = runQuery<Query, Robust>(tree_, rays[i], work);
+            answer(i, query, work);
+        }
+    }
+}
+
 template <typename Layout>
 template <bool Robust>
 void BvhAccelerator<Layout>::findNearestRange(std::span<const Ray> rays, std::span<Hit> hits, QueryCounters& counters,
                                               std::span<RayCost> costs) const {
     const bool withQuadrics = !quadrics_.empty();
-    for (size_t i = 0; i < rays.size(); ++i) {
+    traceRange<ClosestHitQuery, Robust>(rays, [&](size_t i, const ClosestHitQuery& query, const QueryCounters& work) {
         const QueryCounters before = counters;
+        counters += work;
         Hit hit;
-        const bool found = answerOf(tree_, runQuery<ClosestHitQuery, Robust>(tree_, rays[i], counters), hit);
+        const bool found = answerOf(tree_, query, hit);
         if (withQuadrics) findNearestQuadric(rays[i], found, hit, counters);
         hits[i] = hit;
         if (!costs.empty()) costs[i] = costBetween(before, counters);
-    }
+    });
 }
 
 template <typename Layout>
@@ -140,13 +157,14 @@ template <bool Robust>
 void BvhAccelerator<Layout>::isOccludedRange(std::span<const Ray> rays, std::span<uint8_t> occluded,
                                              QueryCounters& counters, std::span<RayCost> costs) const {
     const bool withQuadrics = !quadrics_.empty();
-    for (size_t i = 0; i < rays.size(); ++i) {
+    traceRange<AnyHitQuery, Robust>(rays, [&](size_t i, const AnyHitQuery& query, const QueryCounters& work) {
         const QueryCounters before = counters;
-        bool answer = runQuery<AnyHitQuery, Robust>(tree_, rays[i], counters).occluded;
+        counters += work;
+        bool answer = query.occluded;
         if (!answer && withQuadrics) answer = isOccludedQuadric(rays[i], counters);
         occluded[i] = answer ? 1 : 0;
         if (!costs.empty()) costs[i] = costBetween(before, counters);
-    }
+    });
 }
 
 template <typename Layout>

@@ -52,6 +52,8 @@ private:
     // The quadric tree's part of a query (after the triangles'), kept out of the hot path.
     [[gnu::noinline]] bool findNearestQuadric(const Ray& ray, bool found, Hit& hit, QueryCounters& counters) const;
     [[gnu::noinline]] bool isOccludedQuadric(const Ray& ray, QueryCounters& counters) const;
+    template <typename Query, bool Robust, typename Answer>
+    void traceRange(std::span<const Ray> rays, Answer&& answer) const;
     template <bool Robust>
     void findNearestRange(std::span<const Ray> rays, std::span<Hit> hits, QueryCounters& counters,
                           std::span<RayCost> costs) const;

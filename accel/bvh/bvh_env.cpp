@@ -4,7 +4,8 @@ namespace bvhlab {
 
 void registerBvhKeys(EnvRegistry& r) {
     using namespace keys::BVH;
-    for (const IntKey& key : {maxLeaf, leafCap, bins, plocRadius, threads, epoMaxTriangles, optimizeIterations}) r.add(key);
+    for (const IntKey& key : {maxLeaf, leafCap, bins, plocRadius, threads, epoMaxTriangles, optimizeIterations,
+                               packetFallback}) r.add(key);
     for (const BoolKey& key : {sahTermination, allAxes, keys::BVH::simd, robust}) r.add(key);
     for (const FloatKey& key : {cTraversal, cIntersect, sbvhAlpha, sbvhGrowth}) r.add(key);
     r.add(tdbvhSplit);
@@ -14,7 +15,8 @@ void registerBvhKeys(EnvRegistry& r) {
 std::vector<std::string_view> bvhCommonKeys() {
     using namespace keys::BVH;
     return {maxLeaf.name(), leafCap.name(), cTraversal.name(),      cIntersect.name(), keys::BVH::simd.name(),
-            robust.name(),  threads.name(), epoMaxTriangles.name(), optimize.name(),   optimizeIterations.name()};
+            robust.name(),  threads.name(), epoMaxTriangles.name(), optimize.name(),   optimizeIterations.name(),
+            packetFallback.name()};
 }
 
 BvhBuildConfig bvhConfigFromEnv(const Env& env) {
@@ -46,6 +48,7 @@ BvhStatsConfig statsConfigFromEnv(const Env& env) {
 TraversalConfig traversalConfigFromEnv(const Env& env) {
     TraversalConfig c;
     c.robust = env.get(keys::BVH::robust);
+    c.packetFallback = env.get(keys::BVH::packetFallback);
     return c;
 }
 

@@ -46,6 +46,11 @@ inline constexpr BoolKey robust{
     "BVH::robust", "true",
     "traversal: watertight triangle test and conservative box test; false = Moeller-Trumbore and plain boxes "
     "(not watertight), only to measure what robustness costs"};
+inline constexpr IntKey packetFallback{
+    "BVH::packetFallback", "2", 0, 1024,
+    "batch queries on the wide layouts (sahbvh4, sahbvh8) trace packets of 8 consecutive rays (16 with AVX-512); a "
+    "node reached by at most this many rays of a packet is finished ray by ray (Benthin et al. 2012); 16 or more = "
+    "every ray alone. Answers are the same whatever the value"};
 inline constexpr IntKey threads{"BVH::threads", "0", 0, 1024,
                                 "build threads; 0 = as SetRayTracing::threads (0 there: all hardware threads). The "
                                 "tree is the same whatever the count"};

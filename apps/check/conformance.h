@@ -66,9 +66,16 @@ CheckResult runCheck(const std::string& name, const Subject& subject, const Chec
 // single rays; Embree (names starting with "embree") is held to bounds instead (docs/accuracy.md).
 bool isExternal(std::string_view accelerator);
 inline bool batchIsBitExact(std::string_view accelerator) { return !isExternal(accelerator); }
+// Ours of the wide layouts (builder_table.h names them NAME4, NAME8) trace batches as packets:
+// the same answers, but a ray's N_IT and N_TR follow the packet's visit order
+// (docs/architecture.md), so the batch calls' work differs from the single-ray calls'; their
+// queries and quadric tests do not.
+bool batchTracesPackets(std::string_view accelerator);
 
 // Every count of a and b is the same.
 bool sameCounters(const QueryCounters& a, const QueryCounters& b);
+// The counts a batch traced as packets keeps from the single-ray calls: queries, sphere and cone tests.
+bool sameQueries(const QueryCounters& a, const QueryCounters& b);
 
 // The scenes of the mixed-primitives and batch checks, also used by the tests: triangles,
 // spheres (some negative radius) and cones with one degenerate of each kind; closed meshes, a

@@ -1,6 +1,7 @@
 // `bvhlab stress`: the robustness stress suite at full size (docs/accuracy.md, "Robustness").
 //  - watertight: >= 1e6 rays per closed mesh aimed exactly at interior edges and vertices
-//    (framework/robustness/watertight_probe.h); leaks per million for every accelerator, naive only on
+//    (framework/robustness/watertight_probe.h), through the single-ray and the batch calls (packets,
+//    for the wide layouts); leaks per million for every accelerator, naive only on
 //    small meshes; the generated meshes plus the closed scans igea.ply and a10.obj.
 //  - sweep: one scene scaled by 1e-3 ... 1e4 and moved by up to 10x its size along the axes:
 //    no leaks, the same primitives hit, t scaling with the scene, the SAH cost unchanged.
@@ -164,8 +165,9 @@ private:
     void watertight() {
         fmt::print(stderr, "== watertightness: {} rays per mesh at interior edges and vertices\n", options_.rays);
         nlohmann::json rows = nlohmann::json::array();
-        std::string table = fmt::format("{:<16} {:>8} {:<14} {:>9} {:>7} {:>11} {:>9} {:>11}\n", "mesh", "tris", "accel",
-                                        "rays", "leaks", "per million", "any-hit", "per million");
+        std::string table = fmt::format("{:<16} {:>8} {:<14} {:>9} {:>7} {:>11} {:>9} {:>11} {:>7} {:>9}\n", "mesh", "tris",
+                                        "accel", "rays", "leaks", "per million", "any-hit", "per million", "batch",
+                                        "batch any");
         for (const auto& make : meshes()) {
             const auto start = Clock::now();
             const std::optional<Scene> scene = make();
@@ -186,15 +188,18 @@ private:
                 const auto accel = build(config, *scene, stats);
                 const auto traced = Clock::now();
                 const LeakStats leaks = countLeaks(*accel, probes.probes, options_.threads);
-                fmt::print(stderr, "  {}: built in {:.0f} ms, {} leaks, {} any-hit leaks of {} rays in {:.1f} s\n",
-                           config.label, stats.buildMs, leaks.leaks, leaks.occlusionLeaks, leaks.rays, secondsSince(traced));
+                fmt::print(stderr, "  {}: built in {:.0f} ms, {} leaks, {} any-hit leaks (batch: {}, {}) of {} rays in {:.1f} s\n",
+                           config.label, stats.buildMs, leaks.leaks, leaks.occlusionLeaks, leaks.batchLeaks,
+                           leaks.batchOcclusionLeaks, leaks.rays, secondsSince(traced));
                 for (const std::string& e : leaks.examples) fmt::print(stderr, "    {}\n", e);
-                if (leaks.leaks || leaks.occlusionLeaks)
-                    fail(config, fmt::format("{} leaks and {} any-hit leaks in {} rays through {}", leaks.leaks,
-                                             leaks.occlusionLeaks, leaks.rays, scene->name));
-                table += fmt::format("{:<16} {:>8} {:<14} {:>9} {:>7} {:>11.1f} {:>9} {:>11.1f}\n", scene->name,
+                if (leaks.leaks || leaks.occlusionLeaks || leaks.batchLeaks || leaks.batchOcclusionLeaks)
+                    fail(config, fmt::format("{} leaks and {} any-hit leaks (batch queries: {} and {}) in {} rays through {}",
+                                             leaks.leaks, leaks.occlusionLeaks, leaks.batchLeaks, leaks.batchOcclusionLeaks,
+                                             leaks.rays, scene->name));
+                table += fmt::format("{:<16} {:>8} {:<14} {:>9} {:>7} {:>11.1f} {:>9} {:>11.1f} {:>7} {:>9}\n", scene->name,
                                      scene->triangleCount(), config.label, leaks.rays, leaks.leaks, leaks.perMillion(),
-                                     leaks.occlusionLeaks, leaks.occlusionPerMillion());
+                                     leaks.occlusionLeaks, leaks.occlusionPerMillion(), leaks.batchLeaks,
+                                     leaks.batchOcclusionLeaks);
                 rows.push_back({{"mesh", scene->name},
                                 {"triangles", scene->triangleCount()},
                                 {"closed", topology.closed()},
@@ -209,6 +214,8 @@ private:
                                 {"leaks_per_million", leaks.perMillion()},
                                 {"any_hit_leaks", leaks.occlusionLeaks},
                                 {"any_hit_leaks_per_million", leaks.occlusionPerMillion()},
+                                {"batch_leaks", leaks.batchLeaks},
+                                {"batch_any_hit_leaks", leaks.batchOcclusionLeaks},
                                 {"build_ms", stats.buildMs},
                                 {"examples", leaks.examples}});
             }
@@ -216,7 +223,8 @@ private:
         results_["watertight"] = rows;
         const std::string section =
             "watertightness: rays aimed exactly at interior edges and vertices of closed meshes, tmax = 1.0001 x "
-            "distance; a leak is a miss (closest hit), any-hit = isOccluded false\n";
+            "distance; a leak is a miss (closest hit), any-hit = isOccluded false; batch, batch any = the same through "
+            "findNearestBatch and isOccludedBatch\n";
         fmt::print("{}{}\n", section, table);
     }
 

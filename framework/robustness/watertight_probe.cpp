@@ -45,13 +45,22 @@ double distanceAcross(const DVec3& p, const DVec3& u, const DVec3& a, const DVec
     return glm::length(wa + s * e);
 }
 
-std::string describeProbe(size_t index, const WatertightProbeRay& p, bool closestMissed, bool anyMissed) {
+// A probe that leaked, with the calls that missed it (as they answered while counting).
+struct Leak {
+    size_t index;
+    bool missed[4];  // findNearest, isOccluded, findNearestBatch, isOccludedBatch
+};
+
+std::string describeProbe(const WatertightProbeRay& p, const Leak& leak) {
     const Ray& r = p.ray;
+    std::string missed;
+    const char* calls[4] = {"findNearest", "isOccluded", "findNearestBatch", "isOccludedBatch"};
+    for (int c = 0; c < 4; ++c)
+        if (leak.missed[c]) missed += fmt::format("{}{} missed", missed.empty() ? "" : ", ", calls[c]);
     return fmt::format("probe #{} at {} {}: org ({:.9g}, {:.9g}, {:.9g}) dir ({:.9g}, {:.9g}, {:.9g}) tmax {:.9g} "
-                       "aimed at ({:.17g}, {:.17g}, {:.17g}); {}{}",
-                       index, p.atVertex ? "vertex" : "edge", p.feature, r.org.x, r.org.y, r.org.z, r.dir.x, r.dir.y,
-                       r.dir.z, r.tmax, p.target.x, p.target.y, p.target.z, closestMissed ? "findNearest missed" : "",
-                       anyMissed ? (closestMissed ? ", isOccluded missed" : "isOccluded missed") : "");
+                       "aimed at ({:.17g}, {:.17g}, {:.17g}); {}",
+                       leak.index, p.atVertex ? "vertex" : "edge", p.feature, r.org.x, r.org.y, r.org.z, r.dir.x,
+                       r.dir.y, r.dir.z, r.tmax, p.target.x, p.target.y, p.target.z, missed);
 }
 
 }  // namespace
@@ -256,7 +265,7 @@ LeakStats countLeaks(const Accelerator& accel, std::span<const WatertightProbeRa
                      size_t maxExamples) {
     struct Partial {
         LeakStats stats;
-        std::vector<size_t> leaked;  // indices, for the examples
+        std::vector<Leak> leaked;  // for the examples
     };
     tbb::enumerable_thread_specific<Partial> partials;
     tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
@@ -264,6 +273,13 @@ LeakStats countLeaks(const Accelerator& accel, std::span<const WatertightProbeRa
         tbb::parallel_for(tbb::blocked_range<size_t>(0, probes.size(), 1024), [&](const tbb::blocked_range<size_t>& range) {
             Partial& local = partials.local();
             QueryCounters counters;
+            const size_t n = range.size();
+            std::vector<Ray> rays(n);
+            for (size_t i = 0; i < n; ++i) rays[i] = probes[range.begin() + i].ray;
+            std::vector<Hit> hits(n);
+            std::vector<uint8_t> occluded(n);
+            accel.findNearestBatch(rays, hits, counters, {});
+            accel.isOccludedBatch(rays, occluded, counters, {});
             for (size_t i = range.begin(); i < range.end(); ++i) {
                 const WatertightProbeRay& p = probes[i];
                 Hit hit;
@@ -277,12 +293,17 @@ LeakStats countLeaks(const Accelerator& accel, std::span<const WatertightProbeRa
                     ++(p.atVertex ? s.vertexLeaks : s.edgeLeaks);
                 }
                 if (notOccluded) ++s.occlusionLeaks;
-                if ((missed || notOccluded) && local.leaked.size() < maxExamples) local.leaked.push_back(i);
+                const bool batchMissed = !hits[i - range.begin()].found();
+                const bool batchNotOccluded = occluded[i - range.begin()] == 0;
+                s.batchLeaks += batchMissed;
+                s.batchOcclusionLeaks += batchNotOccluded;
+                if ((missed || notOccluded || batchMissed || batchNotOccluded) && local.leaked.size() < maxExamples)
+                    local.leaked.push_back({i, {missed, notOccluded, batchMissed, batchNotOccluded}});
             }
         });
     });
     LeakStats total;
-    std::vector<size_t> leaked;
+    std::vector<Leak> leaked;
     for (const Partial& p : partials) {
         total.rays += p.stats.rays;
         total.leaks += p.stats.leaks;
@@ -291,16 +312,13 @@ LeakStats countLeaks(const Accelerator& accel, std::span<const WatertightProbeRa
         total.vertexRays += p.stats.vertexRays;
         total.vertexLeaks += p.stats.vertexLeaks;
         total.occlusionLeaks += p.stats.occlusionLeaks;
+        total.batchLeaks += p.stats.batchLeaks;
+        total.batchOcclusionLeaks += p.stats.batchOcclusionLeaks;
         leaked.insert(leaked.end(), p.leaked.begin(), p.leaked.end());
     }
-    std::sort(leaked.begin(), leaked.end());
+    std::sort(leaked.begin(), leaked.end(), [](const Leak& a, const Leak& b) { return a.index < b.index; });
     leaked.resize(std::min(leaked.size(), maxExamples));
-    for (size_t i : leaked) {
-        QueryCounters counters;
-        Hit hit;
-        const bool missed = !accel.findNearest(probes[i].ray, hit, counters);
-        total.examples.push_back(describeProbe(i, probes[i], missed, !accel.isOccluded(probes[i].ray, counters)));
-    }
+    for (const Leak& leak : leaked) total.examples.push_back(describeProbe(probes[leak.index], leak));
     return total;
 }
 

@@ -91,13 +91,17 @@ struct LeakStats {
     size_t rays = 0, leaks = 0;  // leaks: findNearest found nothing in [0, tmax]
     size_t edgeRays = 0, edgeLeaks = 0, vertexRays = 0, vertexLeaks = 0;
     size_t occlusionLeaks = 0;  // isOccluded answered false
+    // The same probes through the batch calls (the wide layouts trace them as packets): a leak
+    // there is one of the packet traversal, even where the single-ray calls hold.
+    size_t batchLeaks = 0, batchOcclusionLeaks = 0;
     std::vector<std::string> examples;  // the first few leaks, full precision
 
     double perMillion() const { return rays ? 1e6 * double(leaks) / double(rays) : 0.0; }
     double occlusionPerMillion() const { return rays ? 1e6 * double(occlusionLeaks) / double(rays) : 0.0; }
 };
 
-// Traces every probe with findNearest and isOccluded (in parallel with TBB; counters are not
+// Traces every probe with findNearest and isOccluded, and again with findNearestBatch and
+// isOccludedBatch over each run of consecutive probes (in parallel with TBB; counters are not
 // kept). `threads` 0 = all hardware threads.
 LeakStats countLeaks(const Accelerator& accel, std::span<const WatertightProbeRay> probes, int threads = 0,
                      size_t maxExamples = 5);

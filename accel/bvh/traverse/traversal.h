@@ -50,7 +50,11 @@ struct LeafTriangleTest<false> {
 };
 
 // Closest hit in [ray.tmin, ray.tmax]: every hit shortens the interval, and the skeleton
-// skips nodes the ray enters behind it.
+// skips nodes the ray enters behind it. Of hits at equal t the one first in leaf order wins,
+// whatever order they are found in (the leaf tests pass hits at t <= tmax): the single-ray
+// skeletons and the packets (packet_traversal.h) visit leaves in different orders and must
+// give the same answer bit for bit, e.g. on coplanar duplicate triangles. (Unless the tied
+// leaf's box entry rounds above t and culls it: docs/architecture.md, Packets.)
 struct ClosestHitQuery {
     static constexpr bool kStopsAtFirstHit = false;
     float tmax;
@@ -58,7 +62,9 @@ struct ClosestHitQuery {
     TriangleHitT<float> best{};
 
     explicit ClosestHitQuery(const Ray& ray) : tmax(ray.tmax) {}
-    void record(const TriangleHitT<float>& h, uint32_t position) { tmax = h.t, best = h, found = position; }
+    void record(const TriangleHitT<float>& h, uint32_t position) {
+        if (h.t < tmax || position < found) tmax = h.t, best = h, found = position;
+    }
 };
 
 // Any hit in [ray.tmin, ray.tmax], stopping at the first one found.

@@ -9,6 +9,10 @@ struct TraversalConfig {
     // false: Moeller-Trumbore and plain boxes (not watertight), only to measure what
     // robustness costs.
     bool robust = true;
+    // BVH::packetFallback. Batches on the wide layouts trace packets (packet_traversal.h); a
+    // node reached by at most this many active rays of a packet is finished ray by ray.
+    // Measured best: docs/performance.md, "Issue #31 — packets".
+    int packetFallback = 2;
 };
 
 }  // namespace bvhlab

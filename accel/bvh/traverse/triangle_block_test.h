@@ -124,8 +124,8 @@ struct BlockTriangleTest<false> {
 
 // Tests the `count` triangles of the leaf whose blocks start at `first`; true when the query
 // is answered. N_IT counts triangles as the binary layout does: an any-hit query up to the
-// one that occludes, padding never. Of equal t in one block the last lane wins, as in the
-// binary layout's loop, which takes a later triangle at t == tmax.
+// one that occludes, padding never. Of equal t in one block the lowest lane (the first in leaf
+// order) goes to ClosestHitQuery::record, whose tie rule then holds across blocks and leaves.
 template <typename Query, bool Robust>
 [[gnu::always_inline]] inline bool testLeafBlocks(Query& query, const BlockTriangleTest<Robust>& test, const TriangleBlock* blocks,
                                                  uint32_t first, uint32_t count, float tmin, uint64_t& tests) {
@@ -142,7 +142,7 @@ template <typename Query, bool Robust>
         } else {
             for (int m = hits.mask & (hits.mask - 1); m != 0; m &= m - 1) {
                 const int i = __builtin_ctz(unsigned(m));
-                if (hits.t[i] <= hits.t[lane]) lane = i;
+                if (hits.t[i] < hits.t[lane]) lane = i;
             }
             query.record({hits.t[lane], hits.u[lane], hits.v[lane]}, (first + b) * W + lane);
         }

@@ -77,19 +77,19 @@ template <int N>
 
 }  // namespace wide_traversal
 
+// The skeleton's loop from `current` (the root, or a node where a packet left the ray alone:
+// packet_traversal.h) for a query under way; adds its node steps and triangle tests.
 template <typename Query, bool NegativeT, bool Robust, int N>
-Query traverse(const WideBvh<N>& bvh, const Ray& ray, QueryCounters& counters) {
+[[gnu::always_inline]] inline void traverseFrom(const WideBvh<N>& bvh, const WideBoxTest<N, NegativeT, Robust>& boxTest,
+                                               const BlockTriangleTest<Robust>& triangleTest, Query& query,
+                                               wide_traversal::StackEntry current, uint64_t& steps, uint64_t& tests) {
     using namespace wide_traversal;
-    const WideBoxTest<N, NegativeT, Robust> boxTest(ray);
-    const BlockTriangleTest<Robust> triangleTest(ray);
     const WideNode<N>* nodes = bvh.nodes.data();
     const TriangleBlock* blocks = bvh.blocks.data();
-    Query query(ray);
+    const float tmin = boxTest.tmin;
 
-    uint64_t steps = 0, tests = 0;
     StackEntry stack[kStackSize<N>];
     int size = 0;
-    StackEntry current{0, 0, ray.tmin};  // the root
     for (;;) {
         ++steps;
         if (current.count == 0) {
@@ -107,7 +107,7 @@ Query traverse(const WideBvh<N>& bvh, const Ray& ray, QueryCounters& counters) {
                 continue;
             }
         } else {
-            if (testLeafBlocks(query, triangleTest, blocks, current.child, current.count, ray.tmin, tests)) break;
+            if (testLeafBlocks(query, triangleTest, blocks, current.child, current.count, tmin, tests)) break;
         }
         // Pop the next child the ray enters before the closest hit so far (an any-hit query
         // never shortens its interval: nothing to skip).
@@ -117,6 +117,15 @@ Query traverse(const WideBvh<N>& bvh, const Ray& ray, QueryCounters& counters) {
         if (size == 0) break;
         current = stack[--size];
     }
+}
+
+template <typename Query, bool NegativeT, bool Robust, int N>
+Query traverse(const WideBvh<N>& bvh, const Ray& ray, QueryCounters& counters) {
+    const WideBoxTest<N, NegativeT, Robust> boxTest(ray);
+    const BlockTriangleTest<Robust> triangleTest(ray);
+    Query query(ray);
+    uint64_t steps = 0, tests = 0;
+    traverseFrom(bvh, boxTest, triangleTest, query, {0, 0, ray.tmin}, steps, tests);  // from the root
     counters.traversalSteps += steps;
     counters.intersectionTests += tests;
     return query;

@@ -1,0 +1,235 @@
+// Packets of coherent rays over the N-wide layout (Benthin, Wald, Woop, Ernst and Mark 2012,
+// "Combining single and packet-ray tracing for arbitrary ray distributions on the Intel MIC
+// architecture"): up to kPacketWidth rays walk the tree together, one SIMD lane per ray. At a
+// node, each child box is tested against all active rays at once; a child is visited when any
+// of them hits it, with the mask of those that do, nearest first by the entry of its first
+// ray. Leaves are tested ray by ray with the single-ray block test. A node reached by at most
+// `fallback` active rays no longer pays for a packet step (a packet tests one box per SIMD
+// test, a single ray all N): each of its rays finishes that subtree alone, by the single-ray
+// skeleton (traverseFrom, wide_bvh_traversal.h).
+//
+// Answers equal the single-ray traversal's bit for bit: a ray's box test here performs
+// WideBoxTest's operations in its order on the same RaySlabs values (lane by lane instead of
+// child by child), its leaves use BlockTriangleTest itself, and the closest hit's tie rule
+// does not depend on the visit order (ClosestHitQuery::record). Rays whose interval reaches
+// below t = 0 (the sign-aware far margin) are not packed: traceAsPackets traces them alone.
+//
+// Counters per ray (docs/architecture.md): a ray counts a node step (N_TR) at each node where
+// it is active, i.e. its own box test hit the node and, when the node is popped, it enters it
+// before its closest hit so far (the root: every ray). N_IT counts the triangles of the leaves
+// where it is active, as testLeafBlocks does. The visit order is the packet's, not the ray's,
+// so hits shorten a ray's interval at other times: totals differ from single-ray totals.
+#pragma once
+
+#include "accel/bvh/traverse/wide_bvh_traversal.h"
+
+#include <array>
+#include <bit>
+#include <span>
+#include <type_traits>
+#include <utility>
+
+namespace bvhlab {
+
+// Rays per packet: 16 where the SIMD layer has 16-lane floats (AVX-512), else 8.
+inline constexpr int kPacketWidth = std::is_same_v<simd::Floats<16>, simd::Scalar<16>> ? 8 : 16;
+
+namespace packet_traversal {
+
+// The K rays' RaySlabs in SoA, one lane per ray; lanes past the packet's rays hold zeros and
+// are never active.
+template <int K, bool Robust>
+struct PacketBoxTest {
+    using F = simd::Floats<K>;
+    alignas(64) float org[3][K]{};
+    alignas(64) float inv[3][K]{};
+    alignas(64) float invFar[3][K]{};
+    alignas(64) float nearIsUpper[3][K]{};  // -1 where the ray enters through the upper bound, else 1
+    alignas(64) float tmin[K]{};
+
+    PacketBoxTest(const Ray* rays, int count) {
+        for (int k = 0; k < count; ++k) {
+            const RaySlabs<Robust> slabs(rays[k]);
+            for (int a = 0; a < 3; ++a) {
+                org[a][k] = slabs.org[a];
+                inv[a][k] = slabs.inv[a];
+                invFar[a][k] = slabs.invFar[a];
+                nearIsUpper[a][k] = slabs.nearIsUpper[a] ? -1.0f : 1.0f;
+            }
+            tmin[k] = slabs.tmin;
+        }
+    }
+
+    // The rays (lanes) whose interval [tmin, tmax] overlaps child c's box, as a bit mask; where
+    // each enters it goes to entryOut. Per lane WideBoxTest<N, false, Robust>'s operations in
+    // its order, so a ray's answer is its single-ray answer bit for bit.
+    template <int N>
+    [[gnu::always_inline]] int intersect(const WideNode<N>& node, int c, const float* tmax, float* entryOut) const {
+        F nearT[3], farT[3];
+        for (int a = 0; a < 3; ++a) {
+            const auto upperFirst = F::load(nearIsUpper[a]) < F::broadcast(0.0f);
+            const F lower = F::broadcast(node.lower[a][c]), upper = F::broadcast(node.upper[a][c]);
+            const F o = F::load(org[a]);
+            nearT[a] = (select(upperFirst, upper, lower) - o) * F::load(inv[a]);
+            farT[a] = (select(upperFirst, lower, upper) - o) * F::load(invFar[a]);
+        }
+        const F entry = max(max(nearT[0], nearT[1]), max(nearT[2], F::load(tmin)));
+        const F exit = min(min(farT[0], farT[1]), min(farT[2], F::load(tmax)));
+        entry.store(entryOut);
+        return movemask(entry <= exit);
+    }
+};
+
+// A child to visit (as wide_traversal::StackEntry) with the rays (a lane mask) that hit it;
+// their entries are kept beside the stack (closest hit).
+struct PacketEntry {
+    uint32_t child;
+    uint32_t count;
+    int rays;
+};
+
+// {make(0), ..., make(K - 1)}: per-ray objects without a default constructor.
+template <int K, typename Make>
+auto arrayOf(Make&& make) {
+    return [&]<size_t... I>(std::index_sequence<I...>) { return std::array{make(I)...}; }(std::make_index_sequence<K>());
+}
+
+}  // namespace packet_traversal
+
+// Traces rays[0, count) (0 < count <= K; every ray valid with tmin >= 0; the tree not empty)
+// as one packet, then calls answer(k, query, work) for each ray k with its query and its work
+// (queries = 1).
+template <typename Query, bool Robust, int K, int N, typename Answer>
+void tracePacket(const WideBvh<N>& bvh, const Ray* rays, int count, int fallback, Answer&& answer) {
+    using namespace packet_traversal;
+    using F = simd::Floats<K>;
+    // Lanes past `count` repeat ray 0: never active, only so that every lane is constructed.
+    const auto rayOf = [&](size_t k) -> const Ray& { return rays[int(k) < count ? k : 0]; };
+    const PacketBoxTest<K, Robust> boxTest(rays, count);
+    const auto triangleTests = arrayOf<K>([&](size_t k) { return BlockTriangleTest<Robust>(rayOf(k)); });
+    auto queries = arrayOf<K>([&](size_t k) { return Query(rayOf(k)); });
+    alignas(64) float tmax[K]{};
+    for (int k = 0; k < count; ++k) tmax[k] = queries[k].tmax;
+    uint64_t steps[K]{}, tests[K]{};
+    const WideNode<N>* nodes = bvh.nodes.data();
+    const TriangleBlock* blocks = bvh.blocks.data();
+
+    PacketEntry stack[wide_traversal::kStackSize<N>];
+    alignas(64) float stackEntries[wide_traversal::kStackSize<N>][K];
+    int size = 0;
+    int live = int((1u << count) - 1);  // rays not yet answered (an any-hit ray leaves when occluded)
+    const auto finished = [&](int k) {
+        tmax[k] = queries[k].tmax;
+        if constexpr (Query::kStopsAtFirstHit) {
+            if (queries[k].occluded) live &= ~(1 << k);
+        }
+    };
+    PacketEntry current{0, 0, live};  // the root
+    for (;;) {
+        const int active = current.rays;
+        if (current.count != 0) {
+            for (int m = active; m != 0; m &= m - 1) {
+                const int k = std::countr_zero(unsigned(m));
+                ++steps[k];
+                testLeafBlocks(queries[k], triangleTests[k], blocks, current.child, current.count, rays[k].tmin, tests[k]);
+                finished(k);
+            }
+        } else if (std::popcount(unsigned(active)) <= fallback) {
+            for (int m = active; m != 0; m &= m - 1) {
+                const int k = std::countr_zero(unsigned(m));
+                const WideBoxTest<N, false, Robust> single(rays[k]);
+                traverseFrom(bvh, single, triangleTests[k], queries[k], {current.child, 0, 0.0f}, steps[k], tests[k]);
+                finished(k);
+            }
+        } else {
+            for (int m = active; m != 0; m &= m - 1) ++steps[std::countr_zero(unsigned(m))];
+            const WideNode<N>& node = nodes[current.child];
+            alignas(64) float entries[N][K];
+            int hitRays[N];
+            float key[N];  // where a child's first ray enters it: the visit order
+            int order[N];  // the children hit: closest hit far to near, any hit in lane order
+            int hits = 0;
+            for (int c = 0; c < N; ++c) {
+                if (!(node.lower[0][c] <= node.upper[0][c])) continue;  // an empty lane
+                const int mask = boxTest.intersect(node, c, tmax, entries[c]) & active;
+                if (mask == 0) continue;
+                hitRays[c] = mask;
+                int j = hits++;
+                if constexpr (!Query::kStopsAtFirstHit) {
+                    key[c] = entries[c][std::countr_zero(unsigned(mask))];
+                    for (; j > 0 && key[order[j - 1]] < key[c]; --j) order[j] = order[j - 1];
+                }
+                order[j] = c;
+            }
+            if (hits != 0) {
+                // Closest hit: the nearest next, the others pushed far to near. Any hit: the
+                // first in lane order next, as the single-ray skeleton does.
+                const int next = Query::kStopsAtFirstHit ? 0 : hits - 1;
+                assert(size + hits - 1 <= wide_traversal::kStackSize<N>);
+                for (int j = 0; j < hits; ++j) {
+                    if (j == next) continue;
+                    const int c = order[j];
+                    stack[size] = {node.child[c], node.count[c], hitRays[c]};
+                    if constexpr (!Query::kStopsAtFirstHit) F::load(entries[c]).store(stackEntries[size]);
+                    ++size;
+                }
+                const int c = order[next];
+                current = {node.child[c], node.count[c], hitRays[c]};
+                continue;
+            }
+        }
+        if (live == 0) break;
+        // Pop the next child that one of its rays still enters before its closest hit.
+        bool popped = false;
+        while (!popped && size > 0) {
+            --size;
+            current = stack[size];
+            if constexpr (Query::kStopsAtFirstHit) {
+                current.rays &= live;
+            } else {
+                current.rays &= movemask(F::load(stackEntries[size]) <= F::load(tmax));
+            }
+            popped = current.rays != 0;
+        }
+        if (!popped) break;
+    }
+    for (int k = 0; k < count; ++k) {
+        QueryCounters work;
+        work.queries = 1;
+        work.traversalSteps = steps[k];
+        work.intersectionTests = tests[k];
+        answer(k, queries[k], work);
+    }
+}
+
+// A batch: its valid rays with tmin >= 0 in packets of up to kPacketWidth consecutive ones
+// (a wavefront's camera rays, the shadow rays of one light), the others alone (runQuery: a
+// miss for an invalid ray, the sign-aware box test for tmin < 0). Calls answer(i, query, work)
+// once per ray i, not in order, with its query and its work (queries = 1).
+template <typename Query, bool Robust, int N, typename Answer>
+void traceAsPackets(const WideBvh<N>& bvh, std::span<const Ray> rays, int fallback, Answer&& answer) {
+    constexpr int K = kPacketWidth;
+    Ray packet[K];
+    size_t index[K];
+    int count = 0;
+    const auto trace = [&] {
+        tracePacket<Query, Robust, K>(bvh, packet, count, fallback,
+                                      [&](int k, const Query& query, const QueryCounters& work) { answer(index[k], query, work); });
+        count = 0;
+    };
+    for (size_t i = 0; i < rays.size(); ++i) {
+        const Ray& ray = rays[i];
+        if (bvh.empty() || !ray.isValid() || ray.tmin < 0.0f) {
+            QueryCounters work;
+            const Query query = runQuery<Query, Robust>(bvh, ray, work);
+            answer(i, query, work);
+            continue;
+        }
+        packet[count] = ray;
+        index[count++] = i;
+        if (count == K) trace();
+    }
+    if (count != 0) trace();
+}
+
+}  // namespace bvhlab
