@@ -9,12 +9,14 @@ void registerBvhKeys(EnvRegistry& r) {
     for (const FloatKey& key : {cTraversal, cIntersect, sbvhAlpha, sbvhGrowth}) r.add(key);
     r.add(tdbvhSplit);
     r.add(optimize);
+    r.add(isa);
 }
 
 std::vector<std::string_view> bvhCommonKeys() {
     using namespace keys::BVH;
     return {maxLeaf.name(), leafCap.name(), cTraversal.name(),      cIntersect.name(), keys::BVH::simd.name(),
-            robust.name(),  threads.name(), epoMaxTriangles.name(), optimize.name(),   optimizeIterations.name()};
+            robust.name(),  threads.name(), epoMaxTriangles.name(), optimize.name(),   optimizeIterations.name(),
+            isa.name()};
 }
 
 BvhBuildConfig bvhConfigFromEnv(const Env& env) {
@@ -46,6 +48,9 @@ BvhStatsConfig statsConfigFromEnv(const Env& env) {
 TraversalConfig traversalConfigFromEnv(const Env& env) {
     TraversalConfig c;
     c.robust = env.get(keys::BVH::robust);
+    const std::string isa = env.get(keys::BVH::isa);
+    for (Isa i : {Isa::Auto, Isa::Scalar, Isa::Avx2, Isa::Avx512})
+        if (isa == isaName(i)) c.isa = i;
     return c;
 }
 

@@ -46,6 +46,11 @@ inline constexpr BoolKey robust{
     "BVH::robust", "true",
     "traversal: watertight triangle test and conservative box test; false = Moeller-Trumbore and plain boxes "
     "(not watertight), only to measure what robustness costs"};
+inline constexpr std::string_view kIsas[] = {"auto", "scalar", "avx2", "avx512"};
+inline constexpr ChoiceKey isa{
+    "BVH::isa", "auto", kIsas,
+    "traversal: the SIMD kernels to run, auto = the best this CPU runs (avx512, avx2: x86-64-v4, -v3; scalar: the "
+    "x86-64 baseline); all answer bit for bit alike; one the CPU cannot run is an error"};
 inline constexpr IntKey threads{"BVH::threads", "0", 0, 1024,
                                 "build threads; 0 = as SetRayTracing::threads (0 there: all hardware threads). The "
                                 "tree is the same whatever the count"};

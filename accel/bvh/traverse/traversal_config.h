@@ -4,11 +4,16 @@
 
 namespace bvhlab {
 
+// BVH::isa: which compilation of the traversal kernels runs (traversal_kernels.h). Auto: the
+// best the CPU runs.
+enum class Isa { Auto, Scalar, Avx2, Avx512 };
+
 struct TraversalConfig {
     // BVH::robust. true: the watertight triangle test and the conservative box test (box_test.h);
     // false: Moeller-Trumbore and plain boxes (not watertight), only to measure what
     // robustness costs.
     bool robust = true;
+    Isa isa = Isa::Auto;
 };
 
 }  // namespace bvhlab
