@@ -3,7 +3,8 @@
 
 #include "accel/bvh/layout/end_point_overlap.h"
 #include "accel/bvh/traverse/bvh_traversal.h"
-#include "accel/bvh/traverse/packet_traversal.h"
+
+#include <fmt/format.h>
 
 #include <bit>
 #include <type_traits>
@@ -26,7 +27,8 @@ struct LayoutWidth<WideBvh<N>> {
 template <typename Layout>
 BvhAccelerator<Layout>::BvhAccelerator(BvhBuilder builder, const BvhBuildConfig& build, const TraversalConfig& traversal,
                                        const BvhStatsConfig& stats)
-    : builder_(std::move(builder)), build_(build), traversal_(traversal), stats_(stats), name_(builder_.name) {
+    : builder_(std::move(builder)), build_(build), traversal_(traversal), kernels_(traversalKernels<Layout>(traversal)),
+      stats_(stats), name_(builder_.name) {
     if constexpr (LayoutWidth<Layout>::value > 2) {
         name_ += std::to_string(LayoutWidth<Layout>::value);
         // The leaves test a block of triangles at a time: the SAH charges them so.
@@ -77,6 +79,9 @@ BuildStats BvhAccelerator<Layout>::statistics() const {
         const Bounds3 triangleRoot = binary.empty() ? Bounds3() : binary.nodes[0].box();
         combineTreeStats(stats, triangleRoot, quadricStats, quadrics_.nodes[0].box());
     }
+    stats.figures.push_back({"kernel_bits", double(isaVectorBits(kernels_.isa)),
+                             fmt::format("vector width of the traversal kernels that ran: {} (BVH::isa={})",
+                                         isaName(kernels_.isa), isaName(traversal_.isa))});
     statistics_ = stats;
     binary_ = Bvh();
     return stats;
@@ -94,14 +99,14 @@ const Bvh& BvhAccelerator<Layout>::binaryTree() const {
 // quadric tree's traversal cost triangle-only scenes 7-14 % per query, measured).
 template <typename Layout>
 bool BvhAccelerator<Layout>::findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const {
-    const bool found = bvhlab::findNearest(tree_, ray, hit, counters, traversal_);
+    const bool found = kernels_.findNearest(tree_, ray, hit, counters);
     if (quadrics_.empty()) [[likely]] return found;
     return findNearestQuadric(ray, found, hit, counters);
 }
 
 template <typename Layout>
 bool BvhAccelerator<Layout>::isOccluded(const Ray& ray, QueryCounters& counters) const {
-    if (bvhlab::isOccluded(tree_, ray, counters, traversal_)) return true;
+    if (kernels_.isOccluded(tree_, ray, counters)) return true;
     if (quadrics_.empty()) [[likely]] return false;
     return isOccludedQuadric(ray, counters);
 }
@@ -109,62 +114,27 @@ bool BvhAccelerator<Layout>::isOccluded(const Ray& ray, QueryCounters& counters)
 template <typename Layout>
 void BvhAccelerator<Layout>::findNearestBatch(std::span<const Ray> rays, std::span<Hit> hits, QueryCounters& counters,
                                               std::span<RayCost> costs) const {
-    if (traversal_.robust) findNearestRange<true>(rays, hits, counters, costs);
-    else findNearestRange<false>(rays, hits, counters, costs);
+    if (quadrics_.empty()) [[likely]]
+        return kernels_.findNearestBatch(tree_, rays, hits, counters, costs, traversal_.packetFallback);
+    for (size_t i = 0; i < rays.size(); ++i) {
+        const QueryCounters before = counters;
+        Hit hit;
+        findNearest(rays[i], hit, counters);
+        hits[i] = hit;
+        if (!costs.empty()) costs[i] = costBetween(before, counters);
+    }
 }
 
 template <typename Layout>
 void BvhAccelerator<Layout>::isOccludedBatch(std::span<const Ray> rays, std::span<uint8_t> occluded,
                                              QueryCounters& counters, std::span<RayCost> costs) const {
-    if (traversal_.robust) isOccludedRange<true>(rays, occluded, counters, costs);
-    else isOccludedRange<false>(rays, occluded, counters, costs);
-}
-
-// The wide layouts trace a batch in packets (packet_traversal.h), the binary one ray by ray;
-// either hands each ray's query and work to the same answer.
-template <typename Layout>
-template <typename Query, bool Robust, typename Answer>
-void BvhAccelerator<Layout>::traceRange(std::span<const Ray> rays, Answer&& answer) const {
-    if constexpr (LayoutWidth<Layout>::value > 2) {
-        traceAsPackets<Query, Robust>(tree_, rays, traversal_.packetFallback, answer);
-    } else {
-        for (size_t i = 0; i < rays.size(); ++i) {
-            QueryCounters work;
-            const Query query = runQuery<Query, Robust>(tree_, rays[i], work);
-            answer(i, query, work);
-        }
+    if (quadrics_.empty()) [[likely]]
+        return kernels_.isOccludedBatch(tree_, rays, occluded, counters, costs, traversal_.packetFallback);
+    for (size_t i = 0; i < rays.size(); ++i) {
+        const QueryCounters before = counters;
+        occluded[i] = isOccluded(rays[i], counters) ? 1 : 0;
+        if (!costs.empty()) costs[i] = costBetween(before, counters);
     }
-}
-
-template <typename Layout>
-template <bool Robust>
-void BvhAccelerator<Layout>::findNearestRange(std::span<const Ray> rays, std::span<Hit> hits, QueryCounters& counters,
-                                              std::span<RayCost> costs) const {
-    const bool withQuadrics = !quadrics_.empty();
-    traceRange<ClosestHitQuery, Robust>(rays, [&](size_t i, const ClosestHitQuery& query, const QueryCounters& work) {
-        const QueryCounters before = counters;
-        counters += work;
-        Hit hit;
-        const bool found = answerOf(tree_, query, hit);
-        if (withQuadrics) findNearestQuadric(rays[i], found, hit, counters);
-        hits[i] = hit;
-        if (!costs.empty()) costs[i] = costBetween(before, counters);
-    });
-}
-
-template <typename Layout>
-template <bool Robust>
-void BvhAccelerator<Layout>::isOccludedRange(std::span<const Ray> rays, std::span<uint8_t> occluded,
-                                             QueryCounters& counters, std::span<RayCost> costs) const {
-    const bool withQuadrics = !quadrics_.empty();
-    traceRange<AnyHitQuery, Robust>(rays, [&](size_t i, const AnyHitQuery& query, const QueryCounters& work) {
-        const QueryCounters before = counters;
-        counters += work;
-        bool answer = query.occluded;
-        if (!answer && withQuadrics) answer = isOccludedQuadric(rays[i], counters);
-        occluded[i] = answer ? 1 : 0;
-        if (!costs.empty()) costs[i] = costBetween(before, counters);
-    });
 }
 
 template <typename Layout>

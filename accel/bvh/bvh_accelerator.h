@@ -10,6 +10,7 @@
 #include "accel/bvh/builders/bvh_builder.h"
 #include "accel/bvh/layout/wide_bvh.h"
 #include "accel/bvh/traverse/traversal_config.h"
+#include "accel/bvh/traverse/traversal_kernels.h"
 #include "framework/core/accelerator.h"
 
 #include <optional>
@@ -37,8 +38,8 @@ public:
     BuildStats statistics() const override;
     bool findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const override;
     bool isOccluded(const Ray& ray, QueryCounters& counters) const override;
-    // The robustness setting is chosen once per batch; the quadric tree's part is skipped as
-    // a whole when the scene has none.
+    // Without quadrics a batch is the kernel's batch call (packets on the wide layouts); with
+    // them, ray by ray.
     void findNearestBatch(std::span<const Ray> rays, std::span<Hit> hits, QueryCounters& counters,
                           std::span<RayCost> costs) const override;
     void isOccludedBatch(std::span<const Ray> rays, std::span<uint8_t> occluded, QueryCounters& counters,
@@ -52,18 +53,12 @@ private:
     // The quadric tree's part of a query (after the triangles'), kept out of the hot path.
     [[gnu::noinline]] bool findNearestQuadric(const Ray& ray, bool found, Hit& hit, QueryCounters& counters) const;
     [[gnu::noinline]] bool isOccludedQuadric(const Ray& ray, QueryCounters& counters) const;
-    template <typename Query, bool Robust, typename Answer>
-    void traceRange(std::span<const Ray> rays, Answer&& answer) const;
-    template <bool Robust>
-    void findNearestRange(std::span<const Ray> rays, std::span<Hit> hits, QueryCounters& counters,
-                          std::span<RayCost> costs) const;
-    template <bool Robust>
-    void isOccludedRange(std::span<const Ray> rays, std::span<uint8_t> occluded, QueryCounters& counters,
-                         std::span<RayCost> costs) const;
-
     BvhBuilder builder_;
     BvhBuildConfig build_;
     TraversalConfig traversal_;
+    // The triangle tree's queries, compiled for the ISA BVH::isa names or the CPU's best
+    // (traversal_kernels.h): chosen once, here, with the robustness setting.
+    TraversalKernels<Layout> kernels_;
     BvhStatsConfig stats_;
     std::string name_;  // the builder's name, with the width of a wide layout: sahbvh, sahbvh4
     Layout tree_;

@@ -10,13 +10,14 @@ void registerBvhKeys(EnvRegistry& r) {
     for (const FloatKey& key : {cTraversal, cIntersect, sbvhAlpha, sbvhGrowth}) r.add(key);
     r.add(tdbvhSplit);
     r.add(optimize);
+    r.add(isa);
 }
 
 std::vector<std::string_view> bvhCommonKeys() {
     using namespace keys::BVH;
     return {maxLeaf.name(), leafCap.name(), cTraversal.name(),      cIntersect.name(), keys::BVH::simd.name(),
             robust.name(),  threads.name(), epoMaxTriangles.name(), optimize.name(),   optimizeIterations.name(),
-            packetFallback.name()};
+            packetFallback.name(), isa.name()};
 }
 
 BvhBuildConfig bvhConfigFromEnv(const Env& env) {
@@ -49,6 +50,9 @@ TraversalConfig traversalConfigFromEnv(const Env& env) {
     TraversalConfig c;
     c.robust = env.get(keys::BVH::robust);
     c.packetFallback = env.get(keys::BVH::packetFallback);
+    const std::string isa = env.get(keys::BVH::isa);
+    for (Isa i : {Isa::Auto, Isa::Scalar, Isa::Avx2, Isa::Avx512})
+        if (isa == isaName(i)) c.isa = i;
     return c;
 }
 

@@ -51,6 +51,11 @@ inline constexpr IntKey packetFallback{
     "batch queries on the wide layouts (sahbvh4, sahbvh8) trace packets of 8 consecutive rays (16 with AVX-512); a "
     "node reached by at most this many rays of a packet is finished ray by ray (Benthin et al. 2012); 16 or more = "
     "every ray alone. Answers are the same whatever the value"};
+inline constexpr std::string_view kIsas[] = {"auto", "scalar", "avx2", "avx512"};
+inline constexpr ChoiceKey isa{
+    "BVH::isa", "auto", kIsas,
+    "traversal: the SIMD kernels to run, auto = the best this CPU runs (avx512, avx2: x86-64-v4, -v3; scalar: the "
+    "x86-64 baseline); all answer bit for bit alike; one the CPU cannot run is an error"};
 inline constexpr IntKey threads{"BVH::threads", "0", 0, 1024,
                                 "build threads; 0 = as SetRayTracing::threads (0 there: all hardware threads). The "
                                 "tree is the same whatever the count"};

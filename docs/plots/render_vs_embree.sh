@@ -10,8 +10,11 @@ ROUNDS=${2:-3}
 mkdir -p "$OUT"
 for scene in conference sibenik teapots; do
     for r in $(seq 1 "$ROUNDS"); do
-        ./build/bvhlab render --scene $scene --threads 1 --out "$OUT/$scene-ours-$r" > /dev/null
-        ./build/bvhlab render --scene $scene --threads 1 -DASDS::type=embree --out "$OUT/$scene-embree-$r" > /dev/null
+        for run in "ours" "embree -DASDS::type=embree"; do
+            set -- $run
+            ./build/bvhlab render --scene $scene --threads 1 ${2:-} --out "$OUT/$scene-$1-$r" > "$OUT/$scene-$1-$r.log" 2>&1 ||
+                { echo "render of $scene ($1) failed: $OUT/$scene-$1-$r.log" >&2; exit 1; }
+        done
     done
 done
 /usr/bin/python3 - "$OUT" "$ROUNDS" <<'PY'

@@ -156,7 +156,8 @@ public:
         return nullptr;
     }
 
-protected:
+    // A ray's work, from the counters before and after its query: for the batch calls' costs
+    // (also those of a structure's SIMD kernels, which are no Accelerator).
     static RayCost costBetween(const QueryCounters& before, const QueryCounters& after) {
         return {uint32_t(after.intersectionTests - before.intersectionTests),
                 uint32_t(after.traversalSteps - before.traversalSteps)};

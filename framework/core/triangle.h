@@ -31,7 +31,9 @@ struct ShearedRayT {
     int kx, ky, kz;
     Real sx, sy, sz;
 
-    explicit ShearedRayT(const Ray& ray) : org(ray.org) {
+    // Always inlined: the traversal kernels, compiled once per ISA (accel/bvh/traverse/
+    // traversal_kernels.h), must not leave a copy of their own that the linker could pick.
+    [[gnu::always_inline]] explicit ShearedRayT(const Ray& ray) : org(ray.org) {
         const V dir(ray.dir);
         const V a = glm::abs(dir);
         kz = (a.x >= a.y && a.x >= a.z) ? 0 : (a.y >= a.z ? 1 : 2);

@@ -10,6 +10,22 @@
 
 namespace bvhlab::test {
 
+void addLatticeSquares(Soup& soup, int planes, int cells) {
+    for (int axis = 0; axis < 3; ++axis) {
+        const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+        for (int i = 0; i <= planes; ++i)
+            for (int j = 0; j < cells; ++j)
+                for (int k = 0; k < cells; ++k) {
+                    Vec3 p0(0.0f), p1(0.0f), p2(0.0f), p3(0.0f);
+                    p0[axis] = p1[axis] = p2[axis] = p3[axis] = float(i);
+                    p0[u] = p3[u] = float(j), p1[u] = p2[u] = float(j + 1);
+                    p0[v] = p1[v] = float(k), p2[v] = p3[v] = float(k + 1);
+                    soup.add({p0, p1, p2});
+                    soup.add({p0, p2, p3});
+                }
+    }
+}
+
 Soup randomSoup(size_t n, uint32_t seed, float extent, float size) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<float> pos(0.0f, extent), offset(-size, size);

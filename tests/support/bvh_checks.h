@@ -13,6 +13,11 @@ namespace bvhlab::test {
 // Triangles with corners in [0, extent)^3 and edge lengths up to `size`.
 Soup randomSoup(size_t n, uint32_t seed, float extent = 10.0f, float size = 1.0f);
 
+// Unit squares (two triangles each) facing each axis on the lattice planes 0..planes, over
+// [0, cells)^2 of the other two axes: rays along an axis start on node box planes and graze
+// the squares' edges.
+void addLatticeSquares(Soup& soup, int planes, int cells);
+
 struct TreeFacts {
     size_t nodes = 0, leaves = 0, maxLeaf = 0;
     int maxDepth = 0;

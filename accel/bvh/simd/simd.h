@@ -2,11 +2,14 @@
 // three backends of the same API:
 //   Scalar<N>  plain C++, any N, any target: the reference, and what BVH::simd=false runs;
 //   Sse        4 lanes of SSE2, which every x86-64 CPU has;
-//   Avx        8 lanes of AVX2 with FMA (only where __AVX2__ and __FMA__, e.g. -march=native).
+//   Avx        8 lanes of AVX2 with FMA (only where __AVX2__ and __FMA__, e.g. -march=native);
+//   Avx512     16 lanes of AVX-512 (only where __AVX512F__, __AVX512DQ__ and __AVX512VL__).
 // Floats<N> is the best backend for N lanes on this target (Scalar<N> where there is none).
 // Every operation is one IEEE operation per lane, so the backends agree bit for bit (a test
 // runs them side by side, NaN and inf included): no tree and no hit depends on the backend.
 #pragma once
+
+#include "accel/bvh/simd/kernel_namespace.h"
 
 #include <cmath>
 #include <cstdint>
@@ -16,7 +19,9 @@
 #include <immintrin.h>
 #endif
 
-namespace bvhlab::simd {
+namespace bvhlab {
+inline namespace BVHLAB_KERNEL_NS {
+namespace simd {
 
 // The NaN rule of every min and max in the BVH, that of SSE's minps/maxps: the second operand
 // unless the first compares less (greater). So min(NaN, b) = b, min(a, NaN) = NaN and
@@ -244,6 +249,60 @@ struct Avx {
 };
 #endif
 
+#if defined(__AVX512F__) && defined(__AVX512DQ__) && defined(__AVX512VL__)
+// GCC 12's AVX-512 intrinsics start from _mm512_undefined_*(), which -Wuninitialized and
+// -Wmaybe-uninitialized report once inlined (GCC bug 105593, fixed in 13): not ours to fix.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wuninitialized"
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+struct Avx512 {
+    static constexpr int kLanes = 16;
+    struct Mask {
+        __mmask16 m;  // lane i in bit i
+        friend Mask operator&(Mask a, Mask b) { return {__mmask16(a.m & b.m)}; }
+        friend Mask operator|(Mask a, Mask b) { return {__mmask16(a.m | b.m)}; }
+    };
+    __m512 v;
+
+    static Avx512 load(const float* p) { return {_mm512_load_ps(p)}; }  // p 64-byte aligned
+    static Avx512 loadu(const float* p) { return {_mm512_loadu_ps(p)}; }
+    static Avx512 broadcast(float x) { return {_mm512_set1_ps(x)}; }
+    void store(float* p) const { _mm512_store_ps(p, v); }
+    void storeu(float* p) const { _mm512_storeu_ps(p, v); }
+    void truncateToInt(int32_t* out) const { _mm512_storeu_si512(out, _mm512_cvttps_epi32(v)); }
+
+    friend Avx512 operator+(Avx512 a, Avx512 b) { return {_mm512_add_ps(a.v, b.v)}; }
+    friend Avx512 operator-(Avx512 a, Avx512 b) { return {_mm512_sub_ps(a.v, b.v)}; }
+    friend Avx512 operator*(Avx512 a, Avx512 b) { return {_mm512_mul_ps(a.v, b.v)}; }
+    friend Avx512 operator/(Avx512 a, Avx512 b) { return {_mm512_div_ps(a.v, b.v)}; }
+    friend Avx512 differenceOfProducts(Avx512 a, Avx512 b, Avx512 c, Avx512 d) {
+        const auto half = [](__m256 a, __m256 b, __m256 c, __m256 d) {
+            return _mm512_cvtpd_ps(_mm512_sub_pd(_mm512_mul_pd(_mm512_cvtps_pd(a), _mm512_cvtps_pd(b)),
+                                                 _mm512_mul_pd(_mm512_cvtps_pd(c), _mm512_cvtps_pd(d))));
+        };
+        const auto lo = [](__m512 x) { return _mm512_castps512_ps256(x); };
+        const auto hi = [](__m512 x) { return _mm512_extractf32x8_ps(x, 1); };
+        const __m256 low = half(lo(a.v), lo(b.v), lo(c.v), lo(d.v));
+        const __m256 high = half(hi(a.v), hi(b.v), hi(c.v), hi(d.v));
+        return {_mm512_insertf32x8(_mm512_castps256_ps512(low), high, 1)};
+    }
+    friend Avx512 fmadd(Avx512 a, Avx512 b, Avx512 c) { return {_mm512_fmadd_ps(a.v, b.v, c.v)}; }
+    friend Avx512 fmsub(Avx512 a, Avx512 b, Avx512 c) { return {_mm512_fmsub_ps(a.v, b.v, c.v)}; }
+    friend Avx512 abs(Avx512 a) { return {_mm512_abs_ps(a.v)}; }
+    // vminps/vmaxps: the second operand when either is NaN, as minps.
+    friend Avx512 min(Avx512 a, Avx512 b) { return {_mm512_min_ps(a.v, b.v)}; }
+    friend Avx512 max(Avx512 a, Avx512 b) { return {_mm512_max_ps(a.v, b.v)}; }
+    friend Mask operator<=(Avx512 a, Avx512 b) { return {_mm512_cmp_ps_mask(a.v, b.v, _CMP_LE_OQ)}; }
+    friend Mask operator>=(Avx512 a, Avx512 b) { return {_mm512_cmp_ps_mask(a.v, b.v, _CMP_GE_OQ)}; }
+    friend Mask operator<(Avx512 a, Avx512 b) { return {_mm512_cmp_ps_mask(a.v, b.v, _CMP_LT_OQ)}; }
+    friend Mask operator>(Avx512 a, Avx512 b) { return {_mm512_cmp_ps_mask(a.v, b.v, _CMP_GT_OQ)}; }
+    friend Mask operator!=(Avx512 a, Avx512 b) { return {_mm512_cmp_ps_mask(a.v, b.v, _CMP_NEQ_UQ)}; }  // true on NaN
+    friend int movemask(Mask m) { return int(m.m); }
+    friend Avx512 select(Mask m, Avx512 a, Avx512 b) { return {_mm512_mask_blend_ps(m.m, b.v, a.v)}; }
+};
+#pragma GCC diagnostic pop
+#endif
+
 namespace detail {
 template <int N>
 struct Best {
@@ -261,6 +320,12 @@ struct Best<8> {
     using type = Avx;
 };
 #endif
+#if defined(__AVX512F__) && defined(__AVX512DQ__) && defined(__AVX512VL__)
+template <>
+struct Best<16> {
+    using type = Avx512;
+};
+#endif
 }  // namespace detail
 
 template <int N>
@@ -274,4 +339,6 @@ decltype(auto) withFloats4(bool vector, F&& f) {
     return f(Scalar<4>{});
 }
 
-}  // namespace bvhlab::simd
+}  // namespace simd
+}  // namespace BVHLAB_KERNEL_NS
+}  // namespace bvhlab

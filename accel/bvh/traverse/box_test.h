@@ -20,6 +20,7 @@
 // never a missed hit. The entry distance itself is never NaN (tmin is not).
 #pragma once
 
+#include "accel/bvh/simd/kernel_namespace.h"
 #include "accel/bvh/layout/bvh_node.h"
 #include "accel/bvh/layout/wide_bvh.h"
 #include "accel/bvh/simd/simd.h"
@@ -29,6 +30,7 @@
 #include <limits>
 
 namespace bvhlab {
+inline namespace BVHLAB_KERNEL_NS {
 
 // pbrt's gamma(n) = n*u/(1 - n*u), u = 2^-24: the bound on the relative error of n roundings.
 constexpr float gammaBound(int n) {
@@ -143,4 +145,5 @@ struct WideBoxTest : RaySlabs<Robust> {
     }
 };
 
+}  // namespace BVHLAB_KERNEL_NS
 }  // namespace bvhlab

@@ -4,6 +4,7 @@
 // first (by the entry distances), the other pushed.
 #pragma once
 
+#include "accel/bvh/simd/kernel_namespace.h"
 #include "accel/bvh/layout/bvh.h"
 #include "accel/bvh/traverse/box_test.h"
 #include "accel/bvh/traverse/traversal.h"
@@ -11,6 +12,7 @@
 #include <cassert>
 
 namespace bvhlab {
+inline namespace BVHLAB_KERNEL_NS {
 
 namespace binary_traversal {
 
@@ -94,4 +96,5 @@ Query traverse(const NodeTree<BvhNode, Leaves>& bvh, const Ray& ray, QueryCounte
     return query;
 }
 
+}  // namespace BVHLAB_KERNEL_NS
 }  // namespace bvhlab

@@ -21,6 +21,7 @@
 // so hits shorten a ray's interval at other times: totals differ from single-ray totals.
 #pragma once
 
+#include "accel/bvh/simd/kernel_namespace.h"
 #include "accel/bvh/traverse/wide_bvh_traversal.h"
 
 #include <array>
@@ -30,6 +31,7 @@
 #include <utility>
 
 namespace bvhlab {
+inline namespace BVHLAB_KERNEL_NS {
 
 // Rays per packet: 16 where the SIMD layer has 16-lane floats (AVX-512), else 8.
 inline constexpr int kPacketWidth = std::is_same_v<simd::Floats<16>, simd::Scalar<16>> ? 8 : 16;
@@ -232,4 +234,5 @@ void traceAsPackets(const WideBvh<N>& bvh, std::span<const Ray> rays, int fallba
     if (count != 0) trace();
 }
 
+}  // namespace BVHLAB_KERNEL_NS
 }  // namespace bvhlab

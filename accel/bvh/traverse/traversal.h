@@ -21,6 +21,7 @@
 // joined bvh_accelerator.cpp; the trees and the work counted were the same).
 #pragma once
 
+#include "accel/bvh/simd/kernel_namespace.h"
 #include "accel/bvh/layout/leaf_arrays.h"
 #include "accel/bvh/layout/quadric_leaves.h"
 #include "accel/bvh/traverse/traversal_config.h"
@@ -29,6 +30,7 @@
 #include "framework/core/triangle_moller_trumbore.h"
 
 namespace bvhlab {
+inline namespace BVHLAB_KERNEL_NS {
 
 // The leaves' triangle test: the shared watertight one, or Moeller-Trumbore when robustness
 // is switched off (BVH::robust=false).
@@ -172,4 +174,5 @@ bool isOccluded(const Tree& tree, const Ray& ray, QueryCounters& counters, const
     return runQuery<AnyHitQuery>(tree, ray, config, counters).occluded;
 }
 
+}  // namespace BVHLAB_KERNEL_NS
 }  // namespace bvhlab

@@ -4,6 +4,10 @@
 
 namespace bvhlab {
 
+// BVH::isa: which compilation of the traversal kernels runs (traversal_kernels.h). Auto: the
+// best the CPU runs.
+enum class Isa { Auto, Scalar, Avx2, Avx512 };
+
 struct TraversalConfig {
     // BVH::robust. true: the watertight triangle test and the conservative box test (box_test.h);
     // false: Moeller-Trumbore and plain boxes (not watertight), only to measure what
@@ -13,6 +17,8 @@ struct TraversalConfig {
     // node reached by at most this many active rays of a packet is finished ray by ray.
     // Measured best: docs/performance.md, "Issue #31 — packets".
     int packetFallback = 2;
+    // BVH::isa.
+    Isa isa = Isa::Auto;
 };
 
 }  // namespace bvhlab

@@ -6,11 +6,13 @@
 // binary one, and agree with it hit for hit.
 #pragma once
 
+#include "accel/bvh/simd/kernel_namespace.h"
 #include "accel/bvh/layout/triangle_blocks.h"
 #include "accel/bvh/simd/simd.h"
 #include "framework/core/triangle.h"
 
 namespace bvhlab {
+inline namespace BVHLAB_KERNEL_NS {
 
 // The hits of one block: a lane mask and each lane's t, u, v.
 struct BlockHits {
@@ -151,4 +153,5 @@ template <typename Query, bool Robust>
     return false;
 }
 
+}  // namespace BVHLAB_KERNEL_NS
 }  // namespace bvhlab

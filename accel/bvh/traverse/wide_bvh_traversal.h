@@ -3,6 +3,7 @@
 // nearest is visited first. N_TR counts the steps, i.e. wide nodes and leaves visited.
 #pragma once
 
+#include "accel/bvh/simd/kernel_namespace.h"
 #include "accel/bvh/layout/wide_bvh.h"
 #include "accel/bvh/traverse/box_test.h"
 #include "accel/bvh/traverse/traversal.h"
@@ -11,6 +12,7 @@
 #include <cassert>
 
 namespace bvhlab {
+inline namespace BVHLAB_KERNEL_NS {
 
 namespace wide_traversal {
 
@@ -131,4 +133,5 @@ Query traverse(const WideBvh<N>& bvh, const Ray& ray, QueryCounters& counters) {
     return query;
 }
 
+}  // namespace BVHLAB_KERNEL_NS
 }  // namespace bvhlab

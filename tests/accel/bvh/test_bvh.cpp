@@ -335,19 +335,7 @@ TEST(Bvh, AxisParallelRaysAlongBoxFaces) {
     // than turned into misses, also on the outer faces where no other box takes over; -0
     // direction components must behave like +0.
     Soup soup;
-    for (int axis = 0; axis < 3; ++axis) {
-        const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-        for (int i = 0; i <= 4; ++i)
-            for (int j = 0; j < 4; ++j)
-                for (int k = 0; k < 4; ++k) {
-                    Vec3 p0(0.0f), p1(0.0f), p2(0.0f), p3(0.0f);
-                    p0[axis] = p1[axis] = p2[axis] = p3[axis] = float(i);
-                    p0[u] = p3[u] = float(j), p1[u] = p2[u] = float(j + 1);
-                    p0[v] = p1[v] = float(k), p2[v] = p3[v] = float(k + 1);
-                    soup.add({p0, p1, p2});
-                    soup.add({p0, p2, p3});
-                }
-    }
+    test::addLatticeSquares(soup, 4, 4);
     NaiveAccelerator naive;
     naive.build(soup.prims());
     for (const BvhBuilder& kind : allBuilders()) {

@@ -134,8 +134,10 @@ bool bitEqual(const Hit& a, const Hit& b) { return std::memcmp(&a, &b, sizeof(Hi
 // between leaves whose box the hit point bounds (rays through an edge shared by two leaves'
 // triangles): the box test's entry there may round above the hit's t, so the leaf visited
 // second is culled and the tie rule never sees it. Which triangle is reported then depends on
-// the visit order (docs/architecture.md, Packets).
-enum class Match { Bits, TiesAtLeafBoundaries };
+// the visit order (docs/architecture.md, Packets). Without robustness (BVH::robust=false:
+// Moeller-Trumbore, no far margin) the same happens to near ties, hits within rounding of
+// each other: t then agrees within the oracle's tolerance (hitsAgree), not bit for bit.
+enum class Match { Bits, TiesAtLeafBoundaries, NearTiesAtLeafBoundaries };
 
 // The batch calls against the single-ray calls on `rays`; `hitsExpected`: at least a tenth
 // of the rays hit (occluded, for shadow rays).
@@ -160,8 +162,10 @@ void expectBatchAsSingle(const Accelerator& accel, const std::vector<Ray>& rays,
     size_t failures = 0, ties = 0;
     for (size_t i = 0; i < rays.size(); ++i) {
         if (bitEqual(hits[i], expected[i]) && occluded[i] == expectedOcc[i]) continue;
-        const bool sameT = std::memcmp(&hits[i].t, &expected[i].t, sizeof(float)) == 0;
-        if (match == Match::TiesAtLeafBoundaries && sameT && occluded[i] == expectedOcc[i]) {
+        const bool tie = match == Match::TiesAtLeafBoundaries
+                             ? std::memcmp(&hits[i].t, &expected[i].t, sizeof(float)) == 0
+                             : match == Match::NearTiesAtLeafBoundaries && hitsAgree(hits[i], expected[i]);
+        if (tie && occluded[i] == expectedOcc[i]) {
             ++ties;
             continue;
         }
@@ -198,7 +202,8 @@ void expectPacketsAsSingle(const Soup& soup, Match axisParallel = Match::Bits) {
             // Low and behind the wall of duplicatesScene, so that many shadow rays are occluded.
             expectBatchAsSingle(accel, shadowRays(accel, primary, Vec3(2, 1.5f, -25)), "shadow");
             expectBatchAsSingle(accel, incoherentRays(4000, 3), "incoherent");
-            expectBatchAsSingle(accel, axisAndGrazingRays(5), "axis-parallel and grazing", axisParallel);
+            const Match boundary = robust || axisParallel == Match::Bits ? axisParallel : Match::NearTiesAtLeafBoundaries;
+            expectBatchAsSingle(accel, axisAndGrazingRays(5), "axis-parallel and grazing", boundary);
         }
 }
 

@@ -1,7 +1,10 @@
 // The SIMD layer's backends agree bit for bit: the same random lanes, NaN, infinities, signed
 // zeros and denormals included, through Scalar<N> and the vector backend of N lanes (Sse,
-// Avx where the target has AVX2) give the same bits for every operation.
+// Avx where the target has AVX2, Avx512 where it has AVX-512, and Avx512 compiled apart for
+// x86-64-v4 wherever the CPU runs it) give the same bits for every operation.
 #include "accel/bvh/simd/simd.h"
+#include "accel/bvh/traverse/traversal_kernels.h"
+#include "tests/accel/bvh/simd_ops.h"
 
 #include <gtest/gtest.h>
 
@@ -12,6 +15,9 @@
 #include <random>
 
 namespace bvhlab {
+namespace test {
+void avx512SimdOpResults(const float* a, const float* b, const float* c, uint32_t* out);
+}  // namespace test
 namespace {
 
 float specialOrRandom(std::mt19937& rng) {
@@ -22,58 +28,39 @@ float specialOrRandom(std::mt19937& rng) {
     return std::uniform_real_distribution<float>(-100.0f, 100.0f)(rng);
 }
 
-template <typename F>
-void expectLanes(const F& v, const float* expected, const char* what) {
-    alignas(32) float lanes[F::kLanes];
-    v.storeu(lanes);
-    for (int i = 0; i < F::kLanes; ++i)
-        EXPECT_EQ(std::bit_cast<uint32_t>(lanes[i]), std::bit_cast<uint32_t>(expected[i])) << what << " lane " << i;
-}
+// Random lanes a, b (a fourth special values) and c (finite, for the truncation).
+struct OpInputs {
+    alignas(64) float a[16], b[16], c[16];
 
-// Runs every operation on Vector and on Scalar<N> and compares the bits.
-template <typename Vector>
-void expectBackendsAgree(uint32_t seed) {
-    constexpr int N = Vector::kLanes;
-    using Reference = simd::Scalar<N>;
-    std::mt19937 rng(seed);
-    for (int round = 0; round < 2000; ++round) {
-        alignas(32) float a[N], b[N];
-        for (int i = 0; i < N; ++i) a[i] = specialOrRandom(rng), b[i] = specialOrRandom(rng);
-        const Vector va = Vector::load(a), vb = Vector::loadu(b);
-        const Reference ra = Reference::load(a), rb = Reference::loadu(b);
-        alignas(32) float r[N];
-        (ra + rb).storeu(r), expectLanes(va + vb, r, "+");
-        (ra - rb).storeu(r), expectLanes(va - vb, r, "-");
-        (ra * rb).storeu(r), expectLanes(va * vb, r, "*");
-        (ra / rb).storeu(r), expectLanes(va / vb, r, "/");
-        differenceOfProducts(ra, rb, rb, rb * ra).storeu(r);
-        expectLanes(differenceOfProducts(va, vb, vb, vb * va), r, "differenceOfProducts");
-        fmadd(ra, rb, rb * ra).storeu(r), expectLanes(fmadd(va, vb, vb * va), r, "fmadd");
-        fmsub(ra, rb, rb * ra).storeu(r), expectLanes(fmsub(va, vb, vb * va), r, "fmsub");
-        abs(ra).storeu(r), expectLanes(abs(va), r, "abs");
-        min(ra, rb).storeu(r), expectLanes(min(va, vb), r, "min");
-        max(ra, rb).storeu(r), expectLanes(max(va, vb), r, "max");
-        select(ra >= rb, ra, rb).storeu(r), expectLanes(select(va >= vb, va, vb), r, "select");
-        Reference::broadcast(a[0]).storeu(r), expectLanes(Vector::broadcast(a[0]), r, "broadcast");
-        EXPECT_EQ(movemask(va <= vb), movemask(ra <= rb));
-        EXPECT_EQ(movemask(va >= vb), movemask(ra >= rb));
-        EXPECT_EQ(movemask(va < vb), movemask(ra < rb));
-        EXPECT_EQ(movemask(va > vb), movemask(ra > rb));
-        EXPECT_EQ(movemask(va != vb), movemask(ra != rb));
-        EXPECT_EQ(movemask((va < vb) & (va != vb)), movemask((ra < rb) & (ra != rb)));
-        EXPECT_EQ(movemask((va < vb) | (va > vb)), movemask((ra < rb) | (ra > rb)));
-        // Truncation only where it is defined: finite values in int32's range.
-        alignas(32) float c[N];
-        for (int i = 0; i < N; ++i) c[i] = std::uniform_real_distribution<float>(-1e6f, 1e6f)(rng);
-        int32_t kv[N], kr[N];
-        Vector::load(c).truncateToInt(kv);
-        Reference::load(c).truncateToInt(kr);
-        for (int i = 0; i < N; ++i) EXPECT_EQ(kv[i], kr[i]) << "truncate lane " << i;
-        if constexpr (N == 4) {
-            alignas(32) float triangle[4] = {a[0], a[1], a[2], a[3]};
-            Reference::loadLast3(triangle + 1).storeu(r), expectLanes(Vector::loadLast3(triangle + 1), r, "loadLast3");
+    explicit OpInputs(std::mt19937& rng) {
+        for (int i = 0; i < 16; ++i) {
+            a[i] = specialOrRandom(rng), b[i] = specialOrRandom(rng);
+            c[i] = std::uniform_real_distribution<float>(-1e6f, 1e6f)(rng);
         }
     }
+};
+
+// Runs every operation (simd_ops.h) through `vector`, of N lanes, and through Scalar<N>, and
+// compares the bits.
+template <int N, typename Run>
+void expectAgreesWithScalar(uint32_t seed, Run vector) {
+    std::mt19937 rng(seed);
+    constexpr int kCount = simdOpResultCount(N);
+    for (int round = 0; round < 2000; ++round) {
+        const OpInputs in(rng);
+        uint32_t expected[kCount], actual[kCount];
+        simdOpResults<simd::Scalar<N>>(in.a, in.b, in.c, expected);
+        vector(in.a, in.b, in.c, actual);
+        for (int i = 0; i < kCount; ++i) {
+            EXPECT_EQ(actual[i], expected[i]) << "result " << i << " (operation " << i / N << ", simd_ops.h)";
+            if (actual[i] != expected[i]) return;
+        }
+    }
+}
+
+template <typename Vector>
+void expectBackendsAgree(uint32_t seed) {
+    expectAgreesWithScalar<Vector::kLanes>(seed, simdOpResults<Vector>);
 }
 
 TEST(Simd, TheNanRuleIsMinpsMaxps) {
@@ -104,6 +91,17 @@ TEST(Simd, DifferenceOfProductsHasTheExactSign) {
 TEST(Simd, FourLaneBackendsAgreeBitForBit) { expectBackendsAgree<simd::Floats<4>>(1); }
 
 TEST(Simd, EightLaneBackendsAgreeBitForBit) { expectBackendsAgree<simd::Floats<8>>(2); }
+
+// Avx512 only where the CPU runs it (simd_ops_avx512.cpp is compiled for x86-64-v4): on other
+// machines there is nothing to compare.
+TEST(Simd, SixteenLaneBackendsAgreeBitForBit) {
+    expectBackendsAgree<simd::Floats<16>>(3);
+    if (!cpuRuns(Isa::Avx512)) {
+        std::printf("[ simd     ] no AVX-512 on this CPU: Avx512 not run\n");
+        return;
+    }
+    expectAgreesWithScalar<16>(4, test::avx512SimdOpResults);
+}
 
 }  // namespace
 }  // namespace bvhlab

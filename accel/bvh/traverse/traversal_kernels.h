@@ -1,0 +1,63 @@
+// The traversal kernels: the query entry points of every layout (bvh_traversal.h,
+// wide_bvh_traversal.h), compiled once per ISA (traversal_kernels_isa.cpp, accel/CMakeLists.txt)
+// and chosen at run time, as Embree does, so that one binary runs the SIMD code of the machine
+// it runs on:
+//   scalar  the x86-64 baseline (SSE2: Floats<4> is Sse, Floats<8> and Floats<16> plain C++);
+//   avx2    x86-64-v3 (AVX2 and FMA: Floats<8> is Avx);
+//   avx512  x86-64-v4 (AVX-512 F/DQ/BW/VL: Floats<16> is Avx512 as well).
+// Every kernel answers bit for bit alike, with the same counters (the SIMD layer's guarantee;
+// a test runs them side by side). A table is picked once per accelerator, with the robustness
+// setting folded in: a query is one indirect call, no test of the setting.
+#pragma once
+
+#include "accel/bvh/layout/bvh.h"
+#include "accel/bvh/layout/wide_bvh.h"
+#include "accel/bvh/traverse/traversal_config.h"
+#include "framework/core/accelerator.h"
+
+#include <span>
+#include <string>
+
+namespace bvhlab {
+
+// The triangle tree's part of the accelerator's queries, for one layout (Tree: Bvh or
+// WideBvh<N>). The batch calls take rays one by one (or as the kernel packs them) with the
+// Accelerator's contract: misses as Hit(), costs filled when not empty. The wide layouts trace
+// a batch in packets, the binary one ray by ray.
+template <typename Tree>
+struct TraversalKernels {
+    Isa isa;
+    bool (*findNearest)(const Tree& tree, const Ray& ray, Hit& hit, QueryCounters& counters);
+    bool (*isOccluded)(const Tree& tree, const Ray& ray, QueryCounters& counters);
+    // packetFallback: BVH::packetFallback, for the wide layouts' packets (packet_traversal.h).
+    void (*findNearestBatch)(const Tree& tree, std::span<const Ray> rays, std::span<Hit> hits, QueryCounters& counters,
+                             std::span<RayCost> costs, int packetFallback);
+    void (*isOccludedBatch)(const Tree& tree, std::span<const Ray> rays, std::span<uint8_t> occluded,
+                            QueryCounters& counters, std::span<RayCost> costs, int packetFallback);
+};
+
+// The kernels of `config` (its robustness, its ISA: Auto = the best this CPU runs). Throws
+// InputError naming BVH::isa when the CPU cannot run the ISA asked for.
+template <typename Tree>
+TraversalKernels<Tree> traversalKernels(const TraversalConfig& config);
+
+// Whether this CPU runs the kernels of `isa` (Auto: always).
+bool cpuRuns(Isa isa);
+// The best ISA this CPU runs (never Auto).
+Isa bestIsa();
+// "scalar", "avx2", "avx512" ("auto" for Auto): BVH::isa's values.
+const char* isaName(Isa isa);
+// The widest vectors the kernels of `isa` use, in bits: 128 (SSE2), 256, 512 (0 for Auto).
+int isaVectorBits(Isa isa);
+
+// One table per ISA, each defined by that ISA's compilation of traversal_kernels_isa.cpp.
+namespace kernels {
+template <typename Tree>
+const TraversalKernels<Tree>& scalar(bool robust);
+template <typename Tree>
+const TraversalKernels<Tree>& avx2(bool robust);
+template <typename Tree>
+const TraversalKernels<Tree>& avx512(bool robust);
+}  // namespace kernels
+
+}  // namespace bvhlab

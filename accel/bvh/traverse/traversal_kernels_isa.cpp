@@ -1,0 +1,89 @@
+// One ISA's traversal kernels (traversal_kernels.h): compiled once per ISA with its -march and
+// -DBVHLAB_KERNEL_NS=<isa> -DBVHLAB_KERNEL_ISA=Isa::<Isa> (accel/CMakeLists.txt), so that all it
+// instantiates lives in namespace bvhlab::<isa> (kernel_namespace.h) and the table it exports is
+// kernels::<isa>. The entry points themselves have internal linkage.
+#include "accel/bvh/traverse/traversal_kernels.h"
+#include "accel/bvh/traverse/bvh_traversal.h"
+#include "accel/bvh/traverse/packet_traversal.h"
+#include "accel/bvh/traverse/wide_bvh_traversal.h"
+
+#include <type_traits>
+
+#ifndef BVHLAB_KERNEL_ISA
+#error "compiled per ISA only: accel/CMakeLists.txt defines BVHLAB_KERNEL_NS and BVHLAB_KERNEL_ISA"
+#endif
+
+namespace bvhlab {
+inline namespace BVHLAB_KERNEL_NS {
+namespace {
+
+template <typename Tree, bool Robust>
+bool findNearestKernel(const Tree& tree, const Ray& ray, Hit& hit, QueryCounters& counters) {
+    return answerOf(tree, runQuery<ClosestHitQuery, Robust>(tree, ray, counters), hit);
+}
+
+template <typename Tree, bool Robust>
+bool isOccludedKernel(const Tree& tree, const Ray& ray, QueryCounters& counters) {
+    return runQuery<AnyHitQuery, Robust>(tree, ray, counters).occluded;
+}
+
+// Hands each ray's query and work to answer(i, query, work): the wide layouts trace the rays in
+// packets (packet_traversal.h), the binary one ray by ray.
+template <typename Query, bool Robust, typename Tree, typename Answer>
+void traceRange(const Tree& tree, std::span<const Ray> rays, int packetFallback, Answer&& answer) {
+    if constexpr (std::is_same_v<Tree, Bvh>) {
+        for (size_t i = 0; i < rays.size(); ++i) {
+            QueryCounters work;
+            const Query query = runQuery<Query, Robust>(tree, rays[i], work);
+            answer(i, query, work);
+        }
+    } else {
+        traceAsPackets<Query, Robust>(tree, rays, packetFallback, answer);
+    }
+}
+
+template <typename Tree, bool Robust>
+void findNearestRange(const Tree& tree, std::span<const Ray> rays, std::span<Hit> hits, QueryCounters& counters,
+                      std::span<RayCost> costs, int packetFallback) {
+    traceRange<ClosestHitQuery, Robust>(tree, rays, packetFallback,
+                                        [&](size_t i, const ClosestHitQuery& query, const QueryCounters& work) {
+                                            counters += work;
+                                            Hit hit;
+                                            answerOf(tree, query, hit);
+                                            hits[i] = hit;
+                                            if (!costs.empty()) costs[i] = Accelerator::costBetween({}, work);
+                                        });
+}
+
+template <typename Tree, bool Robust>
+void isOccludedRange(const Tree& tree, std::span<const Ray> rays, std::span<uint8_t> occluded, QueryCounters& counters,
+                     std::span<RayCost> costs, int packetFallback) {
+    traceRange<AnyHitQuery, Robust>(tree, rays, packetFallback,
+                                    [&](size_t i, const AnyHitQuery& query, const QueryCounters& work) {
+                                        counters += work;
+                                        occluded[i] = query.occluded ? 1 : 0;
+                                        if (!costs.empty()) costs[i] = Accelerator::costBetween({}, work);
+                                    });
+}
+
+template <typename Tree, bool Robust>
+constexpr TraversalKernels<Tree> kKernels{BVHLAB_KERNEL_ISA, &findNearestKernel<Tree, Robust>,
+                                          &isOccludedKernel<Tree, Robust>, &findNearestRange<Tree, Robust>,
+                                          &isOccludedRange<Tree, Robust>};
+
+}  // namespace
+}  // namespace BVHLAB_KERNEL_NS
+
+namespace kernels {
+
+template <typename Tree>
+const TraversalKernels<Tree>& BVHLAB_KERNEL_NS(bool robust) {
+    return robust ? kKernels<Tree, true> : kKernels<Tree, false>;
+}
+
+template const TraversalKernels<Bvh>& BVHLAB_KERNEL_NS(bool);
+template const TraversalKernels<WideBvh<4>>& BVHLAB_KERNEL_NS(bool);
+template const TraversalKernels<WideBvh<8>>& BVHLAB_KERNEL_NS(bool);
+
+}  // namespace kernels
+}  // namespace bvhlab

@@ -1,0 +1,187 @@
+// The traversal kernels compiled per ISA (accel/bvh/traverse/traversal_kernels.h) answer bit
+// for bit alike: every kernel this CPU runs against the scalar one, for the binary and both wide
+// layouts, single and batch queries, hits (t, primitive, u, v) and counters, on random,
+// axis-parallel and grazing rays and rays whose interval starts below 0. Kernels the CPU cannot
+// run are not run (so this passes on AVX2-only machines) and asking for one is an InputError.
+#include "accel/bvh/builder_table.h"
+#include "accel/bvh/bvh_accelerator.h"
+#include "accel/bvh/bvh_env.h"
+#include "accel/registry.h"
+#include "apps/common/program_keys.h"
+#include "framework/core/error.h"
+#include "tests/support/bvh_checks.h"
+
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cmath>
+#include <random>
+
+namespace bvhlab {
+namespace {
+
+constexpr Isa kIsas[] = {Isa::Scalar, Isa::Avx2, Isa::Avx512};
+
+// Random triangles, and unit squares facing each axis on a lattice (bvh_checks.h).
+test::Soup kernelScene() {
+    test::Soup soup = test::randomSoup(2000, 31, 6.0f, 1.0f);
+    test::addLatticeSquares(soup, 3, 3);
+    return soup;
+}
+
+std::vector<Ray> kernelRays() {
+    std::vector<Ray> rays;
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> pos(-8.0f, 8.0f), dir(-1.0f, 1.0f);
+    for (int i = 0; i < 3000; ++i) {  // random, a fifth with an interval reaching below 0
+        Ray ray;
+        ray.org = Vec3(pos(rng), pos(rng), pos(rng));
+        ray.dir = Vec3(dir(rng), dir(rng), dir(rng));
+        if (i % 5 == 0) ray.tmin = -4.0f;
+        rays.push_back(ray);
+    }
+    for (int axis = 0; axis < 3; ++axis) {  // along each axis, on and between the lattice planes
+        const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+        for (float a : {0.0f, 0.5f, 1.0f, 3.0f})
+            for (float b : {0.0f, 0.25f, 2.0f, 3.0f})
+                for (float sign : {1.0f, -1.0f}) {
+                    Ray ray;
+                    ray.org[axis] = sign > 0 ? -1.0f : 5.0f;
+                    ray.org[u] = a, ray.org[v] = b;
+                    ray.dir = Vec3(sign < 0 ? -0.0f : 0.0f);
+                    ray.dir[axis] = sign;
+                    rays.push_back(ray);
+                }
+    }
+    for (int i = 0; i < 500; ++i) {  // grazing: in the plane of a lattice square, across its edges
+        const int axis = i % 3, u = (axis + 1) % 3, v = (axis + 2) % 3;
+        Ray ray;
+        ray.org[axis] = float(i % 4);
+        ray.org[u] = -1.0f, ray.org[v] = float(i % 7) * 0.5f;
+        ray.dir[axis] = 0.0f, ray.dir[u] = 1.0f, ray.dir[v] = dir(rng) * 0.1f;
+        rays.push_back(ray);
+    }
+    return rays;
+}
+
+// The wide layouts' batches are packets of 16 rays in the avx512 kernels and of 8 in the others
+// (packet_traversal.h): a ray's work in a batch depends on its packet, its answer does not.
+bool samePackets(Isa a, Isa b) { return (a == Isa::Avx512) == (b == Isa::Avx512); }
+
+void expectSameCounters(const QueryCounters& a, const QueryCounters& b, const std::string& what) {
+    EXPECT_EQ(a.queries, b.queries) << what;
+    EXPECT_EQ(a.traversalSteps, b.traversalSteps) << what;
+    EXPECT_EQ(a.intersectionTests, b.intersectionTests) << what;
+}
+
+void expectSameHit(const Hit& a, const Hit& b, const std::string& what) {
+    EXPECT_EQ(std::bit_cast<uint32_t>(a.t), std::bit_cast<uint32_t>(b.t)) << what;
+    EXPECT_EQ(a.primitive, b.primitive) << what;
+    EXPECT_EQ(std::bit_cast<uint32_t>(a.u), std::bit_cast<uint32_t>(b.u)) << what;
+    EXPECT_EQ(std::bit_cast<uint32_t>(a.v), std::bit_cast<uint32_t>(b.v)) << what;
+}
+
+// What one kernel answers on the rays: single and batch queries, with their counters.
+struct Answers {
+    std::vector<Hit> hits, batchHits;
+    std::vector<uint8_t> occluded, batchOccluded;
+    std::vector<RayCost> costs;
+    QueryCounters single, batch;
+};
+
+template <typename Layout>
+Answers answersOf(Isa isa, bool robust, const test::Soup& soup, const std::vector<Ray>& rays) {
+    BvhAccelerator<Layout> accel(bvhBuilder("sahbvh"), BvhBuildConfig{}, TraversalConfig{.robust = robust, .isa = isa});
+    accel.build(soup.prims());
+    Answers a;
+    a.hits.resize(rays.size());
+    a.occluded.resize(rays.size());
+    for (size_t i = 0; i < rays.size(); ++i) {
+        accel.findNearest(rays[i], a.hits[i], a.single);
+        a.occluded[i] = accel.isOccluded(rays[i], a.single);
+    }
+    a.batchHits.resize(rays.size());
+    a.batchOccluded.resize(rays.size());
+    a.costs.resize(rays.size());
+    accel.findNearestBatch(rays, a.batchHits, a.batch, a.costs);
+    accel.isOccludedBatch(rays, a.batchOccluded, a.batch, {});
+    const BuildStats stats = accel.statistics();
+    const auto bits = std::find_if(stats.figures.begin(), stats.figures.end(),
+                                   [](const NamedFigure& f) { return f.name == "kernel_bits"; });
+    EXPECT_TRUE(bits != stats.figures.end() && bits->value == isaVectorBits(isa)) << isaName(isa);
+    return a;
+}
+
+template <typename Layout>
+void expectKernelsAgree(const char* layout) {
+    const test::Soup soup = kernelScene();
+    const std::vector<Ray> rays = kernelRays();
+    for (bool robust : {true, false}) {
+        const Answers reference = answersOf<Layout>(Isa::Scalar, robust, soup, rays);
+        size_t found = 0;
+        for (const Hit& h : reference.hits) found += h.primitive != kInvalidPrimitive;
+        EXPECT_GT(found, rays.size() / 4);
+        EXPECT_LT(found, rays.size());
+        for (Isa isa : kIsas) {
+            if (isa == Isa::Scalar || !cpuRuns(isa)) continue;
+            std::printf("[ kernels  ] %s robust=%d: %s against scalar\n", layout, int(robust), isaName(isa));
+            const Answers a = answersOf<Layout>(isa, robust, soup, rays);
+            const std::string what = std::string(layout) + " " + isaName(isa) + (robust ? "" : " not robust");
+            for (size_t i = 0; i < rays.size(); ++i) {
+                expectSameHit(a.hits[i], reference.hits[i], what + " ray " + std::to_string(i));
+                expectSameHit(a.batchHits[i], reference.batchHits[i], what + " batch ray " + std::to_string(i));
+                EXPECT_EQ(a.occluded[i], reference.occluded[i]) << what << " ray " << i;
+                EXPECT_EQ(a.batchOccluded[i], reference.batchOccluded[i]) << what << " batch ray " << i;
+                if (!samePackets(isa, Isa::Scalar)) continue;
+                EXPECT_EQ(a.costs[i].intersectionTests, reference.costs[i].intersectionTests) << what << " ray " << i;
+                EXPECT_EQ(a.costs[i].traversalSteps, reference.costs[i].traversalSteps) << what << " ray " << i;
+            }
+            expectSameCounters(a.single, reference.single, what);
+            if (samePackets(isa, Isa::Scalar)) expectSameCounters(a.batch, reference.batch, what + " batch");
+            else EXPECT_EQ(a.batch.queries, reference.batch.queries) << what;
+        }
+    }
+}
+
+TEST(TraversalKernels, EveryKernelTheCpuRunsAnswersAsTheScalarOne) {
+    expectKernelsAgree<Bvh>("binary");
+    expectKernelsAgree<WideBvh<4>>("wide4");
+    expectKernelsAgree<WideBvh<8>>("wide8");
+}
+
+TEST(TraversalKernels, AutoIsTheBestTheCpuRuns) {
+    const Isa best = bestIsa();
+    EXPECT_NE(best, Isa::Auto);
+    EXPECT_TRUE(cpuRuns(best));
+    EXPECT_EQ(traversalKernels<WideBvh<8>>(TraversalConfig{}).isa, best);
+    std::printf("[ kernels  ] this CPU runs up to %s\n", isaName(best));
+    if (best == Isa::Avx512) {
+        EXPECT_TRUE(cpuRuns(Isa::Avx2));
+    }
+}
+
+TEST(TraversalKernels, BvhIsaPicksTheKernelsOrSaysWhatTheCpuLacks) {
+    for (Isa isa : kIsas) {
+        Env env(programKeys());
+        env.set(keys::BVH::isa, isaName(isa), "test");
+        EXPECT_EQ(traversalConfigFromEnv(env).isa, isa);
+        if (cpuRuns(isa)) {
+            EXPECT_NO_THROW((void)createAccelerator("sahbvh8", env)) << isaName(isa);
+            continue;
+        }
+        try {
+            (void)createAccelerator("sahbvh8", env);
+            ADD_FAILURE() << "no error for BVH::isa=" << isaName(isa);
+        } catch (const InputError& e) {
+            const std::string message = e.what();
+            EXPECT_NE(message.find(std::string("BVH::isa=") + isaName(isa)), std::string::npos) << message;
+            EXPECT_NE(message.find(isaName(bestIsa())), std::string::npos) << message;
+        }
+    }
+    Env env(programKeys());
+    EXPECT_THROW(env.set(keys::BVH::isa, "sse9", "test"), InputError);
+    EXPECT_EQ(traversalConfigFromEnv(env).isa, Isa::Auto);
+}
+
+}  // namespace
+}  // namespace bvhlab
