@@ -1,6 +1,8 @@
-// `bvhlab check` end to end: one line per check, exit 0 when all pass, 2 on bad input.
+// `bvhlab check` end to end: one line per check, exit 0 when all pass, 2 on bad input; a correct
+// but costly structure passes with a warning.
 #include "tests/support/cli_run.h"
 #include "tests/support/scratch_dir.h"
+#include "tests/support/test_paths.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -47,6 +49,26 @@ TEST(CheckCommand, UnknownAcceleratorOrCheckExitsTwoListingTheKnownOnes) {
 
     r = run("check --accel sahbvh -DBVH::nosuchkey=1 --checks batch");
     EXPECT_EQ(r.exitCode, 2) << r.output;
+}
+
+const std::string kPlugins = bvhlab::test::testPlugins();
+
+TEST(CheckCommand, ACorrectStructureThatWorksFarHarderThanSahbvhPassesWithACostWarning) {
+    // `interleaved` deals each node's primitives out to its children in turn: every box spans the scene.
+    Result r = run("check --plugin " + kPlugins + "/builders.so --accel interleaved --checks batch,cost --quiet");
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(std::regex_search(r.output, std::regex("(^|\\n)PASS batch "))) << r.output;
+    EXPECT_TRUE(std::regex_search(r.output, std::regex("(^|\\n)WARN cost .*0 failures .*sahbvh's.*past 10x: right answers at an absurd cost"))) << r.output;
+    EXPECT_NE(r.output.find("check interleaved: all checks passed, with a warning (cost)"), std::string::npos) << r.output;
+
+    r = run("check --accel sahbvh8 --checks cost --quiet");
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(std::regex_search(r.output, std::regex("(^|\\n)PASS cost .*sahbvh's"))) << r.output;
+    EXPECT_NE(r.output.find("check sahbvh8: all checks passed\n"), std::string::npos) << r.output;
+
+    r = run("check --accel embree --checks cost --quiet");
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(std::regex_search(r.output, std::regex("(^|\\n)SKIP cost .*no counters"))) << r.output;
 }
 
 }  // namespace
