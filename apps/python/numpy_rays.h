@@ -1,5 +1,5 @@
 // Rays and hits between NumPy arrays and the framework's Ray and Hit: the arrays are checked
-// (shape, dtype, contiguity, length), and every problem is an InputError naming the argument.
+// (shape, dtype, length), and every problem is an InputError naming the argument.
 #pragma once
 
 #include "framework/core/accelerator.h"
@@ -7,6 +7,7 @@
 #include <pybind11/numpy.h>
 
 #include <cstdint>
+#include <cstring>
 #include <span>
 #include <string>
 #include <vector>
@@ -35,9 +36,11 @@ struct CountedOcclusionRecord {
     uint32_t n_tr;
 };
 
-// Rays in NumPy arrays, checked once (with the GIL held) and read in place, range by range,
-// without calling Python (so with the GIL released): origins and directions (N, 3) float32 or
-// float64, C-contiguous, N > 0; tmin and tmax a number or an (N,) float array.
+// Rays in NumPy arrays, checked once (with the GIL held) and read in place through the arrays'
+// strides, range by range, without calling Python (so with the GIL released): origins and
+// directions (N, 3) float32 or float64 of any strides (a column slice of a table of rays, every
+// other row, Fortran order, a broadcast direction), N >= 0; tmin and tmax a number or an (N,)
+// float array.
 class RayArrays {
 public:
     RayArrays(const pybind11::handle& origins, const pybind11::handle& directions, const pybind11::handle& tmin,
@@ -48,15 +51,25 @@ public:
     std::vector<Ray> all() const;
 
 private:
-    // The values of a float32 or float64 array, or `constant` for every ray.
+    // The values of a float32 or float64 array of one or two dimensions, or `constant` for every
+    // ray. Read with memcpy: a field of a packed structured array need not be aligned.
     struct Values {
         pybind11::array array;  // keeps `data` alive
-        const void* data = nullptr;
+        const char* data = nullptr;
+        pybind11::ssize_t rowStride = 0, columnStride = 0;  // in bytes, either may be negative or 0
         bool isDouble = false;
         float constant = 0.0f;
-        float operator[](size_t i) const {
+        float operator()(size_t row, size_t column = 0) const {
             if (!data) return constant;
-            return isDouble ? float(static_cast<const double*>(data)[i]) : static_cast<const float*>(data)[i];
+            const char* value = data + pybind11::ssize_t(row) * rowStride + pybind11::ssize_t(column) * columnStride;
+            if (isDouble) {
+                double d;
+                std::memcpy(&d, value, sizeof d);
+                return float(d);
+            }
+            float f;
+            std::memcpy(&f, value, sizeof f);
+            return f;
         }
     };
     static Values valuesOf(pybind11::array array);

@@ -116,8 +116,8 @@ Env envWith(const PythonScene& scene, const py::object& envDict, int threads) {
 
 void bindAccelerator(py::module_& m) {
     static const std::string queryArguments =
-        "origins and directions: (N, 3) float32 or float64, C-contiguous; tmin, tmax: numbers or (N,) arrays; "
-        "threads: 0 for all hardware threads. Rays with a NaN are misses.";
+        "origins and directions: (N, 3) float32 or float64 of any strides, read in place, N >= 0; tmin, tmax: "
+        "numbers or (N,) arrays; threads: 0 for all hardware threads. Rays with a NaN are misses.";
     // Static: pybind11 keeps the pointer.
     static const std::string intersectDoc =
         "Closest hits: a structured array t (inf on a miss), prim (-1 on a miss), u, v, and with counters n_it, "
