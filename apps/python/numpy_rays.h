@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <span>
 #include <string>
 #include <vector>
@@ -15,7 +16,8 @@
 namespace bvhlab {
 
 // One answer of accel.intersect: prim is -1 and t is inf on a miss. The counted kinds add the
-// ray's N_IT and N_TR (counters=True).
+// ray's N_IT and N_TR (counters=True) as floats, so that a structure without counters can say
+// NaN ("not counted") in the same layout.
 struct HitRecord {
     float t;
     int64_t prim;
@@ -27,14 +29,23 @@ struct CountedHitRecord {
     int64_t prim;
     float u;
     float v;
-    uint32_t n_it;
-    uint32_t n_tr;
+    float n_it;
+    float n_tr;
 };
 struct CountedOcclusionRecord {
     bool occluded;
-    uint32_t n_it;
-    uint32_t n_tr;
+    float n_it;
+    float n_tr;
 };
+
+// Sets out.n_it and out.n_tr from costs[i], or to NaN when costs is empty: the structure counts
+// nothing, and 0 would read as a ray that cost nothing.
+template <typename CountedRecord>
+void writeCounters(std::span<const RayCost> costs, size_t i, CountedRecord& out) {
+    constexpr float notCounted = std::numeric_limits<float>::quiet_NaN();
+    out.n_it = costs.empty() ? notCounted : float(costs[i].intersectionTests);
+    out.n_tr = costs.empty() ? notCounted : float(costs[i].traversalSteps);
+}
 
 // Rays in NumPy arrays, checked once (with the GIL held) and read in place through the arrays'
 // strides, range by range, without calling Python (so with the GIL released): origins and
@@ -82,7 +93,7 @@ private:
 // {"origins", "directions", "tmin", "tmax"}: float32 arrays, the arguments of accel.intersect.
 pybind11::dict raysToArrays(const std::vector<Ray>& rays);
 
-// Writes hits[i] (and costs[i] for a CountedHitRecord) as out[i].
+// Writes hits[i] (and costs[i] for a CountedHitRecord, see writeCounters) as out[i].
 template <typename Record>
 void writeHitRecords(std::span<const Hit> hits, std::span<const RayCost> costs, Record* out) {
     for (size_t i = 0; i < hits.size(); ++i) {
@@ -91,10 +102,7 @@ void writeHitRecords(std::span<const Hit> hits, std::span<const RayCost> costs, 
         out[i].prim = h.found() ? int64_t(h.primitive) : -1;
         out[i].u = h.u;
         out[i].v = h.v;
-        if constexpr (std::is_same_v<Record, CountedHitRecord>) {
-            out[i].n_it = costs[i].intersectionTests;
-            out[i].n_tr = costs[i].traversalSteps;
-        }
+        if constexpr (std::is_same_v<Record, CountedHitRecord>) writeCounters(costs, i, out[i]);
     }
 }
 

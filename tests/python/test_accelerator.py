@@ -117,6 +117,19 @@ def test_empty_rays_give_empty_answers(quad_scene, dtype):
             assert answers.shape == (0,) and answers.dtype == expected.dtype, (query, counters)
 
 
+def test_counters_of_a_structure_without_counters_are_nan(quad_scene):
+    origins, directions = rays_down(200)
+    counted, uncounted = bvhlab.build(quad_scene, "sahbvh"), bvhlab.build(quad_scene, "embree")
+    assert counted.has_counters and not uncounted.has_counters
+    for query in ("intersect", "occluded"):
+        ours = getattr(counted, query)(origins, directions, counters=True)
+        embree = getattr(uncounted, query)(origins, directions, counters=True)
+        assert embree.dtype == ours.dtype  # one layout for every structure
+        for counter in ("n_it", "n_tr"):
+            assert np.isnan(embree[counter]).all(), (query, counter)
+            assert np.isfinite(ours[counter]).all() and ours[counter].sum() > 0, (query, counter)
+
+
 GOOD = np.zeros((4, 3), dtype=np.float32)
 
 
