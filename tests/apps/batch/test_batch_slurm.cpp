@@ -6,6 +6,7 @@
 #include "tests/support/batch_results.h"
 #include "tests/support/batch_scenes.h"
 #include "tests/support/cli_run.h"
+#include "tests/support/test_paths.h"
 
 #include <gtest/gtest.h>
 
@@ -42,7 +43,7 @@ fs::path standInSbatch(const fs::path& dir, const std::string& name, bool failin
 
 // `bvhlab ARGS` with `path` as PATH.
 Result runWithPath(const std::string& path, const std::string& args) {
-    return test::runShell("PATH=" + path + " " + BVHLAB_BINARY + " " + args);
+    return test::runShell("PATH=" + path + " " + test::bvhlabProgram() + " " + args);
 }
 
 // A written script run as Slurm runs it: by bash, a shard with its array task id.

@@ -96,6 +96,20 @@ TEST(Env, LaterFilesAndOverridesWin) {
     EXPECT_EQ(env.get(kCount), 9);
 }
 
+TEST(Env, AKeyWithoutAValueKeepsTheEarlierLayersValue) {
+    const EnvRegistry r = testRegistry();
+    Env env(r);
+    env.loadFile(writeFile("scene.env", "Set::name sibenik.obj\nSet::point 1 2 3\n"));
+    env.loadFile(writeFile("global.env", "Set::name\nSet::point\nSet::count 4\n"));
+    EXPECT_EQ(env.get(kName), "sibenik.obj");
+    EXPECT_TRUE(env.get(kPoint).has_value());
+    EXPECT_EQ(env.get(kCount), 4);
+    EXPECT_NE(errorOf([&] { env.loadFile(writeFile("typo.env", "Set::nmae\n")); }).find("unknown key 'Set::nmae'"),
+              std::string::npos);
+    env.setOverride("Set::name=");  // -D empties it
+    EXPECT_EQ(env.get(kName), "");
+}
+
 TEST(Env, UnknownKeyNamesFileLineAndNearestKeys) {
     const EnvRegistry r = testRegistry();
     Env env(r);
