@@ -28,8 +28,8 @@ struct Workspace {
         std::ofstream(dir / "balls.nff") << "v\nfrom 0 -6 3\nat 0 0 0\nup 0 0 1\nangle 40\nhither 1\nresolution 8 8\n"
                                             "l 4 -3 6\nf 1 0.75 0.33 0.8 0 100000 0 1\n"
                                             "p 3\n4 4 -0.5\n-4 4 -0.5\n0 -4 -0.5\ns 0 0 0.5 1\n";
-        std::ofstream(dir / "havran_stats_grids.txt") << "Invariants\n  balls\nPrimaryRay[-] 64\n";
-        std::ofstream(dir / "havran_stats_octrees.txt") << "";
+        std::ofstream(dir / "havran_stats_grids.txt") << "Invariants\n balls gears lattice mount\nPrimaryRay[-] 64 64 64 64\n";
+        std::ofstream(dir / "havran_stats_octrees.txt") << "BALLS\n N_IT 19.0\n N_TS 11.0\n";
         std::ofstream(dir / "grid.env") << "Grid::density 2\n";
     }
     // `bvhlab ARGS` in the workspace.

@@ -39,7 +39,8 @@ bvhlab="$prefix/bin/bvhlab"
 "\$bvhlab" render --threads 1 -DCamera::width=32 -DCamera::height=24 --out "$work/out/default" \
   || fail "render from the moved prefix failed"
 [ -f "$work/out/default.json" ] || fail "render wrote no $work/out/default.json"
-"\$bvhlab" keys | grep -q '| \`grid\` |' || fail "bvhlab keys does not list the grid found in the prefix"
+"\$bvhlab" keys -DASDS::type=grid -DGrid::density=2 | grep -q '^Grid::density 2 ' \
+  || fail "bvhlab keys does not take the key of the grid found in the prefix"
 "\$bvhlab" check --accel grid:Grid::density=2 --checks agreement,batch || fail "check --accel grid failed"
 "\$bvhlab" bench --scenes "$work/quad.obj" --accel sahbvh8,grid --builds 1 --passes 1 --out "$work/out/bench.json" \
   || fail "bench failed"

@@ -122,7 +122,7 @@ TEST(Env, UnknownKeyNamesFileLineAndNearestKeys) {
 TEST(Env, BadValuesAreErrorsWithLine) {
     const EnvRegistry r = testRegistry();
     const std::vector<std::string> badLines = {
-        "Set::count 11",      "Set::count 0",       "Set::count 2.5",    "Set::count",       "Set::count 3x",
+        "Set::count 11",      "Set::count 0",       "Set::count 2.5",    "Set::count 3x",
         "Set::scale nan",     "Set::scale 3",       "Set::scale abc",    "Set::flag maybe",  "Set::mode slow",
         "Set::point 1 2",     "Set::point 1 2 3 4", "Set::point 1 2 inf", "Set::points 1 2 3, 4 5",
         "justaword",          "Set: 3",
