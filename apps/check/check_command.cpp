@@ -74,7 +74,8 @@ int runChecks(CheckCommandOptions options) {
     std::vector<std::string> names = options.checks.empty() ? check::checkNames() : splitCommaList(options.checks);
     if (names.empty()) throw InputError(fmt::format("--checks: none given (known: {})", fmt::join(check::checkNames(), ", ")));
     for (const std::string& name : names) check::findCheck(name);
-    const check::Subject subject{options.accel, [&] { return createAccelerator(config.name, env); }};
+    // Named as registered: the checks look up what the structure promises by name.
+    const check::Subject subject{config.name, [&] { return createAccelerator(config.name, env); }};
     if (options.child.isChild()) {
         options.child.reportFatalSignals();
         options.child.writeResult(runCheckHere(options.child.check, subject));

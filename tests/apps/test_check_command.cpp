@@ -36,6 +36,13 @@ TEST(CheckCommand, PassingChecksPrintALineEachAndExitZero) {
     EXPECT_GT(j["checks"][0]["cases"].get<int>(), 1000);
 }
 
+// A structure given with keys is checked by the rules of its name: sahbvh8's batches are packets.
+TEST(CheckCommand, AStructureWithKeysIsCheckedAsItsName) {
+    const Result r = run("check --accel sahbvh8:BVH::bins=8 --checks batch --quiet");
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("check sahbvh8:BVH::bins=8: all checks passed"), std::string::npos) << r.output;
+}
+
 TEST(CheckCommand, UnknownAcceleratorOrCheckExitsTwoListingTheKnownOnes) {
     Result r = run("check --accel nosuch");
     EXPECT_EQ(r.exitCode, 2) << r.output;
