@@ -49,10 +49,11 @@ case "$1" in
     plugin="$work/build/$name.so"
     [ -f "$plugin" ] || fail "$plugin was not built"
     symbols=$(nm -D --defined-only "$plugin")
-    for symbol in bvhlab_plugin_api_version bvhlab_register_plugin; do
+    entry_points="bvhlab_plugin_api_version bvhlab_plugin_build_info bvhlab_register_plugin"
+    for symbol in $entry_points; do
       grep -qw "$symbol" <<< "$symbols" || fail "$plugin does not export $symbol"
     done
-    echo "$plugin exports bvhlab_plugin_api_version and bvhlab_register_plugin"
+    echo "$plugin exports $entry_points"
     ;;
   *) fail "unknown test $1" ;;
 esac
