@@ -150,6 +150,19 @@ TEST(Plugins, ABuilderBecomesThreeAcceleratorsThatAnswerAsTheReference) {
     EXPECT_NE(keys.output.find("| `pairs8` | pairs's tree"), std::string::npos) << keys.output;
 }
 
+TEST(Plugins, ABuilderReadsTheRunsSahConstants) {
+    // costed keeps a node of n primitives whole where n <= 2 * cTraversal / cIntersect; its
+    // median splits halve the default scene's 7440 triangles down to 7 or 8, then 3 or 4.
+    auto largestLeaf = [](const std::string& costs) {
+        const Result r = render("--plugin " + kBuilders + " -DASDS::type=costed " + costs);
+        EXPECT_EQ(r.exitCode, 0) << r.output;
+        return r.exitCode == 0 ? renderedJson()["max_leaf_prims"].get<int>() : 0;
+    };
+    EXPECT_EQ(largestLeaf(""), 2);  // 1 and 1: splits down to BVH::maxLeaf
+    EXPECT_EQ(largestLeaf("-DBVH::cTraversal=5"), 8);
+    EXPECT_EQ(largestLeaf("-DBVH::cTraversal=5 -DBVH::cIntersect=2.5"), 4);
+}
+
 TEST(Plugins, ABuilderThatBreaksItsContractFailsTheBuildNamingIt) {
     Result r = render("--plugin " + kBuilders + " -DASDS::type=lossy8");
     EXPECT_EQ(r.exitCode, 1) << r.output;
