@@ -16,7 +16,7 @@ namespace bvhlab {
 
 namespace keys::ASDS {
 // Its choices, the accelerators' names, are given when it is registered.
-inline constexpr ChoiceKey type{"ASDS::type", "sahbvh", {}, "acceleration structure to build and trace with"};
+inline constexpr ChoiceKey type{"ASDS::type", "sahbvh8", {}, "acceleration structure to build and trace with"};
 inline constexpr TextKey plugins{"ASDS::plugins", "",
                                  "plugin files to load, comma-separated (relative to the env file's folder); "
                                  "docs/plugins.md"};

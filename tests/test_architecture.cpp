@@ -1,6 +1,8 @@
 // The include arrows of docs/architecture.md ("Layers"): every #include "..." in framework/,
 // accel/ and apps/ points to a folder its own folder may use. A header can be included from
 // anywhere the build lets it, so this test is what keeps the layers layered.
+#include "tests/support/test_paths.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -66,7 +68,7 @@ std::vector<fs::path> sourcesUnder(const fs::path& root) {
 }  // namespace
 
 TEST(Architecture, IncludesFollowTheLayers) {
-    const fs::path source = BVHLAB_SOURCE_DIR;
+    const fs::path source = bvhlab::test::sourceTree();
     size_t checked = 0;
     for (const char* top : {"framework", "accel", "apps"}) {
         for (const fs::path& file : sourcesUnder(source / top)) {
@@ -92,7 +94,7 @@ TEST(Architecture, IncludesFollowTheLayers) {
 }
 
 TEST(Architecture, FrameworkHasNoSourceAtItsTop) {
-    for (const auto& entry : fs::directory_iterator(fs::path(BVHLAB_SOURCE_DIR) / "framework")) {
+    for (const auto& entry : fs::directory_iterator(fs::path(bvhlab::test::sourceTree()) / "framework")) {
         const auto ext = entry.path().extension();
         EXPECT_FALSE(ext == ".h" || ext == ".cpp") << entry.path() << " belongs in one of framework's layers";
     }

@@ -8,6 +8,7 @@
 #include "apps/batch/batch_settings.h"
 #include "apps/batch/batch_table.h"
 #include "apps/batch/slurm_submission.h"
+#include "apps/common/accel_config.h"
 #include "apps/common/app_keys.h"
 #include "apps/common/cli_common.h"
 #include "apps/common/commands.h"
@@ -60,18 +61,15 @@ Shard parseShard(const std::string& text) {
     return s;
 }
 
-std::vector<std::string> parseAccelList(const std::string& text) {
-    std::vector<std::string> names, known;
-    for (const AcceleratorInfo& info : acceleratorInfos()) known.push_back(info.name);
-    for (const std::string& item : splitCommaList(text)) {
-        if (std::find(known.begin(), known.end(), item) == known.end())
-            throw InputError(fmt::format("--accel: unknown accelerator '{}' (known: {})", item, fmt::join(known, ", ")));
-        if (std::find(names.begin(), names.end(), item) != names.end())
-            throw InputError(fmt::format("--accel: '{}' is listed twice", item));
-        names.push_back(item);
-    }
-    if (names.empty()) throw InputError("--accel: no accelerator given");
-    return names;
+// --accel: NAME or NAME:Key=value:... configs, each once; their plugins are found by name.
+std::vector<AccelConfig> parseBatchAccelerators(const std::string& text, EnvOptions& env) {
+    std::vector<AccelConfig> configs = parseAccelConfigList(text);
+    for (auto c = configs.begin(); c != configs.end(); ++c)
+        if (std::any_of(configs.begin(), c, [&](const AccelConfig& earlier) { return earlier.label == c->label; }))
+            throw InputError(fmt::format("--accel: '{}' is listed twice", c->label));
+    nameAccelerators(configs, env);
+    checkAccelConfigs(configs, env.load());
+    return configs;
 }
 
 struct Options {
@@ -103,14 +101,15 @@ struct FinishedJob {
 
 // One job: build once, render without and with shadows, write images and the job file.
 FinishedJob runJob(const Options& options, const Scene& scene, const SceneLoadInfo& loadInfo, const Env& sceneEnv,
-                   const SceneArgument& entry, const std::string& accel, const BatchSettings& batch, const json& order,
+                   const SceneArgument& entry, const AccelConfig& config, const BatchSettings& batch, const json& order,
                    const Shard& shard, Progress& progress, const std::string& jobLabel) {
     const std::filesystem::path out = options.out;
+    const std::string& accel = config.label;
     const std::string name = batchJobName(entry.id, accel);
     const std::string label = fmt::format("{} {} {}", jobLabel, entry.id, accel);
 
-    Env env = sceneEnv;
-    env.set(keys::ASDS::type, accel, "bvhlab batch --accel");
+    Env env = accelConfigEnv(config, sceneEnv);
+    env.set(keys::ASDS::type, config.name, "bvhlab batch --accel");
     const int threads = renderThreads(options, env);
     env.set(keys::SetRayTracing::threads, std::to_string(threads), options.env.threads >= 0 ? "--threads" : "Batch::threads");
 
@@ -272,15 +271,15 @@ void mergeShards(const std::vector<std::string>& dirs, const std::filesystem::pa
 struct BatchPlan {
     std::vector<SceneArgument> scenes;
     std::vector<Env> sceneEnvs;
-    std::vector<std::string> accels;
+    std::vector<AccelConfig> accels;
     BatchSettings settings;
 };
 
 // Every env file is read and every scene file looked for up front, so that a typo in the last
 // one fails now, not in an hour (or on the cluster).
-BatchPlan planBatch(const Options& options) {
+BatchPlan planBatch(Options& options) {
     BatchPlan plan;
-    plan.accels = parseAccelList(options.accels);
+    plan.accels = parseBatchAccelerators(options.accels, options.env);
     plan.scenes = expandSceneList(options.scenes, options.env);
     for (const SceneArgument& scene : plan.scenes) {
         const std::filesystem::path file = scene.envFile.empty() ? scene.sceneFile : scene.envFile;
@@ -294,7 +293,9 @@ BatchPlan planBatch(const Options& options) {
     }
     std::vector<std::pair<std::string, Env>> idsAndEnvs;
     for (size_t s = 0; s < plan.scenes.size(); ++s) idsAndEnvs.emplace_back(plan.scenes[s].id, plan.sceneEnvs[s]);
-    plan.settings = makeBatchSettings(idsAndEnvs, plan.accels);
+    std::vector<std::string> labels;
+    for (const AccelConfig& config : plan.accels) labels.push_back(config.label);
+    plan.settings = makeBatchSettings(idsAndEnvs, labels);
     return plan;
 }
 
@@ -302,7 +303,7 @@ BatchPlan planBatch(const Options& options) {
 void runJobs(const Options& options, const BatchPlan& plan, const Shard& shard, const std::filesystem::path& out) {
     const std::vector<SceneArgument>& scenes = plan.scenes;
     const std::vector<Env>& sceneEnvs = plan.sceneEnvs;
-    const std::vector<std::string>& accels = plan.accels;
+    const std::vector<AccelConfig>& accels = plan.accels;
     prepareFolder(out, plan.settings, options.fresh);
 
     // Jobs in table order; this shard takes every n-th.
@@ -356,6 +357,8 @@ std::vector<std::string> shardArguments(const Options& options) {
     std::vector<std::string> arguments;
     for (const std::string& scenes : options.scenes) arguments.insert(arguments.end(), {"--scenes", scenes});
     arguments.insert(arguments.end(), {"--accel", options.accels});
+    for (const std::string& plugin : options.env.plugins)
+        arguments.insert(arguments.end(), {"--plugin", std::filesystem::absolute(plugin).string()});
     for (const std::string& file : options.env.envFiles) arguments.insert(arguments.end(), {"--env", file});
     for (const std::string& assignment : options.env.overrides) arguments.push_back("-D" + assignment);
     if (options.env.noGlobalEnv) arguments.push_back("--no-global-env");
@@ -391,7 +394,7 @@ void submitToSlurm(const Options& options, const BatchPlan& plan, const std::fil
     fmt::print("{}", slurmSubmissionSummary(batch, submitSlurmBatch(batch, sbatch)));
 }
 
-void runBatch(const Options& options) {
+void runBatch(Options& options) {
     const std::filesystem::path out = prepareOutputFolder(options.out);
     if (!options.merge.empty()) {
         if (options.shardGiven) throw InputError("--merge and --shard do not go together");

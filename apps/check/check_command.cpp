@@ -4,6 +4,7 @@
 // accelerator or check, a bad env file or -D).
 #include "accel/registry.h"
 #include "apps/check/conformance.h"
+#include "apps/common/accel_config.h"
 #include "apps/common/cli_common.h"
 #include "apps/common/commands.h"
 #include "apps/common/progress.h"
@@ -42,15 +43,21 @@ nlohmann::json resultJson(const check::CheckResult& r) {
 
 // Returns the exit code: 0 all passed, 1 a check failed.
 int runChecks(CheckCommandOptions options) {
-    options.env.accelerators = {options.accel};
-    const Env env = options.env.load();
-    createAccelerator(options.accel, env);  // an unknown name fails before any work
+    const std::vector<AccelConfig> configs = parseAccelConfigList(options.accel);
+    if (configs.size() != 1)
+        throw InputError(fmt::format("--accel {}: give one accelerator, NAME or NAME:Key=value:...", options.accel));
+    const AccelConfig& config = configs.front();
+    nameAccelerators(configs, options.env);
+    const Env base = options.env.load();
+    checkAccelConfigs(configs, base);  // an unknown name or key fails before any work
+    const Env env = accelConfigEnv(config, base);
+    createAccelerator(config.name, env);
     std::vector<std::string> names = options.checks.empty() ? check::checkNames() : splitCommaList(options.checks);
     if (names.empty()) throw InputError(fmt::format("--checks: none given (known: {})", fmt::join(check::checkNames(), ", ")));
     for (const std::string& name : names) check::findCheck(name);
     const std::filesystem::path json = options.json.empty() ? std::filesystem::path() : prepareOutputFile(options.json, "--json");
 
-    const check::Subject subject{options.accel, [&] { return createAccelerator(options.accel, env); }};
+    const check::Subject subject{options.accel, [&] { return createAccelerator(config.name, env); }};
     Progress progress;
     check::CheckOptions checkOptions;
     uint64_t lastDone = 0;
@@ -91,7 +98,9 @@ void addCheckCommand(CLI::App& app) {
         "check", "the conformance suite for one accelerator: agreement with a double-precision reference, any-hit, batch, "
                  "mixed primitives, degenerate triangles, watertightness, builds at the edge (docs/accuracy.md)");
     options->env.addTo(*command);
-    command->add_option("--accel", options->accel, "the accelerator to check (`bvhlab keys` lists them)")->required();
+    command->add_option("--accel", options->accel,
+                        "the accelerator to check, NAME or NAME:Key=value:... (`bvhlab keys` lists them)")
+        ->required();
     command->add_option("--checks", options->checks,
                         fmt::format("comma-separated checks to run (default: all of {})", fmt::join(check::checkNames(), ",")));
     command->add_option("--json", options->json, "write the results as JSON to this file");

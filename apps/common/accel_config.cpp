@@ -29,6 +29,10 @@ std::vector<AccelConfig> parseAccelConfigList(const std::string& list) {
     return configs;
 }
 
+void nameAccelerators(const std::vector<AccelConfig>& configs, EnvOptions& env) {
+    for (const AccelConfig& config : configs) env.accelerators.push_back(config.name);
+}
+
 std::string ourAccelerators() {
     std::vector<std::string> names;
     for (const AcceleratorInfo& info : acceleratorInfos())
@@ -53,13 +57,11 @@ Env accelConfigEnv(const AccelConfig& config, const Env& base, const std::string
 
 void checkAccelConfigs(const std::vector<AccelConfig>& configs, const Env& base, const std::string& option) {
     if (configs.empty()) throw InputError(fmt::format("{}: no accelerator given", option));
-    for (const AccelConfig& config : configs) loadPluginFor(config.name);
-    std::vector<std::string> known;
-    for (const AcceleratorInfo& info : acceleratorInfos()) known.push_back(info.name);
     for (const AccelConfig& config : configs) {
-        if (std::find(known.begin(), known.end(), config.name) == known.end())
-            throw InputError(fmt::format("{} {}: unknown accelerator '{}' (known: {})", option, typed(config),
-                                         config.name, fmt::join(known, ", ")));
+        if (!loadPluginFor(config.name))
+            throw InputError(fmt::format("{} {}: {}", option, typed(config), unknownAcceleratorMessage(config.name)));
+        for (const std::string& o : config.overrides)
+            checkKeyIsNotAnUnloadedPlugins(o.substr(0, o.find('=')), fmt::format("{} {}", option, typed(config)));
         accelConfigEnv(config, base, option);
     }
 }

@@ -10,6 +10,8 @@
 
 namespace bvhlab {
 
+struct EnvOptions;
+
 struct AccelConfig {
     std::string label;  // the text as given, except embree:Embree::robust=true -> "embree-robust"
     std::string name;
@@ -25,12 +27,18 @@ std::string ourAccelerators();
 // A comma-separated list of configs.
 std::vector<AccelConfig> parseAccelConfigList(const std::string& list);
 
+// Names the configs' accelerators to `env` (EnvOptions::accelerators), so that a plugin's
+// structure is found by name before the env layers, which may set its keys, are read. Every
+// command that takes --accel calls it before loading its env, then checkAccelConfigs.
+void nameAccelerators(const std::vector<AccelConfig>& configs, EnvOptions& env);
+
 // The env `config` runs with: `base` and its overrides. An override that is not a key or not a
 // value of it is an InputError naming it as typed: "--accel sahbvh:BVH::binz=8: unknown key".
 Env accelConfigEnv(const AccelConfig& config, const Env& base, const std::string& option = "--accel");
 
-// Checks every config before any work (a subcommand calls it first): a registered accelerator,
-// overrides that accelConfigEnv takes. Throws InputError naming the option and the config.
+// Checks every config before any work (a subcommand calls it first): a registered accelerator
+// (its plugin loaded by name if need be), overrides that accelConfigEnv takes. Throws InputError
+// naming the option and the config.
 void checkAccelConfigs(const std::vector<AccelConfig>& configs, const Env& base, const std::string& option = "--accel");
 
 }  // namespace bvhlab

@@ -12,7 +12,7 @@ inline constexpr TextKey file{
     "Scene::file", "",
     "scene file (.obj .ply .off .nff, optionally .gz), relative to Scene::dir; empty = the embedded default scene"};
 inline constexpr PathKey cacheDir{
-    "Scene::cacheDir", ".cache/scenes",
+    "Scene::cacheDir", "$XDG_CACHE_HOME/bvhlab/scenes",
     "binary cache of parsed scenes, keyed by the source file's bytes (bvhlab batch); empty = no cache"};
 }  // namespace keys::Scene
 

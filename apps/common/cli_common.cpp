@@ -5,6 +5,7 @@
 #include "apps/common/plugins.h"
 #include "apps/common/program_keys.h"
 #include "framework/config/common_keys.h"
+#include "framework/config/install_paths.h"
 #include "framework/core/error.h"
 #include "framework/core/timed_build.h"
 #include "framework/scene/procedural.h"
@@ -25,10 +26,6 @@
 
 namespace bvhlab {
 
-std::filesystem::path repositoryFile(const std::filesystem::path& relative) {
-    return std::filesystem::exists(relative) ? relative : std::filesystem::path(BVHLAB_SOURCE_DIR) / relative;
-}
-
 void EnvOptions::addTo(CLI::App& command) {
     command.add_option("--env", envFiles,
                        "env file(s) layered on env/global.env (and the scene's env file), later ones win");
@@ -45,7 +42,7 @@ void EnvOptions::addThreadsTo(CLI::App& command) {
 
 std::vector<std::string> EnvOptions::files(const std::filesystem::path& sceneEnvFile) const {
     std::vector<std::string> candidates;
-    if (!noGlobalEnv) candidates.push_back(repositoryFile("env/global.env").string());
+    if (!noGlobalEnv) candidates.push_back(dataFile("env/global.env").string());
     if (!sceneEnvFile.empty()) candidates.push_back(sceneEnvFile.string());
     candidates.insert(candidates.end(), envFiles.begin(), envFiles.end());
     // A file named twice (--env env/global.env) is read once, where it first comes.
@@ -64,32 +61,29 @@ void EnvOptions::loadPlugins(const std::vector<std::string>& layerFiles) const {
     for (const std::string& file : plugins) loadPlugin(file);
     // ASDS::plugins and ASDS::type as the layers give them, read before the registry checks the
     // layers, since a plugin they name adds keys and accelerators the layers may use.
-    std::string type, typeOrigin;
-    auto usePlugins = [](const std::string& list, const std::filesystem::path& baseDir) {
-        for (const std::string& file : splitCommaList(list)) loadPlugin(baseDir / file);
+    struct Assignment {
+        EnvLine line;
+        std::filesystem::path baseDir;  // relative plugin files resolve against it
     };
+    std::vector<Assignment> assignments;
     for (const std::string& file : layerFiles)
-        for (const EnvLine& line : readEnvLines(file)) {
-            if (line.name == keys::ASDS::plugins.name())
-                usePlugins(line.text, std::filesystem::absolute(file).parent_path());
-            if (line.name == keys::ASDS::type.name()) std::tie(type, typeOrigin) = std::pair(line.text, line.origin);
-        }
+        for (const EnvLine& line : readEnvLines(file))
+            assignments.push_back({line, std::filesystem::absolute(file).parent_path()});
     for (const std::string& assignment : overrides) {
         const size_t eq = assignment.find('=');
         if (eq == std::string::npos) continue;  // reported by Env::setOverride
-        const std::string name = assignment.substr(0, eq), value = assignment.substr(eq + 1);
-        if (name == keys::ASDS::plugins.name()) usePlugins(value, std::filesystem::current_path());
-        if (name == keys::ASDS::type.name()) std::tie(type, typeOrigin) = std::pair(value, "-D" + name);
+        const std::string name = assignment.substr(0, eq);
+        assignments.push_back({{name, assignment.substr(eq + 1), "-D" + name}, std::filesystem::current_path()});
+    }
+    std::string type, typeOrigin;
+    for (const auto& [line, baseDir] : assignments) {
+        if (line.name == keys::ASDS::plugins.name())
+            for (const std::string& file : splitCommaList(line.text)) loadPlugin(baseDir / file);
+        if (line.name == keys::ASDS::type.name() && !line.text.empty()) std::tie(type, typeOrigin) = std::pair(line.text, line.origin);
     }
     for (const std::string& name : accelerators) loadPluginFor(name);  // unknown: the command says so
-    if (!type.empty() && !loadPluginFor(type)) {
-        std::vector<std::string> known, folders;
-        for (const AcceleratorInfo& info : acceleratorInfos()) known.push_back(info.name);
-        for (const std::filesystem::path& folder : pluginFolders()) folders.push_back(folder.string());
-        throw InputError(fmt::format("{}: unknown accelerator '{}': none of bvhlab's, no plugin loaded adds it, and "
-                                     "no {}.so in the plugin folders ({}; BVHLAB_PLUGIN_PATH adds folders). Known: {}",
-                                     typeOrigin, type, type, fmt::join(folders, ", "), fmt::join(known, ", ")));
-    }
+    if (!type.empty() && !loadPluginFor(type)) throw InputError(fmt::format("{}: {}", typeOrigin, unknownAcceleratorMessage(type)));
+    for (const auto& [line, baseDir] : assignments) checkKeyIsNotAnUnloadedPlugins(line.name, line.origin);
 }
 
 Env EnvOptions::load(const std::filesystem::path& sceneEnvFile) const {
@@ -102,7 +96,7 @@ Env EnvOptions::load(const std::filesystem::path& sceneEnvFile) const {
 }
 
 std::filesystem::path sceneEnvFor(const std::filesystem::path& sceneFile, const EnvOptions& options) {
-    const std::filesystem::path folder = repositoryFile("env/scenes");
+    const std::filesystem::path folder = dataFile("env/scenes");
     if (!std::filesystem::is_directory(folder)) return {};
     std::vector<std::filesystem::path> candidates;
     for (const auto& entry : std::filesystem::directory_iterator(folder))
@@ -134,14 +128,14 @@ SceneChoice chooseScene(const std::string& scene, const std::string& sceneEnv, c
         if (choice.envFile.empty()) choice.envFile = sceneEnvFor(file, options);
         return choice;
     }
-    const std::filesystem::path named = repositoryFile(std::filesystem::path("env/scenes") / (scene + ".env"));
+    const std::filesystem::path named = dataFile(std::filesystem::path("env/scenes") / (scene + ".env"));
     if (scene.find('/') == std::string::npos && std::filesystem::is_regular_file(named)) {
         if (choice.envFile.empty()) choice.envFile = named;
         return choice;
     }
     std::vector<std::string> known;
-    if (std::filesystem::is_directory(repositoryFile("env/scenes")))
-        for (const auto& entry : std::filesystem::directory_iterator(repositoryFile("env/scenes")))
+    if (std::filesystem::is_directory(dataFile("env/scenes")))
+        for (const auto& entry : std::filesystem::directory_iterator(dataFile("env/scenes")))
             if (entry.path().extension() == ".env") known.push_back(entry.path().stem().string());
     std::sort(known.begin(), known.end());
     throw InputError(fmt::format("--scene {}: no such file here or in Scene::dir ({}), and no scene env file "

@@ -19,10 +19,6 @@
 
 namespace bvhlab {
 
-// A file of the repository (env/global.env, env/scenes/...): in the working folder when bvhlab
-// runs from the repository root, else in the source tree it was built from.
-std::filesystem::path repositoryFile(const std::filesystem::path& relative);
-
 // Every subcommand's configuration options. The layers, later ones winning: env/global.env
 // (unless --no-global-env), a scene's env file (camera, lights), the --env files, --threads,
 // then the -D overrides.
@@ -30,8 +26,8 @@ struct EnvOptions {
     std::vector<std::string> envFiles;
     std::vector<std::string> overrides;
     std::vector<std::string> plugins;  // --plugin
-    // Accelerators a command names outside the env (check --accel): their plugins are found by
-    // name before the layers are checked, so -D may set their keys.
+    // Accelerators a command names outside the env (--accel, parseAccelOption): their plugins
+    // are found by name before the layers are checked, so env files and -D may set their keys.
     std::vector<std::string> accelerators;
     bool noGlobalEnv = false;
     int threads = -1;  // --threads; -1: not given

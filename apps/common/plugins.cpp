@@ -2,6 +2,7 @@
 
 #include "accel/registry.h"
 #include "apps/common/program_keys.h"
+#include "framework/config/install_paths.h"
 #include "framework/core/error.h"
 #include "framework/plugin/plugin_api.h"
 #include "framework/report/provenance.h"
@@ -9,6 +10,7 @@
 
 #include <dlfcn.h>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -166,25 +168,61 @@ std::vector<std::filesystem::path> pluginFolders() {
             start = end + 1;
         }
     }
-    std::error_code ec;
-    const std::filesystem::path program = std::filesystem::read_symlink("/proc/self/exe", ec);
-    if (!ec) {
-        folders.push_back(program.parent_path() / "plugins");
-        folders.push_back((program.parent_path() / ".." / "lib" / "bvhlab" / "plugins").lexically_normal());
-    }
+    folders.push_back(bundledPluginFolder());
     return folders;
+}
+
+namespace {
+
+// The files loadPluginFor looks for: NAME.so, and NAME.so for NAME4 and NAME8 (a builder's wide layouts).
+std::vector<std::string> pluginFilesFor(const std::string& accelerator) {
+    std::vector<std::string> files = {accelerator + ".so"};
+    if (accelerator.size() > 1 && (accelerator.ends_with('4') || accelerator.ends_with('8')))
+        files.push_back(accelerator.substr(0, accelerator.size() - 1) + ".so");
+    return files;
+}
+
+std::string pluginFolderList() {
+    std::vector<std::string> folders;
+    for (const std::filesystem::path& folder : pluginFolders()) folders.push_back(folder.string());
+    return fmt::format("{}; BVHLAB_PLUGIN_PATH adds folders", fmt::join(folders, ", "));
+}
+
+}  // namespace
+
+std::string unknownAcceleratorMessage(const std::string& accelerator) {
+    std::vector<std::string> known;
+    for (const AcceleratorInfo& info : acceleratorInfos()) known.push_back(info.name);
+    for (const std::string& file : pluginFilesFor(accelerator))
+        for (const LoadedPlugin& plugin : pluginList())
+            if (plugin.file.filename() == file)
+                return fmt::format("unknown accelerator '{}': the plugin {} was loaded for it, but it adds {}, not '{}'",
+                                   accelerator, plugin.file.string(), fmt::join(plugin.accelerators, ", "),
+                                   accelerator);
+    return fmt::format("unknown accelerator '{}': none of bvhlab's, no plugin loaded adds it, and no {} in the plugin "
+                       "folders ({}). Known: {}",
+                       accelerator, fmt::join(pluginFilesFor(accelerator), " or "), pluginFolderList(),
+                       fmt::join(known, ", "));
+}
+
+void checkKeyIsNotAnUnloadedPlugins(const std::string& key, const std::string& origin) {
+    if (programKeys().find(key)) return;
+    const std::string section = key.substr(0, key.find("::") + 2);
+    for (const auto& [name, declared] : programKeys().keys())
+        if (name.starts_with(section)) return;  // a misspelt key of a known section: Env says "did you mean"
+    throw InputError(fmt::format("{}: unknown key '{}': no section {} in bvhlab or a loaded plugin. If it is a "
+                                 "plugin's key, load the plugin: --plugin FILE, ASDS::plugins FILE in an env file, "
+                                 "or name its accelerator (--accel NAME, ASDS::type NAME) to load NAME.so from the "
+                                 "plugin folders ({})",
+                                 origin, key, section, pluginFolderList()));
 }
 
 bool loadPluginFor(const std::string& accelerator) {
     if (findAccelerator(accelerator)) return true;
     if (accelerator.empty() || accelerator.find('/') != std::string::npos) return false;
-    // NAME4 and NAME8 come with a builder's NAME.
-    std::vector<std::string> files = {accelerator};
-    if (accelerator.size() > 1 && (accelerator.ends_with('4') || accelerator.ends_with('8')))
-        files.push_back(accelerator.substr(0, accelerator.size() - 1));
-    for (const std::string& file : files)
+    for (const std::string& file : pluginFilesFor(accelerator))
         for (const std::filesystem::path& folder : pluginFolders()) {
-            const std::filesystem::path path = folder / (file + ".so");
+            const std::filesystem::path path = folder / file;
             std::error_code ec;
             if (!std::filesystem::is_regular_file(path, ec)) continue;
             loadPlugin(path);

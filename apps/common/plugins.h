@@ -32,12 +32,20 @@ const LoadedPlugin& loadPlugin(const std::filesystem::path& file);
 const std::deque<LoadedPlugin>& loadedPlugins();  // in load order
 
 // Where plugins are found by name, in order: the folders of BVHLAB_PLUGIN_PATH (':'-separated),
-// the program's plugins/ folder (a build tree's build/plugins/) and ../lib/bvhlab/plugins/ beside
-// it (an installed package).
+// then bvhlab's own (build/plugins in a build tree, PREFIX/lib/bvhlab/plugins when installed).
 std::vector<std::filesystem::path> pluginFolders();
 
 // If `accelerator` is not known, loads `accelerator`.so from the first plugin folder holding
-// one, or for NAME4 and NAME8 (a builder's wide layouts) NAME.so. False when it is still unknown (the caller then reports the unknown name).
+// one, or for NAME4 and NAME8 (a builder's wide layouts) NAME.so. False when it is still unknown
+// (the caller then reports it with unknownAcceleratorMessage).
 bool loadPluginFor(const std::string& accelerator);
+
+// Why `accelerator` is unknown after loadPluginFor: the folders searched, what a file of its name
+// found there adds instead, and the names that are known.
+std::string unknownAcceleratorMessage(const std::string& accelerator);
+
+// Throws InputError when `key` (set at `origin`) is not a known key and its section is none of
+// bvhlab's: the key of a plugin that is not loaded, named so, with the ways to load one.
+void checkKeyIsNotAnUnloadedPlugins(const std::string& key, const std::string& origin);
 
 }  // namespace bvhlab

@@ -1,5 +1,6 @@
 #include "apps/common/scene_list.h"
 
+#include "framework/config/install_paths.h"
 #include "framework/core/error.h"
 
 #include <fmt/core.h>
@@ -15,7 +16,7 @@ std::vector<SceneArgument> expandSceneList(const std::vector<std::string>& argum
     std::vector<std::string> items;
     for (const std::string& argument : arguments)
         for (const std::string& item : splitCommaList(argument)) items.push_back(item);
-    if (items.empty()) items.push_back(repositoryFile("env/scenes.list").string());
+    if (items.empty()) items.push_back(dataFile("env/scenes.list").string());
 
     std::vector<std::filesystem::path> files;  // env and scene files, lists expanded
     for (const std::filesystem::path item : items) {

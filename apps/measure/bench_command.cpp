@@ -330,6 +330,7 @@ void addBenchCommand(CLI::App& app) {
             for (const char* reference : {"embree", "embree:Embree::robust=true"})
                 if (std::none_of(configs.begin(), configs.end(), [&](const AccelConfig& c) { return c.label == parseAccelConfig(reference).label; }))
                     configs.push_back(parseAccelConfig(reference));
+            nameAccelerators(configs, options->env);
             checkAccelConfigs(configs, options->env.load());
             std::vector<int> threadCounts;
             for (const std::string& item : splitCommaList(options->threads)) {

@@ -9,6 +9,7 @@
 #include "apps/common/scene_list.h"
 #include "apps/measure/builders.h"
 #include "apps/measure/tradeoff.h"
+#include "framework/config/install_paths.h"
 #include "framework/core/error.h"
 #include "framework/core/parse_number.h"
 
@@ -130,11 +131,12 @@ void addTradeoffCommand(CLI::App& app) {
             if (settings.threads == 0) settings.threads = tbb::info::default_concurrency();
             const std::vector<AccelConfig> configs =
                 settings.builders ? builderConfigs(options->accels) : tradeoffConfigs(settings, options->accels);
+            nameAccelerators(configs, options->env);
             checkAccelConfigs(configs, options->env.load());
             std::vector<std::string> sceneArgs = options->scenes;
             if (sceneArgs.empty() && options->quick)
                 for (const char* id : {"munich", "sibenik"})
-                    sceneArgs.push_back(repositoryFile(std::filesystem::path("env/scenes") / (std::string(id) + ".env")).string());
+                    sceneArgs.push_back(dataFile(std::filesystem::path("env/scenes") / (std::string(id) + ".env")).string());
             const std::vector<SceneArgument> scenes = expandSceneList(sceneArgs, options->env);
             const std::string out = !options->out.empty() ? options->out : settings.builders ? "out/builders" : "out/tradeoff";
             const std::filesystem::path dir = prepareOutputFolder(out);

@@ -17,8 +17,8 @@ namespace {
 
 std::string text(const py::handle& object) { return py::str(object).cast<std::string>(); }
 
-// `object` as a NumPy array of float32 or float64 in native byte order, C-contiguous, of shape
-// (N, columns) (columns 0: (N,)) with N > 0, and N == rows when rows >= 0. Else InputError.
+// `object` as a NumPy array of float32 or float64 in native byte order, of any strides, of shape
+// (N, columns) (columns 0: (N,)), and N == rows when rows >= 0. Else InputError.
 py::array checkedFloats(const py::handle& object, const std::string& name, py::ssize_t rows, int columns) {
     const std::string shape = columns ? fmt::format("(N, {})", columns) : "(N,)";
     if (!py::isinstance<py::array>(object))
@@ -30,9 +30,6 @@ py::array checkedFloats(const py::handle& object, const std::string& name, py::s
         throw InputError(fmt::format("{}: expected float32 or float64, got {}", name, text(dtype)));
     if (array.ndim() != (columns ? 2 : 1) || (columns && array.shape(1) != columns))
         throw InputError(fmt::format("{}: expected shape {}, got {}", name, shape, text(array.attr("shape"))));
-    if (!(array.flags() & py::array::c_style))
-        throw InputError(fmt::format("{}: not C-contiguous (np.ascontiguousarray(a) is)", name));
-    if (array.shape(0) == 0) throw InputError(fmt::format("{}: empty, no rays", name));
     if (rows >= 0 && array.shape(0) != rows)
         throw InputError(fmt::format("{}: {} rows where origins has {}", name, array.shape(0), rows));
     return array;
@@ -46,7 +43,9 @@ py::array_t<float> floatArray(size_t rows, size_t columns) {
 
 RayArrays::Values RayArrays::valuesOf(py::array array) {
     Values values;
-    values.data = array.data();
+    values.data = static_cast<const char*>(array.data());
+    values.rowStride = array.strides(0);
+    values.columnStride = array.ndim() > 1 ? array.strides(1) : 0;
     values.isDouble = array.itemsize() == 8;
     values.array = std::move(array);
     return values;
@@ -77,10 +76,10 @@ RayArrays::RayArrays(const py::handle& origins, const py::handle& directions, co
 void RayArrays::read(size_t begin, std::span<Ray> out) const {
     for (size_t k = 0; k < out.size(); ++k) {
         const size_t i = begin + k;
-        out[k].org = {origins_[3 * i], origins_[3 * i + 1], origins_[3 * i + 2]};
-        out[k].dir = {directions_[3 * i], directions_[3 * i + 1], directions_[3 * i + 2]};
-        out[k].tmin = tmin_[i];
-        out[k].tmax = tmax_[i];
+        out[k].org = {origins_(i, 0), origins_(i, 1), origins_(i, 2)};
+        out[k].dir = {directions_(i, 0), directions_(i, 1), directions_(i, 2)};
+        out[k].tmin = tmin_(i);
+        out[k].tmax = tmax_(i);
     }
 }
 

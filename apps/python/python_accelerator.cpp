@@ -53,10 +53,12 @@ PythonAccelerator build(std::shared_ptr<PythonScene> scene, const std::string& n
 
 // Answers the arrays' rays into a new array of Record, one per ray, as bvhlab raycast answers
 // them (forEachRayRange), with the GIL released: each range is read into its thread's buffers,
-// answered by the batch call, and written in place by write(answers, costs, records).
+// answered by the batch call, and written in place by write(answers, costs, records). Costs are
+// empty unless `counters` is asked and the structure counts.
 template <typename Record, typename Answer, typename Write>
 py::array answerInto(const PythonAccelerator& self, const RayArrays& rays, int threads, bool counters, Write&& write) {
     checkThreads(threads);
+    const bool counted = counters && self.accel->hasCounters();
     py::array_t<Record> result(py::ssize_t(rays.size()));
     Record* records = result.mutable_data();
     struct Buffers {
@@ -71,7 +73,7 @@ py::array answerInto(const PythonAccelerator& self, const RayArrays& rays, int t
             Buffers& b = perThread.local();
             b.rays.resize(end - begin);
             b.answers.resize(end - begin);
-            b.costs.resize(counters ? end - begin : 0);
+            b.costs.resize(counted ? end - begin : 0);
             rays.read(begin, b.rays);
             if constexpr (std::is_same_v<Answer, Hit>)
                 self.accel->findNearestBatch(b.rays, b.answers, queryCounters, b.costs);
@@ -96,8 +98,10 @@ py::array occluded(const PythonAccelerator& self, const py::handle& origins, con
     if (counters)
         return answerInto<CountedOcclusionRecord, uint8_t>(
             self, rays, threads, true, [](auto answers, auto costs, CountedOcclusionRecord* out) {
-                for (size_t i = 0; i < answers.size(); ++i)
-                    out[i] = {answers[i] != 0, costs[i].intersectionTests, costs[i].traversalSteps};
+                for (size_t i = 0; i < answers.size(); ++i) {
+                    out[i].occluded = answers[i] != 0;
+                    writeCounters(costs, i, out[i]);
+                }
             });
     return answerInto<bool, uint8_t>(self, rays, threads, false, [](auto answers, auto, bool* out) {
         for (size_t i = 0; i < answers.size(); ++i) out[i] = answers[i] != 0;
@@ -116,20 +120,22 @@ Env envWith(const PythonScene& scene, const py::object& envDict, int threads) {
 
 void bindAccelerator(py::module_& m) {
     static const std::string queryArguments =
-        "origins and directions: (N, 3) float32 or float64, C-contiguous; tmin, tmax: numbers or (N,) arrays; "
-        "threads: 0 for all hardware threads. Rays with a NaN are misses.";
+        "origins and directions: (N, 3) float32 or float64 of any strides, read in place, N >= 0; tmin, tmax: "
+        "numbers or (N,) arrays; threads: 0 for all hardware threads. Rays with a NaN are misses.";
     // Static: pybind11 keeps the pointer.
     static const std::string intersectDoc =
         "Closest hits: a structured array t (inf on a miss), prim (-1 on a miss), u, v, and with counters n_it, "
-        "n_tr per ray. " + queryArguments;
+        "n_tr per ray (float32; NaN for a structure without counters). " + queryArguments;
     static const std::string occludedDoc =
-        "Any-hit answers: a bool array, or with counters a structured array occluded, n_it, n_tr. " + queryArguments;
+        "Any-hit answers: a bool array, or with counters a structured array occluded, n_it, n_tr (float32; NaN "
+        "for a structure without counters). " + queryArguments;
     py::class_<PythonAccelerator>(m, "Accelerator", "An acceleration structure built over a scene (bvhlab.build).")
         .def_property_readonly("name", [](const PythonAccelerator& a) { return std::string(a.accel->name()); })
         .def_property_readonly("stats", [](const PythonAccelerator& a) { return statsDict(a.stats); },
                                "build_ms, nodes, leaves, sah, epo, bytes, ... and the structure's figures; None "
                                "where the structure has no such figure")
-        .def_property_readonly("has_counters", [](const PythonAccelerator& a) { return a.accel->hasCounters(); })
+        .def_property_readonly("has_counters", [](const PythonAccelerator& a) { return a.accel->hasCounters(); },
+                               "False for a structure that counts no N_IT and N_TR (Embree): its counters are NaN")
         .def("intersect", &intersect, py::arg("origins"), py::arg("directions"), py::arg("tmin") = 0.0f,
              py::arg("tmax") = std::numeric_limits<float>::infinity(), py::arg("threads") = 0,
              py::arg("counters") = false,

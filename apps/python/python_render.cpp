@@ -8,6 +8,9 @@
 
 #include <pybind11/numpy.h>
 
+#include <algorithm>
+#include <limits>
+
 namespace py = pybind11;
 
 namespace bvhlab {
@@ -32,6 +35,25 @@ py::array_t<T> imageArray(const std::vector<Value>& values, int width, int heigh
     return image;
 }
 
+// A per-pixel counter (N_TR, N_IT) as an (height, width) image: NaN for a structure that counts
+// nothing, whose framebuffer holds zeros.
+py::array_t<float> counterImage(const std::vector<float>& values, int width, int height, bool counted) {
+    py::array_t<float> image = imageArray<float>(values, width, height, 0);
+    if (!counted) std::fill_n(image.mutable_data(), image.size(), std::numeric_limits<float>::quiet_NaN());
+    return image;
+}
+
+// The statistics JSON of the render as a dict. A structure without counters has NaN for the
+// per-query counters where the JSON has null, as in every counter Python returns.
+py::object renderStatsDict(const StatsRow& row) {
+    py::object stats = pythonFromJson(statsJson(row));
+    if (row.hasCounters) return stats;
+    for (const char* query : {"primary", "shadow"})
+        for (const char* counter : {"n_it", "n_tr", "n_it_sphere", "n_it_cone"})
+            stats[query][counter] = std::numeric_limits<double>::quiet_NaN();
+    return stats;
+}
+
 py::dict renderAccelerator(const PythonAccelerator& accel, const py::object& envDict, int threads) {
     const Env env = envWith(*accel.scene, envDict, threads);
     const Scene& scene = accel.scene->scene;
@@ -50,9 +72,9 @@ py::dict renderAccelerator(const PythonAccelerator& accel, const py::object& env
     result["depth"] = imageArray<float>(fb.depth, fb.width, fb.height, 0);
     result["prim"] = imageArray<int64_t>(fb.primitive, fb.width, fb.height, 0);
     result["normal"] = imageArray<float>(fb.normal, fb.width, fb.height, 3);
-    result["heatmap"] = imageArray<float>(fb.traversalSteps, fb.width, fb.height, 0);
-    result["n_it"] = imageArray<float>(fb.intersectionTests, fb.width, fb.height, 0);
-    result["stats"] = pythonFromJson(statsJson(row));
+    result["heatmap"] = counterImage(fb.traversalSteps, fb.width, fb.height, row.hasCounters);
+    result["n_it"] = counterImage(fb.intersectionTests, fb.width, fb.height, row.hasCounters);
+    result["stats"] = renderStatsDict(row);
     return result;
 }
 
@@ -62,7 +84,8 @@ void bindRender(py::module_& m) {
     m.def("render", &renderAccelerator, py::arg("accel"), py::arg("env") = py::none(), py::arg("threads") = 0,
           "Renders the accelerator's scene as bvhlab render does (its camera and lights, env keys as a dict over "
           "them): {image (H, W, 3) linear colour, depth, prim (-1 on a miss), normal, heatmap (N_TR per pixel), "
-          "n_it, stats (the statistics JSON: nodes, sah, build_ms, render_ms, primary, shadow, ...)}.");
+          "n_it, stats (the statistics JSON: nodes, sah, build_ms, render_ms, primary, shadow, ...)}; the counters "
+          "NaN for a structure without counters.");
 }
 
 }  // namespace bvhlab

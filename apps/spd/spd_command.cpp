@@ -116,9 +116,10 @@ void addSpdCommand(CLI::App& app) {
     command->callback([options] {
         const int code = runGuarded([&] {
             const std::filesystem::path out = prepareOutputFolder(options->out);
+            std::vector<AccelConfig> configs = parseAccelConfigList(options->accels);
+            nameAccelerators(configs, options->env);
             const Env base = chooseScene("", "", options->env).load(options->env);
-            const std::vector<AccelConfig> configs =
-                parseAccelConfigList(options->accels.empty() ? base.get(keys::ASDS::type) : options->accels);
+            if (configs.empty()) configs = parseAccelConfigList(base.get(keys::ASDS::type));
             checkAccelConfigs(configs, base);
             const auto havran = readHavranReference(base.get(keys::Spd::reference));
             SpdRules rules;

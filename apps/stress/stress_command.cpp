@@ -68,8 +68,8 @@ bool isExternal(const AccelConfig& config) { return config.name == "embree"; }
 
 class StressRun {
 public:
-    StressRun(const StressOptions& options, const Env& env)
-        : options_(options), env_(env), configs_(parseAccelConfigList(options.accels)) {
+    StressRun(const StressOptions& options, std::vector<AccelConfig> configs, const Env& env)
+        : options_(options), env_(env), configs_(std::move(configs)) {
         checkAccelConfigs(configs_, env_);
         for (const AccelConfig& c : configs_) createAccelerator(c.name, configured(c));  // before any work
         results_ = {{"provenance", provenanceJson()},
@@ -469,7 +469,9 @@ void addStressCommand(CLI::App& app) {
         bool failed = false;
         const int code = runGuarded([&] {
             const auto start = Clock::now();
-            StressRun run(*options, options->env.load());
+            std::vector<AccelConfig> configs = parseAccelConfigList(options->accels);
+            nameAccelerators(configs, options->env);
+            StressRun run(*options, std::move(configs), options->env.load());
             run.run();
             nlohmann::json results = run.results();
             results["seconds"] = secondsSince(start);

@@ -1,5 +1,6 @@
 #include "framework/config/env.h"
 
+#include "framework/config/install_paths.h"
 #include "framework/core/error.h"
 #include "framework/core/parse_number.h"
 
@@ -153,11 +154,15 @@ std::vector<std::string> EnvRegistry::nearest(const std::string& name, size_t co
     return result;
 }
 
-// Relative default paths are relative to the repository root, so they work from any folder.
+// Relative default paths resolve against bvhlab's data folder (the repository root in a build
+// tree), so they work from any folder; "$XDG_CACHE_HOME/..." against the user's cache folder.
 Env::Value Env::defaultOf(const EnvKey& key) {
     std::string text = key.defaultValue;
-    if (key.type == EnvType::Path && !text.empty())
-        text = (std::filesystem::path(BVHLAB_SOURCE_DIR) / text).lexically_normal().string();
+    constexpr std::string_view cache = "$XDG_CACHE_HOME/";
+    if (key.type == EnvType::Path && text.starts_with(cache))
+        text = (userCacheRoot() / text.substr(cache.size())).lexically_normal().string();
+    else if (key.type == EnvType::Path && !text.empty())
+        text = (dataFolder() / text).lexically_normal().string();
     return {text, "default"};
 }
 
@@ -165,16 +170,21 @@ Env::Env(const EnvRegistry& registry) : registry_(&registry) {
     for (const auto& [name, key] : registry.keys()) values_[name] = defaultOf(key);
 }
 
-void Env::set(const std::string& name, const std::string& text, const std::string& origin,
-              const std::filesystem::path& baseDir) {
+const EnvKey& Env::known(const std::string& name, const std::string& origin) const {
     const EnvKey* key = registry_->find(name);
     if (!key) {
         const auto near = registry_->nearest(name);
         throw InputError(fmt::format("{}: unknown key '{}'{}", origin, name,
                                      near.empty() ? "" : fmt::format(" (did you mean {}?)", fmt::join(near, ", "))));
     }
+    return *key;
+}
+
+void Env::set(const std::string& name, const std::string& text, const std::string& origin,
+              const std::filesystem::path& baseDir) {
+    const EnvKey& key = known(name, origin);
     std::string error;
-    std::string canonical = validate(*key, text, baseDir, error);
+    std::string canonical = validate(key, text, baseDir, error);
     if (!error.empty()) throw InputError(fmt::format("{}: {}", origin, error));
     values_[name] = {std::move(canonical), origin};
 }
@@ -217,7 +227,13 @@ std::vector<EnvLine> readEnvLines(const std::filesystem::path& file) {
 
 void Env::loadFile(const std::filesystem::path& file) {
     const std::filesystem::path baseDir = std::filesystem::absolute(file).parent_path();
-    for (const EnvLine& line : readEnvLines(file)) set(line.name, line.text, line.origin, baseDir);
+    for (const EnvLine& line : readEnvLines(file)) {
+        // A key without a value names the key and leaves it as the earlier layers set it.
+        if (line.text.empty())
+            known(line.name, line.origin);
+        else
+            set(line.name, line.text, line.origin, baseDir);
+    }
 }
 
 Env::Value Env::value(std::string_view keyName, EnvType expected) const {

@@ -47,7 +47,8 @@ public:
     // The registry must outlive the Env.
     explicit Env(const EnvRegistry& registry);
 
-    // Throws InputError naming the file, the line and the key.
+    // Throws InputError naming the file, the line and the key. A line with a key and no value
+    // sets nothing: the key keeps what the earlier layers (or its default) gave it.
     void loadFile(const std::filesystem::path& file);
     // `origin` names where the value came from in errors and provenance (e.g. "-D").
     // Relative paths resolve against `baseDir`.
@@ -85,6 +86,8 @@ private:
         std::string origin;  // "default", "file:line" or "-D"
     };
     static Value defaultOf(const EnvKey& key);
+    // The registry's key `name`; an unknown one is an InputError naming `origin` and near keys.
+    const EnvKey& known(const std::string& name, const std::string& origin) const;
     Value value(std::string_view key, EnvType expected) const;
 
     const EnvRegistry* registry_;

@@ -20,6 +20,7 @@
 #include "apps/check/oracle.h"
 #include "tests/support/polygons.h"
 #include "tests/support/random_geometry.h"
+#include "tests/support/test_paths.h"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -279,7 +280,7 @@ TEST_P(AccelCorrectness, NonConvexPolygons) { runScene("nonconvex_polygons", non
 
 // --- Scene files --------------------------------------------------------------------------------
 
-std::filesystem::path sharedScenes() { return std::filesystem::path(BVHLAB_SOURCE_DIR) / ".." / "shared" / "scenes"; }
+std::filesystem::path sharedScenes() { return std::filesystem::path(test::sourceTree()) / ".." / "shared" / "scenes"; }
 
 const std::vector<RayKind> kFileRayKinds = {RayKind::Outside,  RayKind::Inside,  RayKind::EdgeAimed, RayKind::VertexAimed,
                                             RayKind::AxisParallel, RayKind::Grazing, RayKind::Interval};

@@ -5,6 +5,7 @@
 #include "framework/plugin/plugin_api.h"
 #include "tests/support/cli_run.h"
 #include "tests/support/scratch_dir.h"
+#include "tests/support/test_paths.h"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -15,7 +16,7 @@
 namespace bvhlab::test {
 namespace {
 
-const std::string kPlugins = BVHLAB_TEST_PLUGINS;
+const std::string kPlugins = test::testPlugins();
 const std::string kThrowing = kPlugins + "/throwing.so";
 const std::string kBuilders = kPlugins + "/builders.so";
 const std::string kUnoptimized = kPlugins + "/throwing_unoptimized.so";
@@ -85,7 +86,7 @@ TEST(Plugins, ExceptionsInsideAPluginNameThePluginAndTheAccelerator) {
 }
 
 TEST(Plugins, AnAcceleratorIsFoundByNameInThePluginFolders) {
-    Result r = runShell("BVHLAB_PLUGIN_PATH=/nowhere:" + kPlugins + " " + BVHLAB_BINARY +
+    Result r = runShell("BVHLAB_PLUGIN_PATH=/nowhere:" + kPlugins + " " + test::bvhlabProgram() +
                         " render -DCamera::width=16 -DCamera::height=12 -DASDS::type=throwing --out " +
                         (scratchDir("plugins") / "image").string());
     EXPECT_NE(r.output.find("accelerator 'throwing': build() threw"), std::string::npos) << r.output;

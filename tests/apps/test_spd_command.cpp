@@ -3,6 +3,7 @@
 #include "apps/spd/havran_reference.h"
 #include "tests/support/cli_run.h"
 #include "tests/support/scratch_dir.h"
+#include "tests/support/test_paths.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -63,7 +64,7 @@ TEST(HavranReference, AMissingFileIsAnErrorNamingIt) {
 }
 
 TEST(HavranReference, ThePublishedFilesReadWhole) {
-    const fs::path dir = fs::path(BVHLAB_SOURCE_DIR) / ".." / "shared" / "reference" / "spd";
+    const fs::path dir = fs::path(test::sourceTree()) / ".." / "shared" / "reference" / "spd";
     if (!fs::exists(dir)) GTEST_SKIP() << "no " << dir;
     const auto scenes = readHavranReference(dir);
     for (const char* name : {"balls", "mount", "rings", "teapot", "tetra", "tree"}) {

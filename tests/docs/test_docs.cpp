@@ -4,6 +4,7 @@
 #include "accel/bvh/bvh_env.h"
 #include "accel/registry.h"
 #include "apps/common/program_keys.h"
+#include "tests/support/test_paths.h"
 
 #include <gtest/gtest.h>
 
@@ -17,18 +18,18 @@
 using namespace bvhlab;
 
 TEST(Docs, EnvKeyListMatchesRegistry) {
-    std::ifstream in(std::string(BVHLAB_SOURCE_DIR) + "/docs/env-keys.md");
+    std::ifstream in(test::sourceTree() + "/docs/env-keys.md");
     ASSERT_TRUE(in) << "docs/env-keys.md is missing";
     std::stringstream text;
     text << in.rdbuf();
     Env globalEnv(programKeys());
-    globalEnv.loadFile(std::string(BVHLAB_SOURCE_DIR) + "/env/global.env");
+    globalEnv.loadFile(test::sourceTree() + "/env/global.env");
     EXPECT_EQ(text.str(), envKeysMarkdown(globalEnv)) << "run: build/bvhlab keys > docs/env-keys.md";
 }
 
 TEST(Docs, GlobalEnvLoads) {
     Env env(programKeys());
-    EXPECT_NO_THROW(env.loadFile(std::string(BVHLAB_SOURCE_DIR) + "/env/global.env"));
+    EXPECT_NO_THROW(env.loadFile(test::sourceTree() + "/env/global.env"));
 }
 
 // Each key's declared default is a value it accepts (a default out of its own range would be
@@ -62,7 +63,7 @@ TEST(Docs, BvhConfigDefaultsAreTheKeysDefaults) {
 // Paths a user is told to create are listed here as examples.
 TEST(Docs, EveryRepositoryPathTheyNameExists) {
     namespace fs = std::filesystem;
-    const fs::path root(BVHLAB_SOURCE_DIR);
+    const fs::path root(test::sourceTree());
     const std::set<std::string> examples = {"accel/kdtree"};
     std::vector<fs::path> files = {root / "README.md", root / "CMakeLists.txt"};
     for (const char* folder : {"docs", "framework", "accel", "apps", "tests"})
@@ -108,7 +109,7 @@ TEST(Docs, EveryRepositoryPathTheyNameExists) {
 // docs/adding-an-accelerator.md tells a new structure how to test every primitive kind and
 // names every file of bvhlab's own that it touches.
 TEST(Docs, AddingAnAcceleratorCoversEveryPrimitiveKindAndFile) {
-    std::ifstream in(std::string(BVHLAB_SOURCE_DIR) + "/docs/adding-an-accelerator.md");
+    std::ifstream in(test::sourceTree() + "/docs/adding-an-accelerator.md");
     std::stringstream text;
     text << in.rdbuf();
     for (const char* needed : {"intersectTriangle", "intersectQuadric", "validQuadrics", "sphereBase", "coneBase",
@@ -121,7 +122,7 @@ TEST(Docs, AddingAnAcceleratorCoversEveryPrimitiveKindAndFile) {
 // headers framework/plugin/plugin_api.h brings, and the cost constants a builder is given.
 TEST(Docs, ThePluginReferenceDescribesEveryTypeOfThePluginApi) {
     namespace fs = std::filesystem;
-    const fs::path root(BVHLAB_SOURCE_DIR);
+    const fs::path root(test::sourceTree());
     std::vector<std::string> headers = {"framework/plugin/plugin_api.h"};
     std::set<std::string> names = {"cTraversal", "cIntersect", "BVH::cTraversal", "BVH::cIntersect"};
     const std::regex include(R"re(^#include "(framework/[\w/]+\.h)")re");
@@ -150,11 +151,11 @@ TEST(Docs, ThePluginReferenceDescribesEveryTypeOfThePluginApi) {
 
 // docs/results.md has the default structure beside the report's two, and says what it was run at.
 TEST(Docs, ResultsHaveTheDefaultStructureAndTheirCommit) {
-    std::ifstream in(std::string(BVHLAB_SOURCE_DIR) + "/docs/results.md");
+    std::ifstream in(test::sourceTree() + "/docs/results.md");
     std::stringstream text;
     text << in.rdbuf();
     Env globalEnv(programKeys());
-    globalEnv.loadFile(std::string(BVHLAB_SOURCE_DIR) + "/env/global.env");
+    globalEnv.loadFile(test::sourceTree() + "/env/global.env");
     const std::string defaultStructure = globalEnv.get(keys::ASDS::type);
     for (const std::string& accel : {defaultStructure, std::string("sahbvh"), std::string("tdbvh"), std::string("embree")})
         EXPECT_NE(text.str().find("| conference | " + accel + " |"), std::string::npos) << accel;

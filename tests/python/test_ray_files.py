@@ -19,6 +19,18 @@ def test_rays_round_trip(tmp_path):
     np.testing.assert_array_equal(rays["tmax"], tmax.astype(np.float32))
 
 
+def test_strided_and_empty_rays_written(tmp_path):
+    origins, directions = rays_down(10)
+    table = np.column_stack([origins, directions]).astype(np.float64)
+    bvhlab.write_rays(tmp_path / "r.bin", table[:, :3], table[:, 3:])
+    rays = bvhlab.read_rays(tmp_path / "r.bin")
+    np.testing.assert_array_equal(rays["origins"], origins)
+    np.testing.assert_array_equal(rays["directions"], directions)
+    bvhlab.write_rays(tmp_path / "none.bin", table[:0, :3], table[:0, 3:])
+    rays = bvhlab.read_rays(tmp_path / "none.bin")
+    assert rays["origins"].shape == (0, 3) and rays["tmax"].shape == (0,)
+
+
 def test_hits_round_trip(tmp_path, quad_scene):
     hits = bvhlab.build(quad_scene, "sahbvh").intersect(*rays_down(50))
     assert (hits["prim"] == -1).any() and (hits["prim"] >= 0).any()

@@ -1,5 +1,6 @@
 # bvhlab.render: bvhlab render's image, per-pixel outputs and statistics as arrays and a dict.
 import json
+import math
 import subprocess
 
 import numpy as np
@@ -34,3 +35,14 @@ def test_render_rejects_bad_env(default_scene):
         bvhlab.render(accel, env={"Camera::widht": 40})
     with pytest.raises(bvhlab.InputError, match="threads -2"):
         bvhlab.render(accel, threads=-2)
+
+
+def test_render_counters_of_a_structure_without_counters_are_nan(default_scene):
+    for name, counted in (("sahbvh8", True), ("embree", False)):
+        result = bvhlab.render(bvhlab.build(default_scene, name), env=SIZE)
+        for image in ("heatmap", "n_it"):
+            assert np.isfinite(result[image]).all() if counted else np.isnan(result[image]).all(), (name, image)
+        for query in ("primary", "shadow"):
+            for figure in ("n_it", "n_tr"):
+                value = result["stats"][query][figure]
+                assert math.isfinite(value) if counted else math.isnan(value), (name, query, figure)

@@ -1,5 +1,7 @@
-// Runs the bvhlab program (BVHLAB_BINARY, set by CMake) with arguments, as the end-to-end tests do.
+// Runs the bvhlab program (test::bvhlabProgram()) with arguments, as the end-to-end tests do.
 #pragma once
+
+#include "tests/support/test_paths.h"
 
 #include <cstdio>
 #include <string>
@@ -24,6 +26,6 @@ inline Result runShell(const std::string& command) {
 }
 
 // `bvhlab ARGS 2>&1`: its exit code and everything it printed.
-inline Result run(const std::string& args) { return runShell(std::string(BVHLAB_BINARY) + " " + args); }
+inline Result run(const std::string& args) { return runShell(test::bvhlabProgram() + " " + args); }
 
 }  // namespace bvhlab::test

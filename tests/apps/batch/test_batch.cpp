@@ -9,6 +9,7 @@
 #include "tests/support/batch_scenes.h"
 #include "tests/support/cli_run.h"
 #include "tests/support/text_count.h"
+#include "tests/support/test_paths.h"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -173,7 +174,7 @@ TEST(Batch, TwoShardsRacingOnOneSceneNeverReadAHalfWrittenEntry) {
 
     std::string both;
     for (const char* shard : {"0", "1"})
-        both += fmt::format("{} {}{} --shard {}/2 --out {} >{} 2>&1 & pids=\"$pids $!\"; ", BVHLAB_BINARY, args,
+        both += fmt::format("{} {}{} --shard {}/2 --out {} >{} 2>&1 & pids=\"$pids $!\"; ", test::bvhlabProgram(), args,
                             (dir / "cache").string(), shard, (dir / "shard").string() + shard,
                             (dir / "shard").string() + shard + ".log");
     const Result raced = test::runShell(both + "for pid in $pids; do wait $pid || exit 1; done");

@@ -6,6 +6,7 @@
 #include "tests/support/batch_results.h"
 #include "tests/support/batch_scenes.h"
 #include "tests/support/cli_run.h"
+#include "tests/support/test_paths.h"
 
 #include <gtest/gtest.h>
 
@@ -42,7 +43,7 @@ fs::path standInSbatch(const fs::path& dir, const std::string& name, bool failin
 
 // `bvhlab ARGS` with `path` as PATH.
 Result runWithPath(const std::string& path, const std::string& args) {
-    return test::runShell("PATH=" + path + " " + BVHLAB_BINARY + " " + args);
+    return test::runShell("PATH=" + path + " " + test::bvhlabProgram() + " " + args);
 }
 
 // A written script run as Slurm runs it: by bash, a shard with its array task id.
@@ -88,6 +89,23 @@ TEST(BatchSlurm, SubmitsTheShardsAndAfterThemTheMergeOfOneRunsTables) {
     EXPECT_EQ(csvWithoutTimings(out / "results.csv"), csvWithoutTimings(dir / "whole" / "results.csv"));
     EXPECT_EQ(jsonRowsWithoutTimings(out / "results.json"), jsonRowsWithoutTimings(dir / "whole" / "results.json"));
     EXPECT_NE(readText(out / "results.md").find("Jobs: 4 ("), std::string::npos);
+}
+
+TEST(BatchSlurm, TheShardsLoadThePluginsTheBatchWasGiven) {
+    const fs::path dir = makeScenes("slurm_plugin");
+    const fs::path sbatch = standInSbatch(dir, "bin"), out = dir / "out", plugin = dir / "mine" / "grid.so";
+    fs::create_directories(plugin.parent_path());
+    fs::copy_file(fs::path(test::bvhlabProgram()).parent_path() / "plugins" / "grid.so", plugin);
+    const Result r = runWithPath(sbatch.string() + ":/usr/bin:/bin",
+                                 "batch --scenes " + (dir / "scenes.list").string() + " --accel grid:Grid::density=2 " +
+                                     "--plugin " + plugin.string() + " -DScene::cacheDir=" + (dir / "cache").string() +
+                                     " --out " + out.string() + " --slurm 1");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const std::string script = readText(out / "slurm" / "shards.sbatch");
+    EXPECT_NE(script.find("--plugin " + plugin.string()), std::string::npos) << script;
+    const Result shard = runAsSlurm(out / "slurm" / "shards.sbatch", 0);
+    ASSERT_EQ(shard.exitCode, 0) << shard.output;
+    EXPECT_NE(readText(out / "shards" / "0" / "batch.json").find("grid:Grid::density=2"), std::string::npos);
 }
 
 TEST(BatchSlurm, AShardThatDidNotFinishFailsTheMergeNamingItsLog) {

@@ -8,6 +8,7 @@
 #include "framework/scene/scene_cache.h"
 #include "tests/support/cli_run.h"
 #include "tests/support/scratch_dir.h"
+#include "tests/support/test_paths.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -27,7 +28,7 @@ namespace fs = std::filesystem;
 fs::path tempDir() { return test::scratchDir("cli_conventions"); }
 
 // Scene::dir's default: the scenes beside the repository.
-fs::path scenesDir() { return fs::path(BVHLAB_SOURCE_DIR) / ".." / "shared" / "scenes"; }
+fs::path scenesDir() { return fs::path(test::sourceTree()) / ".." / "shared" / "scenes"; }
 
 nlohmann::json readJson(const fs::path& file) {
     std::ifstream in(file);
@@ -275,7 +276,7 @@ TEST(CliConventions, TheFooterSaysWhyShadowRaysWereNotCast) {
 
 #if !defined(__SANITIZE_ADDRESS__)  // ASan reserves more address space than any ulimit -v below
 TEST(CliConventions, ImageTooLargeForMemoryIsRefusedUpFront) {
-    const Result r = test::runShell("ulimit -v 3000000; " + std::string(BVHLAB_BINARY) +
+    const Result r = test::runShell("ulimit -v 3000000; " + test::bvhlabProgram() +
                                     " render -DCamera::width=16384 -DCamera::height=16384 --out " +
                                     (tempDir() / "huge").string());
     const std::string& output = r.output;

@@ -10,6 +10,7 @@
 #include "tests/support/cli_run.h"
 #include "apps/check/oracle.h"
 #include "tests/support/scratch_dir.h"
+#include "tests/support/test_paths.h"
 
 #include <fmt/core.h>
 #include <gtest/gtest.h>
@@ -234,7 +235,7 @@ TEST(Tradeoff, BuildersQuickRunWritesRowsAndResumes) {
 
     // The plot script draws both charts from that folder (where Debian's matplotlib is installed).
     if (std::system("/usr/bin/python3 -c 'import matplotlib' 2>/dev/null") != 0) return;
-    const std::string plot = "/usr/bin/python3 " + (fs::path(BVHLAB_SOURCE_DIR) / "docs" / "plots" / "plot_builders.py").string() +
+    const std::string plot = "/usr/bin/python3 " + (fs::path(test::sourceTree()) / "docs" / "plots" / "plot_builders.py").string() +
                              " --data " + out.string() + " > /dev/null 2>&1";
     ASSERT_EQ(std::system(plot.c_str()), 0) << plot;
     for (const char* png : {"builders_pareto.png", "builders_pareto_scenes.png"})
@@ -247,7 +248,7 @@ TEST(Tradeoff, BuildersQuickRunWritesRowsAndResumes) {
 TEST(TradeoffPlots, ScriptWritesIntoTheDataFolderNotDocs) {
     if (std::system("/usr/bin/python3 -c 'import matplotlib' 2>/dev/null") != 0)
         GTEST_SKIP() << "no python3-matplotlib for /usr/bin/python3";
-    const fs::path docs = fs::path(BVHLAB_SOURCE_DIR) / "docs" / "plots";
+    const fs::path docs = fs::path(test::sourceTree()) / "docs" / "plots";
     const fs::path data = test::scratchDir("tradeoff_plots") / "data";
     fs::create_directories(data);
     for (const char* csv : {"tradeoff.csv", "image_error.csv"})

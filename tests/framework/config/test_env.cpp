@@ -96,6 +96,20 @@ TEST(Env, LaterFilesAndOverridesWin) {
     EXPECT_EQ(env.get(kCount), 9);
 }
 
+TEST(Env, AKeyWithoutAValueKeepsTheEarlierLayersValue) {
+    const EnvRegistry r = testRegistry();
+    Env env(r);
+    env.loadFile(writeFile("scene.env", "Set::name sibenik.obj\nSet::point 1 2 3\n"));
+    env.loadFile(writeFile("global.env", "Set::name\nSet::point\nSet::count 4\n"));
+    EXPECT_EQ(env.get(kName), "sibenik.obj");
+    EXPECT_TRUE(env.get(kPoint).has_value());
+    EXPECT_EQ(env.get(kCount), 4);
+    EXPECT_NE(errorOf([&] { env.loadFile(writeFile("typo.env", "Set::nmae\n")); }).find("unknown key 'Set::nmae'"),
+              std::string::npos);
+    env.setOverride("Set::name=");  // -D empties it
+    EXPECT_EQ(env.get(kName), "");
+}
+
 TEST(Env, UnknownKeyNamesFileLineAndNearestKeys) {
     const EnvRegistry r = testRegistry();
     Env env(r);
@@ -108,7 +122,7 @@ TEST(Env, UnknownKeyNamesFileLineAndNearestKeys) {
 TEST(Env, BadValuesAreErrorsWithLine) {
     const EnvRegistry r = testRegistry();
     const std::vector<std::string> badLines = {
-        "Set::count 11",      "Set::count 0",       "Set::count 2.5",    "Set::count",       "Set::count 3x",
+        "Set::count 11",      "Set::count 0",       "Set::count 2.5",    "Set::count 3x",
         "Set::scale nan",     "Set::scale 3",       "Set::scale abc",    "Set::flag maybe",  "Set::mode slow",
         "Set::point 1 2",     "Set::point 1 2 3 4", "Set::point 1 2 inf", "Set::points 1 2 3, 4 5",
         "justaword",          "Set: 3",

@@ -1,6 +1,7 @@
 // The public test scenes in ../shared/scenes (or $BVHLAB_SCENES_DIR) load with the triangle,
 // sphere and cone counts stated in that folder's README. Skipped where the folder is absent.
 #include "framework/scene/scene_loader.h"
+#include "tests/support/test_paths.h"
 
 #include <gtest/gtest.h>
 
@@ -16,7 +17,7 @@ namespace fs = std::filesystem;
 
 fs::path scenesDir() {
     if (const char* dir = std::getenv("BVHLAB_SCENES_DIR")) return dir;
-    return fs::path(BVHLAB_SOURCE_DIR) / ".." / "shared" / "scenes";
+    return fs::path(test::sourceTree()) / ".." / "shared" / "scenes";
 }
 
 struct SharedScene {
