@@ -28,12 +28,12 @@
 #endif
 // The compiler as CMake names it and bvhlab's provenance names its own: "GNU 12.2.0".
 #define BVHLAB_PLUGIN_STRING(x) #x
-#define BVHLAB_PLUGIN_VERSION(major, minor, patch) \
+#define BVHLAB_PLUGIN_COMPILER_VERSION(major, minor, patch) \
     BVHLAB_PLUGIN_STRING(major) "." BVHLAB_PLUGIN_STRING(minor) "." BVHLAB_PLUGIN_STRING(patch)
 #if defined(__clang__)
-#define BVHLAB_PLUGIN_COMPILER "Clang " BVHLAB_PLUGIN_VERSION(__clang_major__, __clang_minor__, __clang_patchlevel__)
+#define BVHLAB_PLUGIN_COMPILER "Clang " BVHLAB_PLUGIN_COMPILER_VERSION(__clang_major__, __clang_minor__, __clang_patchlevel__)
 #elif defined(__GNUC__)
-#define BVHLAB_PLUGIN_COMPILER "GNU " BVHLAB_PLUGIN_VERSION(__GNUC__, __GNUC_MINOR__, __GNUC_PATCHLEVEL__)
+#define BVHLAB_PLUGIN_COMPILER "GNU " BVHLAB_PLUGIN_COMPILER_VERSION(__GNUC__, __GNUC_MINOR__, __GNUC_PATCHLEVEL__)
 #else
 #define BVHLAB_PLUGIN_COMPILER "unknown"
 #endif
