@@ -1,5 +1,7 @@
 #include "accel/guarded_accelerator.h"
 
+#include "framework/core/fatal_signal_report.h"
+
 #include <type_traits>
 
 namespace bvhlab {
@@ -13,36 +15,46 @@ public:
     std::string_view name() const override { return accelerator_; }
 
     void build(const PrimitiveSet& prims) override {
-        guard("build()", [&] { inner_->build(prims); });
+        guard(running("build()", nullptr, prims.valid.size()), [&] { inner_->build(prims); });
     }
     BuildStats statistics() const override {
-        return guard("statistics()", [&] { return inner_->statistics(); });
+        return guard(running("statistics()"), [&] { return inner_->statistics(); });
     }
     bool findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const override {
-        return guard("findNearest()", [&] { return inner_->findNearest(ray, hit, counters); });
+        return guard(running("findNearest()", &ray, 1), [&] { return inner_->findNearest(ray, hit, counters); });
     }
     bool isOccluded(const Ray& ray, QueryCounters& counters) const override {
-        return guard("isOccluded()", [&] { return inner_->isOccluded(ray, counters); });
+        return guard(running("isOccluded()", &ray, 1), [&] { return inner_->isOccluded(ray, counters); });
     }
     void findNearestBatch(std::span<const Ray> rays, std::span<Hit> hits, QueryCounters& counters,
                           std::span<RayCost> costs) const override {
-        guard("findNearestBatch()", [&] { inner_->findNearestBatch(rays, hits, counters, costs); });
+        guard(running("findNearestBatch()", rays), [&] { inner_->findNearestBatch(rays, hits, counters, costs); });
     }
     void isOccludedBatch(std::span<const Ray> rays, std::span<uint8_t> occluded, QueryCounters& counters,
                          std::span<RayCost> costs) const override {
-        guard("isOccludedBatch()", [&] { inner_->isOccludedBatch(rays, occluded, counters, costs); });
+        guard(running("isOccludedBatch()", rays), [&] { inner_->isOccludedBatch(rays, occluded, counters, costs); });
     }
     bool hasCounters() const override {
-        return guard("hasCounters()", [&] { return inner_->hasCounters(); });
+        return guard(running("hasCounters()"), [&] { return inner_->hasCounters(); });
     }
     std::unique_ptr<NativeRayBatch> prepareNativeBatch(const std::vector<Ray>& rays) const override {
-        return guard("prepareNativeBatch()", [&] { return inner_->prepareNativeBatch(rays); });
+        return guard(running("prepareNativeBatch()", rays), [&] { return inner_->prepareNativeBatch(rays); });
     }
 
 private:
+    // The call as the report of a fatal signal names it (framework/core/fatal_signal_report.h).
+    PluginCall running(const char* call, const Ray* ray = nullptr, size_t count = 0) const {
+        return {plugin_.c_str(), accelerator_.c_str(), call, ray, count};
+    }
+    PluginCall running(const char* call, std::span<const Ray> rays) const {
+        return running(call, rays.empty() ? nullptr : rays.data(), rays.size());
+    }
+
+    // Runs `body` as the thread's running plugin call, naming the plugin in what it throws.
     template <typename Body>
-    std::invoke_result_t<Body> guard(std::string_view what, Body&& body) const {
-        return guardPlugin(plugin_, accelerator_, what, std::forward<Body>(body));
+    std::invoke_result_t<Body> guard(const PluginCall& call, Body&& body) const {
+        const PluginCallScope scope(call);
+        return guardPlugin(plugin_, accelerator_, call.call, std::forward<Body>(body));
     }
 
     std::unique_ptr<Accelerator> inner_;

@@ -1,6 +1,7 @@
 // A plugin's accelerator behind a guard: an exception thrown by its factory, build or queries
 // reaches the user as an error naming the plugin and the accelerator, not as a crash or as a
-// bare message from code they did not write.
+// bare message from code they did not write; a crash inside its build or queries is reported
+// naming them, the call and its ray (framework/core/fatal_signal_report.h).
 #pragma once
 
 #include "framework/core/accelerator.h"

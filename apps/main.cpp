@@ -3,11 +3,14 @@
 #include "apps/common/commands.h"
 #include "apps/common/progress.h"
 #include "apps/common/run_record.h"
+#include "framework/core/fatal_signal_report.h"
 #include "framework/report/provenance.h"
 
 #include <fmt/core.h>
 
 int main(int argc, char** argv) {
+    // A crash inside a plugin names the plugin, the call and its ray before the process dies.
+    bvhlab::installFatalSignalReport();
     bvhlab::recordRun(argc, argv);
     CLI::App app("bvhlab: a research ray tracer for building, measuring and comparing BVHs");
     app.set_version_flag("--version", std::string("bvhlab " BVHLAB_VERSION " (commit ") + bvhlab::gitCommit() + ")");

@@ -1,8 +1,10 @@
 // `bvhlab check --accel NAME`: the conformance suite (apps/check/conformance.h) for one
-// accelerator. One line per check on stdout (PASS/FAIL, counts, time) and the failures' rays
-// under it; exit 0 when every check passes, 1 when one fails, 2 on bad input (an unknown
-// accelerator or check, a bad env file or -D).
+// accelerator, each check in a child process (apps/check/check_process.h) unless --in-process.
+// One line per check on stdout (PASS/WARN/FAIL/SKIP, counts, time) and the failures' rays under
+// it; exit 0 when every check passes (a warning included), 1 when one fails (a crash or an
+// exception included), 2 on bad input (an unknown accelerator or check, a bad env file or -D).
 #include "accel/registry.h"
+#include "apps/check/check_process.h"
 #include "apps/check/conformance.h"
 #include "apps/common/accel_config.h"
 #include "apps/common/cli_common.h"
@@ -15,8 +17,6 @@
 #include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
-#include <fstream>
-
 namespace bvhlab {
 namespace {
 
@@ -25,20 +25,39 @@ struct CheckCommandOptions {
     std::string accel;
     std::string checks;  // empty: all
     std::string json;
+    bool inProcess = false;
+    check::ChildCheck child;
 };
 
 std::string resultLine(const check::CheckResult& r) {
-    const char* verdict = r.skipped ? "SKIP" : (r.passed() ? "PASS" : "FAIL");
+    const char* verdict = r.skipped ? "SKIP" : !r.passed() ? "FAIL" : r.warning ? "WARN" : "PASS";
     std::string line = fmt::format("{} {:<21} {:>3} scenes {:>8} {:<6} {:>6} failures {:>7.1f} s", verdict, r.check,
                                    r.scenes, r.cases, r.unit, r.failures, r.seconds);
     if (!r.note.empty()) line += "  (" + r.note + ")";
     return line;
 }
 
-nlohmann::json resultJson(const check::CheckResult& r) {
-    return {{"check", r.check},   {"passed", r.passed()}, {"skipped", r.skipped}, {"scenes", r.scenes},
-            {"cases", r.cases},   {"unit", r.unit},       {"failures", r.failures}, {"seconds", r.seconds},
-            {"note", r.note},     {"examples", r.examples}};
+// Runs a check here, its progress on stderr. A check that throws (a plugin's exception, which
+// the guard names) fails with the message as its example.
+check::CheckResult runCheckHere(const std::string& name, const check::Subject& subject) {
+    Progress progress;
+    progress.phase(fmt::format("check {}: {}", subject.name, name));
+    check::CheckOptions options;
+    uint64_t lastDone = 0;
+    options.progress = [&](uint64_t done, uint64_t /*total*/) {
+        if (done > lastDone) progress.advance(done - lastDone);
+        lastDone = done;
+    };
+    try {
+        return check::runCheck(name, subject, options);
+    } catch (const std::exception& e) {
+        check::CheckResult failed;
+        failed.check = name;
+        failed.failures = 1;
+        failed.note = "threw";
+        failed.examples.push_back(fmt::format("{}: {}", name, e.what()));
+        return failed;
+    }
 }
 
 // Returns the exit code: 0 all passed, 1 a check failed.
@@ -55,30 +74,28 @@ int runChecks(CheckCommandOptions options) {
     std::vector<std::string> names = options.checks.empty() ? check::checkNames() : splitCommaList(options.checks);
     if (names.empty()) throw InputError(fmt::format("--checks: none given (known: {})", fmt::join(check::checkNames(), ", ")));
     for (const std::string& name : names) check::findCheck(name);
+    const check::Subject subject{options.accel, [&] { return createAccelerator(config.name, env); }};
+    if (options.child.isChild()) {
+        options.child.reportFatalSignals();
+        options.child.writeResult(runCheckHere(options.child.check, subject));
+        return 0;
+    }
     const std::filesystem::path json = options.json.empty() ? std::filesystem::path() : prepareOutputFile(options.json, "--json");
 
-    const check::Subject subject{options.accel, [&] { return createAccelerator(config.name, env); }};
-    Progress progress;
-    check::CheckOptions checkOptions;
-    uint64_t lastDone = 0;
-    checkOptions.progress = [&](uint64_t done, uint64_t /*total*/) {
-        if (done > lastDone) progress.advance(done - lastDone);
-        lastDone = done;
-    };
     bool failed = false;
+    std::vector<std::string> warned;
     nlohmann::json results = nlohmann::json::array();
     for (const std::string& name : names) {
-        lastDone = 0;
-        progress.phase(fmt::format("check {}: {}", options.accel, name));
-        const check::CheckResult r = check::runCheck(name, subject, checkOptions);
-        progress.finish();
+        const check::CheckResult r = options.inProcess ? runCheckHere(name, subject) : check::runCheckInChild(name);
         fmt::print("{}\n", resultLine(r));
         for (const std::string& e : r.examples) fmt::print("    {}\n", e);
         std::fflush(stdout);
         failed |= !r.passed();
-        results.push_back(resultJson(r));
+        if (r.passed() && r.warning) warned.push_back(name);
+        results.push_back(check::toJson(r));
     }
-    fmt::print("check {}: {}\n", options.accel, failed ? "FAILED" : "all checks passed");
+    const std::string warnings = warned.empty() ? "" : fmt::format(", with a warning ({})", fmt::join(warned, ", "));
+    fmt::print("check {}: {}\n", options.accel, failed ? "FAILED" : "all checks passed" + warnings);
     if (!json.empty()) {
         const nlohmann::json out = {{"accel", options.accel},
                                     {"passed", !failed},
@@ -96,7 +113,8 @@ void addCheckCommand(CLI::App& app) {
     auto options = std::make_shared<CheckCommandOptions>();
     CLI::App* command = app.add_subcommand(
         "check", "the conformance suite for one accelerator: agreement with a double-precision reference, any-hit, batch, "
-                 "mixed primitives, degenerate triangles, watertightness, builds at the edge (docs/accuracy.md)");
+                 "mixed primitives, degenerate triangles, watertightness, builds at the edge, cost against sahbvh "
+                 "(docs/accuracy.md)");
     options->env.addTo(*command);
     command->add_option("--accel", options->accel,
                         "the accelerator to check, NAME or NAME:Key=value:... (`bvhlab keys` lists them)")
@@ -104,6 +122,10 @@ void addCheckCommand(CLI::App& app) {
     command->add_option("--checks", options->checks,
                         fmt::format("comma-separated checks to run (default: all of {})", fmt::join(check::checkNames(), ",")));
     command->add_option("--json", options->json, "write the results as JSON to this file");
+    command->add_flag("--in-process", options->inProcess,
+                      "run the checks in this process, not each in a child process: a crash ends the run "
+                      "(for a debugger)");
+    options->child.addTo(*command);
     command->callback([options] {
         int result = 0;
         bool badInput = false;

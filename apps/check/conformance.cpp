@@ -490,6 +490,60 @@ CheckResult buildsAtTheEdge(const Subject& subject, const CheckOptions& options)
     return result;
 }
 
+// --- cost: N_IT and N_TR per ray against sahbvh's ---------------------------------------------
+
+// A structure that answers right but works this many times harder per ray than sahbvh is
+// warned about, not failed (docs/accuracy.md: how far our own structures are from it).
+constexpr double kCostFactor = 10.0;
+
+// N_IT and N_TR per closest-hit query. Their sum is the work the cost check compares: the SAH's
+// cost of a ray with bvhlab's default constants (BVH::cIntersect = BVH::cTraversal = 1), so
+// that the wide layouts, which test more triangles in fewer nodes, compare fairly.
+struct CostPerRay {
+    double intersections = 0.0, steps = 0.0;
+    double work() const { return intersections + steps; }
+    std::string text() const { return fmt::format("N_IT {:.1f} + N_TR {:.1f} = {:.1f}", intersections, steps, work()); }
+};
+
+CostPerRay closestHitCost(const Accelerator& accel, std::span<const Ray> rays) {
+    QueryCounters counters;
+    for (const Ray& ray : rays) {
+        Hit hit;
+        accel.findNearest(ray, hit, counters);
+    }
+    const double n = double(std::max<size_t>(1, rays.size()));
+    return {double(counters.intersectionTests) / n, double(counters.traversalSteps) / n};
+}
+
+CheckResult cost(const Subject& subject, const CheckOptions& options) {
+    CheckResult result = newResult("cost");
+    const Scene scene = makeCostScene();
+    const auto accel = buildOn(subject, scene, result, options);
+    result.scenes = 1;
+    if (!accel->hasCounters()) {
+        result.skipped = true;
+        result.note = "no counters: N_IT and N_TR are not counted";
+        return result;
+    }
+    std::vector<Ray> rays = generateRays(RayKind::Outside, scene.primitives(), scene.bounds, scaled(2000, options), 1);
+    const std::vector<Ray> inside = generateRays(RayKind::Inside, scene.primitives(), scene.bounds, scaled(1000, options), 2);
+    rays.insert(rays.end(), inside.begin(), inside.end());
+    const auto reference = createAccelerator("sahbvh", Env(programKeys()));
+    reference->build(scene.primitives());
+    const CostPerRay sah = closestHitCost(*reference, rays);
+    progress(options, 1, 2);
+    const CostPerRay measured = closestHitCost(*accel, rays);
+    progress(options, 2, 2);
+    result.cases = rays.size();
+    const double ratio = measured.work() / sah.work();
+    result.note = fmt::format("per ray {}: {:.1f}x sahbvh's {}", measured.text(), ratio, sah.text());
+    if (ratio > kCostFactor) {
+        result.warning = true;
+        result.note += fmt::format("; past {:g}x: right answers at an absurd cost", kCostFactor);
+    }
+    return result;
+}
+
 }  // namespace
 
 bool isExternal(std::string_view accelerator) { return accelerator.starts_with("embree"); }
@@ -581,6 +635,7 @@ const std::vector<CheckInfo>& conformanceChecks() {
         {"degenerate-triangles", "degenerate triangles mixed in are never hit; rays aimed at them", degenerateTriangles},
         {"watertight", "probes at the edges and vertices of closed meshes do not leak (if promised)", watertight},
         {"builds-at-the-edge", "bounded time, memory and depth on degenerate inputs, answers as naive's", buildsAtTheEdge},
+        {"cost", fmt::format("N_IT + N_TR per ray against sahbvh's on a mid-size scene: a warning past {:g}x", kCostFactor), cost},
     };
     return checks;
 }

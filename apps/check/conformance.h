@@ -40,6 +40,7 @@ struct CheckResult {
     size_t cases = 0;     // rays, probes or builds checked
     size_t failures = 0;  // of them, answers (or builds) that break what the structure promises
     bool skipped = false;
+    bool warning = false; // passed, but worth a look (the cost check past its bound)
     std::string note;     // why skipped, or what was reported and not failed
     // The first few failures, each naming the check, the scene, the ray (org, dir, tmin, tmax,
     // "%.9g") and the structure's and the reference's answers.

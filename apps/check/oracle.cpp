@@ -602,6 +602,23 @@ Scene makeTerrainScene(int cells, uint32_t seed) {
     return scene;
 }
 
+Scene makeCostScene() {
+    StressRng rng(21);
+    Scene scene;
+    scene.name = "cost";
+    addQuad(scene, Vec3(-20, 0, -20), Vec3(0, 0, 40), Vec3(40, 0, 0), 0);
+    for (int i = 0; i < 6; ++i) {
+        const Vec3 corner(-14.0f + 5.0f * float(i), 0.0f, -12.0f + 2.0f * float(i % 3));
+        addBox(scene, corner, corner + Vec3(2.0f, 1.0f + float(i), 1.5f), 0);
+    }
+    addIcosphere(scene, Vec3(-4.0f, 2.0f, 0.0f), 2.0f, 5, 0);
+    addTorus(scene, Vec3(4.0f, 1.0f, 2.0f), 2.0f, 0.6f, 96, 48, 0);
+    const Bounds3 air(Vec3(-15.0f, 3.0f, -15.0f), Vec3(15.0f, 10.0f, 15.0f));
+    for (int i = 0; i < 2000; ++i) addSoupTriangle(scene, rng, air, 0.05, 0.5);
+    scene.finalize();
+    return scene;
+}
+
 Scene makeCoincidentScene(uint32_t seed) {
     StressRng rng(seed);
     Scene scene;

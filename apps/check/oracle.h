@@ -123,6 +123,10 @@ std::vector<WatertightProbe> watertightProbes(const Scene& closedMesh, const std
 Scene makeSoupScene(size_t count, uint32_t seed, float minSize = 1e-6f, float maxSize = 1e3f, float extent = 100.0f);
 Scene makeClosedMeshesScene();  // an icosphere, a box and a torus, disjoint
 Scene makeTerrainScene(int cells, uint32_t seed);  // cells x cells height field, 2 triangles per cell
+// The cost check's scene, about 32,000 triangles of sizes and densities as different as a
+// rendered scene's: a large floor, boxes, a finely tessellated sphere and torus, small
+// triangles scattered in the air.
+Scene makeCostScene();
 Scene makeCoincidentScene(uint32_t seed);  // duplicated triangles (both windings), overlapping coplanar ones
 Scene makeCentroidsOnLineScene(size_t count, uint32_t seed);
 Scene makeCentroidsOnPlaneScene(size_t count, uint32_t seed);

@@ -18,6 +18,9 @@ constexpr auto kLinesInterval = std::chrono::seconds(10);      // log files stay
 
 std::atomic<bool> quietFlag{false};
 
+// Carriage return and erase-line: the live line is redrawn in place.
+constexpr const char* kEraseLine = "\r\033[K";
+
 // 950, 12.3k, 4.56M
 std::string formatCount(double value) {
     if (value < 1e4) return fmt::format("{:.0f}", value);
@@ -38,6 +41,12 @@ Progress::Progress(Style style, std::FILE* out, std::function<Clock::time_point(
     : style_(style), out_(out), now_(std::move(now)) {}
 
 Progress::~Progress() { finish(); }
+
+void Progress::endInterruptedLine() {
+    if (defaultStyle() != Style::Live) return;
+    std::fputs(kEraseLine, stderr);
+    std::fflush(stderr);
+}
 
 std::string Progress::formatDuration(double seconds) {
     const long s = std::lround(std::max(seconds, 0.0));
@@ -103,8 +112,7 @@ void Progress::draw(Clock::time_point now, bool final) {
     }
     if (rays > 0 && elapsed > 0.0) line += fmt::format(", {} rays/s", formatCount(double(rays) / elapsed));
     if (style_ == Style::Live) {
-        // Carriage return and erase-line: the live line is redrawn in place.
-        fmt::print(out_, "\r\033[K{}{}", line, final ? "\n" : "");
+        fmt::print(out_, "{}{}{}", kEraseLine, line, final ? "\n" : "");
         lineShown_ = !final;
     } else {
         fmt::print(out_, "{}\n", line);

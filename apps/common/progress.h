@@ -38,6 +38,9 @@ public:
     // Ends the phase; prints its duration off a terminal if it took longer than 2 s.
     void finish();
 
+    // Clears a live line that another process left unfinished on stderr (a child that died).
+    static void endInterruptedLine();
+
     // "12s", "1m12s", "1h05m".
     static std::string formatDuration(double seconds);
 

@@ -4,6 +4,7 @@
 #include "apps/python/bindings.h"
 #include "apps/python/numpy_rays.h"
 #include "framework/core/error.h"
+#include "framework/core/fatal_signal_report.h"
 
 #include <pybind11/numpy.h>
 
@@ -11,6 +12,8 @@ namespace py = pybind11;
 
 PYBIND11_MODULE(bvhlab, m) {
     m.doc() = "bvhlab: load scenes, build any acceleration structure, trace NumPy arrays of rays";
+    // A crash inside a plugin names the plugin, the call and its ray before Python dies of it.
+    bvhlab::installFatalSignalReport();
     py::register_exception<bvhlab::InputError>(m, "InputError", PyExc_ValueError);
     PYBIND11_NUMPY_DTYPE(bvhlab::HitRecord, t, prim, u, v);
     PYBIND11_NUMPY_DTYPE(bvhlab::CountedHitRecord, t, prim, u, v, n_it, n_tr);

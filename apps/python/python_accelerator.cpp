@@ -41,7 +41,7 @@ void checkThreads(int threads) {
 
 PythonAccelerator build(std::shared_ptr<PythonScene> scene, const std::string& name, const py::object& envDict,
                         int threads) {
-    loadPluginFor(name);  // unknown: createAccelerator names the known ones
+    if (!loadPluginFor(name)) throw InputError(unknownAcceleratorMessage(name));
     const Env env = envWith(*scene, envDict, threads);
     PythonAccelerator built{scene, createAccelerator(name, env), {}};
     py::gil_scoped_release release;

@@ -1,6 +1,8 @@
-// `bvhlab check` end to end: one line per check, exit 0 when all pass, 2 on bad input.
+// `bvhlab check` end to end: one line per check, exit 0 when all pass, 2 on bad input; a crash
+// fails its check and the others run; a correct but costly structure passes with a warning.
 #include "tests/support/cli_run.h"
 #include "tests/support/scratch_dir.h"
+#include "tests/support/test_paths.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -12,6 +14,7 @@ namespace {
 
 using bvhlab::test::Result;
 using bvhlab::test::run;
+using bvhlab::test::runShell;
 
 TEST(CheckCommand, PassingChecksPrintALineEachAndExitZero) {
     const auto json = bvhlab::test::scratchDir("check") / "check.json";
@@ -47,6 +50,57 @@ TEST(CheckCommand, UnknownAcceleratorOrCheckExitsTwoListingTheKnownOnes) {
 
     r = run("check --accel sahbvh -DBVH::nosuchkey=1 --checks batch");
     EXPECT_EQ(r.exitCode, 2) << r.output;
+}
+
+const std::string kPlugins = bvhlab::test::testPlugins();
+
+TEST(CheckCommand, ACrashFailsItsCheckNamingThePluginTheCallAndTheRayAndTheOtherChecksRun) {
+    const std::string plugin = kPlugins + "/crashing.so";
+    Result r = run("check --plugin " + plugin + " --accel crashing --checks agreement,watertight --quiet");
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_TRUE(std::regex_search(r.output, std::regex("(^|\\n)FAIL agreement .*1 failures .*\\(crashed\\)"))) << r.output;
+    EXPECT_NE(r.output.find("    agreement: SIGSEGV (Segmentation fault) in plugin " + plugin +
+                            ", accelerator 'crashing': findNearest() of the ray org=("),
+              std::string::npos)
+        << r.output;
+    EXPECT_TRUE(std::regex_search(r.output, std::regex("(^|\\n)FAIL watertight .*\\(crashed\\)"))) << r.output;
+    EXPECT_NE(r.output.find("check crashing: FAILED"), std::string::npos) << r.output;
+
+    // A stack overflow in build(), with the primitives it was given.
+    r = runShell("ulimit -s 8192; " + bvhlab::test::bvhlabProgram() + " check --plugin " + plugin +
+                 " --accel crashing_build --checks batch --quiet");
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_TRUE(std::regex_search(r.output, std::regex("batch: SIGSEGV \\(Segmentation fault\\) in plugin .*crashing.so, "
+                                                       "accelerator 'crashing_build': build\\(\\) over [0-9]+ primitives")))
+        << r.output;
+}
+
+TEST(CheckCommand, AnExceptionFailsItsCheckNamingThePluginAndTheOtherChecksRun) {
+    const Result r = run("check --plugin " + kPlugins + "/throwing.so --accel throwing_query --checks batch,watertight --quiet");
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("    batch: plugin " + kPlugins + "/throwing.so, accelerator 'throwing_query': findNearest() threw: "
+                            "no queries today"),
+              std::string::npos)
+        << r.output;
+    EXPECT_TRUE(std::regex_search(r.output, std::regex("(^|\\n)FAIL watertight .*\\(threw\\)"))) << r.output;
+}
+
+TEST(CheckCommand, ACorrectStructureThatWorksFarHarderThanSahbvhPassesWithACostWarning) {
+    // `interleaved` deals each node's primitives out to its children in turn: every box spans the scene.
+    Result r = run("check --plugin " + kPlugins + "/builders.so --accel interleaved --checks batch,cost --quiet");
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(std::regex_search(r.output, std::regex("(^|\\n)PASS batch "))) << r.output;
+    EXPECT_TRUE(std::regex_search(r.output, std::regex("(^|\\n)WARN cost .*0 failures .*sahbvh's.*past 10x: right answers at an absurd cost"))) << r.output;
+    EXPECT_NE(r.output.find("check interleaved: all checks passed, with a warning (cost)"), std::string::npos) << r.output;
+
+    r = run("check --accel sahbvh8 --checks cost --quiet");
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(std::regex_search(r.output, std::regex("(^|\\n)PASS cost .*sahbvh's"))) << r.output;
+    EXPECT_NE(r.output.find("check sahbvh8: all checks passed\n"), std::string::npos) << r.output;
+
+    r = run("check --accel embree --checks cost --quiet");
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(std::regex_search(r.output, std::regex("(^|\\n)SKIP cost .*no counters"))) << r.output;
 }
 
 }  // namespace

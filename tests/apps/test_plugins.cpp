@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <csignal>
 #include <fstream>
 
 namespace bvhlab::test {
@@ -19,6 +20,7 @@ namespace {
 const std::string kPlugins = test::testPlugins();
 const std::string kThrowing = kPlugins + "/throwing.so";
 const std::string kBuilders = kPlugins + "/builders.so";
+const std::string kCrashing = kPlugins + "/crashing.so";
 const std::string kUnoptimized = kPlugins + "/throwing_unoptimized.so";
 // The test plugins but throwing_unoptimized.so are compiled as this file is.
 #ifdef __OPTIMIZE__
@@ -83,6 +85,22 @@ TEST(Plugins, ExceptionsInsideAPluginNameThePluginAndTheAccelerator) {
     EXPECT_EQ(r.exitCode, 1) << r.output;
     EXPECT_NE(r.output.find("accelerator 'throwing_factory': its factory threw: no accelerator today"), std::string::npos)
         << r.output;
+}
+
+TEST(Plugins, ACrashInsideAPluginNamesThePluginTheCallAndItsRayAndEndsTheRunByTheSignal) {
+    Result r = render("--plugin " + kCrashing + " -DASDS::type=crashing");
+    EXPECT_EQ(r.exitCode, 128 + SIGSEGV) << r.output;
+    EXPECT_NE(r.output.find("bvhlab: SIGSEGV (Segmentation fault) in plugin " + kCrashing +
+                            ", accelerator 'crashing': findNearestBatch() of "),
+              std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find(" rays, the first org=("), std::string::npos) << r.output;
+
+    // A stack overflow too (on a signal stack of its own), under the usual stack limit.
+    r = runShell("ulimit -s 8192; " + test::bvhlabProgram() + " render -DCamera::width=16 -DCamera::height=12 --plugin " +
+                 kCrashing + " -DASDS::type=crashing_build --out " + (scratchDir("plugins") / "image").string());
+    EXPECT_EQ(r.exitCode, 128 + SIGSEGV) << r.output;
+    EXPECT_NE(r.output.find("accelerator 'crashing_build': build() over "), std::string::npos) << r.output;
 }
 
 TEST(Plugins, AnAcceleratorIsFoundByNameInThePluginFolders) {

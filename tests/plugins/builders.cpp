@@ -1,7 +1,9 @@
 // A plugin of builders (tests/apps/test_plugins.cpp): `pairs`, a merge tree joining neighbours
-// in the order given, round after round (a valid tree, not a good one); `lossy`, a split rule
-// that overwrites a primitive index; `twice`, a merge tree that uses a node twice; `costed`, a
-// split rule that reads the run's SAH constants.
+// in the order given, round after round (a valid tree, not a good one); `interleaved`, a split
+// rule that deals a node's primitives out to its children in turn (a valid tree whose boxes
+// all span the scene: right answers at an absurd cost, tests/apps/test_check_command.cpp);
+// `lossy`, a split rule that overwrites a primitive index; `costed`, a split rule that reads the
+// run's SAH constants; `twice`, a merge tree that uses a node twice.
 #include "framework/plugin/plugin_api.h"
 
 #include <algorithm>
@@ -26,6 +28,18 @@ std::vector<Merge> pairs(std::span<const PrimRef> prims, const BuilderSettings&)
     }
     return merges;
 }
+
+class Interleaved final : public SplitRule {
+public:
+    size_t split(std::span<PrimRef> prims, const Bounds3&, const Bounds3&, bool) override {
+        if (prims.size() < 2) return 0;
+        std::vector<PrimRef> dealt;
+        for (size_t first : {0, 1})
+            for (size_t i = first; i < prims.size(); i += 2) dealt.push_back(prims[i]);
+        std::copy(dealt.begin(), dealt.end(), prims.begin());
+        return (prims.size() + 1) / 2;
+    }
+};
 
 class Lossy final : public SplitRule {
 public:
@@ -59,6 +73,8 @@ private:
 
 BVHLAB_PLUGIN(registrar) {
     registrar.addBuilder({"pairs", "neighbours joined round after round", {}, {}, pairs});
+    registrar.addBuilder({"interleaved", "deals the primitives out to the children in turn", {},
+                          [](const BuilderSettings&) { return std::make_unique<Interleaved>(); }, {}});
     registrar.addBuilder(
         {"lossy", "overwrites a primitive index", {}, [](const BuilderSettings&) { return std::make_unique<Lossy>(); }, {}});
     registrar.addBuilder({"costed", "median splits, leaves where the SAH constants favour them", {},
