@@ -11,6 +11,10 @@ namespace bvhlab {
 
 namespace {
 
+BuilderSettings builderSettings(const Env& env, uint32_t leafBlock, const BvhBuildConfig& config) {
+    return {env, leafBlock, config.cTraversal, config.cIntersect};
+}
+
 class PluginSplitBuilder final : public TopDownBuilder {
 public:
     PluginSplitBuilder(const BvhBuildConfig& config, std::unique_ptr<SplitRule> rule)
@@ -35,7 +39,7 @@ BvhBuilder pluginBvhBuilder(const PluginBuilder& plugin, const Env& env, uint32_
     const std::shared_ptr<const Env> settingsEnv = std::make_shared<Env>(env);
     if (plugin.splitRule) {
         builder.splitRule = [make = plugin.splitRule, settingsEnv, leafBlock, name = plugin.name](const BvhBuildConfig& config) {
-            std::unique_ptr<SplitRule> rule = make(BuilderSettings{*settingsEnv, leafBlock});
+            std::unique_ptr<SplitRule> rule = make(builderSettings(*settingsEnv, leafBlock, config));
             if (!rule) throw std::runtime_error(fmt::format("builder '{}': its split rule factory returned nothing", name));
             return std::unique_ptr<TopDownBuilder>(std::make_unique<PluginSplitBuilder>(config, std::move(rule)));
         };
@@ -44,7 +48,7 @@ BvhBuilder pluginBvhBuilder(const PluginBuilder& plugin, const Env& env, uint32_
                                 const BvhBuildConfig& config, const PrimitiveSet& prims) {
             return buildFromMerges(name, config, prims, [&](std::span<const PrimRef> refs) {
                 std::vector<uint32_t> children;
-                for (const Merge& m : merge(refs, BuilderSettings{*settingsEnv, leafBlock}))
+                for (const Merge& m : merge(refs, builderSettings(*settingsEnv, leafBlock, config)))
                     children.insert(children.end(), {m.left, m.right});
                 return children;
             });

@@ -95,6 +95,7 @@ const LoadedPlugin& loadPlugin(const std::filesystem::path& given) {
         return inputError(given, 0, why);
     };
     using VersionFunction = int (*)();
+    using BuildInfoFunction = const PluginBuildInfo* (*)();
     using RegisterFunction = void (*)(PluginRegistrar&);
     const auto version = reinterpret_cast<VersionFunction>(dlsym(library, "bvhlab_plugin_api_version"));
     const auto registerPlugin = reinterpret_cast<RegisterFunction>(dlsym(library, "bvhlab_register_plugin"));
@@ -106,6 +107,11 @@ const LoadedPlugin& loadPlugin(const std::filesystem::path& given) {
         throw refuse(fmt::format("built for plugin API version {}, but this bvhlab has version {}: rebuild it "
                                  "against this bvhlab (docs/plugins.md)",
                                  apiVersion, BVHLAB_PLUGIN_API_VERSION));
+    // Asked only of a plugin of this version, which has it when its entry points come from BVHLAB_PLUGIN.
+    const auto buildInfo = reinterpret_cast<BuildInfoFunction>(dlsym(library, "bvhlab_plugin_build_info"));
+    if (!buildInfo)
+        throw refuse("it does not export bvhlab_plugin_build_info (define the entry points with BVHLAB_PLUGIN, "
+                     "docs/plugins.md)");
     Registrar registrar;
     try {
         registerPlugin(registrar);
@@ -117,7 +123,8 @@ const LoadedPlugin& loadPlugin(const std::filesystem::path& given) {
     checkAdditions(name, registrar);
 
     const SceneCacheKey checksum = sceneCacheKey(file);
-    LoadedPlugin plugin{file, checksum.size, checksum.crc32, apiVersion, {}};
+    const PluginBuildInfo& build = *buildInfo();
+    LoadedPlugin plugin{file, checksum.size, checksum.crc32, apiVersion, {}, build.compiler, build.cxxFlags, build.optimized};
     std::vector<EnvKey> keys;
     for (PluginAccelerator& a : registrar.accelerators) {
         std::vector<std::string> keyNames;
@@ -138,7 +145,15 @@ const LoadedPlugin& loadPlugin(const std::filesystem::path& given) {
                                  {"size", plugin.size},
                                  {"crc32", fmt::format("{:08x}", plugin.crc32)},
                                  {"api_version", plugin.apiVersion},
-                                 {"accelerators", plugin.accelerators}});
+                                 {"accelerators", plugin.accelerators},
+                                 {"compiler", plugin.compiler},
+                                 {"cxx_flags", plugin.cxxFlags},
+                                 {"optimized", plugin.optimized}});
+    if (!plugin.optimized)
+        fmt::print(stderr,
+                   "warning: plugin {} was compiled without optimisation (flags: {}): its times are not "
+                   "representative; rebuild it with -DCMAKE_BUILD_TYPE=Release (docs/plugins.md)\n",
+                   name, plugin.cxxFlags.empty() ? "not recorded" : plugin.cxxFlags);
     pluginList().push_back(std::move(plugin));
     return pluginList().back();
 }

@@ -18,11 +18,16 @@ struct LoadedPlugin {
     uint32_t crc32 = 0;
     int apiVersion = 0;
     std::vector<std::string> accelerators;
+    // How it was compiled (PluginBuildInfo, framework/plugin/plugin_api.h).
+    std::string compiler;
+    std::string cxxFlags;  // empty when not recorded (a plugin built without bvhlab_add_plugin)
+    bool optimized = false;
 };
 
 // Loads `file` once (again: nothing happens). Throws InputError naming the file when it cannot be
 // opened, is not a bvhlab plugin, was built for another API version (both named), its entry
 // point throws, or it adds an accelerator or key that exists already (then it adds nothing).
+// Warns on stderr, naming the file, when the plugin was compiled without optimisation.
 const LoadedPlugin& loadPlugin(const std::filesystem::path& file);
 const std::deque<LoadedPlugin>& loadedPlugins();  // in load order
 

@@ -177,6 +177,9 @@ void bindAccelerator(py::module_& m) {
             loaded["file"] = plugin.file;
             loaded["api_version"] = plugin.apiVersion;
             loaded["accelerators"] = plugin.accelerators;
+            loaded["compiler"] = plugin.compiler;
+            loaded["cxx_flags"] = plugin.cxxFlags;
+            loaded["optimized"] = plugin.optimized;
             return loaded;
         },
         py::arg("path"), "Loads a plugin's accelerators (docs/plugins.md); again: nothing happens.");

@@ -22,10 +22,16 @@ namespace bvhlab {
 
 // What a builder is told, besides the primitives.
 struct BuilderSettings {
-    const Env& env;  // every key: the plugin's own, BVH::cTraversal and BVH::cIntersect for an SAH
+    const Env& env;  // every key of the run: the plugin's own and bvhlab's
     // The traversal tests a leaf's primitives this many at a time (1 in NAME, 8 in NAME4 and
     // NAME8): an SAH charges a leaf of n primitives ceil(n / leafBlock) tests.
     uint32_t leafBlock = 1;
+    // The run's SAH constants (BVH::cTraversal, BVH::cIntersect), which bvhlab's own SAH builders
+    // and the reported SAH cost use: the cost of visiting an inner node and of one primitive
+    // test, in the same unit (only their ratio matters to a split). cTraversal >= 0,
+    // cIntersect > 0.
+    float cTraversal = 1.0f;
+    float cIntersect = 1.0f;
 };
 
 class SplitRule {

@@ -1,6 +1,7 @@
 // Loading plugins end to end (apps/common/plugins.h): refused with an error naming the file and
 // why, errors thrown inside a plugin reported with the plugin and the accelerator, found by
-// name in the plugin folders, listed by `bvhlab keys` and in the JSON provenance.
+// name in the plugin folders, listed by `bvhlab keys` and in the JSON provenance with how they
+// were compiled, a warning when not optimised.
 #include "framework/plugin/plugin_api.h"
 #include "tests/support/cli_run.h"
 #include "tests/support/scratch_dir.h"
@@ -20,11 +21,26 @@ const std::string kPlugins = test::testPlugins();
 const std::string kThrowing = kPlugins + "/throwing.so";
 const std::string kBuilders = kPlugins + "/builders.so";
 const std::string kCrashing = kPlugins + "/crashing.so";
+const std::string kUnoptimized = kPlugins + "/throwing_unoptimized.so";
+// The test plugins but throwing_unoptimized.so are compiled as this file is.
+#ifdef __OPTIMIZE__
+constexpr bool kPluginsOptimized = true;
+#else
+constexpr bool kPluginsOptimized = false;
+#endif
+constexpr std::string_view kUnoptimizedWarning = "was compiled without optimisation";
 
 // A small render of the default scene, into a scratch folder.
 Result render(const std::string& args) {
-    return run("render -DCamera::width=16 -DCamera::height=12 " + args + " --out " +
-               (scratchDir("plugins") / "image").string());
+    const std::filesystem::path image = scratchDir("plugins") / "image";
+    std::filesystem::remove(image.string() + ".json");
+    return run("render -DCamera::width=16 -DCamera::height=12 " + args + " --out " + image.string());
+}
+
+// The statistics JSON of the last render().
+nlohmann::json renderedJson() {
+    std::ifstream in((scratchDir("plugins") / "image").string() + ".json");
+    return nlohmann::json::parse(in);
 }
 
 TEST(Plugins, AWrongApiVersionIsRefusedNamingBothVersions) {
@@ -116,17 +132,31 @@ TEST(Plugins, KeysListsAPluginsAcceleratorsAndKeysWithItsFile) {
 }
 
 TEST(Plugins, TheJsonProvenanceNamesEveryPluginLoaded) {
-    const auto out = scratchDir("plugins_json") / "image";
-    const Result r =
-        run("render -DCamera::width=16 -DCamera::height=12 -DASDS::type=naive --plugin " + kThrowing + " --out " + out.string());
+    const Result r = render("-DASDS::type=naive --plugin " + kThrowing);
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    std::ifstream in(out.string() + ".json");
-    const nlohmann::json plugins = nlohmann::json::parse(in)["provenance"]["plugins"];
+    const nlohmann::json provenance = renderedJson()["provenance"];
+    const nlohmann::json plugins = provenance["plugins"];
     ASSERT_EQ(plugins.size(), 1u) << plugins.dump();
     EXPECT_EQ(plugins[0]["path"], kThrowing);
     EXPECT_EQ(plugins[0]["api_version"], BVHLAB_PLUGIN_API_VERSION);
     EXPECT_EQ(plugins[0]["crc32"].get<std::string>().size(), 8u);
     EXPECT_EQ(plugins[0]["accelerators"], nlohmann::json({"throwing", "throwing_query", "throwing_factory"}));
+    // How it was compiled: the compiler as bvhlab's own provenance names it, the flags
+    // bvhlab_record_plugin_flags passed (with the one bvhlab::plugin_api carries).
+    EXPECT_EQ(plugins[0]["compiler"], provenance["compiler"]);
+    EXPECT_NE(plugins[0]["cxx_flags"].get<std::string>().find("-ffp-contract=off"), std::string::npos) << plugins.dump();
+    EXPECT_EQ(plugins[0]["optimized"], kPluginsOptimized);
+    if (kPluginsOptimized) EXPECT_EQ(r.output.find(kUnoptimizedWarning), std::string::npos) << r.output;
+}
+
+TEST(Plugins, APluginCompiledWithoutOptimisationIsMeasuredWithAWarning) {
+    const Result r = render("-DASDS::type=naive --plugin " + kUnoptimized);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find(fmt::format("warning: plugin {} {}", kUnoptimized, kUnoptimizedWarning)), std::string::npos)
+        << r.output;
+    const nlohmann::json plugin = renderedJson()["provenance"]["plugins"][0];
+    EXPECT_EQ(plugin["optimized"], false) << plugin.dump();
+    EXPECT_NE(plugin["cxx_flags"].get<std::string>().find("-O0"), std::string::npos) << plugin.dump();
 }
 
 TEST(Plugins, ABuilderBecomesThreeAcceleratorsThatAnswerAsTheReference) {
@@ -137,6 +167,19 @@ TEST(Plugins, ABuilderBecomesThreeAcceleratorsThatAnswerAsTheReference) {
     }
     const Result keys = run("keys --plugin " + kBuilders);
     EXPECT_NE(keys.output.find("| `pairs8` | pairs's tree"), std::string::npos) << keys.output;
+}
+
+TEST(Plugins, ABuilderReadsTheRunsSahConstants) {
+    // costed keeps a node of n primitives whole where n <= 2 * cTraversal / cIntersect; its
+    // median splits halve the default scene's 7440 triangles down to 7 or 8, then 3 or 4.
+    auto largestLeaf = [](const std::string& costs) {
+        const Result r = render("--plugin " + kBuilders + " -DASDS::type=costed " + costs);
+        EXPECT_EQ(r.exitCode, 0) << r.output;
+        return r.exitCode == 0 ? renderedJson()["max_leaf_prims"].get<int>() : 0;
+    };
+    EXPECT_EQ(largestLeaf(""), 2);  // 1 and 1: splits down to BVH::maxLeaf
+    EXPECT_EQ(largestLeaf("-DBVH::cTraversal=5"), 8);
+    EXPECT_EQ(largestLeaf("-DBVH::cTraversal=5 -DBVH::cIntersect=2.5"), 4);
 }
 
 TEST(Plugins, ABuilderThatBreaksItsContractFailsTheBuildNamingIt) {

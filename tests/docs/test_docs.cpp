@@ -1,6 +1,6 @@
 // docs/env-keys.md lists exactly the registered keys and accelerators (regenerate it with
-// `bvhlab keys > docs/env-keys.md`), env/global.env uses only known keys, and every path of
-// the repository that a doc names exists.
+// `bvhlab keys > docs/env-keys.md`), env/global.env uses only known keys, every path of the
+// repository that a doc names exists, and docs/plugins.md describes the whole plugin API.
 #include "accel/bvh/bvh_env.h"
 #include "accel/registry.h"
 #include "apps/common/program_keys.h"
@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <regex>
@@ -115,6 +116,37 @@ TEST(Docs, AddingAnAcceleratorCoversEveryPrimitiveKindAndFile) {
                                "countQuadricTest", "accel/CMakeLists.txt", "accel/registry.cpp",
                                "tests/test_architecture.cpp", "docs/env-keys.md", "leafBound", "depthBound"})
         EXPECT_NE(text.str().find(needed), std::string::npos) << needed;
+}
+
+// docs/plugins.md's reference describes the plugin API: every type and virtual function of the
+// headers framework/plugin/plugin_api.h brings, and the cost constants a builder is given.
+TEST(Docs, ThePluginReferenceDescribesEveryTypeOfThePluginApi) {
+    namespace fs = std::filesystem;
+    const fs::path root(test::sourceTree());
+    std::vector<std::string> headers = {"framework/plugin/plugin_api.h"};
+    std::set<std::string> names = {"cTraversal", "cIntersect", "BVH::cTraversal", "BVH::cIntersect"};
+    const std::regex include(R"re(^#include "(framework/[\w/]+\.h)")re");
+    const std::regex declaration(R"(^(?:struct|class|enum class) (?:alignas\(\d+\) )?(\w+)[^;]*$|virtual [^(]*\b(\w+)\()");
+    for (size_t i = 0; i < headers.size(); ++i) {
+        std::ifstream in(root / headers[i]);
+        for (std::string line; std::getline(in, line);) {
+            std::smatch m;
+            if (std::regex_search(line, m, include)) {
+                if (std::find(headers.begin(), headers.end(), m[1].str()) == headers.end()) headers.push_back(m[1]);
+            } else if (std::regex_search(line, m, declaration)) {
+                names.insert(m[m[1].matched ? 1 : 2].str());
+            }
+        }
+    }
+    names.erase("EnvLine");  // a line of an env file as bvhlab reads it, before any key is known
+    std::ifstream in(root / "docs/plugins.md");
+    std::stringstream text;
+    text << in.rdbuf();
+    const size_t reference = text.str().find("\n## Reference\n");
+    ASSERT_NE(reference, std::string::npos);
+    const std::string referenceText = text.str().substr(reference);
+    for (const std::string& name : names)
+        EXPECT_TRUE(std::regex_search(referenceText, std::regex("\\b" + name + "\\b"))) << name;
 }
 
 // docs/results.md has the default structure beside the report's two, and says what it was run at.

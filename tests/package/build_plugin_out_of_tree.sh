@@ -4,7 +4,8 @@
 # installs the build folder $BVHLAB_BUILD (default: build, relative to the repository root) into
 # WORK_DIR/prefix with `cmake --install`, configures SOURCE_DIR (a CMake project that calls
 # find_package(bvhlab) and bvhlab_add_plugin) into WORK_DIR/build with -DCMAKE_PREFIX_PATH=prefix
-# and Ninja, builds it, and prints the path of every .so it built on stdout. WORK_DIR defaults to
+# and Ninja and no build type (the package's default), builds it, and prints the path of every
+# .so it built on stdout. WORK_DIR defaults to
 # a temporary folder (kept: the paths printed are in it). CMake's output goes to WORK_DIR/*.log,
 # shown on stderr when a step fails; the exit status is then non-zero.
 set -euo pipefail
@@ -37,8 +38,7 @@ step() {
 prefix="$work_dir/prefix"
 rm -rf "$prefix" "$work_dir/build"
 step install cmake --install "$build" --prefix "$prefix"
-step configure cmake -S "$source_dir" -B "$work_dir/build" -G Ninja -DCMAKE_PREFIX_PATH="$prefix" \
-  -DCMAKE_BUILD_TYPE=Release
+step configure cmake -S "$source_dir" -B "$work_dir/build" -G Ninja -DCMAKE_PREFIX_PATH="$prefix"
 step build cmake --build "$work_dir/build" -j 2
 
 mapfile -t built < <(find "$work_dir/build" -name '*.so' -type f -not -path '*/CMakeFiles/*' | sort)

@@ -3,10 +3,11 @@
 # pastes it into an empty folder (tests/package/extract_doc_plugin.py; EXAMPLE: 1, the default, is
 # the accelerator, 2 the builder):
 #   tests/package/check_plugin.sh out-of-tree BUILD_DIR [EXAMPLE]       find_package(bvhlab) on
-#       `cmake --install` of BUILD_DIR; the installed bvhlab loads the plugin, renders with it, runs
+#       `cmake --install` of BUILD_DIR, configured without a build type as docs/install.md does;
+#       the installed bvhlab loads the plugin, finds it optimised, renders with it, runs
 #       `bvhlab check` on what it adds (a builder: NAME, NAME4 and NAME8)
 #   tests/package/check_plugin.sh add-subdirectory BUILD_DIR [EXAMPLE]  add_subdirectory(bvhlab)
-#       in another project, which builds the plugin; it must export bvhlab's two entry points
+#       in another project, which builds the plugin; it must export bvhlab's three entry points
 set -euo pipefail
 
 fail() { echo "check_plugin: $*" >&2; exit 1; }
@@ -30,8 +31,13 @@ case "$1" in
     grep -q "| \`$name\` |" <<< "$keys" || fail "bvhlab keys does not list $name"
     accelerators=$name
     grep -q "| \`${name}8\` |" <<< "$keys" && accelerators="$name ${name}4 ${name}8"  # a builder's
-    "$bvhlab" render --plugin "$plugin" -DASDS::type="$name" -DCamera::width=32 -DCamera::height=24 \
-      --out "$work/render/image" || fail "the installed bvhlab could not render with $name"
+    grep -q "bvhlab: no CMAKE_BUILD_TYPE given, building Release" "$work/configure.log" \
+      || fail "the package did not say it builds Release (log: $work/configure.log)"
+    rendered=$("$bvhlab" render --plugin "$plugin" -DASDS::type="$name" -DCamera::width=32 -DCamera::height=24 \
+      --out "$work/render/image" 2>&1) || fail "the installed bvhlab could not render with $name: $rendered"
+    ! grep -q "compiled without optimisation" <<< "$rendered" || fail "$name.so is not optimised: $rendered"
+    /usr/bin/python3 -c 'import json, sys; sys.exit(not json.load(open(sys.argv[1]))["provenance"]["plugins"][0]["optimized"])' \
+      "$work/render/image.json" || fail "the provenance of $work/render/image.json does not say $name.so is optimised"
     for accelerator in $accelerators; do
       "$bvhlab" check --plugin "$plugin" --accel "$accelerator" || fail "bvhlab check failed on $accelerator"
       # Found by name in a plugin folder, as docs/plugins.md says.
@@ -49,10 +55,11 @@ case "$1" in
     plugin="$work/build/$name.so"
     [ -f "$plugin" ] || fail "$plugin was not built"
     symbols=$(nm -D --defined-only "$plugin")
-    for symbol in bvhlab_plugin_api_version bvhlab_register_plugin; do
+    entry_points="bvhlab_plugin_api_version bvhlab_plugin_build_info bvhlab_register_plugin"
+    for symbol in $entry_points; do
       grep -qw "$symbol" <<< "$symbols" || fail "$plugin does not export $symbol"
     done
-    echo "$plugin exports bvhlab_plugin_api_version and bvhlab_register_plugin"
+    echo "$plugin exports $entry_points"
     ;;
   *) fail "unknown test $1" ;;
 esac

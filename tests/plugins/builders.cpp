@@ -2,8 +2,8 @@
 // in the order given, round after round (a valid tree, not a good one); `interleaved`, a split
 // rule that deals a node's primitives out to its children in turn (a valid tree whose boxes
 // all span the scene: right answers at an absurd cost, tests/apps/test_check_command.cpp);
-// `lossy`, a split rule that overwrites a primitive index; `twice`, a merge tree that uses a
-// node twice.
+// `lossy`, a split rule that overwrites a primitive index; `costed`, a split rule that reads the
+// run's SAH constants; `twice`, a merge tree that uses a node twice.
 #include "framework/plugin/plugin_api.h"
 
 #include <algorithm>
@@ -49,6 +49,26 @@ public:
     }
 };
 
+// Object-median splits, but a node whose primitives cost no more to test than a step down and
+// half of them (n * cIntersect <= cTraversal + n / 2 * cIntersect) stays a leaf.
+class Costed final : public SplitRule {
+public:
+    explicit Costed(const BuilderSettings& settings) : leafUpTo_(2.0f * settings.cTraversal / settings.cIntersect) {}
+
+    size_t split(std::span<PrimRef> prims, const Bounds3&, const Bounds3& centroidBounds, bool mayBeLeaf) override {
+        if (mayBeLeaf && float(prims.size()) <= leafUpTo_) return 0;
+        const int axis = centroidBounds.largestAxis();
+        const size_t half = prims.size() / 2;
+        std::nth_element(prims.begin(), prims.begin() + half, prims.end(), [axis](const PrimRef& a, const PrimRef& b) {
+            return a.center(axis) < b.center(axis) || (a.center(axis) == b.center(axis) && a.prim < b.prim);
+        });
+        return half;
+    }
+
+private:
+    float leafUpTo_;
+};
+
 }  // namespace
 
 BVHLAB_PLUGIN(registrar) {
@@ -57,6 +77,8 @@ BVHLAB_PLUGIN(registrar) {
                           [](const BuilderSettings&) { return std::make_unique<Interleaved>(); }, {}});
     registrar.addBuilder(
         {"lossy", "overwrites a primitive index", {}, [](const BuilderSettings&) { return std::make_unique<Lossy>(); }, {}});
+    registrar.addBuilder({"costed", "median splits, leaves where the SAH constants favour them", {},
+                          [](const BuilderSettings& settings) { return std::make_unique<Costed>(settings); }, {}});
     registrar.addBuilder({"twice", "uses a node twice", {}, {}, [](std::span<const PrimRef> prims, const BuilderSettings& s) {
                               std::vector<Merge> merges = pairs(prims, s);
                               if (!merges.empty()) merges.back().right = merges.back().left;
