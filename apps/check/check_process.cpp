@@ -86,7 +86,9 @@ CheckResult runCheckInChild(const std::string& name) {
     failed.check = name;
     failed.failures = 1;
     failed.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (WIFSIGNALED(status)) {
+    // A child that left its fatal-signal report crashed, whether it then died of the signal or a
+    // handler installed before bvhlab's (a sanitizer's) ended it with an exit code.
+    if (WIFSIGNALED(status) || !text.empty()) {
         // The child's report: the signal, and the plugin call with its ray or primitive count.
         failed.note = "crashed";
         failed.examples.push_back(fmt::format("{}: {}", name, text.empty() ? "died of " + signalDescription(WTERMSIG(status)) : text));
