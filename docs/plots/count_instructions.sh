@@ -1,8 +1,8 @@
 #!/bin/sh
 # #40's yardstick (docs/performance.md): instructions and simulated branch mispredicts per query,
 # counted by valgrind's cachegrind instead of timed, so that no noise moves them. For each scene and
-# kind, the bench's rays (`bvhlab rays`) are cut to their first SMALL and LARGE rays and each
-# structure answers both files under `valgrind --tool=cachegrind --branch-sim=yes` (`bvhlab
+# kind, SMALL and LARGE of the bench's rays (`bvhlab rays`) are taken from all over the image
+# (cut_rays below), and each structure answers both files under `valgrind --tool=cachegrind --branch-sim=yes` (`bvhlab
 # raycast`, 1 thread, BVH::isa=avx2: valgrind runs no AVX-512, and Embree picks its AVX2 kernels
 # under it). Per query = (count of LARGE - count of SMALL) / (LARGE - SMALL): loading the scene
 # and building cancel. Shadow and incoherent rays are any-hit queries (raycast --any), as in the
@@ -14,7 +14,7 @@
 # (ASDS::type as env/global.env leaves it) and embree. `default` as a scene likewise means no
 # --scene (the embedded scene). Environment: SCENES (default "conference sibenik teapots", names
 # as `bvhlab rays --scene` takes them), KINDS (default "primary shadow incoherent"), SMALL and
-# LARGE (default 20000 60000).
+# LARGE (default 20000 60000; multiples of 200).
 set -euf
 [ $# -ge 2 ] || { sed -n '2,/^[^#]/s/^# \{0,1\}//p' "$0" >&2; exit 2; }
 BUILD=$1 OUT=$2
@@ -23,7 +23,9 @@ shift 2
 SCENES=${SCENES:-conference sibenik teapots}
 KINDS=${KINDS:-primary shadow incoherent}
 SMALL=${SMALL:-20000} LARGE=${LARGE:-60000}
-[ "$SMALL" -lt "$LARGE" ] || { echo "SMALL ($SMALL) must be below LARGE ($LARGE)" >&2; exit 2; }
+BLOCK=200  # consecutive rays kept together by cut_rays: whole packets of 8, a quarter of an 800-pixel row
+[ "$SMALL" -gt 0 ] && [ "$SMALL" -lt "$LARGE" ] && [ $((SMALL % BLOCK)) -eq 0 ] && [ $((LARGE % BLOCK)) -eq 0 ] ||
+    { echo "SMALL ($SMALL) and LARGE ($LARGE) must be multiples of $BLOCK, 0 < SMALL < LARGE" >&2; exit 2; }
 # -march=native puts the build machine's instructions everywhere (AVX-512 on many), which valgrind
 # cannot run, and would make the counts the build machine's rather than the code's.
 grep -q '^BVHLAB_NATIVE:BOOL=OFF$' "$BUILD/CMakeCache.txt" ||
@@ -33,18 +35,23 @@ mkdir -p "$OUT/rays" "$OUT/logs"
 CSV=$OUT/counts.csv
 echo "scene,kind,structure,accel,small,large,instructions_small,instructions_large,mispredicts_small,mispredicts_large,instructions_per_query,mispredicts_per_query" > "$CSV"
 
-# The first N rays of a BVHRAYS1 file (docs/file-formats.md): the header with N, then N records.
+# SMALL and LARGE rays of a BVHRAYS1 file (docs/file-formats.md) in blocks of BLOCK consecutive
+# rays spread evenly over the file, SMALL's blocks among LARGE's: their difference is a sample of
+# the whole image. The first rays alone would be its top rows (teapots': mostly misses).
 cut_rays() {
     /usr/bin/python3 - "$@" <<'PY'
 import struct, sys
-src, n, dst = sys.argv[1], int(sys.argv[2]), sys.argv[3]
+src, B, small, large, dst_small, dst_large = sys.argv[1], *map(int, sys.argv[2:5]), sys.argv[5], sys.argv[6]
 with open(src, "rb") as f:
     magic, count = struct.unpack("<8sQ", f.read(16))
-    if magic != b"BVHRAYS1" or count < n:
-        sys.exit(f"{src}: not a BVHRAYS1 file of at least {n} rays ({count})")
-    body = f.read(32 * n)
-with open(dst, "wb") as f:
-    f.write(struct.pack("<8sQ", magic, n) + body)
+    rays = f.read()
+if magic != b"BVHRAYS1" or count < large:
+    sys.exit(f"{src}: not a BVHRAYS1 file of at least {large} rays ({count})")
+nl, ns = large // B, small // B
+picked = [i * (count // B) // nl for i in range(nl)]
+for dst, chosen in ((dst_small, [picked[j * nl // ns] for j in range(ns)]), (dst_large, picked)):
+    with open(dst, "wb") as f:
+        f.write(struct.pack("<8sQ", magic, len(chosen) * B) + b"".join(rays[32 * B * b : 32 * B * (b + 1)] for b in chosen))
 PY
 }
 
@@ -59,7 +66,7 @@ for scene in $SCENES; do
         all=$OUT/rays/$name.$kind.rays
         nice -n 19 "$BUILD/bvhlab" rays $scene_arg --kind "$kind" --out "$all" > "$OUT/logs/$name.$kind.rays.log" 2>&1 ||
             { echo "bvhlab rays failed: $OUT/logs/$name.$kind.rays.log" >&2; exit 1; }
-        for n in "$SMALL" "$LARGE"; do cut_rays "$all" "$n" "$OUT/rays/$name.$kind.$n.rays"; done
+        cut_rays "$all" "$BLOCK" "$SMALL" "$LARGE" "$OUT/rays/$name.$kind.$SMALL.rays" "$OUT/rays/$name.$kind.$LARGE.rays"
         rm "$all"
         for structure in "$@"; do
             type=${structure%% *} && keys=${structure#"$type"}
@@ -78,6 +85,8 @@ for scene in $SCENES; do
             accel=$(sed -n 's/^\([^ ]*\) [a-z-]* queries: .*/\1/p' "$large")
             is=$(summary 'I *refs:' "$small") il=$(summary 'I *refs:' "$large")
             ms=$(summary 'Mispredicts:' "$small") ml=$(summary 'Mispredicts:' "$large")
+            [ -n "$accel" ] && [ -n "$is" ] && [ -n "$il" ] && [ -n "$ms" ] && [ -n "$ml" ] ||
+                { echo "$small, $large: no accelerator name or counts found (has valgrind's summary changed?)" >&2; exit 1; }
             echo "$name,$kind,\"$structure\",$accel,$SMALL,$LARGE,$is,$il,$ms,$ml,$(awk -v a="$is" -v b="$il" -v c="$ms" -v d="$ml" \
                 -v n=$((LARGE - SMALL)) 'BEGIN { printf "%.2f,%.3f", (b - a) / n, (d - c) / n }')" >> "$CSV"
             echo "$name $kind $structure: $(tail -n 1 "$CSV" | cut -d, -f11-12 | tr , /) per query" >&2
