@@ -206,8 +206,9 @@ std::string unknownAcceleratorMessage(const std::string& accelerator) {
 }
 
 void checkKeyIsNotAnUnloadedPlugins(const std::string& key, const std::string& origin) {
-    if (programKeys().find(key)) return;
-    const std::string section = key.substr(0, key.find("::") + 2);
+    const size_t colons = key.find("::");
+    if (programKeys().find(key) || colons == std::string::npos) return;  // a key without a section: Env says so
+    const std::string section = key.substr(0, colons + 2);
     for (const auto& [name, declared] : programKeys().keys())
         if (name.starts_with(section)) return;  // a misspelt key of a known section: Env says "did you mean"
     throw InputError(fmt::format("{}: unknown key '{}': no section {} in bvhlab or a loaded plugin. If it is a "
