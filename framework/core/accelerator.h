@@ -17,7 +17,14 @@ namespace bvhlab {
 
 // Work done by queries, in Havran's terms. One instance per thread, passed into every
 // query, merged after the run: no atomics, no sharing on the hot path.
+//
+// `counting` asks for the counts. Counting costs a timed query time (a counter update per node
+// and per leaf), so a structure may keep a form of its queries that counts nothing and run it
+// when `counting` is false (bvhlab's BVHs do: docs/architecture.md, "Counting"); the numbers it
+// leaves then are not its work. Timed passes turn it off, and N_IT and N_TR come from a pass
+// over the same rays with it on. A structure that always counts may ignore it.
 struct QueryCounters {
+    bool counting = true;
     uint64_t queries = 0;
     uint64_t intersectionTests = 0;  // N_IT: ray-primitive tests, every kind
     uint64_t traversalSteps = 0;     // N_TR: nodes visited

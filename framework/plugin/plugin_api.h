@@ -18,7 +18,7 @@
 // The shape of everything a plugin compiles against and of the symbols BVHLAB_PLUGIN exports,
 // raised when either changes; a plugin built for another version is refused at load time with
 // both versions named.
-#define BVHLAB_PLUGIN_API_VERSION 4
+#define BVHLAB_PLUGIN_API_VERSION 5
 
 // How the translation unit that expands BVHLAB_PLUGIN was compiled, as the preprocessor sees it
 // there. bvhlab_add_plugin (BvhlabPlugin.cmake) passes the flags of the plugin's build as
