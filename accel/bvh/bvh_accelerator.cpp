@@ -99,14 +99,14 @@ const Bvh& BvhAccelerator<Layout>::binaryTree() const {
 // quadric tree's traversal cost triangle-only scenes 7-14 % per query, measured).
 template <typename Layout>
 bool BvhAccelerator<Layout>::findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const {
-    const bool found = kernels_.findNearest(tree_, ray, hit, counters);
+    const bool found = kernels_.forCounters(counters).findNearest(tree_, ray, hit, counters);
     if (quadrics_.empty()) [[likely]] return found;
     return findNearestQuadric(ray, found, hit, counters);
 }
 
 template <typename Layout>
 bool BvhAccelerator<Layout>::isOccluded(const Ray& ray, QueryCounters& counters) const {
-    if (kernels_.isOccluded(tree_, ray, counters)) return true;
+    if (kernels_.forCounters(counters).isOccluded(tree_, ray, counters)) return true;
     if (quadrics_.empty()) [[likely]] return false;
     return isOccludedQuadric(ray, counters);
 }
@@ -115,7 +115,8 @@ template <typename Layout>
 void BvhAccelerator<Layout>::findNearestBatch(std::span<const Ray> rays, std::span<Hit> hits, QueryCounters& counters,
                                               std::span<RayCost> costs) const {
     if (quadrics_.empty()) [[likely]]
-        return kernels_.findNearestBatch(tree_, rays, hits, counters, costs, traversal_.packetFallback);
+        return kernels_.forCounters(counters, !costs.empty())
+            .findNearestBatch(tree_, rays, hits, counters, costs, traversal_.packetFallback);
     for (size_t i = 0; i < rays.size(); ++i) {
         const QueryCounters before = counters;
         Hit hit;
@@ -129,7 +130,8 @@ template <typename Layout>
 void BvhAccelerator<Layout>::isOccludedBatch(std::span<const Ray> rays, std::span<uint8_t> occluded,
                                              QueryCounters& counters, std::span<RayCost> costs) const {
     if (quadrics_.empty()) [[likely]]
-        return kernels_.isOccludedBatch(tree_, rays, occluded, counters, costs, traversal_.packetFallback);
+        return kernels_.forCounters(counters, !costs.empty())
+            .isOccludedBatch(tree_, rays, occluded, counters, costs, traversal_.packetFallback);
     for (size_t i = 0; i < rays.size(); ++i) {
         const QueryCounters before = counters;
         occluded[i] = isOccluded(rays[i], counters) ? 1 : 0;

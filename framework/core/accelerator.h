@@ -24,12 +24,12 @@ namespace bvhlab {
 // leaves then are not its work. Timed passes turn it off, and N_IT and N_TR come from a pass
 // over the same rays with it on. A structure that always counts may ignore it.
 struct QueryCounters {
-    bool counting = true;
     uint64_t queries = 0;
     uint64_t intersectionTests = 0;  // N_IT: ray-primitive tests, every kind
     uint64_t traversalSteps = 0;     // N_TR: nodes visited
     uint64_t sphereTests = 0;        // the part of N_IT that tested spheres ...
     uint64_t coneTests = 0;          // ... and cones (the rest tested triangles)
+    bool counting = true;            // see above; not a count: += and addWork leave it
 
     // Adds o's work, not its queries: for a query answered by several structures.
     void addWork(const QueryCounters& o) {

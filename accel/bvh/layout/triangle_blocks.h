@@ -3,9 +3,10 @@
 // (traverse/triangle_block_test.h) checks eight triangles of a leaf at once. Eight, not four:
 // a block costs one test either way, and the SAH then charges leaves by eights, which halves
 // the leaves and the build time (measured in docs/performance.md). A leaf of n triangles takes
-// ceil(n / 8) blocks of its own; the lanes past its last triangle hold a point triangle (three
-// equal vertices), which the watertight test never hits (its edge functions are exactly 0),
-// and kInvalidPrimitive; the traversal leaves them out of the test as well.
+// ceil(n / 8) blocks of its own; the lanes past its last triangle repeat that triangle, with
+// kInvalidPrimitive as their primitive. A repeat hits exactly where the triangle does, in a
+// later lane, and the lowest lane wins a tie: the traversal tests whole blocks without a lane
+// mask and never reports a repeat.
 #pragma once
 
 #include "accel/bvh/layout/traversal_allocator.h"
@@ -52,13 +53,20 @@ struct TriangleBlockLeaves {
     // Writes a leaf of `count` triangles (primitive indices `prims`) into the blocks from
     // `first` on, which must exist (resizeLeaves); padding lanes included.
     void writeLeaf(uint32_t first, const Triangle* triangles, const uint32_t* prims, uint32_t count) {
-        const Vec3 point = triangles[count - 1].v0;  // the padding triangle
         for (uint32_t i = 0, end = blocksFor(count) * TriangleBlock::kLanes; i < end; ++i) {
             const bool real = i < count;
             blocks[first + i / TriangleBlock::kLanes].set(int(i % TriangleBlock::kLanes),
-                                                          real ? triangles[i] : Triangle{point, point, point});
+                                                          triangles[real ? i : count - 1]);
             primIndices[size_t(first) * TriangleBlock::kLanes + i] = real ? prims[i] : kInvalidPrimitive;
         }
+    }
+
+    // The triangles of the leaf of `count` blocks from `first` on: its padding left out.
+    uint32_t trianglesIn(uint32_t first, uint32_t count) const {
+        const uint32_t* last = &primIndices[size_t(first + count - 1) * TriangleBlock::kLanes];
+        uint32_t triangles = (count - 1) * TriangleBlock::kLanes;
+        for (int l = 0; l < TriangleBlock::kLanes; ++l) triangles += last[l] != kInvalidPrimitive ? 1 : 0;
+        return triangles;
     }
 
     // Appends a leaf of `count` triangles; returns its first block.

@@ -1,10 +1,12 @@
 #include "accel/bvh/layout/wide_bvh.h"
 
+#include <fmt/format.h>
 #include <tbb/task_group.h>
 
 #include <algorithm>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <utility>
 #include <vector>
 
@@ -20,8 +22,40 @@ WideNode<N> emptyWideNode() {
         std::fill_n(n.upper[a], N, -kInfinity);
     }
     std::fill_n(n.child, N, 0u);
-    std::fill_n(n.count, N, 0u);
+    std::fill_n(n.order, N, 0u);
     return n;
+}
+
+// Fills node.order: per octant, the lanes far to near by where each box begins along the
+// octant's diagonal (the corner a ray of that octant reaches first), ties in lane order; empty
+// lanes farthest.
+template <int N>
+void orderChildren(WideNode<N>& node) {
+    for (int octant = 0; octant < 8; ++octant) {
+        float begin[N];
+        for (int i = 0; i < N; ++i) {
+            begin[i] = kInfinity;
+            if (!(node.lower[0][i] <= node.upper[0][i])) continue;  // empty
+            begin[i] = 0.0f;
+            for (int a = 0; a < 3; ++a)
+                begin[i] += (octant >> a & 1) ? -node.upper[a][i] : node.lower[a][i];
+        }
+        int lanes[N];
+        for (int i = 0; i < N; ++i) lanes[i] = i;
+        std::stable_sort(lanes, lanes + N, [&](int x, int y) { return begin[x] > begin[y]; });
+        for (int p = 0; p < N; ++p) node.order[p] |= uint32_t(lanes[p]) << (3 * octant);
+    }
+}
+
+// A leaf's child word; throws when the layout cannot address it.
+uint32_t leafChild(uint32_t firstBlock, uint32_t triangles) {
+    const uint32_t blocks = blocksFor(triangles);
+    if (blocks > wide_child::kMaxBlocks || firstBlock + blocks > (1u << wide_child::kFirstBlockBits))
+        throw std::length_error(fmt::format("the wide BVH addresses {} blocks of at most {} in a leaf; this one needs "
+                                            "blocks {} to {}",
+                                            1u << wide_child::kFirstBlockBits, wide_child::kMaxBlocks, firstBlock,
+                                            firstBlock + blocks - 1));
+    return wide_child::leaf(firstBlock, blocks);
 }
 
 // The dynamic programme of the collapse, per binary node n and lane budget i = 1..N.
@@ -167,18 +201,20 @@ public:
             const Bounds3 b = bvh_.nodes[lanes[i]].box();
             for (int a = 0; a < 3; ++a) node.lower[a][i] = b.lower[a], node.upper[a][i] = b.upper[a];
             if (plan_.asLeaf(lanes[i])) {
-                node.child[i] = block, node.count[i] = plan_.triangles(lanes[i]);
+                const uint32_t triangles = plan_.triangles(lanes[i]);
+                node.child[i] = leafChild(block, triangles);
                 writeLeaf(lanes[i], block);
-                block += blocksFor(node.count[i]);
+                block += blocksFor(triangles);
             }
         }
         for (int i = 0; i < count; ++i)
-            if (node.count[i] == 0) node.child[i] = nextNode++;
+            if (!plan_.asLeaf(lanes[i])) node.child[i] = wide_child::inner(nextNode++);
+        orderChildren(node);
         wide_.nodes[slot] = node;
 
         std::optional<tbb::task_group> tasks;  // made only where a subtree is large enough
         for (int i = count; i-- > 0;) {
-            if (node.count[i] != 0) continue;
+            if (plan_.asLeaf(lanes[i])) continue;
             const SubtreeSize& size = sizes_[lanes[i]];
             const uint32_t child = lanes[i], childSlot = node.child[i], childNodes = nextNode, childBlocks = block;
             if (size.blocks >= kParallelBlocks) {
@@ -239,7 +275,8 @@ WideBvh<N> collapseToWide(const Bvh& bvh, const CollapseCosts& costs) {
         WideNode<N> root = emptyWideNode<N>();
         const Bounds3 b = bvh.nodes[0].box();
         for (int a = 0; a < 3; ++a) root.lower[a][0] = b.lower[a], root.upper[a][0] = b.upper[a];
-        root.child[0] = 0, root.count[0] = triangles;
+        root.child[0] = leafChild(0, triangles);
+        orderChildren(root);
         emitter.writeLeaf(0, 0);
         wide.nodes.assign(1, root);
     } else {

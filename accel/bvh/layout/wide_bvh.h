@@ -8,22 +8,50 @@
 #include "accel/bvh/layout/bvh.h"
 #include "accel/bvh/layout/triangle_blocks.h"
 
+#include <cmath>
 #include <cstdint>
 
 namespace bvhlab {
+
+// A wide node's reference to one child, one 32-bit word: an inner child's node index, or, with
+// kLeaf set, a leaf's first TriangleBlock and its number of blocks. The traversal learns from the
+// word alone what to read next, and how much.
+namespace wide_child {
+inline constexpr uint32_t kLeaf = 1u << 31;
+inline constexpr int kFirstBlockBits = 26;  // up to 2^26 blocks (2^29 triangles)
+inline constexpr uint32_t kMaxBlocks = 32;  // BVH::leafCap's 256 triangles at most
+constexpr uint32_t inner(uint32_t node) { return node; }
+constexpr uint32_t leaf(uint32_t firstBlock, uint32_t blocks) {
+    return kLeaf | (blocks - 1) << kFirstBlockBits | firstBlock;
+}
+constexpr bool isLeaf(uint32_t child) { return (child & kLeaf) != 0; }
+constexpr uint32_t firstBlock(uint32_t child) { return child & ((1u << kFirstBlockBits) - 1); }
+constexpr uint32_t blocks(uint32_t child) { return ((child & ~kLeaf) >> kFirstBlockBits) + 1; }
+}  // namespace wide_child
 
 template <int N>
 struct alignas(64) WideNode {
     static constexpr int kWidth = N;
     // Per axis, the N children's bounds; an empty lane has lower = +inf and upper = -inf,
-    // which no ray overlaps (its slab distances are +inf in and -inf out, never NaN).
+    // which no ray overlaps (its slab distances are +inf in and -inf out, never NaN). Its child
+    // word is 0.
     float lower[3][N];
     float upper[3][N];
-    uint32_t child[N];  // inner child: index of its WideNode; leaf: its first TriangleBlock
-    uint32_t count[N];  // 0: inner child (or an empty lane); else the leaf's triangle count
+    uint32_t child[N];  // wide_child words
+    // The children in the order a ray of each direction octant reaches them, far to near
+    // (Fuetterling et al. 2017, as tinybvh's BVH8_CPU): bits [3o, 3o + 3) of order[p] are the
+    // lane at position p for octant o (bit 0 of o: x < 0, bit 1: y < 0, bit 2: z < 0).
+    // Positions are sorted by where each child's box begins along the octant's diagonal, so the
+    // traversal orders the children it hits with one permutation instead of sorting distances.
+    uint32_t order[N];
 };
 static_assert(sizeof(WideNode<4>) == 128, "a 4-wide node fills two cache lines");
 static_assert(sizeof(WideNode<8>) == 256, "an 8-wide node fills four cache lines");
+
+// The octant of a direction, as WideNode::order numbers them.
+inline int directionOctant(const Vec3& dir) {
+    return (std::signbit(dir.x) ? 1 : 0) | (std::signbit(dir.y) ? 2 : 0) | (std::signbit(dir.z) ? 4 : 0);
+}
 
 // Root at 0. Empty when there is nothing to build over.
 template <int N>

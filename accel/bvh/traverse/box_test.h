@@ -109,13 +109,21 @@ struct RayBoxTest : RaySlabs<Robust> {
     }
 };
 
-// The N child boxes of a wide node, in lanes of simd::Floats<N>.
+// The N child boxes of a wide node, in lanes of simd::Floats<N>. The ray's constants are kept
+// as vectors for the whole traversal, so a node step loads the node and nothing else.
 template <int N, bool NegativeT, bool Robust>
 struct WideBoxTest : RaySlabs<Robust> {
     using F = simd::Floats<N>;
     using Node = WideNode<N>;
     // Byte offsets into a node of the near and the far bounds of each axis.
     size_t nearOffset[3], farOffset[3];
+    F org[3], inv[3], invFar[3], tmin;
+
+    // Where the ray enters each child box, and the lanes whose box it overlaps.
+    struct Hits {
+        F entry;
+        typename F::Mask mask;
+    };
 
     [[gnu::always_inline]] explicit WideBoxTest(const Ray& ray) : RaySlabs<Robust>(ray) {
         for (int a = 0; a < 3; ++a) {
@@ -123,25 +131,45 @@ struct WideBoxTest : RaySlabs<Robust> {
             const size_t upper = offsetof(Node, upper) + size_t(a) * sizeof(float) * N;
             nearOffset[a] = this->nearIsUpper[a] ? upper : lower;
             farOffset[a] = this->nearIsUpper[a] ? lower : upper;
+            org[a] = F::broadcast(RaySlabs<Robust>::org[a]);
+            inv[a] = F::broadcast(RaySlabs<Robust>::inv[a]);
+            invFar[a] = F::broadcast(RaySlabs<Robust>::invFar[a]);
         }
+        tmin = F::broadcast(RaySlabs<Robust>::tmin);
     }
 
     static const float* bounds(const Node& node, size_t offset) {
         return reinterpret_cast<const float*>(reinterpret_cast<const char*>(&node) + offset);
     }
 
-    // The lanes whose box the ray overlaps within [tmin, tmax], as a bit mask; where it enters
-    // each box goes to entryOut.
-    [[gnu::always_inline]] int intersect(const Node& node, float tmax, float entryOut[N]) const {
+    // RaySlabs::farDistance's operations, on the constants in lanes.
+    [[gnu::always_inline]] F farDistance(F bound, int a) const {
+        if constexpr (NegativeT && Robust) {
+            constexpr float margin = kFarMargin<Robust>;
+            const F t = (bound - org[a]) * inv[a];
+            return t * select(t >= F::broadcast(0.0f), F::broadcast(1.0f + margin), F::broadcast(1.0f - margin));
+        } else {
+            return (bound - org[a]) * invFar[a];
+        }
+    }
+
+    // The boxes the ray overlaps within [tmin, tmax].
+    [[gnu::always_inline]] Hits test(const Node& node, F tmax) const {
         F nearT[3], farT[3];
         for (int a = 0; a < 3; ++a) {
-            nearT[a] = (F::load(bounds(node, nearOffset[a])) - F::broadcast(this->org[a])) * F::broadcast(this->inv[a]);
-            farT[a] = this->template farDistance<NegativeT>(F::load(bounds(node, farOffset[a])), a);
+            nearT[a] = (F::load(bounds(node, nearOffset[a])) - org[a]) * inv[a];
+            farT[a] = farDistance(F::load(bounds(node, farOffset[a])), a);
         }
-        const F entry = max(max(nearT[0], nearT[1]), max(nearT[2], F::broadcast(this->tmin)));
-        const F exit = min(min(farT[0], farT[1]), min(farT[2], F::broadcast(tmax)));
-        entry.storeu(entryOut);
-        return movemask(entry <= exit);
+        const F entry = max(max(nearT[0], nearT[1]), max(nearT[2], tmin));
+        const F exit = min(min(farT[0], farT[1]), min(farT[2], tmax));
+        return {entry, entry <= exit};
+    }
+
+    // The same as a bit mask, where the ray enters each box to entryOut.
+    [[gnu::always_inline]] int intersect(const Node& node, float tmax, float entryOut[N]) const {
+        const Hits hits = test(node, F::broadcast(tmax));
+        hits.entry.storeu(entryOut);
+        return movemask(hits.mask);
     }
 };
 

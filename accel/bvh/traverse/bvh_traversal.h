@@ -35,7 +35,7 @@ struct StackEntry {
 
 }  // namespace binary_traversal
 
-template <typename Query, bool NegativeT, bool Robust, typename Leaves>
+template <bool Counting, typename Query, bool NegativeT, bool Robust, typename Leaves>
 Query traverse(const NodeTree<BvhNode, Leaves>& bvh, const Ray& ray, QueryCounters& counters) {
     using namespace binary_traversal;
     const RayBoxTest<NegativeT, Robust> boxTest(ray);
@@ -91,8 +91,11 @@ Query traverse(const NodeTree<BvhNode, Leaves>& bvh, const Ray& ray, QueryCounte
             ++steps;
         }
     }
-    counters.traversalSteps += steps;
-    counters.intersectionTests += tests;
+    // Without Counting the tallies above are dead code, and the compiler drops them.
+    if constexpr (Counting) {
+        counters.traversalSteps += steps;
+        counters.intersectionTests += tests;
+    }
     return query;
 }
 

@@ -82,11 +82,10 @@ struct PacketBoxTest {
     }
 };
 
-// A child to visit (as wide_traversal::StackEntry) with the rays (a lane mask) that hit it;
-// their entries are kept beside the stack (closest hit).
+// A child to visit (a wide_child word) with the rays (a lane mask) that hit it; their entries
+// are kept beside the stack (closest hit).
 struct PacketEntry {
     uint32_t child;
-    uint32_t count;
     int rays;
 };
 
@@ -100,8 +99,8 @@ auto arrayOf(Make&& make) {
 
 // Traces rays[0, count) (0 < count <= K; every ray valid with tmin >= 0; the tree not empty)
 // as one packet, then calls answer(k, query, work) for each ray k with its query and its work
-// (queries = 1).
-template <typename Query, bool Robust, int K, int N, typename Answer>
+// (queries = 1; its steps and tests when Counting).
+template <bool Counting, typename Query, bool Robust, int K, int N, typename Answer>
 void tracePacket(const WideBvh<N>& bvh, const Ray* rays, int count, int fallback, Answer&& answer) {
     using namespace packet_traversal;
     using F = simd::Floats<K>;
@@ -114,10 +113,9 @@ void tracePacket(const WideBvh<N>& bvh, const Ray* rays, int count, int fallback
     for (int k = 0; k < count; ++k) tmax[k] = queries[k].tmax;
     uint64_t steps[K]{}, tests[K]{};
     const WideNode<N>* nodes = bvh.nodes.data();
-    const TriangleBlock* blocks = bvh.blocks.data();
 
-    PacketEntry stack[wide_traversal::kStackSize<N>];
-    alignas(64) float stackEntries[wide_traversal::kStackSize<N>][K];
+    PacketEntry stack[kWideStackSize<N>];
+    alignas(64) float stackEntries[kWideStackSize<N>][K];
     int size = 0;
     int live = int((1u << count) - 1);  // rays not yet answered (an any-hit ray leaves when occluded)
     const auto finished = [&](int k) {
@@ -126,25 +124,27 @@ void tracePacket(const WideBvh<N>& bvh, const Ray* rays, int count, int fallback
             if (queries[k].occluded) live &= ~(1 << k);
         }
     };
-    PacketEntry current{0, 0, live};  // the root
+    PacketEntry current{wide_child::inner(0), live};  // the root
     for (;;) {
         const int active = current.rays;
-        if (current.count != 0) {
+        if (wide_child::isLeaf(current.child)) {
             for (int m = active; m != 0; m &= m - 1) {
                 const int k = std::countr_zero(unsigned(m));
-                ++steps[k];
-                testLeafBlocks(queries[k], triangleTests[k], blocks, current.child, current.count, rays[k].tmin, tests[k]);
+                if constexpr (Counting) ++steps[k];
+                testLeafBlocks<Counting>(queries[k], triangleTests[k], bvh, current.child, rays[k].tmin, tests[k]);
                 finished(k);
             }
         } else if (std::popcount(unsigned(active)) <= fallback) {
             for (int m = active; m != 0; m &= m - 1) {
                 const int k = std::countr_zero(unsigned(m));
                 const WideBoxTest<N, false, Robust> single(rays[k]);
-                traverseFrom(bvh, single, triangleTests[k], queries[k], {current.child, 0, 0.0f}, steps[k], tests[k]);
+                traverseFrom<Counting>(bvh, single, triangleTests[k], queries[k], current.child, steps[k], tests[k]);
                 finished(k);
             }
         } else {
-            for (int m = active; m != 0; m &= m - 1) ++steps[std::countr_zero(unsigned(m))];
+            if constexpr (Counting) {
+                for (int m = active; m != 0; m &= m - 1) ++steps[std::countr_zero(unsigned(m))];
+            }
             const WideNode<N>& node = nodes[current.child];
             alignas(64) float entries[N][K];
             int hitRays[N];
@@ -167,16 +167,16 @@ void tracePacket(const WideBvh<N>& bvh, const Ray* rays, int count, int fallback
                 // Closest hit: the nearest next, the others pushed far to near. Any hit: the
                 // first in lane order next, as the single-ray skeleton does.
                 const int next = Query::kStopsAtFirstHit ? 0 : hits - 1;
-                assert(size + hits - 1 <= wide_traversal::kStackSize<N>);
+                assert(size + hits - 1 <= kWideStackSize<N>);
                 for (int j = 0; j < hits; ++j) {
                     if (j == next) continue;
                     const int c = order[j];
-                    stack[size] = {node.child[c], node.count[c], hitRays[c]};
+                    stack[size] = {node.child[c], hitRays[c]};
                     if constexpr (!Query::kStopsAtFirstHit) F::load(entries[c]).store(stackEntries[size]);
                     ++size;
                 }
                 const int c = order[next];
-                current = {node.child[c], node.count[c], hitRays[c]};
+                current = {node.child[c], hitRays[c]};
                 continue;
             }
         }
@@ -198,8 +198,7 @@ void tracePacket(const WideBvh<N>& bvh, const Ray* rays, int count, int fallback
     for (int k = 0; k < count; ++k) {
         QueryCounters work;
         work.queries = 1;
-        work.traversalSteps = steps[k];
-        work.intersectionTests = tests[k];
+        if constexpr (Counting) work.traversalSteps = steps[k], work.intersectionTests = tests[k];
         answer(k, queries[k], work);
     }
 }
@@ -208,14 +207,14 @@ void tracePacket(const WideBvh<N>& bvh, const Ray* rays, int count, int fallback
 // (a wavefront's camera rays, the shadow rays of one light), the others alone (runQuery: a
 // miss for an invalid ray, the sign-aware box test for tmin < 0). Calls answer(i, query, work)
 // once per ray i, not in order, with its query and its work (queries = 1).
-template <typename Query, bool Robust, int N, typename Answer>
+template <bool Counting, typename Query, bool Robust, int N, typename Answer>
 void traceAsPackets(const WideBvh<N>& bvh, std::span<const Ray> rays, int fallback, Answer&& answer) {
     constexpr int K = kPacketWidth;
     Ray packet[K];
     size_t index[K];
     int count = 0;
     const auto trace = [&] {
-        tracePacket<Query, Robust, K>(bvh, packet, count, fallback,
+        tracePacket<Counting, Query, Robust, K>(bvh, packet, count, fallback,
                                       [&](int k, const Query& query, const QueryCounters& work) { answer(index[k], query, work); });
         count = 0;
     };
@@ -223,7 +222,7 @@ void traceAsPackets(const WideBvh<N>& bvh, std::span<const Ray> rays, int fallba
         const Ray& ray = rays[i];
         if (bvh.empty() || !ray.isValid() || ray.tmin < 0.0f) {
             QueryCounters work;
-            const Query query = runQuery<Query, Robust>(bvh, ray, work);
+            const Query query = runQuery<Query, Robust, Counting>(bvh, ray, work);
             answer(i, query, work);
             continue;
         }

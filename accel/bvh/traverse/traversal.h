@@ -1,6 +1,6 @@
 // What the traversal skeletons of every layout share: the two queries (closest hit, any hit),
 // the leaves' triangle test, and the entry that picks the skeleton's variant for a ray. Each
-// layout has one skeleton, `traverse<Query, NegativeT, Robust>(tree, ray, counters)`
+// layout has one skeleton, `traverse<Counting, Query, NegativeT, Robust>(tree, ray, counters)`
 // (bvh_traversal.h, wide_bvh_traversal.h), with a fixed-size stack and no allocation.
 //
 // What the counters count (QueryCounters, Havran's terms):
@@ -136,22 +136,23 @@ struct LeafTester<QuadricLeaves, Robust> {
     }
 };
 
-// The entry of every query for a fixed robustness setting (a batch fixes it once): it counts,
-// answers invalid rays and empty trees with a miss, and runs the skeleton variant the ray
-// needs: NegativeT when the interval reaches below t = 0 (the box test's far margin must then
-// be sign-aware).
-template <typename Query, bool Robust, typename Tree>
+// The entry of every query for a fixed robustness setting (a batch fixes it once): it counts
+// (Counting: the query's work too), answers invalid rays and empty trees with a miss, and runs
+// the skeleton variant the ray needs: NegativeT when the interval reaches below t = 0 (the box
+// test's far margin must then be sign-aware).
+template <typename Query, bool Robust, bool Counting, typename Tree>
 [[gnu::always_inline]] inline Query runQuery(const Tree& tree, const Ray& ray, QueryCounters& counters) {
     ++counters.queries;
     if (tree.empty() || !ray.isValid()) return Query(ray);
-    return ray.tmin < 0.0f ? traverse<Query, true, Robust>(tree, ray, counters)
-                           : traverse<Query, false, Robust>(tree, ray, counters);
+    return ray.tmin < 0.0f ? traverse<Counting, Query, true, Robust>(tree, ray, counters)
+                           : traverse<Counting, Query, false, Robust>(tree, ray, counters);
 }
 
-// Robust per BVH::robust.
+// Robust per BVH::robust, counting.
 template <typename Query, typename Tree>
 Query runQuery(const Tree& tree, const Ray& ray, const TraversalConfig& config, QueryCounters& counters) {
-    return config.robust ? runQuery<Query, true>(tree, ray, counters) : runQuery<Query, false>(tree, ray, counters);
+    return config.robust ? runQuery<Query, true, true>(tree, ray, counters)
+                         : runQuery<Query, false, true>(tree, ray, counters);
 }
 
 // The answer of a closest-hit query, in the primitives' index space; false on a miss (`hit`

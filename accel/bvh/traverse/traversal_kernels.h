@@ -21,19 +21,30 @@
 namespace bvhlab {
 
 // The triangle tree's part of the accelerator's queries, for one layout (Tree: Bvh or
-// WideBvh<N>). The batch calls take rays one by one (or as the kernel packs them) with the
-// Accelerator's contract: misses as Hit(), costs filled when not empty. The wide layouts trace
-// a batch in packets, the binary one ray by ray.
+// WideBvh<N>), in two forms compiled apart: one counts N_IT and N_TR, the other counts
+// nothing but the queries and is what a timed query runs (QueryCounters::counting picks one).
+// The batch calls take rays one by one (or as the kernel packs them) with the Accelerator's
+// contract: misses as Hit(), costs filled when not empty (and counted). The wide layouts trace a
+// batch in packets, the binary one ray by ray.
 template <typename Tree>
 struct TraversalKernels {
+    struct Queries {
+        bool (*findNearest)(const Tree& tree, const Ray& ray, Hit& hit, QueryCounters& counters);
+        bool (*isOccluded)(const Tree& tree, const Ray& ray, QueryCounters& counters);
+        // packetFallback: BVH::packetFallback, for the wide layouts' packets (packet_traversal.h).
+        void (*findNearestBatch)(const Tree& tree, std::span<const Ray> rays, std::span<Hit> hits,
+                                 QueryCounters& counters, std::span<RayCost> costs, int packetFallback);
+        void (*isOccludedBatch)(const Tree& tree, std::span<const Ray> rays, std::span<uint8_t> occluded,
+                                QueryCounters& counters, std::span<RayCost> costs, int packetFallback);
+    };
     Isa isa;
-    bool (*findNearest)(const Tree& tree, const Ray& ray, Hit& hit, QueryCounters& counters);
-    bool (*isOccluded)(const Tree& tree, const Ray& ray, QueryCounters& counters);
-    // packetFallback: BVH::packetFallback, for the wide layouts' packets (packet_traversal.h).
-    void (*findNearestBatch)(const Tree& tree, std::span<const Ray> rays, std::span<Hit> hits, QueryCounters& counters,
-                             std::span<RayCost> costs, int packetFallback);
-    void (*isOccludedBatch)(const Tree& tree, std::span<const Ray> rays, std::span<uint8_t> occluded,
-                            QueryCounters& counters, std::span<RayCost> costs, int packetFallback);
+    Queries counting;
+    Queries timed;
+
+    // The form `counters` asks for; a batch with costs to fill counts.
+    const Queries& forCounters(const QueryCounters& counters, bool costs = false) const {
+        return counters.counting || costs ? counting : timed;
+    }
 };
 
 // The kernels of `config` (its robustness, its ISA: Auto = the best this CPU runs). Throws

@@ -17,59 +17,62 @@ namespace bvhlab {
 inline namespace BVHLAB_KERNEL_NS {
 namespace {
 
-template <typename Tree, bool Robust>
+template <typename Tree, bool Robust, bool Counting>
 bool findNearestKernel(const Tree& tree, const Ray& ray, Hit& hit, QueryCounters& counters) {
-    return answerOf(tree, runQuery<ClosestHitQuery, Robust>(tree, ray, counters), hit);
+    return answerOf(tree, runQuery<ClosestHitQuery, Robust, Counting>(tree, ray, counters), hit);
 }
 
-template <typename Tree, bool Robust>
+template <typename Tree, bool Robust, bool Counting>
 bool isOccludedKernel(const Tree& tree, const Ray& ray, QueryCounters& counters) {
-    return runQuery<AnyHitQuery, Robust>(tree, ray, counters).occluded;
+    return runQuery<AnyHitQuery, Robust, Counting>(tree, ray, counters).occluded;
 }
 
 // Hands each ray's query and work to answer(i, query, work): the wide layouts trace the rays in
 // packets (packet_traversal.h), the binary one ray by ray.
-template <typename Query, bool Robust, typename Tree, typename Answer>
+template <typename Query, bool Robust, bool Counting, typename Tree, typename Answer>
 void traceRange(const Tree& tree, std::span<const Ray> rays, int packetFallback, Answer&& answer) {
     if constexpr (std::is_same_v<Tree, Bvh>) {
         for (size_t i = 0; i < rays.size(); ++i) {
             QueryCounters work;
-            const Query query = runQuery<Query, Robust>(tree, rays[i], work);
+            const Query query = runQuery<Query, Robust, Counting>(tree, rays[i], work);
             answer(i, query, work);
         }
     } else {
-        traceAsPackets<Query, Robust>(tree, rays, packetFallback, answer);
+        traceAsPackets<Counting, Query, Robust>(tree, rays, packetFallback, answer);
     }
 }
 
-template <typename Tree, bool Robust>
+template <typename Tree, bool Robust, bool Counting>
 void findNearestRange(const Tree& tree, std::span<const Ray> rays, std::span<Hit> hits, QueryCounters& counters,
                       std::span<RayCost> costs, int packetFallback) {
-    traceRange<ClosestHitQuery, Robust>(tree, rays, packetFallback,
-                                        [&](size_t i, const ClosestHitQuery& query, const QueryCounters& work) {
-                                            counters += work;
-                                            Hit hit;
-                                            answerOf(tree, query, hit);
-                                            hits[i] = hit;
-                                            if (!costs.empty()) costs[i] = Accelerator::costBetween({}, work);
-                                        });
+    traceRange<ClosestHitQuery, Robust, Counting>(tree, rays, packetFallback,
+                                                  [&](size_t i, const ClosestHitQuery& query, const QueryCounters& work) {
+                                                      counters += work;
+                                                      Hit hit;
+                                                      answerOf(tree, query, hit);
+                                                      hits[i] = hit;
+                                                      if (!costs.empty()) costs[i] = Accelerator::costBetween({}, work);
+                                                  });
 }
 
-template <typename Tree, bool Robust>
+template <typename Tree, bool Robust, bool Counting>
 void isOccludedRange(const Tree& tree, std::span<const Ray> rays, std::span<uint8_t> occluded, QueryCounters& counters,
                      std::span<RayCost> costs, int packetFallback) {
-    traceRange<AnyHitQuery, Robust>(tree, rays, packetFallback,
-                                    [&](size_t i, const AnyHitQuery& query, const QueryCounters& work) {
-                                        counters += work;
-                                        occluded[i] = query.occluded ? 1 : 0;
-                                        if (!costs.empty()) costs[i] = Accelerator::costBetween({}, work);
-                                    });
+    traceRange<AnyHitQuery, Robust, Counting>(tree, rays, packetFallback,
+                                              [&](size_t i, const AnyHitQuery& query, const QueryCounters& work) {
+                                                  counters += work;
+                                                  occluded[i] = query.occluded ? 1 : 0;
+                                                  if (!costs.empty()) costs[i] = Accelerator::costBetween({}, work);
+                                              });
 }
 
+template <typename Tree, bool Robust, bool Counting>
+constexpr typename TraversalKernels<Tree>::Queries kQueries{
+    &findNearestKernel<Tree, Robust, Counting>, &isOccludedKernel<Tree, Robust, Counting>,
+    &findNearestRange<Tree, Robust, Counting>, &isOccludedRange<Tree, Robust, Counting>};
+
 template <typename Tree, bool Robust>
-constexpr TraversalKernels<Tree> kKernels{BVHLAB_KERNEL_ISA, &findNearestKernel<Tree, Robust>,
-                                          &isOccludedKernel<Tree, Robust>, &findNearestRange<Tree, Robust>,
-                                          &isOccludedRange<Tree, Robust>};
+constexpr TraversalKernels<Tree> kKernels{BVHLAB_KERNEL_ISA, kQueries<Tree, Robust, true>, kQueries<Tree, Robust, false>};
 
 }  // namespace
 }  // namespace BVHLAB_KERNEL_NS

@@ -8,16 +8,19 @@
 
 #include "accel/bvh/simd/kernel_namespace.h"
 #include "accel/bvh/layout/triangle_blocks.h"
+#include "accel/bvh/layout/wide_bvh.h"
 #include "accel/bvh/simd/simd.h"
 #include "framework/core/triangle.h"
 
 namespace bvhlab {
 inline namespace BVHLAB_KERNEL_NS {
 
-// The hits of one block: a lane mask and each lane's t, u, v.
+// The hits of one block: a lane mask and each lane's t, u, v (meaningful where the mask is set),
+// kept in registers: the leaf test is inlined into the traversal loop.
 struct BlockHits {
+    using F = simd::Floats<TriangleBlock::kLanes>;
     int mask = 0;
-    alignas(32) float t[TriangleBlock::kLanes], u[TriangleBlock::kLanes], v[TriangleBlock::kLanes];
+    F t, u, v;
 };
 
 template <bool Robust>
@@ -36,9 +39,8 @@ struct BlockTriangleTest {
         sx = F::broadcast(r.sx), sy = F::broadcast(r.sy), sz = F::broadcast(r.sz);
     }
 
-    // The hits at t in [tmin, tmax] among the block's lanes in `lanes` (a mask: the padding
-    // lanes of a leaf's last block are left out, and never hit).
-    BlockHits intersect(const TriangleBlock& block, int lanes, float tmin, float tmax) const {
+    // The hits at t in [tmin, tmax] among the block's lanes.
+    [[gnu::always_inline]] BlockHits intersect(const TriangleBlock& block, float tmin, float tmax) const {
         F x[3], y[3], z[3];  // the vertices in the sheared frame (z not yet scaled)
         for (int k = 0; k < 3; ++k) {
             const F ax = F::load(block.vertex[k][kx]) - orgX;
@@ -54,7 +56,7 @@ struct BlockTriangleTest {
             const F cd = c * d;
             const F e = fmsub(a, b, cd);
             const auto certain = abs(e) > fmadd(abs(cd), scale, floor);
-            if ((~movemask(certain) & lanes) == 0) return e;
+            if (movemask(certain) == (1 << TriangleBlock::kLanes) - 1) [[likely]] return e;
             return select(certain, e, differenceOfProducts(a, b, c, d));
         };
         const F e0 = edge(x[2], y[1], y[2], x[1]);  // edge v1-v2: weight of v0
@@ -66,15 +68,13 @@ struct BlockTriangleTest {
                                movemask((e0 > zero) | (e1 > zero) | (e2 > zero));
         const F det = e0 + e1 + e2;
         BlockHits hits;
-        if ((~mixedSigns & lanes) == 0 || movemask(det != zero) == 0) return hits;
+        if (mixedSigns == (1 << TriangleBlock::kLanes) - 1 || movemask(det != zero) == 0) return hits;
         const F invDet = F::broadcast(1.0f) / det;
-        const F t = (e0 * (sz * z[0]) + e1 * (sz * z[1]) + e2 * (sz * z[2])) * invDet;
-        const auto inRange = (t >= F::broadcast(tmin)) & (t <= F::broadcast(tmax)) & (det != zero);
-        hits.mask = movemask(inRange) & ~mixedSigns & lanes;
-        if (hits.mask == 0) return hits;
-        t.store(hits.t);
-        (e1 * invDet).store(hits.u);
-        (e2 * invDet).store(hits.v);
+        hits.t = (e0 * (sz * z[0]) + e1 * (sz * z[1]) + e2 * (sz * z[2])) * invDet;
+        const auto inRange = (hits.t >= F::broadcast(tmin)) & (hits.t <= F::broadcast(tmax)) & (det != zero);
+        hits.mask = movemask(inRange) & ~mixedSigns;
+        hits.u = e1 * invDet;
+        hits.v = e2 * invDet;
         return hits;
     }
 };
@@ -91,7 +91,7 @@ struct BlockTriangleTest<false> {
         for (int a = 0; a < 3; ++a) org[a] = F::broadcast(ray.org[a]), dir[a] = F::broadcast(ray.dir[a]);
     }
 
-    BlockHits intersect(const TriangleBlock& block, int lanes, float tmin, float tmax) const {
+    [[gnu::always_inline]] BlockHits intersect(const TriangleBlock& block, float tmin, float tmax) const {
         const auto cross = [](const F* a, const F* b, F* out) {
             out[0] = a[1] * b[2] - b[1] * a[2];
             out[1] = a[2] * b[0] - b[2] * a[0];
@@ -114,42 +114,56 @@ struct BlockTriangleTest<false> {
         const F zero = F::broadcast(0.0f), one = F::broadcast(1.0f);
         const int outside = movemask((u < zero) | (u > one) | (v < zero) | (u + v > one));
         const int inRange = movemask((t >= F::broadcast(tmin)) & (t <= F::broadcast(tmax)) & (det != zero));
-        BlockHits hits;
-        hits.mask = inRange & ~outside & lanes;
-        if (hits.mask == 0) return hits;
-        t.store(hits.t);
-        u.store(hits.u);
-        v.store(hits.v);
-        return hits;
+        return {inRange & ~outside, t, u, v};
     }
 };
 
-// Tests the `count` triangles of the leaf whose blocks start at `first`; true when the query
-// is answered. N_IT counts triangles as the binary layout does: an any-hit query up to the
-// one that occludes, padding never. Of equal t in one block the lowest lane (the first in leaf
-// order) goes to ClosestHitQuery::record, whose tie rule then holds across blocks and leaves.
-template <typename Query, bool Robust>
-[[gnu::always_inline]] inline bool testLeafBlocks(Query& query, const BlockTriangleTest<Robust>& test, const TriangleBlock* blocks,
-                                                 uint32_t first, uint32_t count, float tmin, uint64_t& tests) {
+// The lane of a block's closest hit (hits.mask not 0): the least t, the lowest lane of equal
+// ones (the first in leaf order), so that ClosestHitQuery::record's tie rule holds across
+// blocks and leaves.
+[[gnu::always_inline]] inline int closestLane(const BlockHits& hits) {
+    int lane = __builtin_ctz(unsigned(hits.mask));
+    if ((hits.mask & (hits.mask - 1)) == 0) [[likely]] return lane;
+    alignas(32) float t[TriangleBlock::kLanes];
+    hits.t.store(t);
+    for (int m = hits.mask & (hits.mask - 1); m != 0; m &= m - 1) {
+        const int i = __builtin_ctz(unsigned(m));
+        if (t[i] < t[lane]) lane = i;
+    }
+    return lane;
+}
+
+// Lane `lane` of a block's hits.
+[[gnu::always_inline]] inline TriangleHitT<float> hitInLane(const BlockHits& hits, int lane) {
+    alignas(32) float t[TriangleBlock::kLanes], u[TriangleBlock::kLanes], v[TriangleBlock::kLanes];
+    hits.t.store(t), hits.u.store(u), hits.v.store(v);
+    return {t[lane], u[lane], v[lane]};
+}
+
+// Tests the leaf `child` (a wide_child word) of `leaves`; true when the query is answered.
+// Counting: N_IT counts triangles as the binary layout does, an any-hit query up to the one
+// that occludes, padding never.
+template <bool Counting, typename Query, bool Robust>
+[[gnu::always_inline]] inline bool testLeafBlocks(Query& query, const BlockTriangleTest<Robust>& test,
+                                                 const TriangleBlockLeaves& leaves, uint32_t child, float tmin,
+                                                 uint64_t& tests) {
     constexpr int W = TriangleBlock::kLanes;
-    for (uint32_t b = 0, end = blocksFor(count); b < end; ++b) {
-        const int lanes = b + 1 < end ? (1 << W) - 1 : (1 << (count - b * W)) - 1;
-        const BlockHits hits = test.intersect(blocks[first + b], lanes, tmin, query.tmax);
-        if (hits.mask == 0) continue;
-        int lane = __builtin_ctz(unsigned(hits.mask));
+    const uint32_t first = wide_child::firstBlock(child), end = wide_child::blocks(child);
+    const TriangleBlock* blocks = leaves.blocks.data() + first;
+    for (uint32_t b = 0; b < end; ++b) {
+        const BlockHits hits = test.intersect(blocks[b], tmin, query.tmax);
+        if (hits.mask == 0) [[likely]] continue;
         if constexpr (Query::kStopsAtFirstHit) {
-            tests += uint64_t(b) * W + lane + 1;
-            query.record({hits.t[lane], hits.u[lane], hits.v[lane]}, (first + b) * W + lane);
+            const int lane = __builtin_ctz(unsigned(hits.mask));
+            if constexpr (Counting) tests += uint64_t(b) * W + lane + 1;
+            query.record(hitInLane(hits, lane), (first + b) * W + lane);
             return true;
         } else {
-            for (int m = hits.mask & (hits.mask - 1); m != 0; m &= m - 1) {
-                const int i = __builtin_ctz(unsigned(m));
-                if (hits.t[i] < hits.t[lane]) lane = i;
-            }
-            query.record({hits.t[lane], hits.u[lane], hits.v[lane]}, (first + b) * W + lane);
+            const int lane = closestLane(hits);
+            query.record(hitInLane(hits, lane), (first + b) * W + lane);
         }
     }
-    tests += count;
+    if constexpr (Counting) tests += leaves.trianglesIn(first, end);
     return false;
 }
 

@@ -637,21 +637,28 @@ void expectCollapseKeepsEveryTriangleOnce(size_t n, uint32_t seed) {
         for (int i = 0; i < N; ++i) {
             const bool empty = node.lower[0][i] > node.upper[0][i];
             if (empty) {
-                EXPECT_EQ(node.count[i], 0u);
+                EXPECT_EQ(node.child[i], 0u);
                 continue;
             }
             ++used;
-            if (node.count[i] != 0) {
-                EXPECT_LE(node.count[i], kLeafCap);
+            if (wide_child::isLeaf(node.child[i])) {
+                const uint32_t firstBlock = wide_child::firstBlock(node.child[i]);
+                const uint32_t blocks = wide_child::blocks(node.child[i]);
+                const uint32_t count = wide.trianglesIn(firstBlock, blocks);
+                EXPECT_LE(count, kLeafCap);
+                EXPECT_EQ(blocks, blocksFor(count));
                 Leaf leaf;
-                const uint32_t first = node.child[i] * TriangleBlock::kLanes;
-                ASSERT_LE(node.child[i] + blocksFor(node.count[i]), wide.blocks.size());
-                for (uint32_t b = node.child[i]; b < node.child[i] + blocksFor(node.count[i]); ++b) ++blockOwners[b];
-                for (uint32_t p = first; p < first + blocksFor(node.count[i]) * TriangleBlock::kLanes; ++p) {
+                const uint32_t first = firstBlock * TriangleBlock::kLanes;
+                ASSERT_LE(firstBlock + blocks, wide.blocks.size());
+                for (uint32_t b = firstBlock; b < firstBlock + blocks; ++b) ++blockOwners[b];
+                for (uint32_t p = first; p < first + blocks * TriangleBlock::kLanes; ++p) {
                     const Triangle tri = wide.blocks[p / TriangleBlock::kLanes].triangle(int(p % TriangleBlock::kLanes));
-                    if (p >= first + node.count[i]) {
+                    if (p >= first + count) {
+                        const uint32_t last = first + count - 1;
+                        const Triangle repeated = wide.blocks[last / TriangleBlock::kLanes].triangle(int(last % TriangleBlock::kLanes));
                         EXPECT_EQ(wide.primIndices[p], kInvalidPrimitive);
-                        EXPECT_TRUE(tri.v0 == tri.v1 && tri.v1 == tri.v2) << "padding is a point";
+                        EXPECT_TRUE(tri.v0 == repeated.v0 && tri.v1 == repeated.v1 && tri.v2 == repeated.v2)
+                            << "padding repeats the leaf's last triangle";
                         continue;
                     }
                     const uint32_t prim = wide.primIndices[p];
@@ -674,6 +681,17 @@ void expectCollapseKeepsEveryTriangleOnce(size_t n, uint32_t seed) {
             }
         }
         EXPECT_GE(used, rootIsLeaf ? 1 : 2);
+        for (int octant = 0; octant < 8; ++octant) {  // every lane once, the empty ones farthest
+            int lanes = 0, position = 0;
+            for (int p = 0; p < N; ++p) {
+                const int lane = int(node.order[p] >> (3 * octant) & 7);
+                lanes |= 1 << lane;
+                if (node.lower[0][lane] > node.upper[0][lane]) {
+                    EXPECT_EQ(p, position++) << "octant " << octant;
+                }
+            }
+            EXPECT_EQ(lanes, (1 << N) - 1) << "octant " << octant;
+        }
     }
     for (uint32_t prim : soup.valid) EXPECT_EQ(seen[prim], 1) << "primitive " << prim;
     for (int owners : blockOwners) EXPECT_EQ(owners, 1);
@@ -723,7 +741,7 @@ TEST(WideBvh, CollapseMergesSiblingLeavesWhenOneBlockPays) {
 
     const WideBvh<8> merged = collapseToWide<8>(twoLeaves(Vec3(0.0f)), costs);
     ASSERT_EQ(merged.nodes.size(), 1u);
-    EXPECT_EQ(merged.nodes[0].count[0], 7u);
+    EXPECT_EQ(merged.nodes[0].child[0], wide_child::leaf(0, 1));
     EXPECT_GT(merged.nodes[0].lower[0][1], merged.nodes[0].upper[0][1]) << "lane 1 is empty";
     ASSERT_EQ(merged.blocks.size(), 1u);
     for (uint32_t lane = 0; lane < 7; ++lane) EXPECT_EQ(merged.primIndices[lane], 10 + lane);
@@ -731,13 +749,15 @@ TEST(WideBvh, CollapseMergesSiblingLeavesWhenOneBlockPays) {
 
     const WideBvh<8> apart = collapseToWide<8>(twoLeaves(Vec3(100.0f, 0.0f, 0.0f)), costs);
     ASSERT_EQ(apart.nodes.size(), 1u);
-    EXPECT_EQ(apart.nodes[0].count[0], 3u);
-    EXPECT_EQ(apart.nodes[0].count[1], 4u);
+    EXPECT_EQ(apart.nodes[0].child[0], wide_child::leaf(0, 1));
+    EXPECT_EQ(apart.nodes[0].child[1], wide_child::leaf(1, 1));
+    EXPECT_EQ(apart.trianglesIn(0, 1), 3u);
+    EXPECT_EQ(apart.trianglesIn(1, 1), 4u);
     EXPECT_EQ(apart.blocks.size(), 2u);
 
     const WideBvh<8> capped = collapseToWide<8>(twoLeaves(Vec3(0.0f)), {1.0f, 1.0f, 6});
-    EXPECT_EQ(capped.nodes[0].count[0], 3u);
-    EXPECT_EQ(capped.nodes[0].count[1], 4u);
+    EXPECT_EQ(capped.trianglesIn(wide_child::firstBlock(capped.nodes[0].child[0]), 1), 3u);
+    EXPECT_EQ(capped.trianglesIn(wide_child::firstBlock(capped.nodes[0].child[1]), 1), 4u);
 }
 
 // The build runs the subtrees below a size as parallel jobs: the tree is the same, node for

@@ -233,7 +233,7 @@ TEST(PacketTraversal, SixteenRayPacketsAnswerAsSingleRays) {
         size_t compared = 0;
         for (size_t begin = 0; begin < rays.size(); begin += 16) {
             const int count = int(std::min<size_t>(16, rays.size() - begin));
-            tracePacket<ClosestHitQuery, true, 16>(
+            tracePacket<true, ClosestHitQuery, true, 16>(
                 tree, rays.data() + begin, count, fallback, [&](int k, const ClosestHitQuery& query, const QueryCounters&) {
                     QueryCounters counters;
                     Hit packet, single;
@@ -242,7 +242,7 @@ TEST(PacketTraversal, SixteenRayPacketsAnswerAsSingleRays) {
                     EXPECT_TRUE(bitEqual(packet, single)) << "ray " << begin + k << ", fallback " << fallback;
                     ++compared;
                 });
-            tracePacket<AnyHitQuery, true, 16>(tree, rays.data() + begin, count, fallback,
+            tracePacket<true, AnyHitQuery, true, 16>(tree, rays.data() + begin, count, fallback,
                                                [&](int k, const AnyHitQuery& query, const QueryCounters&) {
                                                    QueryCounters counters;
                                                    EXPECT_EQ(query.occluded, accel.isOccluded(rays[begin + k], counters));

@@ -1,7 +1,8 @@
 // The traversal kernels compiled per ISA (accel/bvh/traverse/traversal_kernels.h) answer bit
 // for bit alike: every kernel this CPU runs against the scalar one, for the binary and both wide
 // layouts, single and batch queries, hits (t, primitive, u, v) and counters, on random,
-// axis-parallel and grazing rays and rays whose interval starts below 0. Kernels the CPU cannot
+// axis-parallel and grazing rays and rays whose interval starts below 0; and each kernel's form
+// that counts nothing answers as its counting form. Kernels the CPU cannot
 // run are not run (so this passes on AVX2-only machines) and asking for one is an InputError.
 #include "accel/bvh/builder_table.h"
 #include "accel/bvh/bvh_accelerator.h"
@@ -89,6 +90,28 @@ struct Answers {
     QueryCounters single, batch;
 };
 
+// The form that counts nothing (QueryCounters::counting = false, what timed queries run)
+// answers as the counting one bit for bit, single and batch, and counts only the queries.
+void expectTimedFormAnswersAlike(const Accelerator& accel, const std::vector<Ray>& rays, const Answers& counted) {
+    QueryCounters timed;
+    timed.counting = false;
+    std::vector<Hit> batchHits(rays.size());
+    std::vector<uint8_t> batchOccluded(rays.size());
+    accel.findNearestBatch(rays, batchHits, timed, {});
+    accel.isOccludedBatch(rays, batchOccluded, timed, {});
+    for (size_t i = 0; i < rays.size(); ++i) {
+        Hit hit;
+        accel.findNearest(rays[i], hit, timed);
+        expectSameHit(hit, counted.hits[i], "timed ray " + std::to_string(i));
+        EXPECT_EQ(accel.isOccluded(rays[i], timed), bool(counted.occluded[i])) << "timed ray " << i;
+        expectSameHit(batchHits[i], counted.batchHits[i], "timed batch ray " + std::to_string(i));
+        EXPECT_EQ(batchOccluded[i], counted.batchOccluded[i]) << "timed batch ray " << i;
+    }
+    EXPECT_EQ(timed.queries, 4 * rays.size());
+    EXPECT_EQ(timed.traversalSteps, 0u);
+    EXPECT_EQ(timed.intersectionTests, 0u);
+}
+
 template <typename Layout>
 Answers answersOf(Isa isa, bool robust, const test::Soup& soup, const std::vector<Ray>& rays) {
     BvhAccelerator<Layout> accel(bvhBuilder("sahbvh"), BvhBuildConfig{}, TraversalConfig{.robust = robust, .isa = isa});
@@ -105,6 +128,7 @@ Answers answersOf(Isa isa, bool robust, const test::Soup& soup, const std::vecto
     a.costs.resize(rays.size());
     accel.findNearestBatch(rays, a.batchHits, a.batch, a.costs);
     accel.isOccludedBatch(rays, a.batchOccluded, a.batch, {});
+    expectTimedFormAnswersAlike(accel, rays, a);
     const BuildStats stats = accel.statistics();
     const auto bits = std::find_if(stats.figures.begin(), stats.figures.end(),
                                    [](const NamedFigure& f) { return f.name == "kernel_bits"; });

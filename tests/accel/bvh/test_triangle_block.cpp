@@ -70,7 +70,7 @@ void expectLanesAnswerAsScalar(uint64_t seed) {
         const ShearedRay sheared(ray);
         const BlockTriangleTest<Robust> test(ray);
         for (size_t first = 0; first + kLanes <= tris.size(); first += kLanes) {
-            const BlockHits block = test.intersect(blockOf(tris, first, kLanes), kAllLanes, ray.tmin, ray.tmax);
+            const BlockHits block = test.intersect(blockOf(tris, first, kLanes), ray.tmin, ray.tmax);
             for (int lane = 0; lane < kLanes; ++lane) {
                 TriangleHitT<float> h{};  // set only on a hit; {} keeps GCC from warning
                 const bool hit = Robust ? intersectTriangle(sheared, tris[first + lane], ray.tmin, ray.tmax, h)
@@ -78,9 +78,10 @@ void expectLanesAnswerAsScalar(uint64_t seed) {
                 ASSERT_EQ(bool(block.mask >> lane & 1), hit) << "triangle " << first + lane;
                 if (!hit) continue;
                 ++hits;
-                EXPECT_EQ(std::bit_cast<uint32_t>(block.t[lane]), std::bit_cast<uint32_t>(h.t));
-                EXPECT_EQ(std::bit_cast<uint32_t>(block.u[lane]), std::bit_cast<uint32_t>(h.u));
-                EXPECT_EQ(std::bit_cast<uint32_t>(block.v[lane]), std::bit_cast<uint32_t>(h.v));
+                const TriangleHitT<float> laneHit = hitInLane(block, lane);
+                EXPECT_EQ(std::bit_cast<uint32_t>(laneHit.t), std::bit_cast<uint32_t>(h.t));
+                EXPECT_EQ(std::bit_cast<uint32_t>(laneHit.u), std::bit_cast<uint32_t>(h.u));
+                EXPECT_EQ(std::bit_cast<uint32_t>(laneHit.v), std::bit_cast<uint32_t>(h.v));
             }
         }
     }
@@ -91,23 +92,31 @@ TEST(TriangleBlock, LanesAnswerAsTheScalarWatertightTest) { expectLanesAnswerAsS
 
 TEST(TriangleBlock, LanesAnswerAsScalarMollerTrumbore) { expectLanesAnswerAsScalar<false>(14); }
 
-// A leaf of 1-3 triangles pads its block with a point; rays through that point miss it even
-// when the padding lanes are tested (the traversal leaves them out).
-TEST(TriangleBlock, PaddingLanesNeverHit) {
+// A leaf of 1-7 triangles pads its block with repeats of its last triangle: they hit exactly
+// where that triangle does, and the block's closest lane is the triangle's own.
+TEST(TriangleBlock, PaddingLanesRepeatTheLastTriangle) {
     StressRng rng(12);
     const std::vector<Triangle> tris = fanAround(rng, Vec3(1.0f, 2.0f, 3.0f), kLanes - 1);
+    size_t hits = 0;
     for (int lanes = 1; lanes < kLanes; ++lanes) {
         const TriangleBlock block = blockOf(tris, 0, lanes);
-        const Vec3 point = tris[lanes - 1].v0;
+        const Triangle& last = tris[lanes - 1];
+        const Vec3 centre = (last.v0 + last.v1 + last.v2) / 3.0f;
         for (int i = 0; i < 200; ++i) {
             Ray ray;
-            ray.org = point + Vec3(rng.unitVector()) * 3.0f;
-            ray.dir = point - ray.org;
-            const int mask = BlockTriangleTest<true>(ray).intersect(block, kAllLanes, 0.0f, kInfinity).mask;
-            EXPECT_EQ(mask >> lanes, 0) << lanes << " lanes";
-            EXPECT_EQ(BlockTriangleTest<false>(ray).intersect(block, kAllLanes, 0.0f, kInfinity).mask >> lanes, 0);
+            ray.org = centre + Vec3(rng.unitVector()) * 3.0f;
+            ray.dir = centre - ray.org;
+            for (const BlockHits& h : {BlockTriangleTest<true>(ray).intersect(block, 0.0f, kInfinity),
+                                       BlockTriangleTest<false>(ray).intersect(block, 0.0f, kInfinity)}) {
+                const bool lastHit = (h.mask >> (lanes - 1) & 1) != 0;
+                EXPECT_EQ(h.mask >> lanes, lastHit ? kAllLanes >> lanes : 0) << lanes << " lanes";
+                if (h.mask == 0) continue;
+                ++hits;
+                EXPECT_LT(closestLane(h), lanes);
+            }
         }
     }
+    EXPECT_GT(hits, 1000u);
 }
 
 // A leaf of blocks counts and chooses as the binary layout's loop over the same triangles.
@@ -118,19 +127,19 @@ TEST(TriangleBlock, LeafCountsAndChoosesAsTheScalarLoop) {
     for (uint32_t count : {1u, 3u, 4u, 5u, 8u, 9u, 13u, 16u}) {  // one block, and two
         TriangleBlockLeaves leaves;
         std::vector<uint32_t> prims(count);
-        leaves.appendLeaf(tris.data(), prims.data(), count);
+        const uint32_t leaf = wide_child::leaf(leaves.appendLeaf(tris.data(), prims.data(), count), blocksFor(count));
         for (const Ray& ray : probeRays(rng, std::vector<Triangle>(tris.begin(), tris.begin() + count), 300)) {
             const LeafTriangleTest<true> scalar(ray);
             const BlockTriangleTest<true> block(ray);
             ClosestHitQuery nearA(ray), nearB(ray);
             uint64_t testsA = 0, testsB = 0;
             testLeaf(nearA, scalar, tris.data(), 0, count, ray.tmin, testsA);
-            testLeafBlocks(nearB, block, leaves.blocks.data(), 0, count, ray.tmin, testsB);
+            testLeafBlocks<true>(nearB, block, leaves, leaf, ray.tmin, testsB);
             EXPECT_EQ(nearB.found, nearA.found);
             EXPECT_EQ(testsB, testsA);
             AnyHitQuery anyA(ray), anyB(ray);
             testsA = testsB = 0;
-            EXPECT_EQ(testLeafBlocks(anyB, block, leaves.blocks.data(), 0, count, ray.tmin, testsB),
+            EXPECT_EQ(testLeafBlocks<true>(anyB, block, leaves, leaf, ray.tmin, testsB),
                       testLeaf(anyA, scalar, tris.data(), 0, count, ray.tmin, testsA));
             EXPECT_EQ(anyB.occluded, anyA.occluded);
             EXPECT_EQ(testsB, testsA) << "any hit counts up to the occluder";

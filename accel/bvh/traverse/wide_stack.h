@@ -1,0 +1,127 @@
+// The stack of the wide layouts' single-ray traversal (wide_bvh_traversal.h): child words and
+// entry distances in separate arrays, filled a node's hit children at a time without a branch
+// per child. A closest-hit step pushes them far to near in the node's order for the ray's
+// octant (WideNode::order): one permutation and a compression, as tinybvh's BVH8_CPU and
+// Embree's BVH8 traverser do, instead of sorting distances. An any-hit step pushes them in lane
+// order and stores no distances.
+#pragma once
+
+#include "accel/bvh/simd/kernel_namespace.h"
+#include "accel/bvh/layout/wide_bvh.h"
+#include "accel/bvh/simd/simd.h"
+
+#include <array>
+#include <bit>
+#include <cstdint>
+#include <type_traits>
+
+namespace bvhlab {
+inline namespace BVHLAB_KERNEL_NS {
+
+// Each step pops one entry and pushes at most N: the stack never holds more than N - 1 per
+// level plus one (the wide tree is no deeper than the binary one).
+template <int N>
+inline constexpr int kWideStackSize = (N - 1) * kBvhMaxDepth + 1;
+
+template <int N>
+struct WideStack {
+    // N more than the stack ever holds: a step stores whole vectors past the top.
+    uint32_t child[kWideStackSize<N> + N];
+    float entry[kWideStackSize<N> + N];
+    int size = 0;
+
+    uint32_t pop() { return child[--size]; }
+
+    // Drops the children the ray enters behind t (a closest hit at t was just found), keeping the
+    // order of the others.
+    [[gnu::always_inline]] void dropBeyond(float t) {
+        int kept = 0;
+        for (int i = 0; i < size; ++i) {
+            child[kept] = child[i];
+            entry[kept] = entry[i];
+            kept += entry[i] <= t ? 1 : 0;
+        }
+        size = kept;
+    }
+};
+
+namespace wide_stack {
+
+// kCompress[m]: the indices of the set bits of m, ascending, one per byte (8-lane compression
+// by a permutation where AVX-512 has no vpcompressd).
+inline constexpr std::array<uint64_t, 256> kCompress = [] {
+    std::array<uint64_t, 256> table{};
+    for (int m = 0; m < 256; ++m) {
+        int k = 0;
+        for (int i = 0; i < 8; ++i)
+            if (m >> i & 1) table[m] |= uint64_t(i) << (8 * k++);
+    }
+    return table;
+}();
+
+#if defined(__AVX2__) && defined(__FMA__)
+// The lanes of `index` in the positions of the set bits of m, first ones first.
+[[gnu::always_inline]] inline __m256i compress(__m256i index, int m) {
+#if defined(__AVX512VL__)
+    return _mm256_maskz_compress_epi32(__mmask8(m), index);
+#else
+    const __m256i positions = _mm256_cvtepu8_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(&kCompress[m])));
+    return _mm256_permutevar8x32_epi32(index, positions);
+#endif
+}
+#endif
+
+}  // namespace wide_stack
+
+// Pushes the children of `node` in `mask` (not 0) far to near for the ray's octant (`shift` =
+// 3 * octant), with where the ray enters them (`entry`, in lanes; `hit` is `mask` in lanes).
+template <int N, typename F>
+[[gnu::always_inline]] inline void pushNearestLast(const WideNode<N>& node, int mask, typename F::Mask hit, F entry,
+                                                   int shift, WideStack<N>& stack) {
+#if defined(__AVX2__) && defined(__FMA__)
+    if constexpr (N == 8 && std::is_same_v<F, simd::Avx>) {
+        const __m256i order = _mm256_srl_epi32(_mm256_load_si256(reinterpret_cast<const __m256i*>(node.order)),
+                                               _mm_cvtsi32_si128(shift));
+        const int ordered = _mm256_movemask_ps(_mm256_permutevar8x32_ps(hit.m, order));
+        const __m256i index = wide_stack::compress(order, ordered);
+        const __m256i children = _mm256_load_si256(reinterpret_cast<const __m256i*>(node.child));
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(stack.child + stack.size),
+                            _mm256_permutevar8x32_epi32(children, index));
+        _mm256_storeu_ps(stack.entry + stack.size, _mm256_permutevar8x32_ps(entry.v, index));
+        stack.size += std::popcount(unsigned(mask));
+        return;
+    }
+#endif
+    (void)hit;
+    alignas(64) float entries[N];
+    entry.storeu(entries);
+    for (int p = 0; p < N; ++p) {
+        const int lane = int(node.order[p] >> shift & 7);
+        stack.child[stack.size] = node.child[lane];
+        stack.entry[stack.size] = entries[lane];
+        stack.size += mask >> lane & 1;
+    }
+}
+
+// Pushes the children of `node` in `mask` (not 0) in lane order, without distances: an any-hit
+// query visits children in no particular order.
+template <int N>
+[[gnu::always_inline]] inline void pushInLaneOrder(const WideNode<N>& node, int mask, WideStack<N>& stack) {
+#if defined(__AVX2__) && defined(__FMA__)
+    if constexpr (N == 8) {
+        const __m256i children = _mm256_load_si256(reinterpret_cast<const __m256i*>(node.child));
+        const __m256i lanes = wide_stack::compress(_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7), mask);
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(stack.child + stack.size),
+                            _mm256_permutevar8x32_epi32(children, lanes));
+        stack.size += std::popcount(unsigned(mask));
+        return;
+    }
+#endif
+    for (int lane = 0; lane < N; ++lane) {
+        stack.child[stack.size] = node.child[lane];
+        stack.size += mask >> lane & 1;
+    }
+}
+
+}  // namespace BVHLAB_KERNEL_NS
+}  // namespace bvhlab
