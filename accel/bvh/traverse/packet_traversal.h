@@ -1,9 +1,9 @@
 // Packets of coherent rays over the N-wide layout (Benthin, Wald, Woop, Ernst and Mark 2012,
 // "Combining single and packet-ray tracing for arbitrary ray distributions on the Intel MIC
-// architecture"): up to kPacketWidth rays walk the tree together, one SIMD lane per ray. At a
-// node, each child box is tested against all active rays at once; a child is visited when any
-// of them hits it, with the mask of those that do, nearest first by the entry of its first
-// ray. Leaves are tested ray by ray with the single-ray block test. A node reached by at most
+// architecture"): up to kPacketWidth rays of one direction octant walk the tree together, one
+// SIMD lane per ray. At a node, each child box is tested against all active rays at once; a
+// child is visited when any of them hits it, with the mask of those that do, in the node's
+// order for the octant (WideNode::order), nearest first. Leaves are tested ray by ray with the single-ray block test. A node reached by at most
 // `fallback` active rays no longer pays for a packet step (a packet tests one box per SIMD
 // test, a single ray all N): each of its rays finishes that subtree alone, by the single-ray
 // skeleton (traverseFrom, wide_bvh_traversal.h).
@@ -38,42 +38,47 @@ inline constexpr int kPacketWidth = std::is_same_v<simd::Floats<16>, simd::Scala
 
 namespace packet_traversal {
 
-// The K rays' RaySlabs in SoA, one lane per ray; lanes past the packet's rays hold zeros and
-// are never active.
-template <int K, bool Robust>
+// The K rays' RaySlabs in SoA, one lane per ray, for rays of one direction octant (so that all
+// enter a box through the same bounds); lanes past the packet's rays hold zeros and are never
+// active.
+template <int K, int N, bool Robust>
 struct PacketBoxTest {
     using F = simd::Floats<K>;
     alignas(64) float org[3][K]{};
     alignas(64) float inv[3][K]{};
     alignas(64) float invFar[3][K]{};
-    alignas(64) float nearIsUpper[3][K]{};  // -1 where the ray enters through the upper bound, else 1
     alignas(64) float tmin[K]{};
+    int nearOffset[3], farOffset[3];  // into a node's floats: its lower or upper bounds of each axis
 
-    PacketBoxTest(const Ray* rays, int count) {
+    PacketBoxTest(const Ray* rays, int count, int octant) {
         for (int k = 0; k < count; ++k) {
             const RaySlabs<Robust> slabs(rays[k]);
             for (int a = 0; a < 3; ++a) {
                 org[a][k] = slabs.org[a];
                 inv[a][k] = slabs.inv[a];
                 invFar[a][k] = slabs.invFar[a];
-                nearIsUpper[a][k] = slabs.nearIsUpper[a] ? -1.0f : 1.0f;
             }
             tmin[k] = slabs.tmin;
+        }
+        for (int a = 0; a < 3; ++a) {
+            const int lower = a * N, upper = (3 + a) * N;  // WideNode: lower[3][N], then upper[3][N]
+            const bool upperFirst = (octant >> a & 1) != 0;
+            nearOffset[a] = upperFirst ? upper : lower;
+            farOffset[a] = upperFirst ? lower : upper;
         }
     }
 
     // The rays (lanes) whose interval [tmin, tmax] overlaps child c's box, as a bit mask; where
     // each enters it goes to entryOut. Per lane WideBoxTest<N, false, Robust>'s operations in
     // its order, so a ray's answer is its single-ray answer bit for bit.
-    template <int N>
     [[gnu::always_inline]] int intersect(const WideNode<N>& node, int c, const float* tmax, float* entryOut) const {
+        static_assert(offsetof(WideNode<N>, lower) == 0 && offsetof(WideNode<N>, upper) == 3 * N * sizeof(float));
+        const float* bounds = &node.lower[0][0];
         F nearT[3], farT[3];
         for (int a = 0; a < 3; ++a) {
-            const auto upperFirst = F::load(nearIsUpper[a]) < F::broadcast(0.0f);
-            const F lower = F::broadcast(node.lower[a][c]), upper = F::broadcast(node.upper[a][c]);
             const F o = F::load(org[a]);
-            nearT[a] = (select(upperFirst, upper, lower) - o) * F::load(inv[a]);
-            farT[a] = (select(upperFirst, lower, upper) - o) * F::load(invFar[a]);
+            nearT[a] = (F::broadcast(bounds[nearOffset[a] + c]) - o) * F::load(inv[a]);
+            farT[a] = (F::broadcast(bounds[farOffset[a] + c]) - o) * F::load(invFar[a]);
         }
         const F entry = max(max(nearT[0], nearT[1]), max(nearT[2], F::load(tmin)));
         const F exit = min(min(farT[0], farT[1]), min(farT[2], F::load(tmax)));
@@ -97,16 +102,16 @@ auto arrayOf(Make&& make) {
 
 }  // namespace packet_traversal
 
-// Traces rays[0, count) (0 < count <= K; every ray valid with tmin >= 0; the tree not empty)
-// as one packet, then calls answer(k, query, work) for each ray k with its query and its work
+// Traces rays[0, count) (0 < count <= K; every ray valid with tmin >= 0 and of direction
+// octant `octant`; the tree not empty) as one packet, then calls answer(k, query, work) for each ray k with its query and its work
 // (queries = 1; its steps and tests when Counting).
 template <bool Counting, typename Query, bool Robust, int K, int N, typename Answer>
-void tracePacket(const WideBvh<N>& bvh, const Ray* rays, int count, int fallback, Answer&& answer) {
+void tracePacket(const WideBvh<N>& bvh, const Ray* rays, int count, int octant, int fallback, Answer&& answer) {
     using namespace packet_traversal;
     using F = simd::Floats<K>;
     // Lanes past `count` repeat ray 0: never active, only so that every lane is constructed.
     const auto rayOf = [&](size_t k) -> const Ray& { return rays[int(k) < count ? k : 0]; };
-    const PacketBoxTest<K, Robust> boxTest(rays, count);
+    const PacketBoxTest<K, N, Robust> boxTest(rays, count, octant);
     const auto triangleTests = arrayOf<K>([&](size_t k) { return BlockTriangleTest<Robust>(rayOf(k)); });
     auto queries = arrayOf<K>([&](size_t k) { return Query(rayOf(k)); });
     alignas(64) float tmax[K]{};
@@ -148,20 +153,15 @@ void tracePacket(const WideBvh<N>& bvh, const Ray* rays, int count, int fallback
             const WideNode<N>& node = nodes[current.child];
             alignas(64) float entries[N][K];
             int hitRays[N];
-            float key[N];  // where a child's first ray enters it: the visit order
-            int order[N];  // the children hit: closest hit far to near, any hit in lane order
+            int order[N];  // the children hit: closest hit far to near for the octant, any hit in lane order
             int hits = 0;
-            for (int c = 0; c < N; ++c) {
+            for (int p = 0; p < N; ++p) {
+                const int c = Query::kStopsAtFirstHit ? p : int(node.order[p] >> (3 * octant) & 7);
                 if (!(node.lower[0][c] <= node.upper[0][c])) continue;  // an empty lane
                 const int mask = boxTest.intersect(node, c, tmax, entries[c]) & active;
                 if (mask == 0) continue;
                 hitRays[c] = mask;
-                int j = hits++;
-                if constexpr (!Query::kStopsAtFirstHit) {
-                    key[c] = entries[c][std::countr_zero(unsigned(mask))];
-                    for (; j > 0 && key[order[j - 1]] < key[c]; --j) order[j] = order[j - 1];
-                }
-                order[j] = c;
+                order[hits++] = c;
             }
             if (hits != 0) {
                 // Closest hit: the nearest next, the others pushed far to near. Any hit: the
@@ -203,19 +203,22 @@ void tracePacket(const WideBvh<N>& bvh, const Ray* rays, int count, int fallback
     }
 }
 
-// A batch: its valid rays with tmin >= 0 in packets of up to kPacketWidth consecutive ones
-// (a wavefront's camera rays, the shadow rays of one light), the others alone (runQuery: a
-// miss for an invalid ray, the sign-aware box test for tmin < 0). Calls answer(i, query, work)
-// once per ray i, not in order, with its query and its work (queries = 1).
+// A batch: its valid rays with tmin >= 0 in packets of up to kPacketWidth consecutive ones of
+// one direction octant (a wavefront's camera rays, the shadow rays of one light), the others
+// alone (runQuery: a miss for an invalid ray, the sign-aware box test for tmin < 0). Calls
+// answer(i, query, work) once per ray i, not in order, with its query and its work (queries =
+// 1).
 template <bool Counting, typename Query, bool Robust, int N, typename Answer>
 void traceAsPackets(const WideBvh<N>& bvh, std::span<const Ray> rays, int fallback, Answer&& answer) {
     constexpr int K = kPacketWidth;
     Ray packet[K];
     size_t index[K];
-    int count = 0;
+    int count = 0, octant = 0;
     const auto trace = [&] {
-        tracePacket<Counting, Query, Robust, K>(bvh, packet, count, fallback,
-                                      [&](int k, const Query& query, const QueryCounters& work) { answer(index[k], query, work); });
+        tracePacket<Counting, Query, Robust, K>(bvh, packet, count, octant, fallback,
+                                                [&](int k, const Query& query, const QueryCounters& work) {
+                                                    answer(index[k], query, work);
+                                                });
         count = 0;
     };
     for (size_t i = 0; i < rays.size(); ++i) {
@@ -226,6 +229,9 @@ void traceAsPackets(const WideBvh<N>& bvh, std::span<const Ray> rays, int fallba
             answer(i, query, work);
             continue;
         }
+        const int rayOctant = directionOctant(ray.dir);
+        if (count != 0 && rayOctant != octant) trace();
+        octant = rayOctant;
         packet[count] = ray;
         index[count++] = i;
         if (count == K) trace();

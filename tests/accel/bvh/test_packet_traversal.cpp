@@ -231,10 +231,12 @@ TEST(PacketTraversal, SixteenRayPacketsAnswerAsSingleRays) {
         if (r.isValid() && r.tmin >= 0.0f) rays.push_back(r);
     for (const int fallback : {0, 2, 6}) {
         size_t compared = 0;
-        for (size_t begin = 0; begin < rays.size(); begin += 16) {
-            const int count = int(std::min<size_t>(16, rays.size() - begin));
+        for (size_t begin = 0, count = 0; begin < rays.size(); begin += count) {  // up to 16 of one octant
+            const int octant = directionOctant(rays[begin].dir);
+            for (count = 1; count < 16 && begin + count < rays.size(); ++count)
+                if (directionOctant(rays[begin + count].dir) != octant) break;
             tracePacket<true, ClosestHitQuery, true, 16>(
-                tree, rays.data() + begin, count, fallback, [&](int k, const ClosestHitQuery& query, const QueryCounters&) {
+                tree, rays.data() + begin, int(count), octant, fallback, [&](int k, const ClosestHitQuery& query, const QueryCounters&) {
                     QueryCounters counters;
                     Hit packet, single;
                     answerOf(tree, query, packet);
@@ -242,7 +244,7 @@ TEST(PacketTraversal, SixteenRayPacketsAnswerAsSingleRays) {
                     EXPECT_TRUE(bitEqual(packet, single)) << "ray " << begin + k << ", fallback " << fallback;
                     ++compared;
                 });
-            tracePacket<true, AnyHitQuery, true, 16>(tree, rays.data() + begin, count, fallback,
+            tracePacket<true, AnyHitQuery, true, 16>(tree, rays.data() + begin, int(count), octant, fallback,
                                                [&](int k, const AnyHitQuery& query, const QueryCounters&) {
                                                    QueryCounters counters;
                                                    EXPECT_EQ(query.occluded, accel.isOccluded(rays[begin + k], counters));
