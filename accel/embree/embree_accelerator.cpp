@@ -352,12 +352,18 @@ BuildStats EmbreeAccelerator::statistics() const {
 namespace {
 
 // A ray Embree takes as it is: valid (Ray::isValid) and one segment from its origin in
-// segmentsOf's terms (tmin >= 0, every coordinate within kEmbreeLarge). The comparisons are
-// joined by & rather than &&, so that a query branches once on all of them; NaN fails each.
+// segmentsOf's terms (tmin >= 0, every coordinate within kEmbreeLarge). Tested four lanes at a
+// time and joined by & rather than &&, so that a query branches once on all of it; NaN fails
+// every comparison but !=, and fails `within` before that.
 inline bool takenAsIs(const Ray& r) {
-    const auto within = [](float x) { return std::abs(x) <= kEmbreeLarge; };
-    return within(r.org.x) & within(r.org.y) & within(r.org.z) & within(r.dir.x) & within(r.dir.y) & within(r.dir.z) &
-           (r.tmin >= 0.0f) & (r.tmin <= r.tmax) & ((r.dir.x != 0.0f) | (r.dir.y != 0.0f) | (r.dir.z != 0.0f));
+    static_assert(sizeof(Ray) == 32 && offsetof(Ray, dir) == 12 && offsetof(Ray, tmin) == 24 && offsetof(Ray, tmax) == 28);
+    const __m128 a = _mm_loadu_ps(&r.org.x);  // org x y z, dir x
+    const __m128 b = _mm_loadu_ps(&r.dir.y);  // dir y z, tmin, tmax
+    const __m128 sign = _mm_set1_ps(-0.0f), large = _mm_set1_ps(kEmbreeLarge), zero = _mm_setzero_ps();
+    const int withinA = _mm_movemask_ps(_mm_cmple_ps(_mm_andnot_ps(sign, a), large));
+    const int withinB = _mm_movemask_ps(_mm_cmple_ps(_mm_andnot_ps(sign, b), large));
+    const int nonzero = (_mm_movemask_ps(_mm_cmpneq_ps(a, zero)) & 0b1000) | (_mm_movemask_ps(_mm_cmpneq_ps(b, zero)) & 0b11);
+    return (withinA == 0b1111) & ((withinB & 0b11) == 0b11) & (nonzero != 0) & (r.tmin >= 0.0f) & (r.tmin <= r.tmax);
 }
 
 // A ray taken as it is, in Embree's form, with the hit Embree is to fill marked empty.
