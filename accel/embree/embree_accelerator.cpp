@@ -5,9 +5,12 @@
 #include <embree3/rtcore.h>
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include <immintrin.h>
 
 #include <algorithm>
 #include <atomic>
+#include <bit>
+#include <cstddef>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -143,19 +146,15 @@ inline Segments segmentsOf(const Ray& ray) {
     return s;
 }
 
+// Written as three 16-byte stores, the widths in which Embree reads the ray back at once: a
+// ray written field by field would make those loads wait for the stores to reach the cache
+// (no store-to-load forwarding from several stores into one load).
 inline void toRtc(const Segment& segment, const Vec3& dir, RTCRay& r) {
-    r.org_x = segment.org.x;
-    r.org_y = segment.org.y;
-    r.org_z = segment.org.z;
-    r.tnear = segment.tnear;
-    r.dir_x = dir.x;
-    r.dir_y = dir.y;
-    r.dir_z = dir.z;
-    r.time = 0.0f;
-    r.tfar = segment.tfar;
-    r.mask = 0xFFFFFFFFu;
-    r.id = 0;
-    r.flags = 0;
+    static_assert(offsetof(RTCRay, tnear) == 12 && offsetof(RTCRay, time) == 28 && offsetof(RTCRay, flags) == 44);
+    _mm_store_ps(&r.org_x, _mm_setr_ps(segment.org.x, segment.org.y, segment.org.z, segment.tnear));
+    _mm_store_ps(&r.dir_x, _mm_setr_ps(dir.x, dir.y, dir.z, 0.0f));
+    _mm_store_si128(reinterpret_cast<__m128i*>(&r.tfar),
+                    _mm_setr_epi32(std::bit_cast<int>(segment.tfar), -1, 0, 0));  // mask all ones, id, flags
 }
 
 }  // namespace
@@ -252,8 +251,8 @@ void EmbreeAccelerator::build(const PrimitiveSet& prims) {
     scene_.reset();
     primitives_ = prims.valid.size();
     bytes_.reset();
-    for (auto& map : primitiveOf_) map.clear();
-    primitiveOf_[kTriangleGeometry].assign(validTriangles.begin(), validTriangles.end());
+    for (auto& map : primitiveOf_) map = {};
+    primitiveOf_[kTriangleGeometry].table.assign(validTriangles.begin(), validTriangles.end());
     cones_.clear();
     std::vector<float> spheres;  // x y z radius per sphere
     for (uint32_t prim : prims.validQuadrics()) {
@@ -261,12 +260,13 @@ void EmbreeAccelerator::build(const PrimitiveSet& prims) {
             const Sphere& s = prims.spheres[prim - prims.sphereBase()];
             // NFF's negative radius marks an inside-visible sphere; the surface is |radius|'s.
             spheres.insert(spheres.end(), {s.centre.x, s.centre.y, s.centre.z, std::abs(s.radius)});
-            primitiveOf_[kSphereGeometry].push_back(prim);
+            primitiveOf_[kSphereGeometry].table.push_back(prim);
         } else {
             cones_.push_back(prims.cones[prim - prims.coneBase()]);
-            primitiveOf_[kConeGeometry].push_back(prim);
+            primitiveOf_[kConeGeometry].table.push_back(prim);
         }
     }
+    for (auto& map : primitiveOf_) map.compact();
     const RTCBuildQuality quality = toRtc(config_.quality);
 
     std::unique_ptr<RTCSceneTy, SceneDeleter> scene(rtcNewScene(device));
@@ -349,39 +349,105 @@ BuildStats EmbreeAccelerator::statistics() const {
     return stats;
 }
 
+namespace {
+
+// A ray Embree takes as it is: valid (Ray::isValid) and one segment from its origin in
+// segmentsOf's terms (tmin >= 0, every coordinate within kEmbreeLarge). Tested four lanes at a
+// time and joined by & rather than &&, so that a query branches once on all of it; NaN fails
+// every comparison but !=, and fails `within` before that.
+inline bool takenAsIs(const Ray& r) {
+    static_assert(sizeof(Ray) == 32 && offsetof(Ray, dir) == 12 && offsetof(Ray, tmin) == 24 && offsetof(Ray, tmax) == 28);
+    const __m128 a = _mm_loadu_ps(&r.org.x);  // org x y z, dir x
+    const __m128 b = _mm_loadu_ps(&r.dir.y);  // dir y z, tmin, tmax
+    const __m128 sign = _mm_set1_ps(-0.0f), large = _mm_set1_ps(kEmbreeLarge), zero = _mm_setzero_ps();
+    const int withinA = _mm_movemask_ps(_mm_cmple_ps(_mm_andnot_ps(sign, a), large));
+    const int withinB = _mm_movemask_ps(_mm_cmple_ps(_mm_andnot_ps(sign, b), large));
+    const int nonzero = (_mm_movemask_ps(_mm_cmpneq_ps(a, zero)) & 0b1000) | (_mm_movemask_ps(_mm_cmpneq_ps(b, zero)) & 0b11);
+    return (withinA == 0b1111) & ((withinB & 0b11) == 0b11) & (nonzero != 0) & (r.tmin >= 0.0f) & (r.tmin <= r.tmax);
+}
+
+// A ray taken as it is, in Embree's form, with the hit Embree is to fill marked empty.
+inline void toRtc(const Ray& ray, RTCRayHit& r) {
+    toRtc(Segment{ray.org, ray.tmin, ray.tmax, 0.0f}, ray.dir, r.ray);
+    r.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    r.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+}
+
+// Our hit from Embree's, on our `primitive`; u, v are barycentrics on a triangle only (our Hit
+// convention). `shift` is added to Embree's t (Segment::shift).
+inline Hit hitOf(const RTCRayHit& r, uint32_t primitive, float shift = 0.0f) {
+    const bool triangle = r.hit.geomID == kTriangleGeometry;
+    return {r.ray.tfar + shift, primitive, triangle ? r.hit.u : 0.0f, triangle ? r.hit.v : 0.0f};
+}
+
+constexpr float kOccludedMark = -std::numeric_limits<float>::infinity();  // Embree's tfar of an occluded ray
+
+}  // namespace
+
+void EmbreeAccelerator::PrimitiveMap::compact() {
+    for (size_t i = 0; i < table.size(); ++i)
+        if (table[i] != table[0] + i) return;
+    offset = table.empty() ? 0 : table[0];
+    table = {};
+}
+
 // Interval semantics. Ours is the closed [tmin, tmax]. Embree's documentation promises
 // nothing for hits exactly at or very close to tnear or tfar, and 3.13.5 answers differently
 // there with its AVX2 and AVX-512 kernels (docs/accuracy.md, "Embree at the ends of the
 // interval"): a hit at exactly t == tmin, which we report, Embree may miss. We pass the
 // interval unchanged rather than nudge tnear: an ulp would not make its comparison exact
 // either. Negative tmin: see segmentsOf above.
+//
+// The queries are what every caller pays on top of Embree's own call (`bvhlab bench`'s embree
+// rows against embree-bare), so a ray Embree takes as it is goes straight to it: one branch on
+// the checks, the conversion, the call, the index map. The rest takes the path in parts.
 bool EmbreeAccelerator::findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const {
     ++counters.queries;
-    if (!ray.isValid() || !scene_) return false;
+    if (!(takenAsIs(ray) & bool(scene_))) [[unlikely]]
+        return scene_ && findNearestInParts(ray, hit);
+    RTCRayHit rayhit;
+    toRtc(ray, rayhit);
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    rtcIntersect1(scene_.get(), &context, &rayhit);
+    if (rayhit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+    hit = hitOf(rayhit, primitiveOf_[rayhit.hit.geomID](rayhit.hit.primID));
+    return true;
+}
+
+bool EmbreeAccelerator::isOccluded(const Ray& ray, QueryCounters& counters) const {
+    ++counters.queries;
+    if (!(takenAsIs(ray) & bool(scene_))) [[unlikely]]
+        return scene_ && isOccludedInParts(ray);
+    RTCRay r;
+    toRtc(Segment{ray.org, ray.tmin, ray.tmax, 0.0f}, ray.dir, r);
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    rtcOccluded1(scene_.get(), &context, &r);
+    return r.tfar == kOccludedMark;
+}
+
+bool EmbreeAccelerator::findNearestInParts(const Ray& ray, Hit& hit) const {
+    if (!ray.isValid()) return false;
     const Segments segments = segmentsOf(ray);
     for (int i = 0; i < segments.count; ++i) {
         RTCRayHit rayhit;
         toRtc(segments.part[i], ray.dir, rayhit.ray);
         rayhit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        rayhit.hit.primID = RTC_INVALID_GEOMETRY_ID;
         rayhit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
         RTCIntersectContext context;
         rtcInitIntersectContext(&context);
         rtcIntersect1(scene_.get(), &context, &rayhit);
         if (rayhit.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
-            // u, v are barycentrics on a triangle only (our Hit convention).
-            const bool triangle = rayhit.hit.geomID == kTriangleGeometry;
-            hit = {rayhit.ray.tfar + segments.part[i].shift, primitiveOf_[rayhit.hit.geomID][rayhit.hit.primID],
-                   triangle ? rayhit.hit.u : 0.0f, triangle ? rayhit.hit.v : 0.0f};
+            hit = hitOf(rayhit, primitiveOf_[rayhit.hit.geomID](rayhit.hit.primID), segments.part[i].shift);
             return true;
         }
     }
     return false;
 }
 
-bool EmbreeAccelerator::isOccluded(const Ray& ray, QueryCounters& counters) const {
-    ++counters.queries;
-    if (!ray.isValid() || !scene_) return false;
+bool EmbreeAccelerator::isOccludedInParts(const Ray& ray) const {
+    if (!ray.isValid()) return false;
     const Segments segments = segmentsOf(ray);
     for (int i = 0; i < segments.count; ++i) {
         RTCRay r;
@@ -389,7 +455,7 @@ bool EmbreeAccelerator::isOccluded(const Ray& ray, QueryCounters& counters) cons
         RTCIntersectContext context;
         rtcInitIntersectContext(&context);
         rtcOccluded1(scene_.get(), &context, &r);
-        if (r.tfar == -std::numeric_limits<float>::infinity()) return true;  // Embree's mark of a hit
+        if (r.tfar == kOccludedMark) return true;
     }
     return false;
 }
@@ -410,11 +476,10 @@ RTCIntersectContextFlags streamFlags(std::span<const Ray> rays, std::span<const 
     return RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
 }
 
-// A ray Embree takes as it is (one segment from the origin); others take the single-ray path.
-bool isPlainSegment(const Segments& segments) { return segments.count == 1 && segments.part[0].shift == 0.0f; }
-
 }  // namespace
 
+// A ray Embree cannot take as it is takes the single-ray call (which counts it); the others go
+// into the chunk, each answer written once.
 void EmbreeAccelerator::findNearestBatch(std::span<const Ray> rays, std::span<Hit> hits, QueryCounters& counters,
                                          std::span<RayCost> costs) const {
     std::fill(costs.begin(), costs.end(), RayCost{});
@@ -426,30 +491,22 @@ void EmbreeAccelerator::findNearestBatch(std::span<const Ray> rays, std::span<Hi
         size_t n = 0;
         for (; next < rays.size() && n < kStreamChunk; ++next) {
             const Ray& ray = rays[next];
-            hits[next] = Hit{};
-            const Segments segments = segmentsOf(ray);
-            if (!ray.isValid() || !scene_ || segments.count == 0) {
-                ++counters.queries;
-            } else if (!isPlainSegment(segments)) {
-                findNearest(ray, hits[next], counters);
-            } else {
-                ++counters.queries;
-                toRtc(segments.part[0], ray.dir, chunk[n].ray);
-                chunk[n].hit.geomID = RTC_INVALID_GEOMETRY_ID;
-                chunk[n].hit.primID = RTC_INVALID_GEOMETRY_ID;
-                chunk[n].hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-                index[n++] = next;
+            if (!(takenAsIs(ray) & bool(scene_))) [[unlikely]] {
+                Hit hit;
+                findNearest(ray, hit, counters);
+                hits[next] = hit;
+                continue;
             }
+            toRtc(ray, chunk[n]);
+            index[n++] = next;
         }
         if (n == 0) continue;
+        counters.queries += n;
         context.flags = streamFlags(rays, {index, n});
         rtcIntersect1M(scene_.get(), &context, chunk, unsigned(n), sizeof(RTCRayHit));
         for (size_t k = 0; k < n; ++k) {
             const RTCHit& h = chunk[k].hit;
-            if (h.geomID == RTC_INVALID_GEOMETRY_ID) continue;
-            const bool triangle = h.geomID == kTriangleGeometry;
-            hits[index[k]] = {chunk[k].ray.tfar, primitiveOf_[h.geomID][h.primID], triangle ? h.u : 0.0f,
-                              triangle ? h.v : 0.0f};
+            hits[index[k]] = h.geomID == RTC_INVALID_GEOMETRY_ID ? Hit{} : hitOf(chunk[k], primitiveOf_[h.geomID](h.primID));
         }
     }
 }
@@ -465,29 +522,22 @@ void EmbreeAccelerator::isOccludedBatch(std::span<const Ray> rays, std::span<uin
         size_t n = 0;
         for (; next < rays.size() && n < kStreamChunk; ++next) {
             const Ray& ray = rays[next];
-            occluded[next] = 0;
-            const Segments segments = segmentsOf(ray);
-            if (!ray.isValid() || !scene_ || segments.count == 0) {
-                ++counters.queries;
-            } else if (!isPlainSegment(segments)) {
+            if (!(takenAsIs(ray) & bool(scene_))) [[unlikely]] {
                 occluded[next] = isOccluded(ray, counters) ? 1 : 0;
-            } else {
-                ++counters.queries;
-                toRtc(segments.part[0], ray.dir, chunk[n]);
-                index[n++] = next;
+                continue;
             }
+            toRtc(Segment{ray.org, ray.tmin, ray.tmax, 0.0f}, ray.dir, chunk[n]);
+            index[n++] = next;
         }
         if (n == 0) continue;
+        counters.queries += n;
         context.flags = streamFlags(rays, {index, n});
         rtcOccluded1M(scene_.get(), &context, chunk, unsigned(n), sizeof(RTCRay));
-        for (size_t k = 0; k < n; ++k)
-            occluded[index[k]] = chunk[k].tfar == -std::numeric_limits<float>::infinity() ? 1 : 0;
+        for (size_t k = 0; k < n; ++k) occluded[index[k]] = chunk[k].tfar == kOccludedMark ? 1 : 0;
     }
 }
 
 namespace {
-
-constexpr float kOccludedMark = -std::numeric_limits<float>::infinity();  // Embree's tfar of an occluded ray
 
 // Embree as its users call it: the rays converted once (prepare and reset are not timed), then
 // its calls over them with one context per range, no checks and no mapping of the answer back
@@ -643,16 +693,12 @@ std::unique_ptr<EmbreePreparedRays> EmbreeAccelerator::prepareRays(const std::ve
                                                 fmt::join(batch, ", ")));
     std::vector<RTCRayHit> prepared(rays.size());
     for (size_t i = 0; i < rays.size(); ++i) {
-        const Segments segments = segmentsOf(rays[i]);
-        if (!rays[i].isValid() || !isPlainSegment(segments))
+        if (!takenAsIs(rays[i]))
             throw std::invalid_argument(fmt::format(
                 "Embree's {} API: ray {} (tmin {}, tmax {}) is not one Embree takes as it is: a valid interval "
                 "with tmin >= 0 and coordinates within +-{}",
                 api, i, rays[i].tmin, rays[i].tmax, kEmbreeLarge));
-        toRtc(segments.part[0], rays[i].dir, prepared[i].ray);
-        prepared[i].hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        prepared[i].hit.primID = RTC_INVALID_GEOMETRY_ID;
-        prepared[i].hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+        toRtc(rays[i], prepared[i]);
     }
     if (api == "packet8") return std::make_unique<EmbreeRayPackets<8>>(scene_.get(), prepared, coherent);
     if (api == "packet16") return std::make_unique<EmbreeRayPackets<16>>(scene_.get(), prepared, coherent);

@@ -128,8 +128,20 @@ private:
     std::unique_ptr<DeviceState> state_;
     std::unique_ptr<RTCDeviceTy, DeviceDeleter> device_;  // declared after state_, before scene_:
     std::unique_ptr<RTCSceneTy, SceneDeleter> scene_;     // released scene first, then device
-    // Per Embree geometry (triangles, spheres, cones): its primID -> our primitive index.
-    std::array<std::vector<uint32_t>, 3> primitiveOf_;
+    // Per Embree geometry (triangles, spheres, cones): its primID -> our primitive index, as a
+    // table, or as an offset where the geometry's primitives are consecutive ones of ours (no
+    // degenerate one left out): then a hit costs no load from a table as large as the scene.
+    struct PrimitiveMap {
+        std::vector<uint32_t> table;
+        uint32_t offset = 0;  // used when the table is empty
+        uint32_t operator()(unsigned primID) const { return table.empty() ? offset + primID : table[primID]; }
+        void compact();  // drops a table that is offset + primID
+    };
+    std::array<PrimitiveMap, 3> primitiveOf_;
+
+    // The queries of a ray Embree cannot take as it is (see segmentsOf in the .cpp): in parts.
+    bool findNearestInParts(const Ray& ray, Hit& hit) const;
+    bool isOccludedInParts(const Ray& ray) const;
     std::vector<Cone> cones_;  // the user geometry's primitives, read by its callbacks
     size_t primitives_ = 0;  // the last build's, for statistics()
     std::optional<size_t> bytes_;

@@ -5,7 +5,10 @@
 // (Embree as its users call it: rays converted once, a bare rtcIntersect1 loop); and batches,
 // findNearestBatch / isOccludedBatch per range of kQueryRange rays, against embree-batch (the same
 // prepared rays through Embree's stream or packet API, whichever is faster). embree and
-// embree-robust go through our interface, as every structure of ours does. A benchmark, not a test.
+// embree-robust go through our interface, as every structure of ours does; nothing and
+// nothing-guarded time a query that does nothing through it (nothing_accelerator.h), bare and
+// behind the guard of a plugin's structure: the floor under every row. A benchmark, not a test.
+#include "accel/guarded_accelerator.h"
 #include "accel/registry.h"
 #include "apps/common/accel_config.h"
 #include "apps/common/cli_common.h"
@@ -13,6 +16,7 @@
 #include "apps/common/program_keys.h"
 #include "apps/common/scene_list.h"
 #include "apps/common/timing.h"
+#include "apps/measure/nothing_accelerator.h"
 #include "apps/measure/ray_sets.h"
 #include "framework/config/common_keys.h"
 #include "framework/core/error.h"
@@ -43,6 +47,17 @@ struct Structure {
     BuildStats stats;
     std::vector<double> buildMs;  // one per round
 };
+
+// The structures of the rows that measure the interface's own cost: a query that does nothing,
+// bare and behind the guard every plugin's structure is called through (accel/guarded_accelerator.h).
+const char* const kNothingRows[] = {"nothing", "nothing-guarded"};
+
+std::unique_ptr<Accelerator> createFor(const Structure& k) {
+    if (k.config.label == kNothingRows[0]) return std::make_unique<NothingAccelerator>();
+    if (k.config.label == kNothingRows[1])
+        return guardAccelerator(std::make_unique<NothingAccelerator>(), "(bvhlab bench)", "nothing");
+    return createAccelerator(k.config.name, k.env);
+}
 
 // One row of the results: a structure asked as `queries` says (or Embree through its own API:
 // embree-bare, embree-batch), with what the rounds measured.
@@ -91,18 +106,22 @@ std::vector<nlohmann::json> measureRounds(const Scene& scene, const RaySets& ray
                                    {"shadow", &rays.shadow, true, true},
                                    {"incoherent", &rays.incoherent, true, false}};
     constexpr size_t kSets = std::size(raySets);
-    std::vector<Structure> structures(configs.size());
-    for (size_t c = 0; c < configs.size(); ++c) {
+    std::vector<Structure> structures(configs.size() + std::size(kNothingRows));
+    for (size_t c = 0; c < structures.size(); ++c) {
         Structure& k = structures[c];
-        k.config = configs[c];
-        k.env = accelConfigEnv(k.config, sceneEnv);
+        if (c < configs.size()) {
+            k.config = configs[c];
+            k.env = accelConfigEnv(k.config, sceneEnv);
+        } else {
+            k.config.label = kNothingRows[c - configs.size()];
+        }
         k.env.set(keys::SetRayTracing::threads, std::to_string(threads), "bvhlab bench --threads");
     }
     tbb::task_arena arena(threads);
     for (int round = 0; round < builds; ++round) {
         for (Structure& k : structures) {
             k.accel.reset();  // the new structure replaces the old one, not beside it
-            k.accel = createAccelerator(k.config.name, k.env);
+            k.accel = createFor(k);
             arena.execute([&] { k.stats = timedBuild(*k.accel, scene.primitives()); });
             k.buildMs.push_back(k.stats.buildMs);
         }
@@ -312,8 +331,8 @@ void addBenchCommand(CLI::App& app) {
     options->env.addTo(*command);
     command->add_option("--scenes", options->scenes, "scene env files, .list files or scene files (default env/scenes.list)");
     command->add_option("--accel", options->accels,
-                        "comma-separated NAME or NAME:Key=value:... (embree, embree-robust, embree-bare and embree-batch are "
-                        "always added)")
+                        "comma-separated NAME or NAME:Key=value:... (embree, embree-robust, embree-bare, embree-batch, "
+                        "nothing and nothing-guarded are always added)")
         ->capture_default_str();
     command->add_option("--queries", options->queries,
                         "single (ray by ray, against embree-bare), batch (the batch calls, against embree-batch) or both, "
@@ -330,6 +349,9 @@ void addBenchCommand(CLI::App& app) {
             for (const char* reference : {"embree", "embree:Embree::robust=true"})
                 if (std::none_of(configs.begin(), configs.end(), [&](const AccelConfig& c) { return c.label == parseAccelConfig(reference).label; }))
                     configs.push_back(parseAccelConfig(reference));
+            for (const AccelConfig& c : configs)
+                if (std::find(std::begin(kNothingRows), std::end(kNothingRows), c.label) != std::end(kNothingRows))
+                    throw InputError(fmt::format("--accel {}: the bench's own row of that name", c.label));
             nameAccelerators(configs, options->env);
             checkAccelConfigs(configs, options->env.load());
             std::vector<int> threadCounts;

@@ -24,7 +24,6 @@ constexpr int kFatalSignals[] = {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT};
 struct sigaction previousActions[std::size(kFatalSignals)];
 
 std::atomic<int> reportFd{STDERR_FILENO};
-thread_local const PluginCall* threadCall = nullptr;
 std::atomic<const PluginCall*> processCall{nullptr};
 
 // Enough for the handler's formatting and the kernel's signal frame (AVX-512 state included).
@@ -56,11 +55,23 @@ private:
     std::unique_ptr<char[]> memory_;
 };
 
-thread_local bool threadHasSignalStack = false;
+}  // namespace
+
+// The thread's running plugin call, and whether the thread has its signal stack: one
+// thread_local, so that a scope looks up this library's thread storage (a call through
+// __tls_get_addr) once, and its end not at all.
+struct PluginCallScope::Thread {
+    const PluginCall* running = nullptr;
+    bool hasSignalStack = false;
+};
+
+namespace {
+
+thread_local PluginCallScope::Thread thisThread;
 
 void giveThreadASignalStack() {
     static thread_local SignalStack stack;
-    threadHasSignalStack = true;
+    thisThread.hasSignalStack = true;
 }
 
 // The report's line, formatted on the signal stack without allocating. vsnprintf is not on
@@ -112,8 +123,8 @@ void onFatalSignal(int signal, siginfo_t*, void*) {
     ReportLine line;
     if (fd == STDERR_FILENO) line.append("bvhlab: ");
     line.appendSignal(signal);
-    if (threadCall) {
-        line.appendCall(*threadCall);
+    if (const PluginCall* running = thisThread.running) {
+        line.appendCall(*running);
     } else if (const PluginCall* other = processCall.load()) {
         line.append(" on a thread other than the call's");
         line.appendCall(*other);
@@ -131,14 +142,15 @@ void onFatalSignal(int signal, siginfo_t*, void*) {
 
 }  // namespace
 
-PluginCallScope::PluginCallScope(const PluginCall& call) : call_(&call), previous_(threadCall) {
-    if (!threadHasSignalStack) giveThreadASignalStack();
-    threadCall = &call;
+PluginCallScope::PluginCallScope(const PluginCall& call) : call_(&call), thread_(&thisThread) {
+    previous_ = thread_->running;
+    if (!thread_->hasSignalStack) giveThreadASignalStack();
+    thread_->running = &call;
     if (!call.ray) processCall.store(&call);
 }
 
 PluginCallScope::~PluginCallScope() {
-    threadCall = previous_;
+    thread_->running = previous_;
     if (!call_->ray) {
         const PluginCall* expected = call_;
         processCall.compare_exchange_strong(expected, nullptr);

@@ -33,8 +33,11 @@ public:
     PluginCallScope(const PluginCallScope&) = delete;
     PluginCallScope& operator=(const PluginCallScope&) = delete;
 
+    struct Thread;  // the thread's running call (fatal_signal_report.cpp)
+
 private:
     const PluginCall* call_;
+    Thread* thread_;
     const PluginCall* previous_;
 };
 

@@ -266,7 +266,8 @@ TEST(Naive, CountersMergedAcrossThreads) {
     }
 
     // += adds every field (and returns *this for chaining).
-    QueryCounters a{1, 2, 3}, b{10, 20, 30};
+    QueryCounters a{.queries = 1, .intersectionTests = 2, .traversalSteps = 3},
+        b{.queries = 10, .intersectionTests = 20, .traversalSteps = 30};
     (a += b) += b;
     EXPECT_EQ(a.queries, 21u);
     EXPECT_EQ(a.intersectionTests, 42u);
