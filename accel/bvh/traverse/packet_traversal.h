@@ -203,23 +203,27 @@ void tracePacket(const WideBvh<N>& bvh, const Ray* rays, int count, int octant, 
     }
 }
 
-// A batch: its valid rays with tmin >= 0 in packets of up to kPacketWidth consecutive ones of
-// one direction octant (a wavefront's camera rays, the shadow rays of one light), the others
-// alone (runQuery: a miss for an invalid ray, the sign-aware box test for tmin < 0). Calls
-// answer(i, query, work) once per ray i, not in order, with its query and its work (queries =
-// 1).
+// A batch: its valid rays with tmin >= 0 in packets of up to kPacketWidth of one direction
+// octant, in the order they come (a wavefront's camera rays, the shadow rays of one light: the
+// rays of a packet are neighbours where the batch is coherent), the others alone (runQuery: a
+// miss for an invalid ray, the sign-aware box test for tmin < 0). Calls answer(i, query, work)
+// once per ray i, not in order, with its query and its work (queries = 1).
 template <bool Counting, typename Query, bool Robust, int N, typename Answer>
 void traceAsPackets(const WideBvh<N>& bvh, std::span<const Ray> rays, int fallback, Answer&& answer) {
     constexpr int K = kPacketWidth;
-    Ray packet[K];
-    size_t index[K];
-    int count = 0, octant = 0;
-    const auto trace = [&] {
-        tracePacket<Counting, Query, Robust, K>(bvh, packet, count, octant, fallback,
+    struct Packet {
+        Ray rays[K];
+        size_t index[K];
+        int count = 0;
+    };
+    Packet packets[8];  // one filling per octant
+    const auto trace = [&](int octant) {
+        Packet& p = packets[octant];
+        tracePacket<Counting, Query, Robust, K>(bvh, p.rays, p.count, octant, fallback,
                                                 [&](int k, const Query& query, const QueryCounters& work) {
-                                                    answer(index[k], query, work);
+                                                    answer(p.index[k], query, work);
                                                 });
-        count = 0;
+        p.count = 0;
     };
     for (size_t i = 0; i < rays.size(); ++i) {
         const Ray& ray = rays[i];
@@ -229,14 +233,14 @@ void traceAsPackets(const WideBvh<N>& bvh, std::span<const Ray> rays, int fallba
             answer(i, query, work);
             continue;
         }
-        const int rayOctant = directionOctant(ray.dir);
-        if (count != 0 && rayOctant != octant) trace();
-        octant = rayOctant;
-        packet[count] = ray;
-        index[count++] = i;
-        if (count == K) trace();
+        const int octant = directionOctant(ray.dir);
+        Packet& p = packets[octant];
+        p.rays[p.count] = ray;
+        p.index[p.count++] = i;
+        if (p.count == K) trace(octant);
     }
-    if (count != 0) trace();
+    for (int octant = 0; octant < 8; ++octant)
+        if (packets[octant].count != 0) trace(octant);
 }
 
 }  // namespace BVHLAB_KERNEL_NS

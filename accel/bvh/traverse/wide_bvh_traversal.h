@@ -1,6 +1,6 @@
 // The traversal skeleton of the N-wide layout (wide_bvh.h), for either query: per step one SIMD
-// test of a node's N child boxes (box_test.h); of the children hit the nearest is visited next
-// and the others are pushed (wide_stack.h). The loop keeps the ray's constants in vector
+// test of a node's N child boxes (box_test.h); of the children hit one is visited next and the
+// others are pushed (wide_stack.h). The loop keeps the ray's constants in vector
 // registers and inlines the leaf test, so a node step reads the node and nothing else. N_TR
 // counts the steps, i.e. wide nodes and leaves visited; Counting = false compiles the counters
 // out.
@@ -44,10 +44,10 @@ template <bool Counting, typename Query, bool NegativeT, bool Robust, int N>
                 // occlusion traversal).
                 if constexpr (Query::kStopsAtFirstHit) {
                     pushInLaneOrder(node, mask, stack);
+                    current = stack.pop();
                 } else {
-                    pushNearestLast(node, mask, hits.mask, hits.entry, shift, stack);
+                    current = visitNearestPushOthers(node, mask, hits.mask, hits.entry, shift, stack);
                 }
-                current = stack.pop();
                 continue;
             }
         } else {
