@@ -33,13 +33,16 @@ struct ShearedRayT {
 
     // Always inlined: the traversal kernels, compiled once per ISA (accel/bvh/traverse/
     // traversal_kernels.h), must not leave a copy of their own that the linker could pick.
+    // The direction is read from an array by the axes found: glm's vector indexed by a run-time
+    // axis compiles to a branch per read.
     [[gnu::always_inline]] explicit ShearedRayT(const Ray& ray) : org(ray.org) {
-        const V dir(ray.dir);
-        const V a = glm::abs(dir);
-        kz = (a.x >= a.y && a.x >= a.z) ? 0 : (a.y >= a.z ? 1 : 2);
-        kx = kz == 2 ? 0 : kz + 1;
-        ky = kx == 2 ? 0 : kx + 1;
-        if (dir[kz] < Real(0)) std::swap(kx, ky);  // keep the winding of the 2D projection
+        const Real dir[3] = {Real(ray.dir.x), Real(ray.dir.y), Real(ray.dir.z)};
+        const Real ax = std::abs(dir[0]), ay = std::abs(dir[1]), az = std::abs(dir[2]);
+        kz = (ax >= ay && ax >= az) ? 0 : (ay >= az ? 1 : 2);
+        const int x = kz == 2 ? 0 : kz + 1, y = x == 2 ? 0 : x + 1;
+        const bool flip = dir[kz] < Real(0);  // keep the winding of the 2D projection
+        kx = flip ? y : x;
+        ky = flip ? x : y;
         sx = dir[kx] / dir[kz];
         sy = dir[ky] / dir[kz];
         sz = Real(1) / dir[kz];

@@ -35,7 +35,8 @@ struct BlockTriangleTest {
     [[gnu::always_inline]] explicit BlockTriangleTest(const Ray& ray) {
         const ShearedRay r(ray);
         kx = r.kx, ky = r.ky, kz = r.kz;
-        orgX = F::broadcast(r.org[kx]), orgY = F::broadcast(r.org[ky]), orgZ = F::broadcast(r.org[kz]);
+        const float org[3] = {ray.org.x, ray.org.y, ray.org.z};
+        orgX = F::broadcast(org[kx]), orgY = F::broadcast(org[ky]), orgZ = F::broadcast(org[kz]);
         sx = F::broadcast(r.sx), sy = F::broadcast(r.sy), sz = F::broadcast(r.sz);
     }
 
