@@ -1,5 +1,7 @@
 #include "apps/common/timing.h"
 
+#include "apps/common/trace_rays.h"
+
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -19,32 +21,42 @@ std::string_view toString(QueryKind kind) { return kind == QueryKind::Single ? "
 
 namespace {
 
-// Times `passes` passes over n rays with `threads` threads, in ranges of kQueryRange handed to
-// traceRange(begin, end, counters); beforePass runs outside the timing. The first pass's
-// counters are kept.
+// One pass over n rays with `threads` threads, in ranges of kQueryRange handed to
+// traceRange(begin, end, counters), whose QueryCounters::counting is `counting`; returns passTotal.
+template <typename TraceRange>
+QueryCounters runPass(tbb::task_arena& arena, size_t n, bool counting, TraceRange&& traceRange) {
+    tbb::enumerable_thread_specific<QueryCounters> counters(QueryCounters{.counting = counting});
+    const size_t ranges = (n + kQueryRange - 1) / kQueryRange;
+    arena.execute([&] {
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, ranges), [&](const auto& r) {
+            for (size_t i = r.begin(); i < r.end(); ++i)
+                traceRange(i * kQueryRange, std::min(n, (i + 1) * kQueryRange), counters.local());
+        });
+    });
+    return passTotal(counters, n, counting);
+}
+
+// Times `passes` passes over n rays with counting off; beforePass runs outside the timing.
+// Then, when `count`, one more pass with counting on, untimed, whose counters are kept.
 template <typename BeforePass, typename TraceRange>
-PassResult timePasses(size_t n, int threads, int passes, BeforePass&& beforePass, TraceRange&& traceRange) {
+PassResult timePasses(size_t n, int threads, int passes, bool count, BeforePass&& beforePass,
+                      TraceRange&& traceRange) {
     PassResult result;
     if (n == 0) return result;
     std::vector<double> times, cpuTimes;
     tbb::task_arena arena(threads);
-    const size_t ranges = (n + kQueryRange - 1) / kQueryRange;
     for (int pass = 0; pass < passes; ++pass) {
         beforePass();
-        tbb::enumerable_thread_specific<QueryCounters> counters;
         const auto start = std::chrono::steady_clock::now();
         const double cpuStart = processCpuMs();
-        arena.execute([&] {
-            tbb::parallel_for(tbb::blocked_range<size_t>(0, ranges), [&](const auto& r) {
-                for (size_t i = r.begin(); i < r.end(); ++i)
-                    traceRange(i * kQueryRange, std::min(n, (i + 1) * kQueryRange), counters.local());
-            });
-        });
+        result.counters = runPass(arena, n, /*counting=*/false, traceRange);
         times.push_back(std::chrono::duration<double, std::micro>(std::chrono::steady_clock::now() - start).count() /
                         double(n));
         cpuTimes.push_back((processCpuMs() - cpuStart) * 1e3 / double(n));
-        if (pass == 0)
-            for (const QueryCounters& c : counters) result.counters += c;
+    }
+    if (count) {
+        beforePass();
+        result.counters = runPass(arena, n, /*counting=*/true, traceRange);
     }
     result.usPerQuery = median(times);
     result.cpuUsPerQuery = median(cpuTimes);
@@ -54,13 +66,13 @@ PassResult timePasses(size_t n, int threads, int passes, BeforePass&& beforePass
 }  // namespace
 
 PassResult tracePasses(const Accelerator& accel, const std::vector<Ray>& rays, bool anyHit, int threads, int passes,
-                       QueryKind kind) {
+                       QueryKind kind, bool count) {
     // Into answers allocated outside the timing.
     std::vector<Hit> hits(anyHit ? 0 : rays.size());
     std::vector<uint8_t> occluded(anyHit ? rays.size() : 0);
     const std::span<const Ray> all(rays);
     return timePasses(
-        rays.size(), threads, passes, [] {},
+        rays.size(), threads, passes, count && accel.hasCounters(), [] {},
         [&](size_t begin, size_t end, QueryCounters& local) {
             if (kind == QueryKind::Single) {
                 if (anyHit)
@@ -77,11 +89,8 @@ PassResult tracePasses(const Accelerator& accel, const std::vector<Ray>& rays, b
 
 PassResult traceNativePasses(NativeRayBatch& batch, bool anyHit, int threads, int passes) {
     return timePasses(
-        batch.size(), threads, passes, [&] { batch.reset(); },
-        [&](size_t begin, size_t end, QueryCounters& local) {
-            batch.trace(begin, end, anyHit);
-            local.queries += end - begin;
-        });
+        batch.size(), threads, passes, /*count=*/false, [&] { batch.reset(); },
+        [&](size_t begin, size_t end, QueryCounters&) { batch.trace(begin, end, anyHit); });
 }
 
 }  // namespace bvhlab

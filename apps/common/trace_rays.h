@@ -20,15 +20,32 @@ struct RayAnswers {
     std::span<RayCost> costs;
 };
 
+// What a pass over n rays counted, from its threads' counters: their sum when they counted;
+// otherwise only the queries, n, since a structure that counts nothing leaves numbers that are
+// not its work.
+template <typename PerThreadCounters>
+QueryCounters passTotal(const PerThreadCounters& perThread, size_t n, bool counting) {
+    QueryCounters total{.counting = counting};
+    if (!counting) {
+        total.queries = n;
+        return total;
+    }
+    for (const QueryCounters& c : perThread) total += c;
+    return total;
+}
+
 // The loop of traceRays, for rays and answers kept in other layouts (NumPy arrays): calls
 // traceRange(begin, end, counters) over [0, n) in ranges of at most kRaysPerRange rays, with
-// `threads` threads (0: all hardware threads), each with its thread's counters; returns their sum.
-QueryCounters forEachRayRange(size_t n, int threads,
+// `threads` threads (0: all hardware threads), each with its thread's counters, whose
+// QueryCounters::counting is `counting`; returns passTotal.
+QueryCounters forEachRayRange(size_t n, int threads, bool counting,
                               const std::function<void(size_t begin, size_t end, QueryCounters&)>& traceRange);
 
 // Answers every ray (any-hit when `anyHit`) with `threads` threads (0: all hardware threads),
-// calling onRange(rays) after each range; returns the counters of all threads.
-QueryCounters traceRays(const Accelerator& accel, std::span<const Ray> rays, bool anyHit, int threads,
+// counting as forEachRayRange says, calling onRange(rays) after each range; returns the counters
+// of all threads. A timed pass runs with counting off; N_IT, N_TR and costs come from a pass
+// with it on.
+QueryCounters traceRays(const Accelerator& accel, std::span<const Ray> rays, bool anyHit, int threads, bool counting,
                         const RayAnswers& answers, const std::function<void(size_t)>& onRange = {});
 
 }  // namespace bvhlab

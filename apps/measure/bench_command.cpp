@@ -69,7 +69,7 @@ struct Contender {
     QueryKind queries;
     const Structure* structure;                  // its builds; embree's for embree-bare and -batch
     std::vector<std::vector<double>> usPerQuery; // per ray set: one per round
-    std::vector<QueryCounters> counters;         // per ray set: of the first round
+    std::vector<QueryCounters> counters;         // per ray set: of the first round's counting pass
     // embree-batch: per ray set, each batch API's series and the one kept (the lowest median).
     std::vector<std::map<std::string, std::vector<double>>> byApi;
     std::vector<std::string> kept;
@@ -165,7 +165,8 @@ std::vector<nlohmann::json> measureRounds(const Scene& scene, const RaySets& ray
                         k.byApi[set][api].push_back(r.usPerQuery);
                     }
                 } else {
-                    r = tracePasses(*k.structure->accel, *s.rays, s.anyHit, threads, 1, k.queries);
+                    r = tracePasses(*k.structure->accel, *s.rays, s.anyHit, threads, 1, k.queries,
+                                    /*count=*/round == 0);
                 }
                 if (k.label != "embree-batch") k.usPerQuery[set].push_back(r.usPerQuery);
                 if (round == 0) k.counters[set] = r.counters;

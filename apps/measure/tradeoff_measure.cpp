@@ -30,6 +30,7 @@ std::vector<Vec3> renderImage(const Scene& scene, const Accelerator& accel, cons
                               RenderSettings settings, int samples, RenderStats* stats = nullptr) {
     const Camera camera(spec);
     settings.samples = samples;
+    settings.count = false;  // images and times only: the render time then has no counting calls
     Framebuffer fb(camera.width(), camera.height());
     const RenderStats s = render(scene, accel, camera, settings, fb);
     if (stats) *stats = s;

@@ -53,8 +53,9 @@ PythonAccelerator build(std::shared_ptr<PythonScene> scene, const std::string& n
 
 // Answers the arrays' rays into a new array of Record, one per ray, as bvhlab raycast answers
 // them (forEachRayRange), with the GIL released: each range is read into its thread's buffers,
-// answered by the batch call, and written in place by write(answers, costs, records). Costs are
-// empty unless `counters` is asked and the structure counts.
+// answered by the batch call, and written in place by write(answers, costs, records). The
+// queries count only when `counters` is asked (a caller timing them asks for none); costs are
+// empty unless it is and the structure counts.
 template <typename Record, typename Answer, typename Write>
 py::array answerInto(const PythonAccelerator& self, const RayArrays& rays, int threads, bool counters, Write&& write) {
     checkThreads(threads);
@@ -69,7 +70,7 @@ py::array answerInto(const PythonAccelerator& self, const RayArrays& rays, int t
     tbb::enumerable_thread_specific<Buffers> perThread;
     {
         py::gil_scoped_release release;  // held again before `result`, a Python object, is returned
-        forEachRayRange(rays.size(), threads, [&](size_t begin, size_t end, QueryCounters& queryCounters) {
+        forEachRayRange(rays.size(), threads, counters, [&](size_t begin, size_t end, QueryCounters& queryCounters) {
             Buffers& b = perThread.local();
             b.rays.resize(end - begin);
             b.answers.resize(end - begin);

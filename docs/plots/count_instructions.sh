@@ -4,7 +4,7 @@
 # kind, SMALL and LARGE of the bench's rays (`bvhlab rays`) are taken from all over the image
 # (cut_rays below), and each structure answers both files under `valgrind --tool=cachegrind --branch-sim=yes` (`bvhlab
 # raycast`, 1 thread, BVH::isa=avx2: valgrind runs no AVX-512, and Embree picks its AVX2 kernels
-# under it). Per query = (count of LARGE - count of SMALL) / (LARGE - SMALL): loading the scene
+# under it; without --count raycast's queries count nothing, the form that bvhlab times). Per query = (count of LARGE - count of SMALL) / (LARGE - SMALL): loading the scene
 # and building cancel. Shadow and incoherent rays are any-hit queries (raycast --any), as in the
 # bench. Writes OUT/counts.csv (and each run's log in OUT/logs) and prints a Markdown table,
 # ours / Embree's beside each structure that is not Embree.

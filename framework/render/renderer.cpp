@@ -44,16 +44,20 @@ struct ThreadState {
     std::vector<Ray> rays;  // the rays of one batch call
     std::vector<Hit> hits;
     std::vector<uint8_t> occluded;
+    std::vector<Hit> countedHits;  // the counting calls' answers, apart from those shaded
+    std::vector<uint8_t> countedOccluded;
     std::vector<RayCost> costs;
     std::vector<std::vector<ShadowQuery>> shadowsByLight;  // one batch per light
     RenderStats stats;
+    double countingNanoseconds = 0.0;
 };
 
 class TileRenderer {
 public:
     TileRenderer(const Scene& scene, const Accelerator& accel, const Camera& camera,
                  const RenderSettings& settings, const std::vector<ShadingLight>& lights, Framebuffer& fb)
-        : scene_(scene), accel_(accel), camera_(camera), settings_(settings), lights_(lights), fb_(fb) {}
+        : scene_(scene), accel_(accel), camera_(camera), settings_(settings), lights_(lights), fb_(fb),
+          counts_(settings.count && accel.hasCounters()) {}
 
     void renderTile(int x0, int y0, ThreadState& ts) const {
         const int x1 = std::min(x0 + kTileSize, fb_.width), y1 = std::min(y0 + kTileSize, fb_.height);
@@ -84,16 +88,42 @@ private:
         ts.rays.resize(n);
         for (size_t i = 0; i < n; ++i) ts.rays[i] = ts.paths[i].ray;
         ts.hits.resize(n);
-        ts.costs.resize(n);
         // Closest hits of the whole wavefront first: one batch call, timed as a block.
-        QueryStats& primary = ts.stats.primary;
-        const auto start = Clock::now();
-        accel_.findNearestBatch(ts.rays, ts.hits, primary.counters, ts.costs);
-        primary.queryNanoseconds += std::chrono::duration<double, std::nano>(Clock::now() - start).count();
-        for (size_t i = 0; i < n; ++i) recordCost(ts.paths[i].pixel, ts.costs[i]);
+        traceBatch(ts, ts.stats.primary, std::span(ts.hits), ts.countedHits);
+        if (counts_)
+            for (size_t i = 0; i < n; ++i) recordCost(ts.paths[i].pixel, ts.costs[i]);
 
         for (size_t i = 0; i < n; ++i) shade(ts, ts.paths[i], ts.hits[i], depth, firstSample);
         traceShadows(ts);
+    }
+
+    void query(std::span<const Ray> rays, std::span<Hit> hits, QueryCounters& counters, std::span<RayCost> costs) const {
+        accel_.findNearestBatch(rays, hits, counters, costs);
+    }
+    void query(std::span<const Ray> rays, std::span<uint8_t> occluded, QueryCounters& counters,
+               std::span<RayCost> costs) const {
+        accel_.isOccludedBatch(rays, occluded, counters, costs);
+    }
+
+    // One batch of ts.rays: a timed call with counting off, whose answers are shaded; then, when
+    // the render counts, an untimed call with counting on into answers of its own, for N_IT,
+    // N_TR and each ray's cost in ts.costs (a structure that counts nothing would leave numbers
+    // that are not its work).
+    template <typename Answer>
+    void traceBatch(ThreadState& ts, QueryStats& stats, std::span<Answer> answers, std::vector<Answer>& counted) const {
+        QueryCounters timed{.counting = false};
+        const auto start = Clock::now();
+        query(ts.rays, answers, timed, {});
+        const auto end = Clock::now();
+        stats.queryNanoseconds += std::chrono::duration<double, std::nano>(end - start).count();
+        stats.counters.queries += ts.rays.size();
+        if (!counts_) return;
+        QueryCounters work;
+        counted.resize(ts.rays.size());
+        ts.costs.resize(ts.rays.size());
+        query(ts.rays, std::span(counted), work, ts.costs);
+        stats.counters.addWork(work);
+        ts.countingNanoseconds += std::chrono::duration<double, std::nano>(Clock::now() - end).count();
     }
 
     void recordCost(uint32_t pixel, const RayCost& cost) const {
@@ -159,12 +189,9 @@ private:
             ts.rays.resize(n);
             for (size_t i = 0; i < n; ++i) ts.rays[i] = queries[i].ray;
             ts.occluded.resize(n);
-            ts.costs.resize(n);
-            const auto start = Clock::now();
-            accel_.isOccludedBatch(ts.rays, ts.occluded, shadow.counters, ts.costs);
-            shadow.queryNanoseconds += std::chrono::duration<double, std::nano>(Clock::now() - start).count();
+            traceBatch(ts, shadow, std::span(ts.occluded), ts.countedOccluded);
             for (size_t i = 0; i < n; ++i) {
-                recordCost(queries[i].pixel, ts.costs[i]);
+                if (counts_) recordCost(queries[i].pixel, ts.costs[i]);
                 // Unoccluded rays carry their radiance; occluded ones add nothing.
                 if (!ts.occluded[i]) fb_.color[queries[i].pixel] += queries[i].radiance;
             }
@@ -177,6 +204,7 @@ private:
     const RenderSettings& settings_;
     const std::vector<ShadingLight>& lights_;
     Framebuffer& fb_;
+    const bool counts_;  // the counting calls run
 };
 
 }  // namespace
@@ -240,7 +268,9 @@ RenderStats render(const Scene& scene, const Accelerator& accel, const Camera& c
     RenderStats total;
     total.renderMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     total.threads = threads;
+    double countingNanoseconds = 0.0;
     for (const ThreadState& ts : states) {
+        countingNanoseconds += ts.countingNanoseconds;
         total.primary.counters += ts.stats.primary.counters;
         total.primary.queryNanoseconds += ts.stats.primary.queryNanoseconds;
         total.shadow.counters += ts.stats.shadow.counters;
@@ -249,6 +279,7 @@ RenderStats render(const Scene& scene, const Accelerator& accel, const Camera& c
         total.shadowRaysSkippedBackfacing += ts.stats.shadowRaysSkippedBackfacing;
         total.bouncesSkipped += ts.stats.bouncesSkipped;
     }
+    if (!states.empty()) total.renderMs -= countingNanoseconds * 1e-6 / double(states.size());
     return total;
 }
 

@@ -1,5 +1,6 @@
 // Whitted-style rendering over tiles: primary rays, Lambert shading with a shadow ray per
-// light, mirror bounces. Counts every query by kind and times the queries alone.
+// light, mirror bounces. Counts every query by kind and times the queries alone: each batch is
+// timed with counting off, then counted by a second, untimed call on the same rays.
 #pragma once
 
 #include "framework/config/env.h"
@@ -16,6 +17,8 @@ struct RenderSettings {
     int depthLimit = 1;
     bool shadows = true;
     int threads = 0;  // 0 = all hardware threads
+    // The counting calls (N_IT, N_TR, the heat maps); off where only images and times are wanted.
+    bool count = true;
     float ambient = 0.05f;
     Vec3 background{0.05f, 0.06f, 0.09f};
     std::vector<PointLight> lights;
@@ -27,8 +30,8 @@ struct RenderSettings {
 
 // Query counts and the thread-time spent inside the accelerator for one kind of query.
 struct QueryStats {
-    QueryCounters counters;
-    double queryNanoseconds = 0.0;  // summed over threads
+    QueryCounters counters;         // queries; N_IT, N_TR of the counting calls (none: 0)
+    double queryNanoseconds = 0.0;  // of the timed calls, which count nothing; summed over threads
 
     double usPerQuery() const { return counters.queries ? queryNanoseconds * 1e-3 / double(counters.queries) : 0.0; }
 };
@@ -40,7 +43,9 @@ struct RenderStats {
     uint64_t shadowRaysSkippedDisabled = 0;   // shadows off, or no light
     uint64_t shadowRaysSkippedBackfacing = 0;  // light behind the surface (N·L <= 0)
     uint64_t bouncesSkipped = 0;               // hit surfaces that reflect when depthLimit ended the path
-    double renderMs = 0.0;                     // wall time of the whole render, build excluded
+    // Wall time of the whole render, build excluded, less the counting calls: their thread time
+    // over the threads that rendered (exact on one thread).
+    double renderMs = 0.0;
     int threads = 0;
 };
 

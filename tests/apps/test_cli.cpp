@@ -129,7 +129,7 @@ TEST(Cli, RaycastAnswersRayFileWithNaive) {
     Result r = run("raycast -DASDS::type=naive --scene " + scene.string() + " --rays " + raysFile.string() +
                    " --out " + hitsFile.string());
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    EXPECT_NE(r.output.find("N_IT"), std::string::npos);
+    EXPECT_NE(r.output.find("naive closest-hit queries: 3  T_R "), std::string::npos) << r.output;
     std::vector<Hit> hits = readHitFile(hitsFile);
     ASSERT_EQ(hits.size(), 3u);
     EXPECT_FLOAT_EQ(hits[0].t, 5.0f);

@@ -38,6 +38,19 @@ def test_stats(default_scene):
     assert bvhlab.build(default_scene, "embree").stats["nodes"] is None  # its tree is invisible
 
 
+@pytest.mark.parametrize("name", ["sahbvh8", "sahbvh", "naive"])
+def test_answers_equal_with_and_without_counters(default_scene, name):
+    """counters=False asks for queries that count nothing; the answers are those that count, bit for bit."""
+    accel = bvhlab.build(default_scene, name)
+    rays = bvhlab.rays(default_scene, env={"Camera::width": 40, "Camera::height": 30})
+    counted, uncounted = accel.intersect(**rays, counters=True), accel.intersect(**rays)
+    assert counted["n_tr"].sum() > 0
+    for field in ("t", "prim", "u", "v"):
+        assert counted[field].tobytes() == uncounted[field].tobytes(), field
+    occluded = accel.occluded(**rays, counters=True)
+    np.testing.assert_array_equal(occluded["occluded"], accel.occluded(**rays))
+
+
 def test_float64_and_per_ray_intervals(quad_scene):
     accel = bvhlab.build(quad_scene, "sahbvh")
     origins, directions = rays_down(100)
