@@ -86,6 +86,11 @@ const AcceleratorInfo* findAccelerator(const std::string& name) {
     return nullptr;
 }
 
+std::unique_ptr<Accelerator> guardLikeAPlugin(std::unique_ptr<Accelerator> inner, const std::string& plugin,
+                                              const std::string& name) {
+    return guardAccelerator(std::move(inner), plugin, name);
+}
+
 void addAccelerator(AcceleratorInfo info) {
     if (const AcceleratorInfo* taken = findAccelerator(info.name))
         throw InputError(fmt::format("{}: accelerator '{}' is already defined by {}", info.plugin, info.name,

@@ -39,6 +39,11 @@ const AcceleratorInfo* findAccelerator(const std::string& name);
 // Throws InputError if the name is taken.
 void addAccelerator(AcceleratorInfo info);
 
+// `inner` behind the guard every plugin's accelerator is called through, as if `plugin` had
+// added it: for measuring what the guard costs (bvhlab bench's nothing-guarded row).
+std::unique_ptr<Accelerator> guardLikeAPlugin(std::unique_ptr<Accelerator> inner, const std::string& plugin,
+                                              const std::string& name);
+
 // Adds a plugin's builder as the accelerators NAME, NAME4 and NAME8 (accel/bvh/plugin_builder.h),
 // guarded as addAccelerator's are.
 void addBvhBuilder(const PluginBuilder& builder, const std::string& plugin);

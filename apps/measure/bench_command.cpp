@@ -8,7 +8,6 @@
 // embree-robust go through our interface, as every structure of ours does; nothing and
 // nothing-guarded time a query that does nothing through it (nothing_accelerator.h), bare and
 // behind the guard of a plugin's structure: the floor under every row. A benchmark, not a test.
-#include "accel/guarded_accelerator.h"
 #include "accel/registry.h"
 #include "apps/common/accel_config.h"
 #include "apps/common/cli_common.h"
@@ -55,7 +54,7 @@ const char* const kNothingRows[] = {"nothing", "nothing-guarded"};
 std::unique_ptr<Accelerator> createFor(const Structure& k) {
     if (k.config.label == kNothingRows[0]) return std::make_unique<NothingAccelerator>();
     if (k.config.label == kNothingRows[1])
-        return guardAccelerator(std::make_unique<NothingAccelerator>(), "(bvhlab bench)", "nothing");
+        return guardLikeAPlugin(std::make_unique<NothingAccelerator>(), "(bvhlab bench)", "nothing");
     return createAccelerator(k.config.name, k.env);
 }
 
