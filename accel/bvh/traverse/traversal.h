@@ -6,8 +6,7 @@
 // What the counters count (QueryCounters, Havran's terms):
 //   N_TR (traversalSteps): nodes visited. The root is visited by every valid query; any other
 //     node is visited when the ray enters its box before the current closest hit. A node
-//     pushed on the stack and dropped on pop because a closer hit was found meanwhile is not
-//     counted (it costs one comparison). A binary tree's inner visit tests two boxes, so its
+//     pushed on the stack and dropped because a closer hit was found meanwhile is not counted. A binary tree's inner visit tests two boxes, so its
 //     box tests = 1 + 2 * (inner nodes visited); a wide tree's steps are wide nodes and
 //     leaves, not comparable with a binary tree's.
 //   N_IT (intersectionTests): ray-primitive tests, i.e. the sizes of the leaves visited (an
