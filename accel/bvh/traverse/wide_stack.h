@@ -87,6 +87,7 @@ template <typename F>
         return __builtin_ctz(unsigned(_mm256_movemask_ps(_mm256_cmp_ps(e, least, _CMP_EQ_OQ)) & mask));
     }
 #endif
+    (void)hit;
     alignas(64) float entries[F::kLanes];
     entry.storeu(entries);
     int nearest = __builtin_ctz(unsigned(mask));
