@@ -133,10 +133,9 @@ struct PacketFrustum {
         tmin = F::broadcast(tminLo);
     }
 
-    // The children that a ray of the packet with tmax <= tmaxHi may hit, as a bit mask; never an
-    // empty lane (+inf to -inf: every distance in is +inf, every one out -inf).
+    // The children that a ray of the packet with tmax <= tmaxHi may hit, as a bit mask.
     [[gnu::always_inline]] int test(const WideNode<N>& node, float tmaxHi) const {
-        if (!enabled) return movemask(F::load(node.lower[0]) <= F::load(node.upper[0]));
+        if (!enabled) return (1 << N) - 1;
         const float* bounds = &node.lower[0][0];
         F nearT[3], farT[3];
         for (int a = 0; a < 3; ++a) {
@@ -227,10 +226,10 @@ void tracePacket(const WideBvh<N>& bvh, const Ray* rays, int count, int octant, 
             int order[N];  // the children hit: closest hit far to near for the octant, any hit in lane order
             int hits = 0;
             const int candidates = frustum.test(node, tmaxHi);
-            const int positions = Query::kStopsAtFirstHit ? candidates : positionsOf(node, candidates, 3 * octant);
-            for (int m = positions; m != 0; m &= m - 1) {
-                const int p = std::countr_zero(unsigned(m));
+            for (int p = 0; p < N; ++p) {
                 const int c = Query::kStopsAtFirstHit ? p : int(node.order[p] >> (3 * octant) & 7);
+                if ((candidates >> c & 1) == 0) continue;
+                if (!(node.lower[0][c] <= node.upper[0][c])) continue;  // an empty lane
                 const int mask = boxTest.intersect(node, c, tmax, entries[c]) & active;
                 if (mask == 0) continue;
                 hitRays[c] = mask;

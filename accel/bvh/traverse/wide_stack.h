@@ -74,24 +74,6 @@ inline constexpr std::array<uint64_t, 256> kCompress = [] {
 
 }  // namespace wide_stack
 
-// The positions p of `node`'s order for the ray octant `shift` / 3 (WideNode::order) whose
-// child is in `mask`, as bits: walked in order without a branch per child.
-template <int N>
-[[gnu::always_inline]] inline int positionsOf(const WideNode<N>& node, int mask, int shift) {
-#if defined(__AVX2__) && defined(__FMA__)
-    if constexpr (N == 8) {
-        const __m256i order = _mm256_srl_epi32(_mm256_load_si256(reinterpret_cast<const __m256i*>(node.order)),
-                                               _mm_cvtsi32_si128(shift));
-        const __m256i bits = _mm256_sllv_epi32(_mm256_set1_epi32(1), _mm256_and_si256(order, _mm256_set1_epi32(7)));
-        return _mm256_movemask_ps(
-            _mm256_castsi256_ps(_mm256_cmpeq_epi32(_mm256_and_si256(bits, _mm256_set1_epi32(mask)), bits)));
-    }
-#endif
-    int positions = 0;
-    for (int p = 0; p < N; ++p) positions |= (mask >> (node.order[p] >> shift & 7) & 1) << p;
-    return positions;
-}
-
 // Of the children of `node` in `mask` (at least two), returns the nearest (by where the ray
 // enters them: `entry`, and `hit` is `mask` in lanes) and pushes the others far to near in the
 // node's order for the ray's octant (`shift` = 3 * octant): the next child is always the
@@ -105,7 +87,12 @@ template <int N, typename F>
     if constexpr (N == 8 && std::is_same_v<F, simd::Avx>) {
         const __m256i order = _mm256_srl_epi32(_mm256_load_si256(reinterpret_cast<const __m256i*>(node.order)),
                                                _mm_cvtsi32_si128(shift));
-        const __m256i index = wide_stack::compress(order, positionsOf(node, others, shift));
+        // Bit p of `ordered`: the child at position p is pushed.
+        const __m256i lanes = _mm256_and_si256(order, _mm256_set1_epi32(7));
+        const __m256i bits = _mm256_sllv_epi32(_mm256_set1_epi32(1), lanes);
+        const int ordered = _mm256_movemask_ps(_mm256_castsi256_ps(
+            _mm256_cmpeq_epi32(_mm256_and_si256(bits, _mm256_set1_epi32(others)), bits)));
+        const __m256i index = wide_stack::compress(order, ordered);
         const __m256i children = _mm256_load_si256(reinterpret_cast<const __m256i*>(node.child));
         _mm256_storeu_si256(reinterpret_cast<__m256i*>(stack.child + stack.size),
                             _mm256_permutevar8x32_epi32(children, index));

@@ -258,8 +258,7 @@ TEST(PacketTraversal, SixteenRayPacketsAnswerAsSingleRays) {
 // The frustum never culls a child that a ray of its packet hits: random boxes (some flat, some
 // empty lanes) against packets of one octant from a small region, with origins on the boxes'
 // planes and near-axis-parallel directions mixed in, and a ray with an infinite 1/dir now and
-// then (which turns the frustum off); an empty lane never passes. And it does cull: the test is
-// not vacuous.
+// then (which turns the frustum off). And it does cull: the test is not vacuous.
 TEST(PacketTraversal, FrustumCullsNoChildThatARayOfThePacketHits) {
     constexpr int K = kPacketWidth, N = 8;
     std::mt19937 rng(21);
@@ -297,9 +296,6 @@ TEST(PacketTraversal, FrustumCullsNoChildThatARayOfThePacketHits) {
         alignas(64) float tmax[K]{}, entries[K];
         for (int k = 0; k < count; ++k) tmax[k] = rays[k].tmax;
         const int candidates = frustum.test(node, *std::max_element(tmax, tmax + count));
-        if (trial % 3 == 0) {
-            ASSERT_EQ(candidates >> 7 & 1, 0) << "trial " << trial << ": the empty lane";
-        }
         for (int c = 0; c < N; ++c) {
             const int rayHits = boxTest.intersect(node, c, tmax, entries) & ((1 << count) - 1);
             if (rayHits != 0) {
