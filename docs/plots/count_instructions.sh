@@ -1,5 +1,5 @@
 #!/bin/sh
-# #40's yardstick (docs/performance.md): instructions and simulated branch mispredicts per query,
+# The instruction-count yardstick of docs/performance.md: instructions and simulated branch mispredicts per query,
 # counted by valgrind's cachegrind instead of timed, so that no noise moves them. For each scene and
 # kind, SMALL and LARGE of the bench's rays (`bvhlab rays`) are taken from all over the image
 # (cut_rays below), and each structure answers both files under `valgrind --tool=cachegrind --branch-sim=yes` (`bvhlab
