@@ -62,7 +62,7 @@ void BvhAccelerator<Layout>::build(const PrimitiveSet& prims) {
 }
 
 template <typename Layout>
-BuildStats BvhAccelerator<Layout>::statistics() const {
+BuildStats BvhAccelerator<Layout>::buildStats() const {
     if (statistics_) return *statistics_;
     const Bvh& binary = binaryTree();
     BuildStats stats;
@@ -112,8 +112,8 @@ bool BvhAccelerator<Layout>::isOccluded(const Ray& ray, QueryCounters& counters)
 }
 
 template <typename Layout>
-void BvhAccelerator<Layout>::findNearestBatch(std::span<const Ray> rays, std::span<Hit> hits, QueryCounters& counters,
-                                              std::span<RayCost> costs) const {
+void BvhAccelerator<Layout>::findNearestBatch(View<const Ray> rays, View<Hit> hits, QueryCounters& counters,
+                                              View<RayCost> costs) const {
     if (quadrics_.empty()) [[likely]]
         return kernels_.forCounters(counters, !costs.empty())
             .findNearestBatch(tree_, rays, hits, counters, costs, traversal_.packetFallback);
@@ -127,8 +127,8 @@ void BvhAccelerator<Layout>::findNearestBatch(std::span<const Ray> rays, std::sp
 }
 
 template <typename Layout>
-void BvhAccelerator<Layout>::isOccludedBatch(std::span<const Ray> rays, std::span<uint8_t> occluded,
-                                             QueryCounters& counters, std::span<RayCost> costs) const {
+void BvhAccelerator<Layout>::isOccludedBatch(View<const Ray> rays, View<uint8_t> occluded,
+                                             QueryCounters& counters, View<RayCost> costs) const {
     if (quadrics_.empty()) [[likely]]
         return kernels_.forCounters(counters, !costs.empty())
             .isOccludedBatch(tree_, rays, occluded, counters, costs, traversal_.packetFallback);

@@ -1,6 +1,7 @@
 #include "accel/bvh/plugin_builder.h"
 
 #include "accel/bvh/builders/merge_tree_builder.h"
+#include "framework/config/plugin_settings.h"
 
 #include <fmt/core.h>
 
@@ -11,8 +12,8 @@ namespace bvhlab {
 
 namespace {
 
-BuilderSettings builderSettings(const Env& env, uint32_t leafBlock, const BvhBuildConfig& config) {
-    return {env, leafBlock, config.cTraversal, config.cIntersect};
+BuilderSettings builderSettings(const PluginSettings& keys, uint32_t leafBlock, const BvhBuildConfig& config) {
+    return {keys, leafBlock, config.cTraversal, config.cIntersect};
 }
 
 class PluginSplitBuilder final : public TopDownBuilder {
@@ -34,22 +35,26 @@ private:
 
 }  // namespace
 
-BvhBuilder pluginBvhBuilder(const PluginBuilder& plugin, const Env& env, uint32_t leafBlock) {
+BvhBuilder pluginBvhBuilder(const LoadedBuilder& plugin, const Env& env, uint32_t leafBlock) {
     BvhBuilder builder{plugin.name, {}, {}, true};
     const std::shared_ptr<const Env> settingsEnv = std::make_shared<Env>(env);
+    const std::string owner = fmt::format("builder '{}'", plugin.name);
     if (plugin.splitRule) {
-        builder.splitRule = [make = plugin.splitRule, settingsEnv, leafBlock, name = plugin.name](const BvhBuildConfig& config) {
-            std::unique_ptr<SplitRule> rule = make(builderSettings(*settingsEnv, leafBlock, config));
-            if (!rule) throw std::runtime_error(fmt::format("builder '{}': its split rule factory returned nothing", name));
+        builder.splitRule = [plugin, settingsEnv, leafBlock, owner](const BvhBuildConfig& config) {
+            const EnvPluginSettings keys(*settingsEnv, plugin.keys, owner);
+            std::unique_ptr<SplitRule> rule(plugin.splitRule(builderSettings(keys, leafBlock, config)));
+            if (!rule) throw std::runtime_error(fmt::format("{}: its split rule factory returned nothing", owner));
             return std::unique_ptr<TopDownBuilder>(std::make_unique<PluginSplitBuilder>(config, std::move(rule)));
         };
     } else {
-        builder.wholeTree = [merge = plugin.mergeTree, settingsEnv, leafBlock, name = plugin.name](
-                                const BvhBuildConfig& config, const PrimitiveSet& prims) {
-            return buildFromMerges(name, config, prims, [&](std::span<const PrimRef> refs) {
+        builder.wholeTree = [plugin, settingsEnv, leafBlock, owner](const BvhBuildConfig& config,
+                                                                    const PrimitiveSet& prims) {
+            return buildFromMerges(plugin.name, config, prims, [&](std::span<const PrimRef> refs) {
+                const EnvPluginSettings keys(*settingsEnv, plugin.keys, owner);
+                std::vector<Merge> merges(refs.empty() ? 0 : refs.size() - 1);
+                plugin.mergeTree(refs, merges, builderSettings(keys, leafBlock, config));
                 std::vector<uint32_t> children;
-                for (const Merge& m : merge(refs, builderSettings(*settingsEnv, leafBlock, config)))
-                    children.insert(children.end(), {m.left, m.right});
+                for (const Merge& m : merges) children.insert(children.end(), {m.left, m.right});
                 return children;
             });
         };
