@@ -3,7 +3,7 @@
 #include "accel/bvh/builder_table.h"
 #include "accel/bvh/bvh_accelerator.h"
 #include "accel/bvh/bvh_env.h"
-#include "accel/bvh/plugin_builder.h"
+#include "accel/plugins/plugin_builder.h"
 #include "accel/embree/embree_accelerator.h"
 #include "accel/embree/embree_env.h"
 #include "accel/guarded_accelerator.h"

@@ -3,7 +3,7 @@
 // (see docs/adding-an-accelerator.md).
 #pragma once
 
-#include "accel/bvh/plugin_builder.h"
+#include "accel/plugins/plugin_builder.h"
 #include "framework/config/env.h"
 #include "framework/core/accelerator.h"
 
@@ -44,7 +44,7 @@ void addAccelerator(AcceleratorInfo info);
 std::unique_ptr<Accelerator> guardLikeAPlugin(std::unique_ptr<Accelerator> inner, const std::string& plugin,
                                               const std::string& name);
 
-// Adds a plugin's builder as the accelerators NAME, NAME4 and NAME8 (accel/bvh/plugin_builder.h),
+// Adds a plugin's builder as the accelerators NAME, NAME4 and NAME8 (accel/plugins/plugin_builder.h),
 // described by `description` and guarded as addAccelerator's are.
 void addBvhBuilder(const LoadedBuilder& builder, const std::string& description, const std::string& plugin);
 

@@ -37,13 +37,16 @@ const std::map<std::string, std::vector<std::string>> kMayInclude = {
     {"accel/bvh",
      {"framework/core", "framework/config", "accel/bvh/simd", "accel/bvh/layout", "accel/bvh/builders",
       "accel/bvh/traverse"}},
-    {"accel", {"framework/core", "framework/config", "accel/naive", "accel/embree", "accel/bvh"}},
+    {"accel/plugins", {"framework/core", "framework/config", "accel/bvh/builders"}},
+    {"accel", {"framework/core", "framework/config", "accel/naive", "accel/embree", "accel/bvh", "accel/plugins"}},
 };
 
-// apps/ sees all of framework/ and, of accel/, only the registry: a structure is reached by
-// its name and the Accelerator interface.
+// apps/ sees all of framework/ and, of accel/, only the registry and the plugin loader: a
+// structure is reached by its name and the Accelerator interface, a plugin file opened by the
+// loader and what it adds registered by name.
 bool appMayInclude(const std::string& path) {
-    return path.starts_with("framework/") || path.starts_with("apps/") || path == "accel/registry.h";
+    return path.starts_with("framework/") || path.starts_with("apps/") || path == "accel/registry.h" ||
+           path == "accel/plugins/plugin_loader.h";
 }
 
 // The targets of a file's #include "..." (quoted) or #include <...> lines.

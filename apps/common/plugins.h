@@ -1,7 +1,8 @@
-// Loading plugins (docs/plugins.md): shared libraries whose entry point (<bvhlab/plugin.h>) adds
-// accelerators, with their env keys, to the registry at run time. A plugin
-// is loaded from --plugin FILE, from ASDS::plugins in an env layer, or found by the name of the
-// accelerator asked for (`-DASDS::type=NAME` loads NAME.so from the plugin folders).
+// Loading plugins into the program (docs/plugins.md): the file opened by the plugin loader
+// (accel/plugins/plugin_loader.h), what it adds registered with the registry and its keys with
+// the program's, the plugin recorded in the provenance. A plugin is loaded from --plugin FILE,
+// from ASDS::plugins in an env layer, or found by the name of the accelerator asked for
+// (`-DASDS::type=NAME` loads NAME.so from the plugin folders).
 #pragma once
 
 #include <cstdint>

@@ -1,4 +1,4 @@
-#include "accel/bvh/plugin_builder.h"
+#include "accel/plugins/plugin_builder.h"
 
 #include "accel/bvh/builders/merge_tree_builder.h"
 #include "framework/config/plugin_settings.h"
