@@ -117,13 +117,7 @@ void BvhAccelerator<Layout>::findNearestBatch(View<const Ray> rays, View<Hit> hi
     if (quadrics_.empty()) [[likely]]
         return kernels_.forCounters(counters, !costs.empty())
             .findNearestBatch(tree_, rays, hits, counters, costs, traversal_.packetFallback);
-    for (size_t i = 0; i < rays.size(); ++i) {
-        const QueryCounters before = counters;
-        Hit hit;
-        findNearest(rays[i], hit, counters);
-        hits[i] = hit;
-        if (!costs.empty()) costs[i] = costBetween(before, counters);
-    }
+    Accelerator::findNearestBatch(rays, hits, counters, costs);
 }
 
 template <typename Layout>
@@ -132,11 +126,7 @@ void BvhAccelerator<Layout>::isOccludedBatch(View<const Ray> rays, View<uint8_t>
     if (quadrics_.empty()) [[likely]]
         return kernels_.forCounters(counters, !costs.empty())
             .isOccludedBatch(tree_, rays, occluded, counters, costs, traversal_.packetFallback);
-    for (size_t i = 0; i < rays.size(); ++i) {
-        const QueryCounters before = counters;
-        occluded[i] = isOccluded(rays[i], counters) ? 1 : 0;
-        if (!costs.empty()) costs[i] = costBetween(before, counters);
-    }
+    Accelerator::isOccludedBatch(rays, occluded, counters, costs);
 }
 
 template <typename Layout>
