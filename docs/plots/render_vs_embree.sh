@@ -1,5 +1,5 @@
 #!/bin/sh
-# #31's render goal (docs/performance.md): the query time of `bvhlab render` with the default
+# The render comparison of docs/performance.md: the query time of `bvhlab render` with the default
 # structure against -DASDS::type=embree, same settings, 1 thread, on conference, sibenik and
 # teapots. The two alternate ROUNDS times per scene; printed are the medians of T_R (primary and
 # shadow rays) and of the per-round ratios ours / Embree's.

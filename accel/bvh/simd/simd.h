@@ -107,6 +107,11 @@ struct Scalar {
         for (int i = 0; i < N; ++i) a.lane[i] = std::abs(a.lane[i]);
         return a;
     }
+    // a with its sign flipped where b's sign bit is set (-0 and NaN included): a * sign(b), exact.
+    friend Scalar xorSign(Scalar a, Scalar b) {
+        for (int i = 0; i < N; ++i) a.lane[i] = std::signbit(b.lane[i]) ? -a.lane[i] : a.lane[i];
+        return a;
+    }
     friend Scalar min(Scalar a, Scalar b) { return zipWith(a, b, [](float x, float y) { return simd::min(x, y); }); }
     friend Scalar max(Scalar a, Scalar b) { return zipWith(a, b, [](float x, float y) { return simd::max(x, y); }); }
     friend Mask operator<=(Scalar a, Scalar b) {
@@ -188,6 +193,7 @@ struct Sse {
     }
 #endif
     friend Sse abs(Sse a) { return {_mm_andnot_ps(_mm_set1_ps(-0.0f), a.v)}; }
+    friend Sse xorSign(Sse a, Sse b) { return {_mm_xor_ps(a.v, _mm_and_ps(b.v, _mm_set1_ps(-0.0f)))}; }
     friend Sse min(Sse a, Sse b) { return {_mm_min_ps(a.v, b.v)}; }
     friend Sse max(Sse a, Sse b) { return {_mm_max_ps(a.v, b.v)}; }
     friend Mask operator<=(Sse a, Sse b) { return {_mm_cmple_ps(a.v, b.v)}; }
@@ -236,6 +242,7 @@ struct Avx {
     friend Avx fmadd(Avx a, Avx b, Avx c) { return {_mm256_fmadd_ps(a.v, b.v, c.v)}; }
     friend Avx fmsub(Avx a, Avx b, Avx c) { return {_mm256_fmsub_ps(a.v, b.v, c.v)}; }
     friend Avx abs(Avx a) { return {_mm256_andnot_ps(_mm256_set1_ps(-0.0f), a.v)}; }
+    friend Avx xorSign(Avx a, Avx b) { return {_mm256_xor_ps(a.v, _mm256_and_ps(b.v, _mm256_set1_ps(-0.0f)))}; }
     friend Avx min(Avx a, Avx b) { return {_mm256_min_ps(a.v, b.v)}; }
     friend Avx max(Avx a, Avx b) { return {_mm256_max_ps(a.v, b.v)}; }
     // Ordered predicates: false on NaN, as the scalar <= and SSE's cmpleps.
@@ -289,6 +296,7 @@ struct Avx512 {
     friend Avx512 fmadd(Avx512 a, Avx512 b, Avx512 c) { return {_mm512_fmadd_ps(a.v, b.v, c.v)}; }
     friend Avx512 fmsub(Avx512 a, Avx512 b, Avx512 c) { return {_mm512_fmsub_ps(a.v, b.v, c.v)}; }
     friend Avx512 abs(Avx512 a) { return {_mm512_abs_ps(a.v)}; }
+    friend Avx512 xorSign(Avx512 a, Avx512 b) { return {_mm512_xor_ps(a.v, _mm512_and_ps(b.v, _mm512_set1_ps(-0.0f)))}; }
     // vminps/vmaxps: the second operand when either is NaN, as minps.
     friend Avx512 min(Avx512 a, Avx512 b) { return {_mm512_min_ps(a.v, b.v)}; }
     friend Avx512 max(Avx512 a, Avx512 b) { return {_mm512_max_ps(a.v, b.v)}; }
@@ -330,6 +338,30 @@ struct Best<16> {
 
 template <int N>
 using Floats = typename detail::Best<N>::type;
+
+// The lane of the least value among the lanes in `lanes` (`mask` as bits, not 0), the lowest of
+// equal ones: a vector minimum where the backend has one for 8 lanes.
+template <typename F>
+[[gnu::always_inline]] inline int leastLane(F values, typename F::Mask lanes, int mask) {
+#if defined(__AVX2__) && defined(__FMA__)
+    if constexpr (std::is_same_v<F, Avx>) {
+        const __m256 v = _mm256_blendv_ps(_mm256_set1_ps(__builtin_inff()), values.v, lanes.m);
+        __m256 least = _mm256_min_ps(v, _mm256_permute2f128_ps(v, v, 1));
+        least = _mm256_min_ps(least, _mm256_permute_ps(least, 0x4E));
+        least = _mm256_min_ps(least, _mm256_permute_ps(least, 0xB1));
+        return __builtin_ctz(unsigned(_mm256_movemask_ps(_mm256_cmp_ps(v, least, _CMP_EQ_OQ)) & mask));
+    }
+#endif
+    (void)lanes;
+    alignas(64) float v[F::kLanes];
+    values.storeu(v);
+    int least = __builtin_ctz(unsigned(mask));
+    for (int m = mask & (mask - 1); m != 0; m &= m - 1) {
+        const int lane = __builtin_ctz(unsigned(m));
+        if (v[lane] < v[least]) least = lane;
+    }
+    return least;
+}
 
 // Runs f(Floats<4>{}) or, with vector = false (BVH::simd=false), f(Scalar<4>{}): code written
 // once against the API, its backend chosen at run time.

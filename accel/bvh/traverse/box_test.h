@@ -53,9 +53,13 @@ struct RaySlabs {
     float tmin;
 
     [[gnu::always_inline]] explicit RaySlabs(const Ray& ray) : tmin(ray.tmin) {
+        // One vector division for the three axes (the fourth lane divides 1 by 1).
+        using F4 = simd::Floats<4>;
+        alignas(16) float dir[4] = {ray.dir.x, ray.dir.y, ray.dir.z, 1.0f}, invDir[4];
+        (F4::broadcast(1.0f) / F4::load(dir)).store(invDir);
         for (int a = 0; a < 3; ++a) {
             org[a] = ray.org[a];
-            inv[a] = 1.0f / ray.dir[a];
+            inv[a] = invDir[a];
             invFar[a] = inv[a] * (1.0f + kFarMargin<Robust>);
             nearIsUpper[a] = std::signbit(inv[a]) ? 1 : 0;
         }

@@ -3,7 +3,8 @@
 // architecture"): up to kPacketWidth rays of one direction octant walk the tree together, one
 // SIMD lane per ray. At a node, each child box is tested against all active rays at once; a
 // child is visited when any of them hits it, with the mask of those that do, in the node's
-// order for the octant (WideNode::order), nearest first. Leaves are tested ray by ray with the single-ray block test. A node reached by at most
+// order for the octant (WideNode::order), nearest first; children outside the packet's frustum
+// (PacketFrustum) are culled before that, by one test for all. Leaves are tested ray by ray with the single-ray block test. A node reached by at most
 // `fallback` active rays no longer pays for a packet step (a packet tests one box per SIMD
 // test, a single ray all N): each of its rays finishes that subtree alone, by the single-ray
 // skeleton (traverseFrom, wide_bvh_traversal.h).
@@ -24,8 +25,10 @@
 #include "accel/bvh/simd/kernel_namespace.h"
 #include "accel/bvh/traverse/wide_bvh_traversal.h"
 
+#include <algorithm>
 #include <array>
 #include <bit>
+#include <cmath>
 #include <span>
 #include <type_traits>
 #include <utility>
@@ -87,6 +90,67 @@ struct PacketBoxTest {
     }
 };
 
+// The packet as one frustum (Reshetov, Soupikov and Hurley 2005; Embree's coherent traversal):
+// per axis the least and greatest origin, 1/dir and far-margin 1/dir of its rays. Its test of a
+// node's N children, one N-lane test, culls every child that no ray of the packet can hit, so
+// the K-lane tests of PacketBoxTest run only for the others. It bounds each ray's box test
+// exactly, not only up to rounding: a ray's slab distance is fl(fl(b - o) * inv), and the same
+// operations on the extreme origin and the extreme 1/dir values give a bound because rounding is
+// monotonic. Only NaN slab distances, which a ray's test drops, would escape the bound: they
+// need an infinite 1/dir, so a packet with one has no frustum (every child passes).
+template <int N, bool Robust>
+struct PacketFrustum {
+    using F = simd::Floats<N>;
+    bool enabled = true;
+    // Per axis: the origin subtracted from the near and the far bound, the range of 1/dir and
+    // of the far-margin 1/dir; the least tmin.
+    F nearOrg[3], farOrg[3], invLo[3], invHi[3], invFarLo[3], invFarHi[3], tmin;
+    int nearOffset[3], farOffset[3];
+
+    template <int K>
+    PacketFrustum(const PacketBoxTest<K, N, Robust>& rays, int count) {
+        float tminLo = kInfinity;
+        for (int a = 0; a < 3; ++a) {
+            float oLo = kInfinity, oHi = -kInfinity, iLo = kInfinity, iHi = -kInfinity, fLo = kInfinity, fHi = -kInfinity;
+            for (int k = 0; k < count; ++k) {
+                oLo = std::min(oLo, rays.org[a][k]), oHi = std::max(oHi, rays.org[a][k]);
+                iLo = std::min(iLo, rays.inv[a][k]), iHi = std::max(iHi, rays.inv[a][k]);
+                fLo = std::min(fLo, rays.invFar[a][k]), fHi = std::max(fHi, rays.invFar[a][k]);
+                enabled &= std::isfinite(rays.inv[a][k]) && std::isfinite(rays.invFar[a][k]);
+                tminLo = std::min(tminLo, rays.tmin[k]);
+            }
+            // A ray's near distance grows with b - o where 1/dir > 0 (the near bound is the
+            // lower one) and shrinks where 1/dir < 0: the least comes from the greatest origin
+            // in the first case, the least in the second; the far distance the other way round.
+            const bool positive = rays.nearOffset[a] < 3 * N;
+            nearOrg[a] = F::broadcast(positive ? oHi : oLo);
+            farOrg[a] = F::broadcast(positive ? oLo : oHi);
+            invLo[a] = F::broadcast(iLo), invHi[a] = F::broadcast(iHi);
+            invFarLo[a] = F::broadcast(fLo), invFarHi[a] = F::broadcast(fHi);
+            nearOffset[a] = rays.nearOffset[a];
+            farOffset[a] = rays.farOffset[a];
+        }
+        tmin = F::broadcast(tminLo);
+    }
+
+    // The children that a ray of the packet with tmax <= tmaxHi may hit, as a bit mask; never an
+    // empty lane (+inf to -inf: every distance in is +inf, every one out -inf).
+    [[gnu::always_inline]] int test(const WideNode<N>& node, float tmaxHi) const {
+        if (!enabled) return movemask(F::load(node.lower[0]) <= F::load(node.upper[0]));
+        const float* bounds = &node.lower[0][0];
+        F nearT[3], farT[3];
+        for (int a = 0; a < 3; ++a) {
+            const F dNear = F::load(bounds + nearOffset[a]) - nearOrg[a];
+            const F dFar = F::load(bounds + farOffset[a]) - farOrg[a];
+            nearT[a] = min(dNear * invLo[a], dNear * invHi[a]);
+            farT[a] = max(dFar * invFarLo[a], dFar * invFarHi[a]);
+        }
+        const F entry = max(max(nearT[0], nearT[1]), max(nearT[2], tmin));
+        const F exit = min(min(farT[0], farT[1]), min(farT[2], F::broadcast(tmaxHi)));
+        return movemask(entry <= exit);
+    }
+};
+
 // A child to visit (a wide_child word) with the rays (a lane mask) that hit it; their entries
 // are kept beside the stack (closest hit).
 struct PacketEntry {
@@ -116,6 +180,8 @@ void tracePacket(const WideBvh<N>& bvh, const Ray* rays, int count, int octant, 
     auto queries = arrayOf<K>([&](size_t k) { return Query(rayOf(k)); });
     alignas(64) float tmax[K]{};
     for (int k = 0; k < count; ++k) tmax[k] = queries[k].tmax;
+    const PacketFrustum<N, Robust> frustum(boxTest, count);
+    float tmaxHi = *std::max_element(tmax, tmax + count);
     uint64_t steps[K]{}, tests[K]{};
     const WideNode<N>* nodes = bvh.nodes.data();
 
@@ -129,6 +195,9 @@ void tracePacket(const WideBvh<N>& bvh, const Ray* rays, int count, int octant, 
             if (queries[k].occluded) live &= ~(1 << k);
         }
     };
+    const auto shortenFrustum = [&] {
+        if constexpr (!Query::kStopsAtFirstHit) tmaxHi = *std::max_element(tmax, tmax + count);
+    };
     PacketEntry current{wide_child::inner(0), live};  // the root
     for (;;) {
         const int active = current.rays;
@@ -139,6 +208,7 @@ void tracePacket(const WideBvh<N>& bvh, const Ray* rays, int count, int octant, 
                 testLeafBlocks<Counting>(queries[k], triangleTests[k], bvh, current.child, rays[k].tmin, tests[k]);
                 finished(k);
             }
+            shortenFrustum();
         } else if (std::popcount(unsigned(active)) <= fallback) {
             for (int m = active; m != 0; m &= m - 1) {
                 const int k = std::countr_zero(unsigned(m));
@@ -146,6 +216,7 @@ void tracePacket(const WideBvh<N>& bvh, const Ray* rays, int count, int octant, 
                 traverseFrom<Counting>(bvh, single, triangleTests[k], queries[k], current.child, steps[k], tests[k]);
                 finished(k);
             }
+            shortenFrustum();
         } else {
             if constexpr (Counting) {
                 for (int m = active; m != 0; m &= m - 1) ++steps[std::countr_zero(unsigned(m))];
@@ -155,9 +226,11 @@ void tracePacket(const WideBvh<N>& bvh, const Ray* rays, int count, int octant, 
             int hitRays[N];
             int order[N];  // the children hit: closest hit far to near for the octant, any hit in lane order
             int hits = 0;
-            for (int p = 0; p < N; ++p) {
+            const int candidates = frustum.test(node, tmaxHi);
+            const int positions = Query::kStopsAtFirstHit ? candidates : positionsOf(node, candidates, 3 * octant);
+            for (int m = positions; m != 0; m &= m - 1) {
+                const int p = std::countr_zero(unsigned(m));
                 const int c = Query::kStopsAtFirstHit ? p : int(node.order[p] >> (3 * octant) & 7);
-                if (!(node.lower[0][c] <= node.upper[0][c])) continue;  // an empty lane
                 const int mask = boxTest.intersect(node, c, tmax, entries[c]) & active;
                 if (mask == 0) continue;
                 hitRays[c] = mask;

@@ -15,11 +15,12 @@
 namespace bvhlab {
 inline namespace BVHLAB_KERNEL_NS {
 
-// The hits of one block: a lane mask and each lane's t, u, v (meaningful where the mask is set),
-// kept in registers: the leaf test is inlined into the traversal loop.
+// The hits of one block, kept in registers (the leaf test is inlined into the traversal loop):
+// a lane mask, the same in lanes, and each lane's t, u, v (meaningful where the mask is set).
 struct BlockHits {
     using F = simd::Floats<TriangleBlock::kLanes>;
     int mask = 0;
+    F::Mask lanes{};
     F t, u, v;
 };
 
@@ -63,17 +64,24 @@ struct BlockTriangleTest {
         const F e0 = edge(x[2], y[1], y[2], x[1]);  // edge v1-v2: weight of v0
         const F e1 = edge(x[0], y[2], y[0], x[2]);  // edge v2-v0: weight of v1
         const F e2 = edge(x[1], y[0], y[1], x[0]);  // edge v0-v1: weight of v2
+        // A lane hits where its edge functions share a sign (a NaN shares none), its determinant
+        // is not 0, and t lies in range: tested first on undivided values, then divided where
+        // that passes, as intersectTriangle does.
         const F zero = F::broadcast(0.0f);
-        // Lanes with edge functions of both signs miss; so does a zero determinant.
-        const int mixedSigns = movemask((e0 < zero) | (e1 < zero) | (e2 < zero)) &
-                               movemask((e0 > zero) | (e1 > zero) | (e2 > zero));
-        const F det = e0 + e1 + e2;
+        const auto inside = ((e0 >= zero) & (e1 >= zero) & (e2 >= zero)) | ((e0 <= zero) & (e1 <= zero) & (e2 <= zero));
         BlockHits hits;
-        if (mixedSigns == (1 << TriangleBlock::kLanes) - 1 || movemask(det != zero) == 0) return hits;
+        if (movemask(inside) == 0) [[likely]] return hits;
+        const F det = e0 + e1 + e2;
+        const F tDet = e0 * (sz * z[0]) + e1 * (sz * z[1]) + e2 * (sz * z[2]);
+        const F tAbsDet = xorSign(tDet, det), absDet = abs(det);
+        const float below = tmin - std::abs(tmin) * kRangeSlack, above = tmax + std::abs(tmax) * kRangeSlack;
+        const auto candidates = inside & (det != zero) & (tAbsDet >= F::broadcast(below) * absDet) &
+                                (tAbsDet <= F::broadcast(above) * absDet);
+        if (movemask(candidates) == 0) return hits;
         const F invDet = F::broadcast(1.0f) / det;
-        hits.t = (e0 * (sz * z[0]) + e1 * (sz * z[1]) + e2 * (sz * z[2])) * invDet;
-        const auto inRange = (hits.t >= F::broadcast(tmin)) & (hits.t <= F::broadcast(tmax)) & (det != zero);
-        hits.mask = movemask(inRange) & ~mixedSigns;
+        hits.t = tDet * invDet;
+        hits.lanes = candidates & (hits.t >= F::broadcast(tmin)) & (hits.t <= F::broadcast(tmax));
+        hits.mask = movemask(hits.lanes);
         hits.u = e1 * invDet;
         hits.v = e2 * invDet;
         return hits;
@@ -113,9 +121,12 @@ struct BlockTriangleTest<false> {
         const F invDet = F::broadcast(1.0f) / det;
         const F u = dot(s, p) * invDet, v = dot(dir, q) * invDet, t = dot(e2, q) * invDet;
         const F zero = F::broadcast(0.0f), one = F::broadcast(1.0f);
-        const int outside = movemask((u < zero) | (u > one) | (v < zero) | (u + v > one));
-        const int inRange = movemask((t >= F::broadcast(tmin)) & (t <= F::broadcast(tmax)) & (det != zero));
-        return {inRange & ~outside, t, u, v};
+        const auto inside = (u >= zero) & (u <= one) & (v >= zero) & (u + v <= one);
+        BlockHits hits;
+        hits.lanes = inside & (t >= F::broadcast(tmin)) & (t <= F::broadcast(tmax)) & (det != zero);
+        hits.mask = movemask(hits.lanes);
+        hits.t = t, hits.u = u, hits.v = v;
+        return hits;
     }
 };
 
@@ -123,15 +134,8 @@ struct BlockTriangleTest<false> {
 // ones (the first in leaf order), so that ClosestHitQuery::record's tie rule holds across
 // blocks and leaves.
 [[gnu::always_inline]] inline int closestLane(const BlockHits& hits) {
-    int lane = __builtin_ctz(unsigned(hits.mask));
-    if ((hits.mask & (hits.mask - 1)) == 0) [[likely]] return lane;
-    alignas(32) float t[TriangleBlock::kLanes];
-    hits.t.store(t);
-    for (int m = hits.mask & (hits.mask - 1); m != 0; m &= m - 1) {
-        const int i = __builtin_ctz(unsigned(m));
-        if (t[i] < t[lane]) lane = i;
-    }
-    return lane;
+    if ((hits.mask & (hits.mask - 1)) == 0) [[likely]] return __builtin_ctz(unsigned(hits.mask));
+    return simd::leastLane(hits.t, hits.lanes, hits.mask);
 }
 
 // Lane `lane` of a block's hits.

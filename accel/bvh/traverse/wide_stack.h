@@ -1,6 +1,6 @@
 // The stack of the wide layouts' single-ray traversal (wide_bvh_traversal.h): child words and
 // entry distances in separate arrays, filled a node's hit children at a time without a branch
-// per child. A closest-hit step visits the nearest child next (a vector minimum) and pushes the
+// per child. A closest-hit step visits the nearest child next (simd::leastLane) and pushes the
 // others far to near in the node's order for the ray's octant (WideNode::order): one
 // permutation and a compression, as tinybvh's BVH8_CPU does, instead of sorting distances.
 // (The octant order alone for the next child too visited 13 % more triangles on sibenik's
@@ -74,28 +74,22 @@ inline constexpr std::array<uint64_t, 256> kCompress = [] {
 
 }  // namespace wide_stack
 
-// The lane of the least entry among the lanes in `hit` (`mask` in lanes, not 0), the lowest of
-// equal ones.
-template <typename F>
-[[gnu::always_inline]] inline int nearestLane(F entry, typename F::Mask hit, int mask) {
+// The positions p of `node`'s order for the ray octant `shift` / 3 (WideNode::order) whose
+// child is in `mask`, as bits: walked in order without a branch per child.
+template <int N>
+[[gnu::always_inline]] inline int positionsOf(const WideNode<N>& node, int mask, int shift) {
 #if defined(__AVX2__) && defined(__FMA__)
-    if constexpr (std::is_same_v<F, simd::Avx>) {
-        const __m256 e = _mm256_blendv_ps(_mm256_set1_ps(kInfinity), entry.v, hit.m);
-        __m256 least = _mm256_min_ps(e, _mm256_permute2f128_ps(e, e, 1));
-        least = _mm256_min_ps(least, _mm256_permute_ps(least, 0x4E));
-        least = _mm256_min_ps(least, _mm256_permute_ps(least, 0xB1));
-        return __builtin_ctz(unsigned(_mm256_movemask_ps(_mm256_cmp_ps(e, least, _CMP_EQ_OQ)) & mask));
+    if constexpr (N == 8) {
+        const __m256i order = _mm256_srl_epi32(_mm256_load_si256(reinterpret_cast<const __m256i*>(node.order)),
+                                               _mm_cvtsi32_si128(shift));
+        const __m256i bits = _mm256_sllv_epi32(_mm256_set1_epi32(1), _mm256_and_si256(order, _mm256_set1_epi32(7)));
+        return _mm256_movemask_ps(
+            _mm256_castsi256_ps(_mm256_cmpeq_epi32(_mm256_and_si256(bits, _mm256_set1_epi32(mask)), bits)));
     }
 #endif
-    (void)hit;
-    alignas(64) float entries[F::kLanes];
-    entry.storeu(entries);
-    int nearest = __builtin_ctz(unsigned(mask));
-    for (int m = mask & (mask - 1); m != 0; m &= m - 1) {
-        const int lane = __builtin_ctz(unsigned(m));
-        if (entries[lane] < entries[nearest]) nearest = lane;
-    }
-    return nearest;
+    int positions = 0;
+    for (int p = 0; p < N; ++p) positions |= (mask >> (node.order[p] >> shift & 7) & 1) << p;
+    return positions;
 }
 
 // Of the children of `node` in `mask` (at least two), returns the nearest (by where the ray
@@ -105,18 +99,13 @@ template <typename F>
 template <int N, typename F>
 [[gnu::always_inline]] inline uint32_t visitNearestPushOthers(const WideNode<N>& node, int mask, typename F::Mask hit,
                                                               F entry, int shift, WideStack<N>& stack) {
-    const int nearest = nearestLane(entry, hit, mask);
+    const int nearest = simd::leastLane(entry, hit, mask);
     const int others = mask & ~(1 << nearest);
 #if defined(__AVX2__) && defined(__FMA__)
     if constexpr (N == 8 && std::is_same_v<F, simd::Avx>) {
         const __m256i order = _mm256_srl_epi32(_mm256_load_si256(reinterpret_cast<const __m256i*>(node.order)),
                                                _mm_cvtsi32_si128(shift));
-        // Bit p of `ordered`: the child at position p is pushed.
-        const __m256i lanes = _mm256_and_si256(order, _mm256_set1_epi32(7));
-        const __m256i bits = _mm256_sllv_epi32(_mm256_set1_epi32(1), lanes);
-        const int ordered = _mm256_movemask_ps(_mm256_castsi256_ps(
-            _mm256_cmpeq_epi32(_mm256_and_si256(bits, _mm256_set1_epi32(others)), bits)));
-        const __m256i index = wide_stack::compress(order, ordered);
+        const __m256i index = wide_stack::compress(order, positionsOf(node, others, shift));
         const __m256i children = _mm256_load_si256(reinterpret_cast<const __m256i*>(node.child));
         _mm256_storeu_si256(reinterpret_cast<__m256i*>(stack.child + stack.size),
                             _mm256_permutevar8x32_epi32(children, index));

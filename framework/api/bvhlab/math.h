@@ -19,8 +19,8 @@ inline constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
 namespace math {
 
-// std::abs, std::sqrt, std::copysign, std::nextafter, std::fma, std::isfinite, std::isnan and
-// std::isnormal of float and double.
+// std::abs, std::sqrt, std::copysign, std::nextafter, std::fma, std::isfinite, std::isnan,
+// std::isnormal and std::signbit of float and double.
 inline float abs(float x) { return __builtin_fabsf(x); }
 inline double abs(double x) { return __builtin_fabs(x); }
 inline float sqrt(float x) { return __builtin_sqrtf(x); }
@@ -35,6 +35,8 @@ template <typename Real>
 bool isnan(Real x) { return __builtin_isnan(x); }
 template <typename Real>
 bool isnormal(Real x) { return __builtin_isnormal(x); }
+template <typename Real>
+bool signbit(Real x) { return __builtin_signbit(x); }
 
 // std::min and std::max (the first argument on a tie or a NaN).
 template <typename T>

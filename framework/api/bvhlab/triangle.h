@@ -32,18 +32,25 @@ struct ShearedRayT {
     // Always inlined: the traversal kernels, compiled once per ISA (accel/bvh/traverse/
     // traversal_kernels.h), must not leave a copy of their own that the linker could pick.
     // The direction is read from an array by the axes found: glm's vector indexed by a run-time
-    // axis compiles to a branch per read.
+    // axis compiles to a branch per read. The axes are looked up, not branched to, and one division
+    // serves all three factors: a branch on the direction mispredicts on incoherent rays, and a
+    // division's latency delays the first node. (Watertightness needs only that a ray shears
+    // every triangle alike, not that the shear be exact.)
     [[gnu::always_inline]] explicit ShearedRayT(const Ray& ray) : org(ray.org) {
         const Real dir[3] = {Real(ray.dir.x), Real(ray.dir.y), Real(ray.dir.z)};
         const Real ax = math::abs(dir[0]), ay = math::abs(dir[1]), az = math::abs(dir[2]);
-        kz = (ax >= ay && ax >= az) ? 0 : (ay >= az ? 1 : 2);
-        const int x = kz == 2 ? 0 : kz + 1, y = x == 2 ? 0 : x + 1;
-        const bool flip = dir[kz] < Real(0);  // keep the winding of the 2D projection
-        kx = flip ? y : x;
-        ky = flip ? x : y;
-        sx = dir[kx] / dir[kz];
-        sy = dir[ky] / dir[kz];
+        // kz: the dominant axis (the first of equal ones), looked up by the three comparisons.
+        static constexpr int kDominant[8] = {2, 2, 2, 0, 1, 1, 1, 0};
+        kz = kDominant[int(ax >= ay) | int(ax >= az) << 1 | int(ay >= az) << 2];
+        // kx, ky: the next two axes cyclically, swapped where dir[kz] < 0 to keep the winding
+        // of the 2D projection.
+        static constexpr int kMod3[5] = {0, 1, 2, 0, 1};
+        const int flip = int(dir[kz] < Real(0));
+        kx = kMod3[kz + 1 + flip];
+        ky = kMod3[kz + 2 - flip];
         sz = Real(1) / dir[kz];
+        sx = dir[kx] * sz;
+        sy = dir[ky] * sz;
     }
 };
 using ShearedRay = ShearedRayT<float>;
@@ -86,6 +93,11 @@ inline double edgeFunction(double a, double b, double c, double d) {
     return double(Wide(a) * Wide(b) - Wide(c) * Wide(d));
 }
 
+// How far the undivided range test of intersectTriangle widens [tmin, tmax], relative: the
+// divided t = fl(tDet * fl(1 / det)) and the bounds' products carry four roundings (4 * 2^-24),
+// and rounding is monotonic, so a t the divided test accepts always passes.
+inline constexpr float kRangeSlack = 0x1p-20f;
+
 // Returns true and fills `out` when the ray hits the triangle at t in [tmin, tmax].
 // Real = double gives the reference used by the oracle tests.
 template <typename Real>
@@ -107,9 +119,17 @@ inline bool intersectTriangle(const ShearedRayT<Real>& r, const Triangle& tri, R
     const Real det = e0 + e1 + e2;
     if (det == Real(0)) return false;
 
+    // t = tDet / det. A first range test on undivided values (as Woop et al. and Embree) spares
+    // the division for a triangle outside [tmin, tmax], e.g. behind a hit already found; its
+    // interval is widened so that it never rejects a t that the divided test accepts, and the
+    // divided test decides, so the interval's ends stay exactly inclusive.
     const Real az = r.sz * a[r.kz], bz = r.sz * b[r.kz], cz = r.sz * c[r.kz];
+    const Real tDet = e0 * az + e1 * bz + e2 * cz;
+    const Real tAbsDet = math::signbit(det) ? -tDet : tDet, absDet = math::abs(det);
+    const Real below = tmin - math::abs(tmin) * Real(kRangeSlack), above = tmax + math::abs(tmax) * Real(kRangeSlack);
+    if (!(tAbsDet >= below * absDet && tAbsDet <= above * absDet)) return false;
     const Real invDet = Real(1) / det;
-    const Real t = (e0 * az + e1 * bz + e2 * cz) * invDet;
+    const Real t = tDet * invDet;
     if (!(t >= tmin && t <= tmax)) return false;
     out = {t, e1 * invDet, e2 * invDet};
     return true;

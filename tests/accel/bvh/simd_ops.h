@@ -13,9 +13,9 @@
 namespace bvhlab {
 inline namespace BVHLAB_KERNEL_NS {
 
-// How many results simdOpResults<F> writes: 13 float operations and the truncation of N lanes
+// How many results simdOpResults<F> writes: 14 float operations and the truncation of N lanes
 // each, 7 masks, and loadLast3's 4 lanes where N is 4.
-constexpr int simdOpResultCount(int n) { return 14 * n + 7 + (n == 4 ? 4 : 0); }
+constexpr int simdOpResultCount(int n) { return 15 * n + 7 + (n == 4 ? 4 : 0); }
 
 // a, b: any floats (NaN, inf, signed zeros, denormals); c: finite, in int32's range (truncated).
 template <typename F>
@@ -30,7 +30,7 @@ void simdOpResults(const float* a, const float* b, const float* c, uint32_t* out
     put(va + vb), put(va - vb), put(va * vb), put(va / vb);
     put(differenceOfProducts(va, vb, vb, vb * va));
     put(fmadd(va, vb, vb * va)), put(fmsub(va, vb, vb * va));
-    put(abs(va)), put(min(va, vb)), put(max(va, vb));
+    put(abs(va)), put(xorSign(va, vb)), put(min(va, vb)), put(max(va, vb));
     put(select(va >= vb, va, vb)), put(F::broadcast(a[0]));
     put(F::load(a));  // a is aligned for N lanes
     const int masks[] = {movemask(va <= vb), movemask(va >= vb), movemask(va < vb), movemask(va > vb),

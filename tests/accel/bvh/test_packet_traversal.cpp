@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cstring>
 #include <limits>
 #include <random>
@@ -252,6 +253,65 @@ TEST(PacketTraversal, SixteenRayPacketsAnswerAsSingleRays) {
         }
         EXPECT_EQ(compared, rays.size());
     }
+}
+
+// The frustum never culls a child that a ray of its packet hits: random boxes (some flat, some
+// empty lanes) against packets of one octant from a small region, with origins on the boxes'
+// planes and near-axis-parallel directions mixed in, and a ray with an infinite 1/dir now and
+// then (which turns the frustum off); an empty lane never passes. And it does cull: the test is
+// not vacuous.
+TEST(PacketTraversal, FrustumCullsNoChildThatARayOfThePacketHits) {
+    constexpr int K = kPacketWidth, N = 8;
+    std::mt19937 rng(21);
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f), pos(-6.0f, 6.0f);
+    size_t hit = 0, culled = 0;
+    for (int trial = 0; trial < 20000; ++trial) {
+        WideNode<N> node{};
+        for (int c = 0; c < N; ++c) {
+            const bool empty = c == 7 && trial % 3 == 0, flat = c == 6;
+            for (int a = 0; a < 3; ++a) {
+                const float lo = pos(rng), extent = flat && a == 1 ? 0.0f : std::abs(unit(rng)) * 3.0f;
+                node.lower[a][c] = empty ? kInfinity : lo;
+                node.upper[a][c] = empty ? -kInfinity : lo + extent;
+            }
+        }
+        const int octant = trial % 8;
+        const Vec3 sign(octant & 1 ? -1.0f : 1.0f, octant & 2 ? -1.0f : 1.0f, octant & 4 ? -1.0f : 1.0f);
+        // Origins on the octant's far side of the boxes, aimed at points among them (an origin moved
+        // onto a box's plane may aim elsewhere: the direction's signs are the octant's).
+        const Vec3 centre = -sign * (Vec3(10.0f) + glm::abs(Vec3(unit(rng), unit(rng), unit(rng))) * 4.0f);
+        const Vec3 target(pos(rng), pos(rng), pos(rng));
+        const float spread = trial % 2 ? 0.05f : 0.5f;
+        std::array<Ray, K> rays;
+        const int count = 1 + trial % K;
+        for (int k = 0; k < count; ++k) {
+            Vec3 org = centre + Vec3(unit(rng), unit(rng), unit(rng)) * spread;
+            if (k == 1) org.x = -sign.x * 10.0f, org.y = node.lower[1][0];  // on a box's plane
+            Vec3 dir = target + Vec3(unit(rng), unit(rng), unit(rng)) * spread * 4.0f - org;
+            if (k == 2) dir.y = 1e-30f;                  // nearly axis-parallel: a huge 1/dir
+            if (k == 3 && trial % 50 == 0) dir.z = 0.0f;  // axis-parallel: 1/dir infinite, no frustum
+            rays[k] = Ray(org, glm::abs(dir) * sign, 0.0f, trial % 4 == 0 ? kInfinity : std::abs(unit(rng)) * 2.0f);
+        }
+        const packet_traversal::PacketBoxTest<K, N, true> boxTest(rays.data(), count, octant);
+        const packet_traversal::PacketFrustum<N, true> frustum(boxTest, count);
+        alignas(64) float tmax[K]{}, entries[K];
+        for (int k = 0; k < count; ++k) tmax[k] = rays[k].tmax;
+        const int candidates = frustum.test(node, *std::max_element(tmax, tmax + count));
+        if (trial % 3 == 0) {
+            ASSERT_EQ(candidates >> 7 & 1, 0) << "trial " << trial << ": the empty lane";
+        }
+        for (int c = 0; c < N; ++c) {
+            const int rayHits = boxTest.intersect(node, c, tmax, entries) & ((1 << count) - 1);
+            if (rayHits != 0) {
+                ++hit;
+                ASSERT_TRUE(candidates >> c & 1) << "trial " << trial << ", child " << c;
+            } else if ((candidates >> c & 1) == 0) {
+                ++culled;
+            }
+        }
+    }
+    EXPECT_GT(hit, 5000u) << culled;
+    EXPECT_GT(culled, 5000u) << hit;
 }
 
 }  // namespace
