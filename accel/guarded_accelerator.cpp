@@ -12,13 +12,13 @@ public:
     GuardedAccelerator(std::unique_ptr<Accelerator> inner, std::string plugin, std::string accelerator)
         : inner_(std::move(inner)), plugin_(std::move(plugin)), accelerator_(std::move(accelerator)) {}
 
-    std::string_view name() const override { return accelerator_; }
+    const char* name() const override { return accelerator_.c_str(); }
 
     void build(const PrimitiveSet& prims) override {
         guard(running("build()", nullptr, prims.valid.size()), [&] { inner_->build(prims); });
     }
-    BuildStats statistics() const override {
-        return guard(running("statistics()"), [&] { return inner_->statistics(); });
+    void statistics(BuildStatistics& out) const override {
+        guard(running("statistics()"), [&] { inner_->statistics(out); });
     }
     bool findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const override {
         return guard(running("findNearest()", &ray, 1), [&] { return inner_->findNearest(ray, hit, counters); });
@@ -26,19 +26,16 @@ public:
     bool isOccluded(const Ray& ray, QueryCounters& counters) const override {
         return guard(running("isOccluded()", &ray, 1), [&] { return inner_->isOccluded(ray, counters); });
     }
-    void findNearestBatch(std::span<const Ray> rays, std::span<Hit> hits, QueryCounters& counters,
-                          std::span<RayCost> costs) const override {
+    void findNearestBatch(View<const Ray> rays, View<Hit> hits, QueryCounters& counters,
+                          View<RayCost> costs) const override {
         guard(running("findNearestBatch()", rays), [&] { inner_->findNearestBatch(rays, hits, counters, costs); });
     }
-    void isOccludedBatch(std::span<const Ray> rays, std::span<uint8_t> occluded, QueryCounters& counters,
-                         std::span<RayCost> costs) const override {
+    void isOccludedBatch(View<const Ray> rays, View<uint8_t> occluded, QueryCounters& counters,
+                         View<RayCost> costs) const override {
         guard(running("isOccludedBatch()", rays), [&] { inner_->isOccludedBatch(rays, occluded, counters, costs); });
     }
     bool hasCounters() const override {
         return guard(running("hasCounters()"), [&] { return inner_->hasCounters(); });
-    }
-    std::unique_ptr<NativeRayBatch> prepareNativeBatch(const std::vector<Ray>& rays) const override {
-        return guard(running("prepareNativeBatch()", rays), [&] { return inner_->prepareNativeBatch(rays); });
     }
 
 private:
@@ -46,7 +43,7 @@ private:
     PluginCall running(const char* call, const Ray* ray = nullptr, size_t count = 0) const {
         return {plugin_.c_str(), accelerator_.c_str(), call, ray, count};
     }
-    PluginCall running(const char* call, std::span<const Ray> rays) const {
+    PluginCall running(const char* call, View<const Ray> rays) const {
         return running(call, rays.empty() ? nullptr : rays.data(), rays.size());
     }
 

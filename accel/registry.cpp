@@ -3,7 +3,7 @@
 #include "accel/bvh/builder_table.h"
 #include "accel/bvh/bvh_accelerator.h"
 #include "accel/bvh/bvh_env.h"
-#include "accel/bvh/plugin_builder.h"
+#include "accel/plugins/plugin_builder.h"
 #include "accel/embree/embree_accelerator.h"
 #include "accel/embree/embree_env.h"
 #include "accel/guarded_accelerator.h"
@@ -103,10 +103,8 @@ void addAccelerator(AcceleratorInfo info) {
     registeredInfos().push_back(std::move(info));
 }
 
-void addBvhBuilder(const PluginBuilder& builder, const std::string& plugin) {
-    std::vector<std::string> keys;
-    for (const EnvKey& key : builder.keys) keys.push_back(key.name);
-    for (AcceleratorInfo& info : bvhInfos(builder.name, builder.description, keys, {4, 8},
+void addBvhBuilder(const LoadedBuilder& builder, const std::string& description, const std::string& plugin) {
+    for (AcceleratorInfo& info : bvhInfos(builder.name, description, builder.keys, {4, 8},
                                           [builder](const Env& env, uint32_t leafBlock) {
                                               return pluginBvhBuilder(builder, env, leafBlock);
                                           })) {

@@ -3,9 +3,9 @@
 // (see docs/adding-an-accelerator.md).
 #pragma once
 
+#include "accel/plugins/plugin_builder.h"
 #include "framework/config/env.h"
 #include "framework/core/accelerator.h"
-#include "framework/plugin/builder_api.h"
 
 #include <functional>
 #include <memory>
@@ -44,9 +44,9 @@ void addAccelerator(AcceleratorInfo info);
 std::unique_ptr<Accelerator> guardLikeAPlugin(std::unique_ptr<Accelerator> inner, const std::string& plugin,
                                               const std::string& name);
 
-// Adds a plugin's builder as the accelerators NAME, NAME4 and NAME8 (accel/bvh/plugin_builder.h),
-// guarded as addAccelerator's are.
-void addBvhBuilder(const PluginBuilder& builder, const std::string& plugin);
+// Adds a plugin's builder as the accelerators NAME, NAME4 and NAME8 (accel/plugins/plugin_builder.h),
+// described by `description` and guarded as addAccelerator's are.
+void addBvhBuilder(const LoadedBuilder& builder, const std::string& description, const std::string& plugin);
 
 // Throws InputError naming the unknown accelerator and the known ones.
 std::unique_ptr<Accelerator> createAccelerator(const std::string& name, const Env& env);

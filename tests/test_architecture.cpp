@@ -18,6 +18,7 @@ namespace {
 
 // Each folder (a library) and the folders it may include from, besides its own.
 const std::map<std::string, std::vector<std::string>> kMayInclude = {
+    {"framework/api/bvhlab", {}},
     {"framework/core", {}},
     {"framework/config", {"framework/core"}},
     {"framework/scene", {"framework/core"}},
@@ -26,28 +27,33 @@ const std::map<std::string, std::vector<std::string>> kMayInclude = {
     {"framework/io", {"framework/core", "framework/config", "framework/scene", "framework/render"}},
     {"framework/report", {"framework/core", "framework/config", "framework/scene", "framework/render"}},
     {"framework/robustness", {"framework/core", "framework/config", "framework/scene", "framework/render"}},
-    {"framework/plugin", {"framework/core", "framework/config"}},
     {"accel/naive", {"framework/core"}},
     {"accel/embree", {"framework/core", "framework/config"}},
-    {"accel/grid", {"framework/core", "framework/config", "framework/plugin"}},
+    {"accel/grid", {}},  // a plugin: <bvhlab/...> only
     {"accel/bvh/simd", {"framework/core"}},
     {"accel/bvh/layout", {"framework/core", "accel/bvh/simd"}},
     {"accel/bvh/builders", {"framework/core", "accel/bvh/simd", "accel/bvh/layout"}},
     {"accel/bvh/traverse", {"framework/core", "accel/bvh/simd", "accel/bvh/layout"}},
     {"accel/bvh",
-     {"framework/core", "framework/config", "framework/plugin", "accel/bvh/simd", "accel/bvh/layout",
-      "accel/bvh/builders", "accel/bvh/traverse"}},
-    {"accel", {"framework/core", "framework/config", "framework/plugin", "accel/naive", "accel/embree", "accel/bvh"}},
+     {"framework/core", "framework/config", "accel/bvh/simd", "accel/bvh/layout", "accel/bvh/builders",
+      "accel/bvh/traverse"}},
+    {"accel/plugins", {"framework/core", "framework/config", "accel/bvh/builders"}},
+    {"accel", {"framework/core", "framework/config", "accel/naive", "accel/embree", "accel/bvh", "accel/plugins"}},
 };
 
-// apps/ sees all of framework/ and, of accel/, only the registry: a structure is reached by
-// its name and the Accelerator interface.
+// apps/ sees all of framework/ and, of accel/, only the registry and the plugin loader: a
+// structure is reached by its name and the Accelerator interface, a plugin file opened by the
+// loader and what it adds registered by name.
 bool appMayInclude(const std::string& path) {
-    return path.starts_with("framework/") || path.starts_with("apps/") || path == "accel/registry.h";
+    return path.starts_with("framework/") || path.starts_with("apps/") || path == "accel/registry.h" ||
+           path == "accel/plugins/plugin_loader.h";
 }
 
-std::vector<std::string> quotedIncludes(const fs::path& file) {
-    static const std::regex include(R"(^\s*#\s*include\s*"([^"]+)\")");
+// The targets of a file's #include "..." (quoted) or #include <...> lines.
+std::vector<std::string> includes(const fs::path& file, bool quoted) {
+    static const std::regex quotedInclude(R"(^\s*#\s*include\s*"([^"]+)\")");
+    static const std::regex angledInclude(R"(^\s*#\s*include\s*<([^>]+)>)");
+    const std::regex& include = quoted ? quotedInclude : angledInclude;
     std::ifstream in(file);
     std::vector<std::string> out;
     std::smatch m;
@@ -74,7 +80,7 @@ TEST(Architecture, IncludesFollowTheLayers) {
         for (const fs::path& file : sourcesUnder(source / top)) {
             const std::string folder = fs::relative(file.parent_path(), source).generic_string();
             const std::string name = fs::relative(file, source).generic_string();
-            for (const std::string& target : quotedIncludes(file)) {
+            for (const std::string& target : includes(file, true)) {
                 ++checked;
                 const std::string targetFolder = fs::path(target).parent_path().generic_string();
                 if (folder.starts_with("apps")) {
@@ -98,4 +104,34 @@ TEST(Architecture, FrameworkHasNoSourceAtItsTop) {
         const auto ext = entry.path().extension();
         EXPECT_FALSE(ext == ".h" || ext == ".cpp") << entry.path() << " belongs in one of framework's layers";
     }
+}
+
+// The plugin API is one folder of headers that a plugin compiles against alone: they include one
+// another as <bvhlab/NAME.h>, GLM and the standard library, never bvhlab's internal headers. The
+// plugins of bvhlab's own tree and of its tests include nothing else of bvhlab's.
+TEST(Architecture, ThePluginApiAndThePluginsIncludeOnlyThePluginApi) {
+    const fs::path source = bvhlab::test::sourceTree();
+    const fs::path api = source / "framework/api/bvhlab";
+    auto checkAngled = [&](const fs::path& file) {
+        for (const std::string& target : includes(file, false)) {
+            const bool bvhlab = target.starts_with("bvhlab/") && fs::exists(api / target.substr(7));
+            const bool glm = target.starts_with("glm/");
+            const bool standard = target.find('/') == std::string::npos && target.find('.') == std::string::npos;
+            EXPECT_TRUE(bvhlab || glm || standard) << fs::relative(file, source).string() << " includes <" << target
+                                                   << ">";
+        }
+    };
+    size_t headers = 0;
+    for (const auto& entry : fs::directory_iterator(api)) {
+        EXPECT_EQ(entry.path().extension(), ".h") << entry.path() << ": the folder holds the API's headers only";
+        EXPECT_TRUE(includes(entry.path(), true).empty()) << entry.path() << " includes a header by a quoted path";
+        checkAngled(entry.path());
+        ++headers;
+    }
+    EXPECT_GT(headers, 10u);
+    for (const fs::path& folder : {source / "accel/grid", source / "tests/plugins"})
+        for (const fs::path& file : sourcesUnder(folder)) {
+            checkAngled(file);
+            if (folder.filename() == "plugins") EXPECT_TRUE(includes(file, true).empty()) << file;
+        }
 }

@@ -1,7 +1,7 @@
 // bvhlab's own BVH builders, one entry each: adding a builder in tree is one entry in
 // builder_table.cpp (docs/adding-an-accelerator.md). The registry makes the accelerators NAME and,
 // per wide layout listed, NAME4 or NAME8 of each; a plugin's builders join them at load time
-// (accel/bvh/plugin_builder.h).
+// (accel/plugins/plugin_builder.h).
 #pragma once
 
 #include "accel/bvh/builders/bvh_builder.h"

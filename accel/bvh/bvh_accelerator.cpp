@@ -62,7 +62,7 @@ void BvhAccelerator<Layout>::build(const PrimitiveSet& prims) {
 }
 
 template <typename Layout>
-BuildStats BvhAccelerator<Layout>::statistics() const {
+BuildStats BvhAccelerator<Layout>::buildStats() const {
     if (statistics_) return *statistics_;
     const Bvh& binary = binaryTree();
     BuildStats stats;
@@ -112,31 +112,21 @@ bool BvhAccelerator<Layout>::isOccluded(const Ray& ray, QueryCounters& counters)
 }
 
 template <typename Layout>
-void BvhAccelerator<Layout>::findNearestBatch(std::span<const Ray> rays, std::span<Hit> hits, QueryCounters& counters,
-                                              std::span<RayCost> costs) const {
+void BvhAccelerator<Layout>::findNearestBatch(View<const Ray> rays, View<Hit> hits, QueryCounters& counters,
+                                              View<RayCost> costs) const {
     if (quadrics_.empty()) [[likely]]
         return kernels_.forCounters(counters, !costs.empty())
             .findNearestBatch(tree_, rays, hits, counters, costs, traversal_.packetFallback);
-    for (size_t i = 0; i < rays.size(); ++i) {
-        const QueryCounters before = counters;
-        Hit hit;
-        findNearest(rays[i], hit, counters);
-        hits[i] = hit;
-        if (!costs.empty()) costs[i] = costBetween(before, counters);
-    }
+    Accelerator::findNearestBatch(rays, hits, counters, costs);
 }
 
 template <typename Layout>
-void BvhAccelerator<Layout>::isOccludedBatch(std::span<const Ray> rays, std::span<uint8_t> occluded,
-                                             QueryCounters& counters, std::span<RayCost> costs) const {
+void BvhAccelerator<Layout>::isOccludedBatch(View<const Ray> rays, View<uint8_t> occluded,
+                                             QueryCounters& counters, View<RayCost> costs) const {
     if (quadrics_.empty()) [[likely]]
         return kernels_.forCounters(counters, !costs.empty())
             .isOccludedBatch(tree_, rays, occluded, counters, costs, traversal_.packetFallback);
-    for (size_t i = 0; i < rays.size(); ++i) {
-        const QueryCounters before = counters;
-        occluded[i] = isOccluded(rays[i], counters) ? 1 : 0;
-        if (!costs.empty()) costs[i] = costBetween(before, counters);
-    }
+    Accelerator::isOccludedBatch(rays, occluded, counters, costs);
 }
 
 template <typename Layout>

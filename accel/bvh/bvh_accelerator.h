@@ -24,26 +24,26 @@ struct BvhStatsConfig {
 };
 
 template <typename Layout>
-class BvhAccelerator final : public Accelerator {
+class BvhAccelerator final : public BuildStatsAccelerator {
 public:
     BvhAccelerator(BvhBuilder builder, const BvhBuildConfig& build, const TraversalConfig& traversal = {},
                    const BvhStatsConfig& stats = {});
 
-    std::string_view name() const override { return name_; }
+    const char* name() const override { return name_.c_str(); }
     // The build includes a collapse to wide nodes and the quadric tree.
     void build(const PrimitiveSet& prims) override;
     // #Nodes, #Leaves, depth, SAH and EPO are the binary tree's (the same formula for every
     // builder), with the quadric tree's added (combineTreeStats); memory is the layouts'.
     // Computed on the first call after a build, then kept.
-    BuildStats statistics() const override;
+    BuildStats buildStats() const override;
     bool findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const override;
     bool isOccluded(const Ray& ray, QueryCounters& counters) const override;
     // Without quadrics a batch is the kernel's batch call (packets on the wide layouts); with
-    // them, ray by ray.
-    void findNearestBatch(std::span<const Ray> rays, std::span<Hit> hits, QueryCounters& counters,
-                          std::span<RayCost> costs) const override;
-    void isOccludedBatch(std::span<const Ray> rays, std::span<uint8_t> occluded, QueryCounters& counters,
-                         std::span<RayCost> costs) const override;
+    // them, ray by ray (the interface's default loop).
+    void findNearestBatch(View<const Ray> rays, View<Hit> hits, QueryCounters& counters,
+                          View<RayCost> costs) const override;
+    void isOccludedBatch(View<const Ray> rays, View<uint8_t> occluded, QueryCounters& counters,
+                         View<RayCost> costs) const override;
 
     const Layout& bvh() const { return tree_; }
 
@@ -62,10 +62,10 @@ private:
     BvhStatsConfig stats_;
     std::string name_;  // the builder's name, with the width of a wide layout: sahbvh, sahbvh4
     Layout tree_;
-    // A wide layout's binary tree, kept from build() to the first statistics() call: the figures
+    // A wide layout's binary tree, kept from build() to the first buildStats() call: the figures
     // are the binary tree's, and computing them in build() would time them. It holds about the
     // memory of the wide tree again, so that call keeps the figures and frees it. Empty for
-    // Layout = Bvh (tree_ is the binary tree). Not for statistics() on two threads at once.
+    // Layout = Bvh (tree_ is the binary tree). Not for buildStats() on two threads at once.
     mutable Bvh binary_;
     mutable std::optional<BuildStats> statistics_;
     size_t triangles_ = 0;  // valid triangles built over

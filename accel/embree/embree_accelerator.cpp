@@ -341,7 +341,7 @@ void EmbreeAccelerator::build(const PrimitiveSet& prims) {
     if (bytesAfter > bytesBefore) bytes_ = size_t(bytesAfter - bytesBefore);
 }
 
-BuildStats EmbreeAccelerator::statistics() const {
+BuildStats EmbreeAccelerator::buildStats() const {
     // nodes, leaves, depth, SAH: Embree's tree is not visible.
     BuildStats stats;
     stats.primitives = primitives_;
@@ -480,8 +480,8 @@ RTCIntersectContextFlags streamFlags(std::span<const Ray> rays, std::span<const 
 
 // A ray Embree cannot take as it is takes the single-ray call (which counts it); the others go
 // into the chunk, each answer written once.
-void EmbreeAccelerator::findNearestBatch(std::span<const Ray> rays, std::span<Hit> hits, QueryCounters& counters,
-                                         std::span<RayCost> costs) const {
+void EmbreeAccelerator::findNearestBatch(View<const Ray> rays, View<Hit> hits, QueryCounters& counters,
+                                         View<RayCost> costs) const {
     std::fill(costs.begin(), costs.end(), RayCost{});
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
@@ -511,8 +511,8 @@ void EmbreeAccelerator::findNearestBatch(std::span<const Ray> rays, std::span<Hi
     }
 }
 
-void EmbreeAccelerator::isOccludedBatch(std::span<const Ray> rays, std::span<uint8_t> occluded,
-                                        QueryCounters& counters, std::span<RayCost> costs) const {
+void EmbreeAccelerator::isOccludedBatch(View<const Ray> rays, View<uint8_t> occluded,
+                                        QueryCounters& counters, View<RayCost> costs) const {
     std::fill(costs.begin(), costs.end(), RayCost{});
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);

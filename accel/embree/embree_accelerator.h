@@ -72,7 +72,7 @@ struct EmbreeConfig {
     static EmbreeConfig fromEnv(const Env& env);
 };
 
-class EmbreeAccelerator final : public Accelerator, public NativeBatchApis {
+class EmbreeAccelerator final : public BuildStatsAccelerator, public NativeBatchApis {
 public:
     // Creates the device; throws EmbreeError when Embree refuses (e.g. unsupported CPU).
     explicit EmbreeAccelerator(const EmbreeConfig& config = {});
@@ -81,18 +81,18 @@ public:
     EmbreeAccelerator(const EmbreeAccelerator&) = delete;
     EmbreeAccelerator& operator=(const EmbreeAccelerator&) = delete;
 
-    std::string_view name() const override { return "embree"; }
+    const char* name() const override { return "embree"; }
     void build(const PrimitiveSet& prims) override;
-    BuildStats statistics() const override;
+    BuildStats buildStats() const override;
     bool findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const override;
     bool isOccluded(const Ray& ray, QueryCounters& counters) const override;
     // Through Embree's stream API (rtcIntersect1M / rtcOccluded1M) in chunks converted on the
     // stack; a ray Embree cannot take as it is (negative tmin, coordinates beyond its range)
     // takes the single-ray path. `costs` are zero: Embree does not count.
-    void findNearestBatch(std::span<const Ray> rays, std::span<Hit> hits, QueryCounters& counters,
-                          std::span<RayCost> costs) const override;
-    void isOccludedBatch(std::span<const Ray> rays, std::span<uint8_t> occluded, QueryCounters& counters,
-                         std::span<RayCost> costs) const override;
+    void findNearestBatch(View<const Ray> rays, View<Hit> hits, QueryCounters& counters,
+                          View<RayCost> costs) const override;
+    void isOccludedBatch(View<const Ray> rays, View<uint8_t> occluded, QueryCounters& counters,
+                         View<RayCost> costs) const override;
     bool hasCounters() const override { return false; }
     // Rays with tmin >= 0 and coordinates within Embree's range, as RTCRayHit; see the .cpp.
     // The bare loop: prepareRays(rays, "single", false).

@@ -9,27 +9,23 @@ void GridAccelerator::build(const PrimitiveSet& prims) {
     grid_ = buildGridCells(prims, parameters_);
 }
 
-BuildStats GridAccelerator::statistics() const {
-    BuildStats stats;
-    stats.primitives = prims_.valid.size();
+void GridAccelerator::statistics(BuildStatistics& out) const {
+    out.set("primitives", double(prims_.valid.size()));
     const uint64_t cells = grid_.cells(), empty = grid_.emptyCells(), refs = grid_.references();
     // A grid has no tree: its cells are the leaves (nodes = leaves = N_V, empty ones included),
     // and nothing of a tree's depth or SAH applies.
-    stats.nodes = cells;
-    stats.leaves = cells;
-    stats.avgLeafPrimitives = cells > 0 ? double(refs) / double(cells) : 0.0;
-    stats.maxLeafPrimitives = grid_.maxCellReferences();
-    stats.bytes = grid_.bytes();
-    stats.figures = {
-        {"res_x", double(grid_.res.x), "cells along x"},
-        {"res_y", double(grid_.res.y), "cells along y"},
-        {"res_z", double(grid_.res.z), "cells along z"},
-        {"N_V", double(cells), "elementary cells (Havran)"},
-        {"N_EV", double(empty), "empty elementary cells (Havran)"},
-        {"N_OIV", double(refs), "object references in the elementary cells (Havran)"},
-        {"D", grid_.densityUsed, "density used: Grid::density, or less where the reference budget lowered it"},
-    };
-    return stats;
+    out.set("nodes", double(cells));
+    out.set("leaves", double(cells));
+    out.set("avg_leaf_prims", cells > 0 ? double(refs) / double(cells) : 0.0);
+    out.set("max_leaf_prims", double(grid_.maxCellReferences()));
+    out.set("bytes", double(grid_.bytes()));
+    out.figure("res_x", double(grid_.res.x), "cells along x");
+    out.figure("res_y", double(grid_.res.y), "cells along y");
+    out.figure("res_z", double(grid_.res.z), "cells along z");
+    out.figure("N_V", double(cells), "elementary cells (Havran)");
+    out.figure("N_EV", double(empty), "empty elementary cells (Havran)");
+    out.figure("N_OIV", double(refs), "object references in the elementary cells (Havran)");
+    out.figure("D", grid_.densityUsed, "density used: Grid::density, or less where the reference budget lowered it");
 }
 
 namespace {

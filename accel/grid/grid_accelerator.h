@@ -4,7 +4,8 @@
 #pragma once
 
 #include "accel/grid/grid_cells.h"
-#include "framework/core/accelerator.h"
+
+#include <bvhlab/accelerator.h>
 
 namespace bvhlab::grid {
 
@@ -12,9 +13,9 @@ class GridAccelerator final : public Accelerator {
 public:
     explicit GridAccelerator(const GridParameters& parameters) : parameters_(parameters) {}
 
-    std::string_view name() const override { return "grid"; }
+    const char* name() const override { return "grid"; }
     void build(const PrimitiveSet& prims) override;
-    BuildStats statistics() const override;
+    void statistics(BuildStatistics& out) const override;
     bool findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const override;
     bool isOccluded(const Ray& ray, QueryCounters& counters) const override;
 

@@ -1,5 +1,7 @@
 #include "accel/grid/grid_cells.h"
 
+#include <glm/glm.hpp>
+
 #include <algorithm>
 #include <cmath>
 
@@ -104,7 +106,7 @@ public:
         const DVec3 hi = g_.lower + DVec3(x + 1, y + 1, z + 1) * g_.cellSize + margin_;
         switch (prims_.kind(prim)) {
         case PrimitiveKind::Triangle: return triangleOverlapsBox(prims_.triangles[prim], lo, hi);
-        case PrimitiveKind::Sphere: return sphereOverlapsBox(std::get<Sphere>(prims_.quadric(prim)), lo, hi);
+        case PrimitiveKind::Sphere: return sphereOverlapsBox(*prims_.quadric(prim).sphere(), lo, hi);
         case PrimitiveKind::Cone: default: return true;  // its box covers the cell (range())
         }
     }

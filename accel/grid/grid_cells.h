@@ -12,7 +12,8 @@
 #pragma once
 
 #include "accel/grid/grid_resolution.h"
-#include "framework/core/primitive_set.h"
+
+#include <bvhlab/primitive_set.h>
 
 #include <cstdint>
 #include <optional>

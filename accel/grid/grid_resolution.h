@@ -4,7 +4,7 @@
 // "The uniform grid").
 #pragma once
 
-#include "framework/core/math.h"
+#include <bvhlab/math.h>
 
 #include <cstdint>
 #include <optional>

@@ -4,7 +4,8 @@
 #pragma once
 
 #include "accel/grid/grid_cells.h"
-#include "framework/core/ray.h"
+
+#include <bvhlab/ray.h>
 
 #include <cmath>
 

@@ -4,7 +4,7 @@ namespace bvhlab {
 
 void NaiveAccelerator::build(const PrimitiveSet& prims) { prims_ = prims; }
 
-BuildStats NaiveAccelerator::statistics() const {
+BuildStats NaiveAccelerator::buildStats() const {
     const size_t n = prims_.valid.size();
     BuildStats stats;
     stats.primitives = n;
@@ -26,7 +26,7 @@ bool NaiveAccelerator::findNearest(const Ray& ray, Hit& hit, QueryCounters& coun
     const ShearedRay sheared(ray);
     float tmax = ray.tmax;
     bool found = false;
-    const std::span<const uint32_t> triangles = prims_.validTriangles();
+    const View<const uint32_t> triangles = prims_.validTriangles();
     for (uint32_t prim : triangles) {
         TriangleHitT<float> h;
         if (intersectTriangle(sheared, prims_.triangles[prim], ray.tmin, tmax, h)) {

@@ -8,11 +8,11 @@
 
 namespace bvhlab {
 
-class NaiveAccelerator final : public Accelerator {
+class NaiveAccelerator final : public BuildStatsAccelerator {
 public:
-    std::string_view name() const override { return "naive"; }
+    const char* name() const override { return "naive"; }
     void build(const PrimitiveSet& prims) override;
-    BuildStats statistics() const override;
+    BuildStats buildStats() const override;
     bool findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const override;
     bool isOccluded(const Ray& ray, QueryCounters& counters) const override;
 

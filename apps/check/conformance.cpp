@@ -277,7 +277,7 @@ CheckResult mixedPrimitives(const Subject& subject, const CheckOptions& options)
     const PrimitiveSet prims = scene.primitives();
     auto accel = subject.make();
     accel->build(prims);
-    const BuildStats stats = accel->statistics();
+    const BuildStats stats = statisticsOf(*accel);
     result.scenes = 1;
     if (stats.primitives == prims.validTriangles().size() && stats.primitives < prims.valid.size()) {
         result.skipped = true;

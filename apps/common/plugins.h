@@ -1,7 +1,8 @@
-// Loading plugins (docs/plugins.md): shared libraries whose entry point (framework/plugin/
-// plugin_api.h) adds accelerators, with their env keys, to the registry at run time. A plugin
-// is loaded from --plugin FILE, from ASDS::plugins in an env layer, or found by the name of the
-// accelerator asked for (`-DASDS::type=NAME` loads NAME.so from the plugin folders).
+// Loading plugins into the program (docs/plugins.md): the file opened by the plugin loader
+// (accel/plugins/plugin_loader.h), what it adds registered with the registry and its keys with
+// the program's, the plugin recorded in the provenance. A plugin is loaded from --plugin FILE,
+// from ASDS::plugins in an env layer, or found by the name of the accelerator asked for
+// (`-DASDS::type=NAME` loads NAME.so from the plugin folders).
 #pragma once
 
 #include <cstdint>
@@ -16,16 +17,16 @@ struct LoadedPlugin {
     std::filesystem::path file;  // absolute
     uint64_t size = 0;
     uint32_t crc32 = 0;
-    int apiVersion = 0;
+    std::string abi;  // the fingerprint of the ABI it was built against (<bvhlab/abi.h>)
     std::vector<std::string> accelerators;
-    // How it was compiled (PluginBuildInfo, framework/plugin/plugin_api.h).
+    // How it was compiled (PluginBuildInfo, <bvhlab/abi.h>).
     std::string compiler;
     std::string cxxFlags;  // empty when not recorded (a plugin built without bvhlab_add_plugin)
     bool optimized = false;
 };
 
 // Loads `file` once (again: nothing happens). Throws InputError naming the file when it cannot be
-// opened, is not a bvhlab plugin, was built for another API version (both named), its entry
+// opened, is not a bvhlab plugin, was built against another ABI (both named), its entry
 // point throws, or it adds an accelerator or key that exists already (then it adds nothing).
 // Warns on stderr, naming the file, when the plugin was compiled without optimisation.
 const LoadedPlugin& loadPlugin(const std::filesystem::path& file);

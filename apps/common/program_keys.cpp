@@ -31,14 +31,14 @@ void registerAppKeys(EnvRegistry& r) {
 
 std::string envKeyType(const EnvKey& key) {
     switch (key.type) {
-    case EnvType::Bool: return "bool";
-    case EnvType::Int: return fmt::format("int {}..{}", key.min, key.max);
-    case EnvType::Float: return fmt::format("float {}..{}", float(key.min), float(key.max));
-    case EnvType::String: return "text";
-    case EnvType::Choice: return fmt::format("{}", fmt::join(key.choices, " \\| "));
-    case EnvType::Path: return "path";
-    case EnvType::Vec3: return "x y z";
-    case EnvType::Vec3List: return "x y z, ...";
+    case KeyType::Bool: return "bool";
+    case KeyType::Int: return fmt::format("int {}..{}", key.min, key.max);
+    case KeyType::Float: return fmt::format("float {}..{}", float(key.min), float(key.max));
+    case KeyType::String: return "text";
+    case KeyType::Choice: return fmt::format("{}", fmt::join(key.choices, " \\| "));
+    case KeyType::Path: return "path";
+    case KeyType::Vec3: return "x y z";
+    case KeyType::Vec3List: return "x y z, ...";
     }
     return "";
 }
@@ -93,7 +93,7 @@ std::string envKeysMarkdown(const Env& globalEnv) {
         const nlohmann::json& v = values.at(name);
         std::string value = v["value"].get<std::string>();
         // A path as the repository sees it, not as this checkout's absolute one.
-        if (key.type == EnvType::Path && !value.empty())
+        if (key.type == KeyType::Path && !value.empty())
             value = std::filesystem::path(value).lexically_relative(dataFolder()).string();
         const std::string given = v["from"].get<std::string>() == "default" ? ""
                                   : value.empty()                           ? "(empty)"

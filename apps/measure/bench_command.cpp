@@ -128,7 +128,7 @@ std::vector<nlohmann::json> measureRounds(const Scene& scene, const RaySets& ray
     const Structure& embree =
         *std::find_if(structures.begin(), structures.end(), [](const Structure& k) { return k.config.label == "embree"; });
     // embree-bare and embree-batch: the last build of `embree` queried as Embree's users do
-    // (rays prepared once, outside the timing: prepareNativeBatch, and NativeBatchApis for each
+    // (rays prepared once, outside the timing by NativeBatchApis: prepareNativeBatch, and for each
     // of its batch APIs), contenders of their own in every round; their build is embree's.
     const auto* embreeApis = dynamic_cast<const NativeBatchApis*>(embree.accel.get());
     if (!embreeApis) throw std::logic_error("bvhlab bench: embree has no NativeBatchApis");
@@ -150,7 +150,7 @@ std::vector<nlohmann::json> measureRounds(const Scene& scene, const RaySets& ray
         const auto asked = [&](QueryKind kind) { return std::find(kinds.begin(), kinds.end(), kind) != kinds.end(); };
         std::unique_ptr<NativeRayBatch> bare;
         std::map<std::string, std::unique_ptr<NativeRayBatch>> prepared;
-        if (asked(QueryKind::Single)) bare = embree.accel->prepareNativeBatch(*s.rays);
+        if (asked(QueryKind::Single)) bare = embreeApis->prepareNativeBatch(*s.rays);
         if (asked(QueryKind::Batch))
             for (const std::string& api : batchApis) prepared[api] = embreeApis->prepareBatchApi(*s.rays, api, s.coherent);
         for (int round = 0; round < passes; ++round) {

@@ -83,11 +83,12 @@ json measureBuilderConfig(const BuildersScene& b, const AccelConfig& config, con
                                       {"n_tr", counted ? json(double(r.counters.traversalSteps) / q) : json()}};
     }
     // The bare loop, Embree as its users call it (the bench's embree-bare), on the baseline's tree.
-    if (config.label == kBuildersBaseline) {
+    const auto* native = dynamic_cast<const NativeBatchApis*>(accel);
+    if (config.label == kBuildersBaseline && native) {
         json bare = json::object();
         for (size_t s = 0; s < std::size(kBuilderRaySets); ++s) {
             try {
-                const std::unique_ptr<NativeRayBatch> batch = accel->prepareNativeBatch(*sets[s]);
+                const std::unique_ptr<NativeRayBatch> batch = native->prepareNativeBatch(*sets[s]);
                 const PassResult r = traceNativePasses(*batch, anyHit[s], settings.threads, settings.passes);
                 bare[kBuilderRaySets[s]] = {{"t_r_us", r.usPerQuery}, {"t_r_cpu_us", r.cpuUsPerQuery}};
             } catch (const std::invalid_argument& e) {

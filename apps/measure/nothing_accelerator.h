@@ -10,11 +10,11 @@
 
 namespace bvhlab {
 
-class NothingAccelerator final : public Accelerator {
+class NothingAccelerator final : public BuildStatsAccelerator {
 public:
-    std::string_view name() const override { return "nothing"; }
+    const char* name() const override { return "nothing"; }
     void build(const PrimitiveSet&) override {}
-    BuildStats statistics() const override { return {}; }
+    BuildStats buildStats() const override { return {}; }
     bool findNearest(const Ray&, Hit&, QueryCounters& counters) const override {
         ++counters.queries;
         return false;
@@ -23,14 +23,14 @@ public:
         ++counters.queries;
         return false;
     }
-    void findNearestBatch(std::span<const Ray> rays, std::span<Hit> hits, QueryCounters& counters,
-                          std::span<RayCost> costs) const override {
+    void findNearestBatch(View<const Ray> rays, View<Hit> hits, QueryCounters& counters,
+                          View<RayCost> costs) const override {
         std::fill(hits.begin(), hits.end(), Hit{});
         std::fill(costs.begin(), costs.end(), RayCost{});
         counters.queries += rays.size();
     }
-    void isOccludedBatch(std::span<const Ray> rays, std::span<uint8_t> occluded, QueryCounters& counters,
-                         std::span<RayCost> costs) const override {
+    void isOccludedBatch(View<const Ray> rays, View<uint8_t> occluded, QueryCounters& counters,
+                         View<RayCost> costs) const override {
         std::fill(occluded.begin(), occluded.end(), uint8_t(0));
         std::fill(costs.begin(), costs.end(), RayCost{});
         counters.queries += rays.size();

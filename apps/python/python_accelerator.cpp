@@ -176,7 +176,7 @@ void bindAccelerator(py::module_& m) {
             const LoadedPlugin& plugin = loadPlugin(file);
             py::dict loaded;
             loaded["file"] = plugin.file;
-            loaded["api_version"] = plugin.apiVersion;
+            loaded["abi"] = plugin.abi;
             loaded["accelerators"] = plugin.accelerators;
             loaded["compiler"] = plugin.compiler;
             loaded["cxx_flags"] = plugin.cxxFlags;

@@ -70,16 +70,16 @@ std::vector<std::string> splitList(const std::string& s) {
     return items;
 }
 
-const char* typeName(EnvType type) {
+const char* typeName(KeyType type) {
     switch (type) {
-    case EnvType::Bool: return "a boolean (true/false)";
-    case EnvType::Int: return "an integer";
-    case EnvType::Float: return "a number";
-    case EnvType::String: return "text";
-    case EnvType::Choice: return "one of the listed words";
-    case EnvType::Path: return "a path";
-    case EnvType::Vec3: return "three numbers 'x y z'";
-    case EnvType::Vec3List: return "a list 'x y z, x y z, ...'";
+    case KeyType::Bool: return "a boolean (true/false)";
+    case KeyType::Int: return "an integer";
+    case KeyType::Float: return "a number";
+    case KeyType::String: return "text";
+    case KeyType::Choice: return "one of the listed words";
+    case KeyType::Path: return "a path";
+    case KeyType::Vec3: return "three numbers 'x y z'";
+    case KeyType::Vec3List: return "a list 'x y z, x y z, ...'";
     }
     return "?";
 }
@@ -92,36 +92,36 @@ std::string validate(const EnvKey& key, const std::string& text, const std::file
         return std::string();
     };
     switch (key.type) {
-    case EnvType::Bool: {
+    case KeyType::Bool: {
         const auto b = parseBool(text);
         if (!b) return fail("expected true or false");
         return *b ? "true" : "false";
     }
-    case EnvType::Int: {
+    case KeyType::Int: {
         const auto v = numberIn<long long>(text);
         if (!v) return fail("expected an integer");
         if (*v < key.min || *v > key.max) return fail(fmt::format("expected {} to {}", key.min, key.max));
         return text;
     }
-    case EnvType::Float: {
+    case KeyType::Float: {
         const auto v = numberIn<double>(text);
         if (!v || !std::isfinite(*v)) return fail("expected a finite number");
         if (*v < key.min || *v > key.max) return fail(fmt::format("expected {} to {}", key.min, key.max));
         return text;
     }
-    case EnvType::String: return text;
-    case EnvType::Choice:
+    case KeyType::String: return text;
+    case KeyType::Choice:
         if (std::find(key.choices.begin(), key.choices.end(), text) == key.choices.end())
             return fail(fmt::format("expected one of: {}", fmt::join(key.choices, ", ")));
         return text;
-    case EnvType::Path:
+    case KeyType::Path:
         if (text.empty()) return text;
         return (baseDir / text).lexically_normal().string();
-    case EnvType::Vec3:
+    case KeyType::Vec3:
         if (text.empty()) return text;
         if (!parseVec3(text)) return fail("expected three finite numbers 'x y z'");
         return text;
-    case EnvType::Vec3List:
+    case KeyType::Vec3List:
         if (text.empty()) return text;
         for (const std::string& item : splitList(text))
             if (!parseVec3(item)) return fail(fmt::format("'{}' is not three finite numbers 'x y z'", item));
@@ -159,9 +159,9 @@ std::vector<std::string> EnvRegistry::nearest(const std::string& name, size_t co
 Env::Value Env::defaultOf(const EnvKey& key) {
     std::string text = key.defaultValue;
     constexpr std::string_view cache = "$XDG_CACHE_HOME/";
-    if (key.type == EnvType::Path && text.starts_with(cache))
+    if (key.type == KeyType::Path && text.starts_with(cache))
         text = (userCacheRoot() / text.substr(cache.size())).lexically_normal().string();
-    else if (key.type == EnvType::Path && !text.empty())
+    else if (key.type == KeyType::Path && !text.empty())
         text = (dataFolder() / text).lexically_normal().string();
     return {text, "default"};
 }
@@ -236,7 +236,7 @@ void Env::loadFile(const std::filesystem::path& file) {
     }
 }
 
-Env::Value Env::value(std::string_view keyName, EnvType expected) const {
+Env::Value Env::value(std::string_view keyName, KeyType expected) const {
     const std::string name(keyName);
     const EnvKey* key = registry_->find(name);
     // Reading a key the registry does not hold, or with another type, is a programming error.
@@ -247,20 +247,20 @@ Env::Value Env::value(std::string_view keyName, EnvType expected) const {
     return it != values_.end() ? it->second : defaultOf(*key);
 }
 
-bool Env::get(const BoolKey& key) const { return value(key.name(), EnvType::Bool).text == "true"; }
-int Env::get(const IntKey& key) const { return *numberIn<int>(value(key.name(), EnvType::Int).text); }
+bool Env::get(const BoolKey& key) const { return value(key.name(), KeyType::Bool).text == "true"; }
+int Env::get(const IntKey& key) const { return *numberIn<int>(value(key.name(), KeyType::Int).text); }
 // Validated as a double in the key's range; a value too small for a float (1e-50) becomes 0 or a
 // subnormal here instead of failing to parse as one.
 float Env::get(const FloatKey& key) const {
-    return float(*numberIn<double>(value(key.name(), EnvType::Float).text));
+    return float(*numberIn<double>(value(key.name(), KeyType::Float).text));
 }
-std::string Env::get(const TextKey& key) const { return value(key.name(), EnvType::String).text; }
-std::string Env::get(const ChoiceKey& key) const { return value(key.name(), EnvType::Choice).text; }
-std::filesystem::path Env::get(const PathKey& key) const { return value(key.name(), EnvType::Path).text; }
-std::optional<Vec3> Env::get(const Vec3Key& key) const { return parseVec3(value(key.name(), EnvType::Vec3).text); }
+std::string Env::get(const TextKey& key) const { return value(key.name(), KeyType::String).text; }
+std::string Env::get(const ChoiceKey& key) const { return value(key.name(), KeyType::Choice).text; }
+std::filesystem::path Env::get(const PathKey& key) const { return value(key.name(), KeyType::Path).text; }
+std::optional<Vec3> Env::get(const Vec3Key& key) const { return parseVec3(value(key.name(), KeyType::Vec3).text); }
 
 std::vector<Vec3> Env::get(const Vec3ListKey& key) const {
-    const std::string text = value(key.name(), EnvType::Vec3List).text;
+    const std::string text = value(key.name(), KeyType::Vec3List).text;
     std::vector<Vec3> list;
     if (text.empty()) return list;
     for (const std::string& item : splitList(text)) list.push_back(*parseVec3(item));

@@ -20,7 +20,7 @@ namespace bvhlab {
 class EnvRegistry {
 public:
     void add(EnvKey key);
-    template <EnvType Type>
+    template <KeyType Type>
     void add(const Key<Type>& key) { add(key.declaration()); }
     const EnvKey* find(const std::string& name) const;
     const std::map<std::string, EnvKey>& keys() const { return keys_; }
@@ -58,7 +58,7 @@ public:
     // "-DSection::key", or `origin` where it came from elsewhere (bench --accel NAME:Key=value).
     void setOverride(const std::string& assignment, const std::string& origin = "");
 
-    template <EnvType Type>
+    template <KeyType Type>
     void set(const Key<Type>& key, const std::string& value, const std::string& origin) {
         set(std::string(key.name()), value, origin);
     }
@@ -72,7 +72,7 @@ public:
     std::optional<Vec3> get(const Vec3Key& key) const;
     std::vector<Vec3> get(const Vec3ListKey& key) const;
     // Set by a file or -D, not a default.
-    template <EnvType Type>
+    template <KeyType Type>
     bool isExplicit(const Key<Type>& key) const { return isExplicit(std::string(key.name())); }
     bool isExplicit(const std::string& name) const;
 
@@ -88,7 +88,7 @@ private:
     static Value defaultOf(const EnvKey& key);
     // The registry's key `name`; an unknown one is an InputError naming `origin` and near keys.
     const EnvKey& known(const std::string& name, const std::string& origin) const;
-    Value value(std::string_view key, EnvType expected) const;
+    Value value(std::string_view key, KeyType expected) const;
 
     const EnvRegistry* registry_;
     std::map<std::string, Value> values_;

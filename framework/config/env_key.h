@@ -5,6 +5,8 @@
 
 #include "framework/core/math.h"
 
+#include <bvhlab/settings.h>
+
 #include <filesystem>
 #include <optional>
 #include <span>
@@ -14,21 +16,10 @@
 
 namespace bvhlab {
 
-enum class EnvType {
-    Bool,      // true/false, on/off, yes/no, 1/0
-    Int,       // with an inclusive range
-    Float,     // with an inclusive range
-    String,    // free text
-    Choice,    // one of a fixed list of words
-    Path,      // relative paths resolve against the folder of the env file that set them
-    Vec3,      // "x y z", or empty for "not given"
-    Vec3List,  // "x y z, x y z, ...", possibly empty
-};
-
-// A registered key, as the registry and the docs see it.
+// A registered key, as the registry and the docs see it (KeyType: <bvhlab/settings.h>).
 struct EnvKey {
     std::string name;  // Section::key
-    EnvType type = EnvType::String;
+    KeyType type = KeyType::String;
     std::string defaultValue;
     std::string description;
     double min = 0.0, max = 0.0;       // Int and Float
@@ -36,19 +27,19 @@ struct EnvKey {
 };
 
 // The value a key of each type reads as.
-template <EnvType Type> struct EnvValue;
-template <> struct EnvValue<EnvType::Bool> { using type = bool; };
-template <> struct EnvValue<EnvType::Int> { using type = int; };
-template <> struct EnvValue<EnvType::Float> { using type = float; };
-template <> struct EnvValue<EnvType::String> { using type = std::string; };
-template <> struct EnvValue<EnvType::Choice> { using type = std::string; };
-template <> struct EnvValue<EnvType::Path> { using type = std::filesystem::path; };  // empty when not given
-template <> struct EnvValue<EnvType::Vec3> { using type = std::optional<Vec3>; };    // nullopt when not given
-template <> struct EnvValue<EnvType::Vec3List> { using type = std::vector<Vec3>; };
+template <KeyType Type> struct EnvValue;
+template <> struct EnvValue<KeyType::Bool> { using type = bool; };
+template <> struct EnvValue<KeyType::Int> { using type = int; };
+template <> struct EnvValue<KeyType::Float> { using type = float; };
+template <> struct EnvValue<KeyType::String> { using type = std::string; };
+template <> struct EnvValue<KeyType::Choice> { using type = std::string; };
+template <> struct EnvValue<KeyType::Path> { using type = std::filesystem::path; };  // empty when not given
+template <> struct EnvValue<KeyType::Vec3> { using type = std::optional<Vec3>; };    // nullopt when not given
+template <> struct EnvValue<KeyType::Vec3List> { using type = std::vector<Vec3>; };
 
 // The declaration and typed handle. Constant-initialised (string views only), so a key can be
 // read from any static initialiser without an initialisation-order question.
-template <EnvType Type>
+template <KeyType Type>
 class Key {
 public:
     using Value = typename EnvValue<Type>::type;
@@ -56,14 +47,14 @@ public:
     // Int and Float: the inclusive range.
     constexpr Key(std::string_view name, std::string_view defaultValue, double min, double max,
                   std::string_view description)
-        requires(Type == EnvType::Int || Type == EnvType::Float)
+        requires(Type == KeyType::Int || Type == KeyType::Float)
         : name_(name), default_(defaultValue), description_(description), min_(min), max_(max) {}
     constexpr Key(std::string_view name, std::string_view defaultValue, std::span<const std::string_view> choices,
                   std::string_view description)
-        requires(Type == EnvType::Choice)
+        requires(Type == KeyType::Choice)
         : name_(name), default_(defaultValue), description_(description), choices_(choices) {}
     constexpr Key(std::string_view name, std::string_view defaultValue, std::string_view description)
-        requires(Type != EnvType::Int && Type != EnvType::Float && Type != EnvType::Choice)
+        requires(Type != KeyType::Int && Type != KeyType::Float && Type != KeyType::Choice)
         : name_(name), default_(defaultValue), description_(description) {}
 
     constexpr std::string_view name() const { return name_; }
@@ -83,13 +74,13 @@ private:
     std::span<const std::string_view> choices_;
 };
 
-using BoolKey = Key<EnvType::Bool>;
-using IntKey = Key<EnvType::Int>;
-using FloatKey = Key<EnvType::Float>;
-using TextKey = Key<EnvType::String>;
-using ChoiceKey = Key<EnvType::Choice>;
-using PathKey = Key<EnvType::Path>;
-using Vec3Key = Key<EnvType::Vec3>;
-using Vec3ListKey = Key<EnvType::Vec3List>;
+using BoolKey = Key<KeyType::Bool>;
+using IntKey = Key<KeyType::Int>;
+using FloatKey = Key<KeyType::Float>;
+using TextKey = Key<KeyType::String>;
+using ChoiceKey = Key<KeyType::Choice>;
+using PathKey = Key<KeyType::Path>;
+using Vec3Key = Key<KeyType::Vec3>;
+using Vec3ListKey = Key<KeyType::Vec3List>;
 
 }  // namespace bvhlab

@@ -4,7 +4,7 @@
 // are recorded (accel/guarded_accelerator.cpp): bvhlab's own structures pay nothing.
 #pragma once
 
-#include "framework/core/ray.h"
+#include <bvhlab/ray.h>
 
 #include <cstddef>
 #include <filesystem>

@@ -4,7 +4,7 @@
 // what the interface's per-ray conversion and checks cost is the wrapped row's ratio to it.
 #pragma once
 
-#include "framework/core/ray.h"
+#include <bvhlab/ray.h>
 
 #include <cstddef>
 #include <memory>
@@ -29,13 +29,17 @@ public:
     virtual size_t trace(size_t begin, size_t end, bool anyHit) = 0;
 };
 
-// The batch APIs of an outside library (Embree: its stream, and packets of 8 or 16 rays), which
-// its wrapper implements beside Accelerator; `bvhlab bench` finds them with dynamic_cast and
-// keeps the fastest as the yardstick of its batch rows (embree-batch). Kept out of Accelerator so
-// that the plugin API (its vtable) stays as it is: a plugin's accelerator cannot offer them.
+// The native APIs of an outside library (Embree: its single-ray call, its stream, and packets of 8
+// or 16 rays), which its wrapper implements beside Accelerator; `bvhlab bench` finds them with
+// dynamic_cast and keeps them as the yardsticks of its rows (embree-bare, embree-batch). Not part
+// of Accelerator, which is the plugin API: a plugin's accelerator cannot offer them.
 class NativeBatchApis {
 public:
     virtual ~NativeBatchApis() = default;
+
+    // The rays in the library's own format, for a bare loop of its single-ray call after build().
+    // Throws std::invalid_argument naming the first ray the native call cannot take as it is.
+    virtual std::unique_ptr<NativeRayBatch> prepareNativeBatch(const std::vector<Ray>& rays) const = 0;
 
     // The APIs' names, e.g. "stream", "packet8", "packet16": those this machine runs natively.
     virtual std::vector<std::string> batchApis() const = 0;

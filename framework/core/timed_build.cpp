@@ -12,7 +12,7 @@ BuildStats timedBuild(Accelerator& accel, const PrimitiveSet& prims) {
     accel.build(prims);
     const double cpuEnd = processCpuMs();
     const auto end = std::chrono::steady_clock::now();
-    BuildStats stats = accel.statistics();
+    BuildStats stats = statisticsOf(accel);
     stats.buildMs = std::chrono::duration<double, std::milli>(end - start).count();
     stats.buildCpuMs = cpuEnd - cpuStart;
     return stats;

@@ -4,7 +4,7 @@
 //         (0xFFFFFFFF on a miss), float32 u, float32 v}
 #pragma once
 
-#include "framework/core/ray.h"
+#include <bvhlab/ray.h>
 
 #include <filesystem>
 #include <vector>

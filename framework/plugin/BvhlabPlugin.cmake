@@ -1,5 +1,5 @@
 # bvhlab_add_plugin(NAME SOURCES src... [LINK_LIBRARIES lib...]): a bvhlab plugin (docs/install.md,
-# framework/plugin/plugin_api.h) as a MODULE library NAME.so that links bvhlab::plugin_api, its
+# <bvhlab/plugin.h>) as a MODULE library NAME.so that links bvhlab::plugin_api, its
 # symbols hidden but for the three entry points BVHLAB_PLUGIN exports, its compile flags recorded
 # (bvhlab_record_plugin_flags). Called from bvhlab's own CMake files it builds into
 # <build>/plugins/ and installs into lib/bvhlab/plugins/; called from another project
@@ -7,7 +7,7 @@
 include_guard(GLOBAL)
 
 # bvhlab_record_plugin_flags(TARGET): passes the flags TARGET's sources are compiled with to the
-# build info BVHLAB_PLUGIN records (framework/plugin/plugin_api.h), which bvhlab puts in the
+# build info BVHLAB_PLUGIN records (<bvhlab/plugin.h>), which bvhlab puts in the
 # provenance of every run: CMAKE_CXX_FLAGS, those of the build's configuration and the target's
 # compile options, its own and those of the libraries it links. The flags CMake adds by itself
 # (-std, -fPIC, -fvisibility) and per-source options are not among them.

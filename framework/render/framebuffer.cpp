@@ -2,7 +2,8 @@
 
 #include "framework/core/available_memory.h"
 #include "framework/core/error.h"
-#include "framework/core/ray.h"
+
+#include <bvhlab/ray.h>
 
 #include <fmt/core.h>
 

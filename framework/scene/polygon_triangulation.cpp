@@ -1,5 +1,6 @@
 #include "framework/scene/polygon_triangulation.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 

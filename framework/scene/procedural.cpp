@@ -2,6 +2,7 @@
 
 #include <glm/gtc/constants.hpp>
 
+#include <algorithm>
 #include <map>
 
 namespace bvhlab {

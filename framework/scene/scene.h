@@ -2,8 +2,9 @@
 // one flat list, NFF's spheres and cones, materials, point lights and an optional camera.
 #pragma once
 
-#include "framework/core/primitive_set.h"
 #include "framework/core/triangle.h"
+
+#include <bvhlab/primitive_set.h>
 
 #include <filesystem>
 #include <optional>

@@ -304,7 +304,7 @@ INSTANTIATE_TEST_SUITE_P(Registered, AccelCorrectness, ::testing::ValuesIn(regis
 
 // Deliberately broken accelerators (naive's loop underneath, one fault each): the harness must
 // catch every one. Without this, a comparison that always passed would go unnoticed.
-class FaultyAccelerator final : public Accelerator {
+class FaultyAccelerator final : public BuildStatsAccelerator {
 public:
     enum class Fault {
         None,
@@ -322,7 +322,7 @@ public:
     };
     explicit FaultyAccelerator(Fault f) : fault_(f) {}
 
-    std::string_view name() const override { return "faulty"; }
+    const char* name() const override { return "faulty"; }
     void build(const PrimitiveSet& prims) override {
         kept_.clear();
         for (size_t i = 0; i < prims.valid.size(); ++i)
@@ -334,7 +334,7 @@ public:
         prims_ = {prims.triangles, kept_};
         validCount_ = prims.valid.size();
     }
-    BuildStats statistics() const override {
+    BuildStats buildStats() const override {
         BuildStats stats;
         stats.primitives = validCount_;  // what it was given, whatever it kept
         return stats;
@@ -468,11 +468,11 @@ TEST(CorrectnessHarness, CatchesHitsOnDegenerateTriangles) {
 TEST(CorrectnessHarness, WatertightProbesCatchEdgeLeaksAndPassTheOracle) {
     // An accelerator that answers with the double oracle must pass every probe; one that
     // misses hits within 1e-4 of an edge must be caught.
-    class OracleAccelerator final : public Accelerator {
+    class OracleAccelerator final : public BuildStatsAccelerator {
     public:
-        std::string_view name() const override { return "oracle"; }
+        const char* name() const override { return "oracle"; }
         void build(const PrimitiveSet& prims) override { oracle_ = std::make_unique<Oracle>(prims); }
-        BuildStats statistics() const override { return {}; }
+        BuildStats buildStats() const override { return {}; }
         bool findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const override {
             ++counters.queries;
             const OracleHit h = oracle_->nearest(ray);

@@ -24,9 +24,9 @@ using check::sameCounters;
 class SingleRayCalls final : public Accelerator {
 public:
     explicit SingleRayCalls(const Accelerator& inner) : inner_(inner) {}
-    std::string_view name() const override { return inner_.name(); }
+    const char* name() const override { return inner_.name(); }
     void build(const PrimitiveSet&) override {}
-    BuildStats statistics() const override { return {}; }
+    void statistics(BuildStatistics&) const override {}
     bool findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const override {
         return inner_.findNearest(ray, hit, counters);
     }

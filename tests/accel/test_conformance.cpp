@@ -58,9 +58,9 @@ INSTANTIATE_TEST_SUITE_P(Registered, CheckSuite, testing::ValuesIn(everyAccelera
 class DropsEveryThirdHit final : public Accelerator {
 public:
     DropsEveryThirdHit() : inner_(createAccelerator("sahbvh", Env(programKeys()))) {}
-    std::string_view name() const override { return "drops-hits"; }
+    const char* name() const override { return "drops-hits"; }
     void build(const PrimitiveSet& prims) override { inner_->build(prims); }
-    BuildStats statistics() const override { return inner_->statistics(); }
+    void statistics(BuildStatistics& out) const override { inner_->statistics(out); }
     bool findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const override {
         if (calls_++ % 3 == 2) {
             ++counters.queries;

@@ -63,8 +63,8 @@ TEST(MixedPrimitives, RaysLeavingAQuadricOutwardDoNotHitItAgain) {
     std::mt19937 rng(1);
     size_t leaving = 0;
     for (uint32_t prim : prims.validQuadrics()) {
-        const Vec3 centre(prims.quadric(prim).index() == 0 ? std::get<Sphere>(prims.quadric(prim)).centre
-                                                           : std::get<Cone>(prims.quadric(prim)).centroid());
+        const QuadricShape shape = prims.quadric(prim);
+        const Vec3 centre(shape.sphere() ? shape.sphere()->centre : shape.cone()->centroid());
         for (int i = 0; i < 20; ++i) {
             // Aim from outside at the primitive's centre region; keep hits on it from outside.
             const Vec3 org = centre + Vec3(25.0 * randomUnit(rng));

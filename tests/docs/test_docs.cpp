@@ -119,26 +119,23 @@ TEST(Docs, AddingAnAcceleratorCoversEveryPrimitiveKindAndFile) {
 }
 
 // docs/plugins.md's reference describes the plugin API: every type and virtual function of the
-// headers framework/plugin/plugin_api.h brings, and the cost constants a builder is given.
+// headers of framework/api/bvhlab/, and the cost constants a builder is given.
 TEST(Docs, ThePluginReferenceDescribesEveryTypeOfThePluginApi) {
     namespace fs = std::filesystem;
     const fs::path root(test::sourceTree());
-    std::vector<std::string> headers = {"framework/plugin/plugin_api.h"};
     std::set<std::string> names = {"cTraversal", "cIntersect", "BVH::cTraversal", "BVH::cIntersect"};
-    const std::regex include(R"re(^#include "(framework/[\w/]+\.h)")re");
     const std::regex declaration(R"(^(?:struct|class|enum class) (?:alignas\(\d+\) )?(\w+)[^;]*$|virtual [^(]*\b(\w+)\()");
-    for (size_t i = 0; i < headers.size(); ++i) {
-        std::ifstream in(root / headers[i]);
+    size_t headers = 0;
+    for (const auto& header : fs::directory_iterator(root / "framework/api/bvhlab")) {
+        ++headers;
+        std::ifstream in(header.path());
         for (std::string line; std::getline(in, line);) {
             std::smatch m;
-            if (std::regex_search(line, m, include)) {
-                if (std::find(headers.begin(), headers.end(), m[1].str()) == headers.end()) headers.push_back(m[1]);
-            } else if (std::regex_search(line, m, declaration)) {
-                names.insert(m[m[1].matched ? 1 : 2].str());
-            }
+            if (std::regex_search(line, m, declaration)) names.insert(m[m[1].matched ? 1 : 2].str());
         }
     }
-    names.erase("EnvLine");  // a line of an env file as bvhlab reads it, before any key is known
+    EXPECT_GT(headers, 10u);
+    names.erase("AnyField");  // how abi.h counts a struct's fields, nothing a plugin uses
     std::ifstream in(root / "docs/plugins.md");
     std::stringstream text;
     text << in.rdbuf();

@@ -50,12 +50,12 @@ case "$1" in
     cmake -S "$here/add_subdirectory" -B "$work/build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
       -DBVHLAB_SOURCE="$root" -DPLUGIN_NAME="$name" -DPLUGIN_SOURCES="$(ls "$work"/plugin/*.cpp | paste -sd';')" \
       || fail "configuring tests/package/add_subdirectory failed"
-    # The plugin target only: it pulls bvhlab_core and bvhlab_config, nothing else of bvhlab.
+    # The plugin target only: it builds nothing of bvhlab's (bvhlab::plugin_api is headers).
     cmake --build "$work/build" -j 2 --target "$name" || fail "building the plugin failed"
     plugin="$work/build/$name.so"
     [ -f "$plugin" ] || fail "$plugin was not built"
     symbols=$(nm -D --defined-only "$plugin")
-    entry_points="bvhlab_plugin_api_version bvhlab_plugin_build_info bvhlab_register_plugin"
+    entry_points="bvhlab_plugin_abi bvhlab_plugin_build_info bvhlab_register_plugin"
     for symbol in $entry_points; do
       grep -qw "$symbol" <<< "$symbols" || fail "$plugin does not export $symbol"
     done

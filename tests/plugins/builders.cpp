@@ -4,15 +4,16 @@
 // all span the scene: right answers at an absurd cost, tests/apps/test_check_command.cpp);
 // `lossy`, a split rule that overwrites a primitive index; `costed`, a split rule that reads the
 // run's SAH constants; `twice`, a merge tree that uses a node twice.
-#include "framework/plugin/plugin_api.h"
+#include <bvhlab/plugin.h>
 
 #include <algorithm>
+#include <vector>
 
 namespace {
 
 using namespace bvhlab;
 
-std::vector<Merge> pairs(std::span<const PrimRef> prims, const BuilderSettings&) {
+void pairs(View<const PrimRef> prims, View<Merge> out, const BuilderSettings&) {
     std::vector<uint32_t> level(prims.size());
     for (uint32_t i = 0; i < level.size(); ++i) level[i] = i;
     std::vector<Merge> merges;
@@ -26,12 +27,12 @@ std::vector<Merge> pairs(std::span<const PrimRef> prims, const BuilderSettings&)
         if (level.size() % 2) up.push_back(level.back());
         level = std::move(up);
     }
-    return merges;
+    std::copy(merges.begin(), merges.end(), out.begin());
 }
 
 class Interleaved final : public SplitRule {
 public:
-    size_t split(std::span<PrimRef> prims, const Bounds3&, const Bounds3&, bool) override {
+    size_t split(View<PrimRef> prims, const Bounds3&, const Bounds3&, bool) override {
         if (prims.size() < 2) return 0;
         std::vector<PrimRef> dealt;
         for (size_t first : {0, 1})
@@ -43,7 +44,7 @@ public:
 
 class Lossy final : public SplitRule {
 public:
-    size_t split(std::span<PrimRef> prims, const Bounds3&, const Bounds3&, bool) override {
+    size_t split(View<PrimRef> prims, const Bounds3&, const Bounds3&, bool) override {
         prims[1].prim = prims[0].prim;
         return prims.size() / 2;
     }
@@ -55,7 +56,7 @@ class Costed final : public SplitRule {
 public:
     explicit Costed(const BuilderSettings& settings) : leafUpTo_(2.0f * settings.cTraversal / settings.cIntersect) {}
 
-    size_t split(std::span<PrimRef> prims, const Bounds3&, const Bounds3& centroidBounds, bool mayBeLeaf) override {
+    size_t split(View<PrimRef> prims, const Bounds3&, const Bounds3& centroidBounds, bool mayBeLeaf) override {
         if (mayBeLeaf && float(prims.size()) <= leafUpTo_) return 0;
         const int axis = centroidBounds.largestAxis();
         const size_t half = prims.size() / 2;
@@ -74,14 +75,14 @@ private:
 BVHLAB_PLUGIN(registrar) {
     registrar.addBuilder({"pairs", "neighbours joined round after round", {}, {}, pairs});
     registrar.addBuilder({"interleaved", "deals the primitives out to the children in turn", {},
-                          [](const BuilderSettings&) { return std::make_unique<Interleaved>(); }, {}});
+                          [](const BuilderSettings&) -> SplitRule* { return new Interleaved; }, {}});
     registrar.addBuilder(
-        {"lossy", "overwrites a primitive index", {}, [](const BuilderSettings&) { return std::make_unique<Lossy>(); }, {}});
+        {"lossy", "overwrites a primitive index", {}, [](const BuilderSettings&) -> SplitRule* { return new Lossy; }, {}});
     registrar.addBuilder({"costed", "median splits, leaves where the SAH constants favour them", {},
-                          [](const BuilderSettings& settings) { return std::make_unique<Costed>(settings); }, {}});
-    registrar.addBuilder({"twice", "uses a node twice", {}, {}, [](std::span<const PrimRef> prims, const BuilderSettings& s) {
-                              std::vector<Merge> merges = pairs(prims, s);
+                          [](const BuilderSettings& settings) -> SplitRule* { return new Costed(settings); }, {}});
+    registrar.addBuilder({"twice", "uses a node twice", {}, {},
+                          [](View<const PrimRef> prims, View<Merge> merges, const BuilderSettings& s) {
+                              pairs(prims, merges, s);
                               if (!merges.empty()) merges.back().right = merges.back().left;
-                              return merges;
                           }});
 }

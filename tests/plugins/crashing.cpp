@@ -1,7 +1,7 @@
 // A plugin whose accelerators crash, for the report of a fatal signal (tests/apps/test_plugins.cpp,
 // tests/apps/test_check_command.cpp): `crashing` writes through a bad pointer in findNearest(),
 // `crashing_build` recurses without end in build() until its stack overflows.
-#include "framework/plugin/plugin_api.h"
+#include <bvhlab/plugin.h>
 
 #include <cstdint>
 
@@ -26,16 +26,12 @@ void writeThroughABadPointer() {
 class Crashing final : public Accelerator {
 public:
     explicit Crashing(bool inBuild) : inBuild_(inBuild) {}
-    std::string_view name() const override { return inBuild_ ? "crashing_build" : "crashing"; }
+    const char* name() const override { return inBuild_ ? "crashing_build" : "crashing"; }
     void build(const PrimitiveSet& prims) override {
         primitives_ = prims.valid.size();
         if (inBuild_) recurse(0);
     }
-    BuildStats statistics() const override {
-        BuildStats stats;
-        stats.primitives = primitives_;
-        return stats;
-    }
+    void statistics(BuildStatistics& out) const override { out.set("primitives", double(primitives_)); }
     bool findNearest(const Ray&, Hit&, QueryCounters&) const override {
         writeThroughABadPointer();
         return false;
@@ -54,7 +50,7 @@ private:
 
 BVHLAB_PLUGIN(registrar) {
     registrar.addAccelerator({"crashing", "a segmentation fault in findNearest()", {},
-                              [](const Env&) { return std::make_unique<Crashing>(false); }});
+                              [](const PluginSettings&) -> Accelerator* { return new Crashing(false); }});
     registrar.addAccelerator({"crashing_build", "a stack overflow in build()", {},
-                              [](const Env&) { return std::make_unique<Crashing>(true); }});
+                              [](const PluginSettings&) -> Accelerator* { return new Crashing(true); }});
 }

@@ -1,7 +1,8 @@
 // A plugin whose accelerators throw where bvhlab must turn the exception into an error naming
 // the plugin and the accelerator (tests/apps/test_plugins.cpp): `throwing` in build(),
-// `throwing_query` in its queries, `throwing_factory` when made.
-#include "framework/plugin/plugin_api.h"
+// `throwing_query` in its queries, `throwing_factory` when made; `throwing_misread` reads its
+// Int key as a Float, which bvhlab refuses naming the key.
+#include <bvhlab/plugin.h>
 
 #include <stdexcept>
 
@@ -10,11 +11,11 @@ namespace {
 class Throwing final : public bvhlab::Accelerator {
 public:
     explicit Throwing(bool inBuild) : inBuild_(inBuild) {}
-    std::string_view name() const override { return inBuild_ ? "throwing" : "throwing_query"; }
+    const char* name() const override { return inBuild_ ? "throwing" : "throwing_query"; }
     void build(const bvhlab::PrimitiveSet&) override {
         if (inBuild_) throw std::runtime_error("no build today");
     }
-    bvhlab::BuildStats statistics() const override { return {}; }
+    void statistics(bvhlab::BuildStatistics&) const override {}
     bool findNearest(const bvhlab::Ray&, bvhlab::Hit&, bvhlab::QueryCounters&) const override {
         throw std::runtime_error("no queries today");
     }
@@ -26,17 +27,24 @@ private:
     bool inBuild_;
 };
 
-inline constexpr bvhlab::IntKey kUnused{"Throwing::unused", "3", 1, 9, "a key, to be listed by `bvhlab keys`"};
+inline constexpr bvhlab::PluginKey kUnused{"Throwing::unused", bvhlab::KeyType::Int, "3",
+                                           "a key, to be listed by `bvhlab keys`", 1, 9};
+inline constexpr bvhlab::PluginKey kCount{"Throwing::count", bvhlab::KeyType::Int, "1", "an Int key read as a Float",
+                                          0, 9};
 
 }  // namespace
 
 BVHLAB_PLUGIN(registrar) {
-    registrar.addAccelerator({"throwing", "throws in build()", {kUnused.declaration()},
-                              [](const bvhlab::Env&) { return std::make_unique<Throwing>(true); }});
+    registrar.addAccelerator({"throwing", "throws in build()", {kUnused},
+                              [](const bvhlab::PluginSettings&) -> bvhlab::Accelerator* { return new Throwing(true); }});
     registrar.addAccelerator({"throwing_query", "throws in its queries", {},
-                              [](const bvhlab::Env&) { return std::make_unique<Throwing>(false); }});
+                              [](const bvhlab::PluginSettings&) -> bvhlab::Accelerator* { return new Throwing(false); }});
     registrar.addAccelerator({"throwing_factory", "throws when made", {},
-                              [](const bvhlab::Env&) -> std::unique_ptr<bvhlab::Accelerator> {
+                              [](const bvhlab::PluginSettings&) -> bvhlab::Accelerator* {
                                   throw std::invalid_argument("no accelerator today");
+                              }});
+    registrar.addAccelerator({"throwing_misread", "reads its Int key as a Float", {kCount},
+                              [](const bvhlab::PluginSettings& settings) -> bvhlab::Accelerator* {
+                                  return new Throwing(settings.getFloat(kCount.name) > 0);
                               }});
 }

@@ -16,9 +16,9 @@ public:
 
     explicit CountingSpy(const Accelerator& inner) : inner_(inner) {}
 
-    std::string_view name() const override { return inner_.name(); }
+    const char* name() const override { return inner_.name(); }
     void build(const PrimitiveSet&) override {}
-    BuildStats statistics() const override { return inner_.statistics(); }
+    void statistics(BuildStatistics& out) const override { inner_.statistics(out); }
     bool hasCounters() const override { return inner_.hasCounters(); }
 
     bool findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const override {
@@ -27,15 +27,15 @@ public:
     bool isOccluded(const Ray& ray, QueryCounters& counters) const override {
         return observe(counters, 1, {}, [&](QueryCounters& c) { return inner_.isOccluded(ray, c); });
     }
-    void findNearestBatch(std::span<const Ray> rays, std::span<Hit> hits, QueryCounters& counters,
-                          std::span<RayCost> costs) const override {
+    void findNearestBatch(View<const Ray> rays, View<Hit> hits, QueryCounters& counters,
+                          View<RayCost> costs) const override {
         observe(counters, rays.size(), costs, [&](QueryCounters& c) {
             inner_.findNearestBatch(rays, hits, c, costs);
             return true;
         });
     }
-    void isOccludedBatch(std::span<const Ray> rays, std::span<uint8_t> occluded, QueryCounters& counters,
-                         std::span<RayCost> costs) const override {
+    void isOccludedBatch(View<const Ray> rays, View<uint8_t> occluded, QueryCounters& counters,
+                         View<RayCost> costs) const override {
         observe(counters, rays.size(), costs, [&](QueryCounters& c) {
             inner_.isOccludedBatch(rays, occluded, c, costs);
             return true;

@@ -1,15 +1,16 @@
-// Float against the double reference of a ray-quadric test (framework/core/sphere.h, cone.h),
+// Float against the double reference of a ray-quadric test (<bvhlab/sphere.h>, <bvhlab/cone.h>),
 // ray by ray. Where both hit, t must agree to 1e-4 relative to max(|t|, size/|dir|): the
 // 1e-4*max(1,|t|) of hitsAgree for a primitive of unit size, the same standard for huge and tiny
 // ones. Hit against miss is allowed only for rays the caller's independent geometry marks as
 // grazing (within a narrow band of a tangent or of a rim); such rays are counted.
 #pragma once
 
-#include "framework/core/cone.h"
-#include "framework/core/quadric.h"
-#include "framework/core/ray.h"
-#include "framework/core/sphere.h"
 #include "tests/support/random_geometry.h"
+
+#include <bvhlab/cone.h>
+#include <bvhlab/quadric.h>
+#include <bvhlab/ray.h>
+#include <bvhlab/sphere.h>
 
 #include <gtest/gtest.h>
 

@@ -1,7 +1,7 @@
 // A triangle soup for the BVH tests: the triangles and the valid list the builders see.
 #pragma once
 
-#include "framework/core/primitive_set.h"
+#include <bvhlab/primitive_set.h>
 
 #include <vector>
 

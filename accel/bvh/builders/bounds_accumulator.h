@@ -1,4 +1,4 @@
-// The box of a set of PrimRefs and the box of their centres (framework/core/prim_ref.h),
+// The box of a set of PrimRefs and the box of their centres (<bvhlab/prim_ref.h>),
 // accumulated in the hot loops of every builder.
 //
 // The hot loops are written once against the SIMD layer (simd.h) and run with its vector or
@@ -6,7 +6,8 @@
 #pragma once
 
 #include "accel/bvh/simd/simd.h"
-#include "framework/core/prim_ref.h"
+
+#include <bvhlab/prim_ref.h>
 
 #include <cstdint>
 

@@ -169,7 +169,7 @@ Split TopDownBuilder::partition(const BuildRange& range, IsLeft isLeft) {
 
 // A builder: how the binary tree is made, by a split rule under the shared recursion
 // (TopDownBuilder) or by a whole tree of its own (sbvh's growing ranges, ploc's clustering).
-// accel/bvh/builder_table.cpp names ours; a plugin's comes from framework/plugin/builder_api.h.
+// accel/bvh/builder_table.cpp names ours; a plugin's comes from <bvhlab/builder.h>.
 using SplitRuleFactory = std::function<std::unique_ptr<TopDownBuilder>(const BvhBuildConfig&)>;
 struct BvhBuilder {
     std::string name;  // "sahbvh": the binary accelerator's name

@@ -1,5 +1,5 @@
-// A binary tree given as merges, as a bottom-up builder makes it (a plugin's: framework/plugin/
-// builder_api.h): node i < N is the i-th prepared primitive, node N + m joins children[2m] and
+// A binary tree given as merges, as a bottom-up builder makes it (a plugin's:
+// <bvhlab/builder.h>): node i < N is the i-th prepared primitive, node N + m joins children[2m] and
 // children[2m + 1], both below it; the last node is the root. The tree becomes a ClusterTree
 // whose leaves are formed by SAH and whose depth is bounded as ploc's (cluster_tree.h).
 #pragma once

@@ -204,7 +204,7 @@ TEST(Bvh, WideStatisticsAreTheBinaryTreesOutsideTheBuild) {
         BvhAccelerator<WideBvh<8>> wide(kind, defaultConfig());
         for (const Soup* s : {&soup, &other}) {
             wide.build(s->prims());
-            const BuildStats stats = wide.statistics();
+            const BuildStats stats = wide.buildStats();
             const Bvh binary = buildBvh(kind, config, s->prims());
             BuildStats expected;
             fillTreeStats(binary, config.cTraversal, config.cIntersect, expected);
@@ -219,8 +219,8 @@ TEST(Bvh, WideStatisticsAreTheBinaryTreesOutsideTheBuild) {
             EXPECT_EQ(*stats.epo, endPointOverlap(binary.nodes, binary.leafTriangles, config.cTraversal,
                                                   config.cIntersect, config.threads));
             EXPECT_EQ(stats.bytes, wide.bvh().bytes());
-            EXPECT_EQ(wide.statistics().epo, stats.epo);
-            EXPECT_EQ(wide.statistics().nodes, stats.nodes);
+            EXPECT_EQ(wide.buildStats().epo, stats.epo);
+            EXPECT_EQ(wide.buildStats().nodes, stats.nodes);
         }
     }
 }
@@ -593,7 +593,7 @@ TEST(Bvh, RegisteredWithTheirEnvKeys) {
     EXPECT_EQ(config.maxLeaf, 3);
     EXPECT_EQ(config.medianSplitBox, MedianSplitBox::NodeBox);
     const auto accel = createAccelerator("sahbvh", env);
-    EXPECT_EQ(accel->name(), "sahbvh");
+    EXPECT_STREQ(accel->name(), "sahbvh");
     EXPECT_TRUE(accel->hasCounters());
 }
 
@@ -868,8 +868,8 @@ TEST(WideBvh, FourAndEightWideAgreeWithNaive) {
         BvhAccelerator<WideBvh<8>> eight(bvhBuilder("sahbvh"), defaultConfig(), traversal);
         four.build(soup.prims());
         const BuildStats stats = timedBuild(eight, soup.prims());
-        EXPECT_EQ(four.name(), "sahbvh4");
-        EXPECT_EQ(eight.name(), "sahbvh8");
+        EXPECT_STREQ(four.name(), "sahbvh4");
+        EXPECT_STREQ(eight.name(), "sahbvh8");
         EXPECT_EQ(*stats.bytes, eight.bvh().bytes());
         expectAgreesWithNaive(four, soup, 2000, 2.0f, 59);
         expectAgreesWithNaive(eight, soup, 2000, 2.0f, 59);

@@ -129,7 +129,7 @@ Answers answersOf(Isa isa, bool robust, const test::Soup& soup, const std::vecto
     accel.findNearestBatch(rays, a.batchHits, a.batch, a.costs);
     accel.isOccludedBatch(rays, a.batchOccluded, a.batch, {});
     expectTimedFormAnswersAlike(accel, rays, a);
-    const BuildStats stats = accel.statistics();
+    const BuildStats stats = accel.buildStats();
     const auto bits = std::find_if(stats.figures.begin(), stats.figures.end(),
                                    [](const NamedFigure& f) { return f.name == "kernel_bits"; });
     EXPECT_TRUE(bits != stats.figures.end() && bits->value == isaVectorBits(isa)) << isaName(isa);

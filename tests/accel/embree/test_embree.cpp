@@ -276,7 +276,7 @@ TEST(Embree, CountersAndTreeStatisticsUnavailable) {
     const SkippingScene scene;
     EmbreeAccelerator accel;
     EXPECT_FALSE(accel.hasCounters());
-    EXPECT_EQ(accel.name(), "embree");
+    EXPECT_STREQ(accel.name(), "embree");
     const BuildStats stats = timedBuild(accel, scene.prims());
     EXPECT_GE(stats.buildMs, 0.0);
     EXPECT_FALSE(stats.nodes.has_value());
@@ -376,7 +376,6 @@ TEST(Embree, NativeBatchAnswersAsTheInterface) {
     std::vector<Ray> behind = {rays[0]};
     behind[0].tmin = -1.0f;
     EXPECT_THROW(accel.prepareNativeBatch(behind), std::invalid_argument);
-    EXPECT_EQ(NaiveAccelerator().prepareNativeBatch(rays), nullptr);
 }
 
 // Embree's batch APIs (bench's embree-batch: its stream, and its packets of the widths the device
@@ -453,7 +452,7 @@ TEST(Embree, ConfigFromEnv) {
 
     env.setOverride("ASDS::type=embree");
     const std::unique_ptr<Accelerator> accel = createAccelerator(env);
-    EXPECT_EQ(accel->name(), "embree");
+    EXPECT_STREQ(accel->name(), "embree");
     EXPECT_EQ(static_cast<const EmbreeAccelerator&>(*accel).deviceConfig(), "threads=2");
 }
 

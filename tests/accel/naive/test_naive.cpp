@@ -213,7 +213,7 @@ TEST(Naive, RebuildReplacesTheScene) {
 TEST(Naive, CreatedByTheRegistry) {
     const auto accel = createAccelerator("naive", Env(programKeys()));
     ASSERT_NE(accel, nullptr);
-    EXPECT_EQ(accel->name(), "naive");
+    EXPECT_STREQ(accel->name(), "naive");
     EXPECT_TRUE(accel->hasCounters());
 }
 

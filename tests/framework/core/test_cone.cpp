@@ -1,11 +1,12 @@
-// The ray-cone test of NFF's `c` (framework/core/cone.h), float against its double reference and
+// The ray-cone test of NFF's `c` (<bvhlab/cone.h>), float against its double reference and
 // the double against an independent solution: known hits on cylinders and cones, from inside,
 // through the open ends, parallel to the axis and to a generator line, interval ends, random and
 // tangent rays at scales from 1e-3 to 1e4 and far from the origin, bounds, NFF's radii, degenerate
 // cones and NaN rays.
-#include "framework/core/cone.h"
 #include "tests/support/quadric_agreement.h"
 #include "tests/support/random_geometry.h"
+
+#include <bvhlab/cone.h>
 
 #include <gtest/gtest.h>
 

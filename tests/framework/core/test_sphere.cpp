@@ -1,10 +1,11 @@
-// The ray-sphere test (framework/core/sphere.h), float against its double reference and the double
+// The ray-sphere test (<bvhlab/sphere.h>), float against its double reference and the double
 // against an independent solution: known hits along the axes, rays from inside, interval ends,
 // random and tangent rays at scales from 1e-3 to 1e4 and far from the origin, bounds, NFF's
 // negative radius, degenerate spheres and NaN rays.
-#include "framework/core/sphere.h"
 #include "tests/support/quadric_agreement.h"
 #include "tests/support/random_geometry.h"
+
+#include <bvhlab/sphere.h>
 
 #include <gtest/gtest.h>
 

@@ -29,9 +29,9 @@ void burnCpu(double ms) {
 
 // build() sleeps and burns a little; statistics() burns much more (as EPO does) and reports a
 // figure of its own. Each records when it started and ended.
-class Recorder final : public Accelerator {
+class Recorder final : public BuildStatsAccelerator {
 public:
-    std::string_view name() const override { return "recorder"; }
+    const char* name() const override { return "recorder"; }
     void build(const PrimitiveSet& prims) override {
         calls += "build ";
         buildStart = Clock::now();
@@ -40,7 +40,7 @@ public:
         built = prims.valid.size();
         buildEnd = Clock::now();
     }
-    BuildStats statistics() const override {
+    BuildStats buildStats() const override {
         calls += "statistics ";
         statisticsStart = Clock::now();
         statisticsCpuStart = processCpuMs();

@@ -2,10 +2,7 @@
 // computed without cancellation, and bounds rounded outward to float.
 #pragma once
 
-#include "framework/core/math.h"
-
-#include <cmath>
-#include <utility>
+#include <bvhlab/math.h>
 
 namespace bvhlab {
 
@@ -25,13 +22,17 @@ struct QuadricHitT {
 template <typename Real>
 inline bool quadraticRoots(Real a, Real halfB, Real c, Real reducedDiscriminant, Real& t0, Real& t1) {
     if (!(reducedDiscriminant >= Real(0))) return false;  // also NaN
-    const Real q = -(halfB + std::copysign(std::sqrt(reducedDiscriminant), halfB));
+    const Real q = -(halfB + math::copysign(math::sqrt(reducedDiscriminant), halfB));
     t0 = q / a;
     t1 = c / q;
-    if (!std::isfinite(t0)) t0 = t1;
-    if (!std::isfinite(t1)) t1 = t0;
-    if (!std::isfinite(t0)) return false;
-    if (t0 > t1) std::swap(t0, t1);
+    if (!math::isfinite(t0)) t0 = t1;
+    if (!math::isfinite(t1)) t1 = t0;
+    if (!math::isfinite(t0)) return false;
+    if (t0 > t1) {
+        const Real larger = t0;
+        t0 = t1;
+        t1 = larger;
+    }
     return true;
 }
 
@@ -40,8 +41,8 @@ inline bool quadraticRoots(Real a, Real halfB, Real c, Real reducedDiscriminant,
 inline Bounds3 boundsRoundedOutward(const DVec3& lower, const DVec3& upper, double pad) {
     Bounds3 b;
     for (int i = 0; i < 3; ++i) {
-        b.lower[i] = std::nextafter(float(lower[i] - pad), -kInfinity);
-        b.upper[i] = std::nextafter(float(upper[i] + pad), kInfinity);
+        b.lower[i] = math::nextafter(float(lower[i] - pad), -kInfinity);
+        b.upper[i] = math::nextafter(float(upper[i] + pad), kInfinity);
     }
     return b;
 }

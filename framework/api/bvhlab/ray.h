@@ -1,7 +1,7 @@
 // A ray with its valid interval and the answer to a closest-hit query.
 #pragma once
 
-#include "framework/core/math.h"
+#include <bvhlab/math.h>
 
 namespace bvhlab {
 
@@ -17,8 +17,8 @@ struct Ray {
     Vec3 at(float t) const { return org + t * dir; }
     // Rays with NaN components or an empty interval are answered as misses.
     bool isValid() const {
-        return !(std::isnan(org.x) || std::isnan(org.y) || std::isnan(org.z) || std::isnan(dir.x) ||
-                 std::isnan(dir.y) || std::isnan(dir.z) || std::isnan(tmin) || std::isnan(tmax)) &&
+        return !(math::isnan(org.x) || math::isnan(org.y) || math::isnan(org.z) || math::isnan(dir.x) ||
+                 math::isnan(dir.y) || math::isnan(dir.z) || math::isnan(tmin) || math::isnan(tmax)) &&
                (dir.x != 0.0f || dir.y != 0.0f || dir.z != 0.0f) && tmin <= tmax;
     }
 };
@@ -39,7 +39,7 @@ struct Hit {
 // 1e-4*max(1,|t|); the primitive may then differ (ties at shared edges, coincident triangles).
 inline bool hitsAgree(const Hit& a, const Hit& b) {
     if (!a.found() || !b.found()) return a.found() == b.found();
-    return std::abs(a.t - b.t) <= 1e-4f * std::max(1.0f, std::abs(a.t));
+    return math::abs(a.t - b.t) <= 1e-4f * math::max(1.0f, math::abs(a.t));
 }
 
 }  // namespace bvhlab

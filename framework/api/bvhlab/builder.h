@@ -1,28 +1,26 @@
 // Builder plugins (docs/plugins.md, "A builder"): a plugin that has only a way to build a binary
-// BVH adds it with PluginRegistrar::addBuilder, and bvhlab supplies the rest: leaf arrays, the
-// depth bound, the binary, 4- and 8-wide layouts and their traversals, the statistics, parallel
-// jobs and the checks, as the accelerators NAME, NAME4 and NAME8. A builder is one of two kinds:
+// BVH adds it with PluginRegistrar::addBuilder (<bvhlab/plugin.h>), and bvhlab supplies the rest:
+// leaf arrays, the depth bound, the binary, 4- and 8-wide layouts and their traversals, the
+// statistics, parallel jobs and the checks, as the accelerators NAME, NAME4 and NAME8. A builder
+// is one of two kinds:
 // - a split rule, the hook of bvhlab's top-down recursion (as madmann91/bvh v2's builders are):
 //   given a node's primitives, it partitions them in place, and the recursion does the rest;
 // - a merge tree, for bottom-up builders: the whole binary tree over single primitives, from
 //   which bvhlab forms leaves by SAH (as for its own ploc).
 #pragma once
 
-#include "framework/config/env.h"
-#include "framework/core/prim_ref.h"
+#include <bvhlab/math.h>
+#include <bvhlab/prim_ref.h>
+#include <bvhlab/settings.h>
+#include <bvhlab/view.h>
 
 #include <cstdint>
-#include <functional>
-#include <memory>
-#include <span>
-#include <string>
-#include <vector>
 
 namespace bvhlab {
 
 // What a builder is told, besides the primitives.
 struct BuilderSettings {
-    const Env& env;  // every key of the run: the plugin's own and bvhlab's
+    const PluginSettings& keys;  // the builder's own keys
     // The traversal tests a leaf's primitives this many at a time (1 in NAME, 8 in NAME4 and
     // NAME8): an SAH charges a leaf of n primitives ceil(n / leafBlock) tests.
     uint32_t leafBlock = 1;
@@ -43,7 +41,7 @@ public:
     // `centroidBounds` the box of their centres. Called only for nodes of more than
     // BVH::maxLeaf primitives whose centres are not all equal (near the depth bound the
     // recursion splits at the median itself). Only the order of `prims` may change.
-    virtual size_t split(std::span<PrimRef> prims, const Bounds3& bounds, const Bounds3& centroidBounds,
+    virtual size_t split(View<PrimRef> prims, const Bounds3& bounds, const Bounds3& centroidBounds,
                          bool mayBeLeaf) = 0;
 };
 
@@ -55,13 +53,14 @@ struct Merge {
 };
 
 struct PluginBuilder {
-    std::string name;         // NAME; NAME4 and NAME8 are added with it
-    std::string description;  // of NAME: what the builder does
-    std::vector<EnvKey> keys;  // its own keys, declared as an accelerator's are
-    // Exactly one of the two. A split rule is made once per build thread and used by that
-    // thread only; a merge tree is asked for once per build (its threads are its own).
-    std::function<std::unique_ptr<SplitRule>(const BuilderSettings&)> splitRule;
-    std::function<std::vector<Merge>(std::span<const PrimRef> prims, const BuilderSettings&)> mergeTree;
+    const char* name;         // NAME; NAME4 and NAME8 are added with it
+    const char* description;  // of NAME: what the builder does
+    View<const PluginKey> keys;  // its own keys
+    // Exactly one of the two. A split rule is made with `new` once per build thread, used by
+    // that thread only and deleted by bvhlab; a merge tree is asked for once per build (its
+    // threads are its own) and writes all prims.size() - 1 merges.
+    SplitRule* (*splitRule)(const BuilderSettings& settings) = nullptr;
+    void (*mergeTree)(View<const PrimRef> prims, View<Merge> merges, const BuilderSettings& settings) = nullptr;
 };
 
 }  // namespace bvhlab

@@ -3,8 +3,8 @@
 // and the two roots without cancellation (quadric.h).
 #pragma once
 
-#include "framework/core/quadric.h"
-#include "framework/core/ray.h"
+#include <bvhlab/quadric.h>
+#include <bvhlab/ray.h>
 
 namespace bvhlab {
 
@@ -16,19 +16,19 @@ struct Sphere {
 
     Bounds3 bounds() const {
         const DVec3 c(centre);
-        const double r = std::abs(double(radius));
-        const double magnitude = std::max({std::abs(c.x), std::abs(c.y), std::abs(c.z)}) + r;
+        const double r = math::abs(double(radius));
+        const double magnitude = math::max(math::max(math::abs(c.x), math::abs(c.y)), math::abs(c.z)) + r;
         return boundsRoundedOutward(c - r, c + r, 0x1p-45 * magnitude);
     }
     Vec3 centroid() const { return centre; }
     // The unit normal at a point p on the surface, away from the centre.
-    Vec3 normalAt(const Vec3& p) const { return glm::normalize(p - centre); }
+    Vec3 normalAt(const Vec3& p) const { return math::normalize(p - centre); }
 };
 
 // A non-finite centre or radius, or a radius whose square is not a normal float (0, or so
 // small or large that it under- or overflows): no test in float could place such a surface.
 inline bool isDegenerate(const Sphere& sphere) {
-    return !isFinite(sphere.centre) || !std::isnormal(sphere.radius * sphere.radius);
+    return !isFinite(sphere.centre) || !math::isnormal(sphere.radius * sphere.radius);
 }
 
 // Returns true and fills `out` with the nearest hit at t in [tmin, tmax]; a ray starting
@@ -37,20 +37,20 @@ template <typename Real>
 inline bool intersectSphere(const Ray& ray, const Sphere& sphere, Real tmin, Real tmax, QuadricHitT<Real>& out) {
     using V = glm::vec<3, Real>;
     if (isDegenerate(sphere)) return false;
-    const Real r = std::abs(Real(sphere.radius));
+    const Real r = math::abs(Real(sphere.radius));
     const V d(ray.dir);
     const V f = V(ray.org) - V(sphere.centre);
-    const Real a = glm::dot(d, d);
-    const Real halfB = glm::dot(f, d);
-    const Real c = glm::dot(f, f) - r * r;
+    const Real a = math::dot(d, d);
+    const Real halfB = math::dot(f, d);
+    const Real c = math::dot(f, f) - r * r;
     // halfB^2 - a c = a (r^2 - l^2), l the distance of the ray's line from the centre: the plain
     // form subtracts two nearly equal large terms when the sphere is small and far away.
-    const Real l = glm::length(f - (halfB / a) * d);
+    const Real l = math::length(f - (halfB / a) * d);
     Real roots[2];
     if (!quadraticRoots(a, halfB, c, a * (r - l) * (r + l), roots[0], roots[1])) return false;
     for (const Real t : roots) {
         if (!(t >= tmin && t <= tmax)) continue;
-        out = {t, glm::normalize(f + t * d)};
+        out = {t, math::normalize(f + t * d)};
         return true;
     }
     return false;

@@ -1,12 +1,11 @@
 // What an accelerator builds over, apart from the scene that holds it.
 #pragma once
 
-#include "framework/core/quadric_shape.h"
-#include "framework/core/triangle.h"
+#include <bvhlab/quadric_shape.h>
+#include <bvhlab/triangle.h>
+#include <bvhlab/view.h>
 
-#include <algorithm>
 #include <cstdint>
-#include <span>
 
 namespace bvhlab {
 
@@ -17,10 +16,10 @@ enum class PrimitiveKind : uint8_t { Triangle, Sphere, Cone };
 // holds the primitive indices of the non-degenerate ones in ascending order, so the valid
 // triangles come first; builders never see the others.
 struct PrimitiveSet {
-    std::span<const Triangle> triangles;
-    std::span<const uint32_t> valid;
-    std::span<const Sphere> spheres = {};
-    std::span<const Cone> cones = {};
+    View<const Triangle> triangles;
+    View<const uint32_t> valid;
+    View<const Sphere> spheres = {};
+    View<const Cone> cones = {};
 
     uint32_t sphereBase() const { return uint32_t(triangles.size()); }
     uint32_t coneBase() const { return uint32_t(triangles.size() + spheres.size()); }
@@ -37,13 +36,20 @@ struct PrimitiveSet {
     }
 
     // The valid triangles' indices (a prefix of `valid`) and the valid quadrics' (the rest).
-    std::span<const uint32_t> validTriangles() const { return valid.first(quadricStart()); }
-    std::span<const uint32_t> validQuadrics() const { return valid.subspan(quadricStart()); }
+    View<const uint32_t> validTriangles() const { return valid.first(quadricStart()); }
+    View<const uint32_t> validQuadrics() const { return valid.subspan(quadricStart()); }
 
 private:
     size_t quadricStart() const {
         if (!hasQuadrics()) return valid.size();
-        return size_t(std::lower_bound(valid.begin(), valid.end(), sphereBase()) - valid.begin());
+        // The first valid index >= sphereBase(), by bisection (std::lower_bound).
+        size_t begin = 0, end = valid.size();
+        while (begin < end) {
+            const size_t middle = begin + (end - begin) / 2;
+            if (valid[middle] < sphereBase()) begin = middle + 1;
+            else end = middle;
+        }
+        return begin;
     }
 };
 

@@ -2,10 +2,10 @@
 // builders never see triangles, so they serve any primitive). The array of PrimRefs is prepared
 // once per build and then partitioned in place; a centroid is the centre of the box, derived
 // on the fly (one add and one multiply) rather than read from a second array. Part of the
-// plugin API: a builder plugin's split rule partitions these (framework/plugin/builder_api.h).
+// plugin API: a builder plugin's split rule partitions these (<bvhlab/builder.h>).
 #pragma once
 
-#include "framework/core/math.h"
+#include <bvhlab/math.h>
 
 #include <cstdint>
 

@@ -1,0 +1,65 @@
+#include "accel/plugins/plugin_builder.h"
+
+#include "accel/bvh/builders/merge_tree_builder.h"
+#include "framework/config/plugin_settings.h"
+
+#include <fmt/core.h>
+
+#include <memory>
+#include <stdexcept>
+
+namespace bvhlab {
+
+namespace {
+
+BuilderSettings builderSettings(const PluginSettings& keys, uint32_t leafBlock, const BvhBuildConfig& config) {
+    return {keys, leafBlock, config.cTraversal, config.cIntersect};
+}
+
+class PluginSplitBuilder final : public TopDownBuilder {
+public:
+    PluginSplitBuilder(const BvhBuildConfig& config, std::unique_ptr<SplitRule> rule)
+        : TopDownBuilder(config), rule_(std::move(rule)) {}
+
+protected:
+    std::optional<Split> trySplit(const BuildRange& range, bool mayBeLeaf) override {
+        const size_t left =
+            rule_->split(refs_.subspan(range.begin, range.size()), range.bounds, range.centroidBounds, mayBeLeaf);
+        if (left == 0 || left >= range.size()) return std::nullopt;
+        return splitAtIndex(range, range.begin + uint32_t(left));
+    }
+
+private:
+    std::unique_ptr<SplitRule> rule_;
+};
+
+}  // namespace
+
+BvhBuilder pluginBvhBuilder(const LoadedBuilder& plugin, const Env& env, uint32_t leafBlock) {
+    BvhBuilder builder{plugin.name, {}, {}, true};
+    const std::shared_ptr<const Env> settingsEnv = std::make_shared<Env>(env);
+    const std::string owner = fmt::format("builder '{}'", plugin.name);
+    if (plugin.splitRule) {
+        builder.splitRule = [plugin, settingsEnv, leafBlock, owner](const BvhBuildConfig& config) {
+            const EnvPluginSettings keys(*settingsEnv, plugin.keys, owner);
+            std::unique_ptr<SplitRule> rule(plugin.splitRule(builderSettings(keys, leafBlock, config)));
+            if (!rule) throw std::runtime_error(fmt::format("{}: its split rule factory returned nothing", owner));
+            return std::unique_ptr<TopDownBuilder>(std::make_unique<PluginSplitBuilder>(config, std::move(rule)));
+        };
+    } else {
+        builder.wholeTree = [plugin, settingsEnv, leafBlock, owner](const BvhBuildConfig& config,
+                                                                    const PrimitiveSet& prims) {
+            return buildFromMerges(plugin.name, config, prims, [&](std::span<const PrimRef> refs) {
+                const EnvPluginSettings keys(*settingsEnv, plugin.keys, owner);
+                std::vector<Merge> merges(refs.empty() ? 0 : refs.size() - 1);
+                plugin.mergeTree(refs, merges, builderSettings(keys, leafBlock, config));
+                std::vector<uint32_t> children;
+                for (const Merge& m : merges) children.insert(children.end(), {m.left, m.right});
+                return children;
+            });
+        };
+    }
+    return builder;
+}
+
+}  // namespace bvhlab
