@@ -6,7 +6,7 @@
 #include "accel/plugins/plugin_builder.h"
 #include "accel/embree/embree_accelerator.h"
 #include "accel/embree/embree_env.h"
-#include "accel/guarded_accelerator.h"
+#include "accel/plugins/guarded_accelerator.h"
 #include "accel/naive/naive_accelerator.h"
 #include "framework/core/error.h"
 

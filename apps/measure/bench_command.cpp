@@ -48,7 +48,7 @@ struct Structure {
 };
 
 // The structures of the rows that measure the interface's own cost: a query that does nothing,
-// bare and behind the guard every plugin's structure is called through (accel/guarded_accelerator.h).
+// bare and behind the guard every plugin's structure is called through (accel/plugins/guarded_accelerator.h).
 const char* const kNothingRows[] = {"nothing", "nothing-guarded"};
 
 std::unique_ptr<Accelerator> createFor(const Structure& k) {

@@ -1,7 +1,7 @@
 // What a fatal signal (SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT) reports before the process dies
 // of it: the plugin call that was running on the thread that received it, with the plugin file,
 // the accelerator, the call, and the ray or the primitive count it was given. Plugin calls alone
-// are recorded (accel/guarded_accelerator.cpp): bvhlab's own structures pay nothing.
+// are recorded (accel/plugins/guarded_accelerator.cpp): bvhlab's own structures pay nothing.
 #pragma once
 
 #include <bvhlab/ray.h>

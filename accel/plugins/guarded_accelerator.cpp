@@ -1,4 +1,4 @@
-#include "accel/guarded_accelerator.h"
+#include "accel/plugins/guarded_accelerator.h"
 
 #include "framework/core/fatal_signal_report.h"
 
