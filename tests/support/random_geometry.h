@@ -32,6 +32,6 @@ inline double randomScale(std::mt19937& rng) {
 // Float data as double, read back through a call the optimiser does not see into. GCC 12.2 at
 // -O2 folds double(float(x)) back to x once SLP has vectorised both conversions (wrong code,
 // seen in Triangle.FloatAndDoubleAgreeOnRandomCases: the reference then used the unrounded origin).
-[[gnu::noinline]] inline DVec3 widen(const Vec3& v) { return DVec3(v); }
+[[gnu::noipa]] inline DVec3 widen(const Vec3& v) { return DVec3(v); }
 
 }  // namespace bvhlab::test
