@@ -1,8 +1,8 @@
 // bvhlab: build, trace and measure bounding volume hierarchies.
-#include "apps/common/cli_common.h"
-#include "apps/common/commands.h"
-#include "apps/common/progress.h"
-#include "apps/common/run_record.h"
+#include "apps/cli/command_line.h"
+#include "apps/cli/commands.h"
+#include "apps/runtime/progress.h"
+#include "apps/runtime/run_record.h"
 #include "framework/core/fatal_signal_report.h"
 #include "framework/report/provenance.h"
 

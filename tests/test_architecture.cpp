@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -49,6 +50,14 @@ bool appMayInclude(const std::string& path) {
            path == "accel/plugins/plugin_loader.h";
 }
 
+// The front ends that share the runtime and the folders of apps/ each may include besides its
+// own: the runtime none (it serves the command line, not the other way round), the Python
+// module only the runtime. The command line's folders may include any of apps/.
+const std::map<std::string, std::vector<std::string>> kAppMayInclude = {
+    {"apps/runtime", {}},
+    {"apps/python", {"apps/runtime"}},
+};
+
 // The targets of a file's #include "..." (quoted) or #include <...> lines.
 std::vector<std::string> includes(const fs::path& file, bool quoted) {
     static const std::regex quotedInclude(R"(^\s*#\s*include\s*"([^"]+)\")");
@@ -85,6 +94,13 @@ TEST(Architecture, IncludesFollowTheLayers) {
                 const std::string targetFolder = fs::path(target).parent_path().generic_string();
                 if (folder.starts_with("apps")) {
                     EXPECT_TRUE(appMayInclude(target)) << name << " includes " << target;
+                    const auto front = kAppMayInclude.find(folder);
+                    if (front != kAppMayInclude.end() && target.starts_with("apps/")) {
+                        const auto& allowed = front->second;
+                        EXPECT_TRUE(targetFolder == folder ||
+                                    std::find(allowed.begin(), allowed.end(), targetFolder) != allowed.end())
+                            << name << " includes " << target << ", which " << folder << " may not use";
+                    }
                     continue;
                 }
                 const auto allowed = kMayInclude.find(folder);
@@ -97,6 +113,20 @@ TEST(Architecture, IncludesFollowTheLayers) {
         }
     }
     EXPECT_GT(checked, 100u);
+}
+
+// CLI11 is the command line's: the runtime and the Python module compile without it, so neither
+// includes it, nor a header of the command line that would bring it.
+TEST(Architecture, TheRuntimeAndThePythonModuleDoNotIncludeCli11) {
+    const fs::path source = bvhlab::test::sourceTree();
+    size_t files = 0;
+    for (const char* folder : {"apps/runtime", "apps/python"})
+        for (const fs::path& file : sourcesUnder(source / folder)) {
+            ++files;
+            for (const std::string& target : includes(file, false))
+                EXPECT_FALSE(target.starts_with("CLI/")) << fs::relative(file, source).string() << " includes <" << target << ">";
+        }
+    EXPECT_GT(files, 20u);
 }
 
 TEST(Architecture, FrameworkHasNoSourceAtItsTop) {

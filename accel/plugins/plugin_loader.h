@@ -1,7 +1,7 @@
 // Opening a plugin file (docs/plugins.md): a shared library whose entry point (<bvhlab/plugin.h>)
 // adds accelerators and builders with their keys. Its ABI is checked before anything of it is
 // called, and what its entry point adds is checked in itself (names, keys, builders' functions)
-// and returned; the caller registers it where it belongs (apps/common/plugins.h).
+// and returned; the caller registers it where it belongs (apps/runtime/plugins.h).
 #pragma once
 
 #include "accel/plugins/plugin_builder.h"

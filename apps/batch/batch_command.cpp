@@ -8,12 +8,18 @@
 #include "apps/batch/batch_settings.h"
 #include "apps/batch/batch_table.h"
 #include "apps/batch/slurm_submission.h"
-#include "apps/common/accel_config.h"
-#include "apps/common/app_keys.h"
-#include "apps/common/cli_common.h"
-#include "apps/common/commands.h"
-#include "apps/common/run_record.h"
-#include "apps/common/scene_list.h"
+#include "apps/cli/command_line.h"
+#include "apps/cli/commands.h"
+#include "apps/runtime/accel_config.h"
+#include "apps/runtime/app_keys.h"
+#include "apps/runtime/atomic_write.h"
+#include "apps/runtime/build_accelerator.h"
+#include "apps/runtime/output_paths.h"
+#include "apps/runtime/progress.h"
+#include "apps/runtime/render_with_progress.h"
+#include "apps/runtime/run_record.h"
+#include "apps/runtime/scene_list.h"
+#include "apps/runtime/scene_loading.h"
 #include "framework/config/common_keys.h"
 #include "framework/core/error.h"
 #include "framework/core/parse_number.h"
@@ -421,8 +427,8 @@ void addBatchCommand(CLI::App& app) {
     auto options = std::make_shared<Options>();
     CLI::App* command = app.add_subcommand(
         "batch", "render every scene with every chosen accelerator, without and with shadows: tables, images, contact sheet");
-    options->env.addTo(*command);
-    options->env.addThreadsTo(*command);
+    addEnvOptions(*command, options->env);
+    addThreadsOption(*command, options->env);
     command->add_option("--scenes", options->scenes, "scene env files, .list files or scene files (default env/scenes.list)");
     command->add_option("--accel", options->accels, "comma-separated accelerators")
         ->capture_default_str()

@@ -1,8 +1,8 @@
 #include "apps/batch/batch_settings.h"
 
 #include "accel/registry.h"
-#include "apps/common/app_keys.h"
-#include "apps/common/cli_common.h"
+#include "apps/runtime/app_keys.h"
+#include "apps/runtime/atomic_write.h"
 #include "framework/core/error.h"
 #include "framework/render/render_keys.h"
 

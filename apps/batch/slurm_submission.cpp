@@ -1,7 +1,7 @@
 #include "apps/batch/slurm_submission.h"
 
-#include "apps/common/cli_common.h"
-#include "apps/common/shell_word.h"
+#include "apps/runtime/atomic_write.h"
+#include "apps/runtime/shell_word.h"
 #include "framework/core/error.h"
 
 #include <fmt/core.h>

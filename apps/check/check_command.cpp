@@ -6,10 +6,13 @@
 #include "accel/registry.h"
 #include "apps/check/check_process.h"
 #include "apps/check/conformance.h"
-#include "apps/common/accel_config.h"
-#include "apps/common/cli_common.h"
-#include "apps/common/commands.h"
-#include "apps/common/progress.h"
+#include "apps/cli/command_line.h"
+#include "apps/cli/commands.h"
+#include "apps/runtime/accel_config.h"
+#include "apps/runtime/atomic_write.h"
+#include "apps/runtime/comma_list.h"
+#include "apps/runtime/output_paths.h"
+#include "apps/runtime/progress.h"
 #include "framework/core/error.h"
 #include "framework/report/provenance.h"
 
@@ -116,7 +119,7 @@ void addCheckCommand(CLI::App& app) {
         "check", "the conformance suite for one accelerator: agreement with a double-precision reference, any-hit, batch, "
                  "mixed primitives, degenerate triangles, watertightness, builds at the edge, cost against sahbvh "
                  "(docs/accuracy.md)");
-    options->env.addTo(*command);
+    addEnvOptions(*command, options->env);
     command->add_option("--accel", options->accel,
                         "the accelerator to check, NAME or NAME:Key=value:... (`bvhlab keys` lists them)")
         ->required();
@@ -126,7 +129,9 @@ void addCheckCommand(CLI::App& app) {
     command->add_flag("--in-process", options->inProcess,
                       "run the checks in this process, not each in a child process: a crash ends the run "
                       "(for a debugger)");
-    options->child.addTo(*command);
+    // An empty group hides them from --help: they are runCheckInChild's, not a user's.
+    command->add_option("--child-check", options->child.check, "run this check alone, as a child process")->group("");
+    command->add_option("--child-result", options->child.resultFile, "the file for the child's result")->group("");
     command->callback([options] {
         int result = 0;
         bool badInput = false;

@@ -1,7 +1,7 @@
 #include "apps/check/check_process.h"
 
-#include "apps/common/cli_common.h"
-#include "apps/common/progress.h"
+#include "apps/runtime/atomic_write.h"
+#include "apps/runtime/progress.h"
 #include "framework/core/fatal_signal_report.h"
 
 #include <fmt/format.h>
@@ -59,12 +59,6 @@ std::string readAndRemove(const std::filesystem::path& file) {
 }
 
 }  // namespace
-
-void ChildCheck::addTo(CLI::App& command) {
-    // An empty group hides them from --help: they are runCheckInChild's, not a user's.
-    command.add_option("--child-check", check, "run this check alone, as a child process")->group("");
-    command.add_option("--child-result", resultFile, "the file for the child's result")->group("");
-}
 
 void ChildCheck::reportFatalSignals() const { reportFatalSignalsTo(resultFile); }
 

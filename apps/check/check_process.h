@@ -7,7 +7,6 @@
 
 #include "apps/check/conformance.h"
 
-#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include <string>
@@ -20,8 +19,6 @@ struct ChildCheck {
     std::string resultFile;
 
     bool isChild() const { return !check.empty(); }
-    // Adds the hidden options that set these.
-    void addTo(CLI::App& command);
     // From now on a fatal signal is reported in the result file. Throws InputError.
     void reportFatalSignals() const;
     void writeResult(const CheckResult& result) const;

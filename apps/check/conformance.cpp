@@ -2,7 +2,7 @@
 
 #include "accel/registry.h"
 #include "apps/check/oracle.h"
-#include "apps/common/program_keys.h"
+#include "apps/runtime/program_keys.h"
 #include "framework/core/error.h"
 #include "framework/core/timed_build.h"
 #include "framework/robustness/stress_checks.h"

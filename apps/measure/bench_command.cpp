@@ -9,14 +9,18 @@
 // nothing-guarded time a query that does nothing through it (nothing_accelerator.h), bare and
 // behind the guard of a plugin's structure: the floor under every row. A benchmark, not a test.
 #include "accel/registry.h"
-#include "apps/common/accel_config.h"
-#include "apps/common/cli_common.h"
-#include "apps/common/commands.h"
-#include "apps/common/program_keys.h"
-#include "apps/common/scene_list.h"
-#include "apps/common/timing.h"
+#include "apps/cli/command_line.h"
+#include "apps/cli/commands.h"
 #include "apps/measure/nothing_accelerator.h"
-#include "apps/measure/ray_sets.h"
+#include "apps/runtime/accel_config.h"
+#include "apps/runtime/comma_list.h"
+#include "apps/runtime/output_paths.h"
+#include "apps/runtime/program_keys.h"
+#include "apps/runtime/progress.h"
+#include "apps/runtime/ray_sets.h"
+#include "apps/runtime/scene_list.h"
+#include "apps/runtime/scene_loading.h"
+#include "apps/runtime/timing.h"
 #include "framework/config/common_keys.h"
 #include "framework/core/error.h"
 #include "framework/core/parse_number.h"
@@ -328,7 +332,7 @@ void addBenchCommand(CLI::App& app) {
     };
     auto options = std::make_shared<Options>();
     CLI::App* command = app.add_subcommand("bench", "time builds and queries against Embree (medians, ratios)");
-    options->env.addTo(*command);
+    addEnvOptions(*command, options->env);
     command->add_option("--scenes", options->scenes, "scene env files, .list files or scene files (default env/scenes.list)");
     command->add_option("--accel", options->accels,
                         "comma-separated NAME or NAME:Key=value:... (embree, embree-robust, embree-bare, embree-batch, "

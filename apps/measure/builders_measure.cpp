@@ -1,7 +1,7 @@
 // `bvhlab tradeoff --builders`: the configurations, one scene's rays and one configuration's figures.
-#include "apps/common/cli_common.h"
-#include "apps/common/timing.h"
 #include "apps/measure/builders.h"
+#include "apps/runtime/scene_loading.h"
+#include "apps/runtime/timing.h"
 #include "framework/report/provenance.h"
 
 #include <fmt/core.h>

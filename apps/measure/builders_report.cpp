@@ -1,8 +1,8 @@
 // `bvhlab tradeoff --builders`: builders.csv, builders_summary.csv and builders.md, made from the
 // per-configuration JSON files alone (so a resumed run reports everything measured so far).
-#include "apps/common/cli_common.h"
 #include "apps/measure/builders.h"
 #include "apps/measure/rank_statistics.h"
+#include "apps/runtime/atomic_write.h"
 
 #include <fmt/core.h>
 

@@ -1,9 +1,11 @@
-// `bvhlab rays`: the ray sets the bench traces (primary, shadow, incoherent; apps/measure/ray_sets.h)
+// `bvhlab rays`: the ray sets the bench traces (primary, shadow, incoherent; apps/runtime/ray_sets.h)
 // of a scene's camera and lights, written as a BVHRAYS1 file for `bvhlab raycast` or a
 // structure of one's own.
-#include "apps/common/cli_common.h"
-#include "apps/common/commands.h"
-#include "apps/measure/ray_sets.h"
+#include "apps/cli/command_line.h"
+#include "apps/cli/commands.h"
+#include "apps/runtime/progress.h"
+#include "apps/runtime/ray_sets.h"
+#include "apps/runtime/scene_choice.h"
 #include "framework/io/ray_file.h"
 
 #include <fmt/core.h>
@@ -18,8 +20,8 @@ void addRaysCommand(CLI::App& app) {
     auto options = std::make_shared<Options>();
     CLI::App* command = app.add_subcommand(
         "rays", "write the bench's rays of a scene (primary, shadow or incoherent) as a BVHRAYS1 file for raycast");
-    options->env.addTo(*command);
-    options->env.addThreadsTo(*command);
+    addEnvOptions(*command, options->env);
+    addThreadsOption(*command, options->env);
     command->add_option("--scene", options->scene,
                         "scene file, or NAME for env/scenes/NAME.env (default: Scene::file, else the embedded scene)");
     command->add_option("--kind", options->kind,

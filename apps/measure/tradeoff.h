@@ -11,9 +11,9 @@
 // With --builders the command compares the builders instead (builders.h).
 #pragma once
 
-#include "apps/common/accel_config.h"
-#include "apps/common/program_keys.h"
-#include "apps/measure/ray_sets.h"
+#include "apps/runtime/accel_config.h"
+#include "apps/runtime/program_keys.h"
+#include "apps/runtime/ray_sets.h"
 #include "framework/config/env.h"
 #include "framework/render/camera.h"
 #include "framework/render/renderer.h"

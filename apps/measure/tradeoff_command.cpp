@@ -3,12 +3,16 @@
 // with --builders every builder against Embree's three qualities (apps/measure/builders.h). Results are kept
 // per configuration in DIR/<scene>/<config>.json; a run skips those already measured with the
 // same settings, so an interrupted run resumes where it stopped.
-#include "apps/common/app_keys.h"
-#include "apps/common/cli_common.h"
-#include "apps/common/commands.h"
-#include "apps/common/scene_list.h"
+#include "apps/cli/command_line.h"
+#include "apps/cli/commands.h"
 #include "apps/measure/builders.h"
 #include "apps/measure/tradeoff.h"
+#include "apps/runtime/app_keys.h"
+#include "apps/runtime/atomic_write.h"
+#include "apps/runtime/comma_list.h"
+#include "apps/runtime/output_paths.h"
+#include "apps/runtime/progress.h"
+#include "apps/runtime/scene_list.h"
 #include "framework/config/install_paths.h"
 #include "framework/core/error.h"
 #include "framework/core/parse_number.h"
@@ -75,7 +79,7 @@ void addTradeoffCommand(CLI::App& app) {
     auto options = std::make_shared<Options>();
     CLI::App* command = app.add_subcommand(
         "tradeoff", "run time against error: build time vs SAH gap, T_R, time to image, image error, mismatches vs Embree");
-    options->env.addTo(*command);
+    addEnvOptions(*command, options->env);
     TradeoffSettings& s = options->settings;
     command->add_option("--scenes", options->scenes,
                         "scene env files, .list files or scene files (default env/scenes.list; --quick: munich and sibenik)");

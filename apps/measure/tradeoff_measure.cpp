@@ -1,9 +1,10 @@
 // `bvhlab tradeoff`: one scene's shared inputs (ray sets, Embree's answers, the reference image)
 // and the measurements of one configuration.
 #include "accel/registry.h"
-#include "apps/common/cli_common.h"
-#include "apps/common/timing.h"
 #include "apps/measure/tradeoff.h"
+#include "apps/runtime/atomic_write.h"
+#include "apps/runtime/scene_loading.h"
+#include "apps/runtime/timing.h"
 #include "framework/config/common_keys.h"
 #include "framework/core/error.h"
 #include "framework/core/timed_build.h"

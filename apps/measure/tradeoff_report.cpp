@@ -1,7 +1,7 @@
 // `bvhlab tradeoff`: the CSV files and Markdown tables, made from the per-configuration JSON
 // files alone (so a resumed run reports everything measured so far).
-#include "apps/common/cli_common.h"
 #include "apps/measure/tradeoff.h"
+#include "apps/runtime/atomic_write.h"
 
 #include <fmt/core.h>
 

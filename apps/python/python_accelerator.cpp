@@ -1,8 +1,8 @@
 // bvhlab.build and the Accelerator it returns: a structure of the registry built over a scene
 // (timed as the CLI times it) and its queries over NumPy arrays, the GIL released while they run.
 #include "accel/registry.h"
-#include "apps/common/plugins.h"
-#include "apps/common/trace_rays.h"
+#include "apps/runtime/plugins.h"
+#include "apps/runtime/trace_rays.h"
 #include "apps/python/bindings.h"
 #include "apps/python/numpy_rays.h"
 #include "apps/python/python_accelerator.h"

@@ -1,9 +1,11 @@
 #include "apps/python/python_scene.h"
 
-#include "apps/common/cli_common.h"
-#include "apps/measure/ray_sets.h"
-#include "apps/python/numpy_rays.h"
 #include "apps/python/bindings.h"
+#include "apps/python/numpy_rays.h"
+#include "apps/runtime/env_options.h"
+#include "apps/runtime/ray_sets.h"
+#include "apps/runtime/scene_choice.h"
+#include "apps/runtime/scene_loading.h"
 #include "framework/core/error.h"
 #include "framework/scene/scene_loader.h"
 

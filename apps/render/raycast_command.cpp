@@ -1,8 +1,11 @@
 // `bvhlab raycast`: answer a file of rays with the chosen accelerator and write the hits.
 #include "accel/registry.h"
-#include "apps/common/cli_common.h"
-#include "apps/common/commands.h"
-#include "apps/common/trace_rays.h"
+#include "apps/cli/command_line.h"
+#include "apps/cli/commands.h"
+#include "apps/runtime/build_accelerator.h"
+#include "apps/runtime/progress.h"
+#include "apps/runtime/scene_choice.h"
+#include "apps/runtime/trace_rays.h"
 #include "framework/config/common_keys.h"
 #include "framework/io/ray_file.h"
 
@@ -20,8 +23,8 @@ void addRaycastCommand(CLI::App& app) {
     };
     auto options = std::make_shared<Options>();
     CLI::App* command = app.add_subcommand("raycast", "answer every ray of a BVHRAYS1 file, write a BVHHITS1 file");
-    options->env.addTo(*command);
-    options->env.addThreadsTo(*command);
+    addEnvOptions(*command, options->env);
+    addThreadsOption(*command, options->env);
     command->add_option("--scene", options->scene,
                         "scene file, or NAME for env/scenes/NAME.env (default: Scene::file, else the embedded scene)");
     command->add_option("--rays", options->rays, "input rays (BVHRAYS1)")->required();

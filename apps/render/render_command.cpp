@@ -1,10 +1,16 @@
 // `bvhlab render`: load, build, render, write PATH.exr/.png/.json and print the statistics row.
-#include "apps/common/commands.h"
+#include "apps/cli/commands.h"
 
 #include "accel/registry.h"
-#include "apps/common/app_keys.h"
-#include "apps/common/cli_common.h"
-#include "apps/common/run_record.h"
+#include "apps/cli/command_line.h"
+#include "apps/runtime/app_keys.h"
+#include "apps/runtime/build_accelerator.h"
+#include "apps/runtime/output_paths.h"
+#include "apps/runtime/progress.h"
+#include "apps/runtime/render_with_progress.h"
+#include "apps/runtime/run_record.h"
+#include "apps/runtime/scene_choice.h"
+#include "apps/runtime/scene_loading.h"
 #include "framework/io/heatmap.h"
 #include "framework/io/image_io.h"
 #include "framework/render/camera.h"
@@ -26,8 +32,8 @@ void addRenderCommand(CLI::App& app) {
     };
     auto options = std::make_shared<Options>();
     CLI::App* command = app.add_subcommand("render", "render a scene and print its statistics row");
-    options->env.addTo(*command);
-    options->env.addThreadsTo(*command);
+    addEnvOptions(*command, options->env);
+    addThreadsOption(*command, options->env);
     command->add_option("--scene", options->scene,
                         "scene file, or NAME for env/scenes/NAME.env (default: Scene::file, else the embedded scene); "
                         "a file that an env/scenes/ file names is seen with that file's camera and lights");

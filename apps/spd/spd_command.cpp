@@ -1,13 +1,18 @@
 // `bvhlab spd SCENE.nff... --out DIR`: the SPD test (framework/render/spd_tracer.h) with each
 // chosen accelerator, beside Havran's published figures (apps/spd/havran_reference.h):
 // DIR/spd.json, DIR/spd.md and an image per scene and accelerator.
-#include "apps/common/commands.h"
+#include "apps/cli/commands.h"
 
 #include "accel/registry.h"
-#include "apps/common/accel_config.h"
-#include "apps/common/app_keys.h"
-#include "apps/common/cli_common.h"
-#include "apps/common/progress.h"
+#include "apps/cli/command_line.h"
+#include "apps/runtime/accel_config.h"
+#include "apps/runtime/app_keys.h"
+#include "apps/runtime/atomic_write.h"
+#include "apps/runtime/comma_list.h"
+#include "apps/runtime/output_paths.h"
+#include "apps/runtime/progress.h"
+#include "apps/runtime/scene_choice.h"
+#include "apps/runtime/scene_loading.h"
 #include "apps/spd/havran_reference.h"
 #include "framework/config/common_keys.h"
 #include "framework/core/timed_build.h"
@@ -105,8 +110,8 @@ void addSpdCommand(CLI::App& app) {
     auto options = std::make_shared<Options>();
     CLI::App* command = app.add_subcommand(
         "spd", "trace SPD scenes by the SPD rules; Havran's ray invariants and N_IT, N_TS beside his (DIR/spd.md)");
-    options->env.addTo(*command);
-    options->env.addThreadsTo(*command);
+    addEnvOptions(*command, options->env);
+    addThreadsOption(*command, options->env);
     command->add_option("scenes", options->scenes, "NFF scene files (SPD scenes have their own viewpoint and lights)")
         ->required();
     command->add_option("--accel", options->accels,

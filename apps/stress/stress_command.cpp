@@ -12,12 +12,14 @@
 // Tables on stdout, JSON in --out, progress on stderr. Exit code 1 when one of our
 // accelerators (not Embree, which is reported only) fails a check.
 #include "accel/registry.h"
-#include "apps/common/accel_config.h"
-#include "apps/common/app_keys.h"
-#include "apps/common/cli_common.h"
-#include "apps/common/commands.h"
-#include "apps/common/program_keys.h"
-#include "apps/common/scene_list.h"
+#include "apps/cli/command_line.h"
+#include "apps/cli/commands.h"
+#include "apps/runtime/accel_config.h"
+#include "apps/runtime/app_keys.h"
+#include "apps/runtime/comma_list.h"
+#include "apps/runtime/output_paths.h"
+#include "apps/runtime/program_keys.h"
+#include "apps/runtime/scene_list.h"
 #include "framework/config/common_keys.h"
 #include "framework/core/error.h"
 #include "framework/core/timed_build.h"
@@ -444,7 +446,7 @@ void addStressCommand(CLI::App& app) {
     auto options = std::make_shared<StressOptions>();
     CLI::App* command = app.add_subcommand("stress", "robustness stress suite: watertightness (leaks per million), "
                                                      "scale/translation, shadow acne, builders at the edge");
-    options->env.addTo(*command);
+    addEnvOptions(*command, options->env);
     command->add_option("--rays", options->rays, "watertightness probes per mesh")->capture_default_str();
     command->add_option("--accel", options->accels, "comma-separated NAME or NAME:Key=value:...")->capture_default_str();
     command->add_option("--scenes", options->scenes,

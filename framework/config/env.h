@@ -16,7 +16,7 @@
 namespace bvhlab {
 
 // The set of known keys. Each component registers its own (the program's registry is put
-// together in apps/common/program_keys.cpp) and every Env is made against one.
+// together in apps/runtime/program_keys.cpp) and every Env is made against one.
 class EnvRegistry {
 public:
     void add(EnvKey key);

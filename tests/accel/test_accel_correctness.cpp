@@ -12,7 +12,7 @@
 // probes (every ray aimed exactly at an edge or a vertex) see externalVariants() below.
 #include "accel/naive/naive_accelerator.h"
 #include "accel/registry.h"
-#include "apps/common/program_keys.h"
+#include "apps/runtime/program_keys.h"
 #include "framework/core/timed_build.h"
 #include "framework/core/triangle.h"
 #include "framework/scene/procedural.h"

@@ -7,7 +7,7 @@
 // the conformance suite's batch check (apps/check/conformance.h, tests/accel/test_conformance.cpp).
 #include "accel/registry.h"
 #include "apps/check/conformance.h"
-#include "apps/common/program_keys.h"
+#include "apps/runtime/program_keys.h"
 #include "framework/render/camera.h"
 #include "framework/render/renderer.h"
 #include "framework/scene/procedural.h"

@@ -3,7 +3,7 @@
 // suite must be able to fail: an accelerator that drops hits fails it, naming a ray.
 #include "accel/registry.h"
 #include "apps/check/conformance.h"
-#include "apps/common/program_keys.h"
+#include "apps/runtime/program_keys.h"
 #include "framework/core/error.h"
 
 #include <fmt/format.h>

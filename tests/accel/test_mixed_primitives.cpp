@@ -5,7 +5,7 @@
 #include "accel/naive/naive_accelerator.h"
 #include "accel/registry.h"
 #include "apps/check/conformance.h"
-#include "apps/common/program_keys.h"
+#include "apps/runtime/program_keys.h"
 #include "framework/core/timed_build.h"
 #include "framework/scene/surface_point.h"
 #include "tests/support/random_geometry.h"

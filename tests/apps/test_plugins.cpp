@@ -1,4 +1,4 @@
-// Loading plugins end to end (apps/common/plugins.h): refused with an error naming the file and
+// Loading plugins end to end (apps/runtime/plugins.h): refused with an error naming the file and
 // why, errors thrown inside a plugin reported with the plugin and the accelerator, found by
 // name in the plugin folders, listed by `bvhlab keys` and in the JSON provenance with how they
 // were compiled, a warning when not optimised.

@@ -3,7 +3,7 @@
 // repository that a doc names exists, and docs/plugins.md describes the whole plugin API.
 #include "accel/bvh/bvh_env.h"
 #include "accel/registry.h"
-#include "apps/common/program_keys.h"
+#include "apps/runtime/program_keys.h"
 #include "tests/support/test_paths.h"
 
 #include <gtest/gtest.h>

@@ -2,7 +2,7 @@
 // also given as a -D override, and then every registered key is read back with its getter and
 // through the consumers of the env (BVH and Embree configuration, camera, render settings).
 // Bad input must end in an InputError; anything else is a finding. Built with -DBVHLAB_FUZZ=ON.
-#include "apps/common/program_keys.h"
+#include "apps/runtime/program_keys.h"
 #include "framework/config/env.h"
 #include "framework/core/error.h"
 #include "tests/fuzz/read_every_env_key.h"

@@ -3,7 +3,7 @@
 // embedded. Every one must load or fail with an InputError: no crash, no sanitizer report, no
 // failed libstdc++ assertion (the sanitizer build defines _GLIBCXX_ASSERTIONS).
 #include "accel/bvh/bvh_env.h"
-#include "apps/common/program_keys.h"
+#include "apps/runtime/program_keys.h"
 #include "framework/config/env.h"
 #include "framework/core/error.h"
 #include "framework/render/camera.h"

@@ -11,7 +11,7 @@
 #include "accel/bvh/layout/wide_bvh.h"
 #include "accel/naive/naive_accelerator.h"
 #include "accel/registry.h"
-#include "apps/common/program_keys.h"
+#include "apps/runtime/program_keys.h"
 #include "framework/core/timed_build.h"
 #include "framework/scene/scene.h"
 #include "tests/support/bvh_checks.h"

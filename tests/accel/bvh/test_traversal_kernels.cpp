@@ -8,7 +8,7 @@
 #include "accel/bvh/bvh_accelerator.h"
 #include "accel/bvh/bvh_env.h"
 #include "accel/registry.h"
-#include "apps/common/program_keys.h"
+#include "apps/runtime/program_keys.h"
 #include "framework/core/error.h"
 #include "tests/support/bvh_checks.h"
 

@@ -5,11 +5,11 @@
 #include "accel/embree/embree_accelerator.h"
 #include "accel/naive/naive_accelerator.h"
 #include "accel/registry.h"
-#include "apps/common/program_keys.h"
+#include "apps/runtime/program_keys.h"
 #include "framework/core/timed_build.h"
 #include "framework/scene/procedural.h"
 #include "apps/check/oracle.h"
-#include "apps/measure/ray_sets.h"
+#include "apps/runtime/ray_sets.h"
 #include "framework/render/camera.h"
 
 #include <gtest/gtest.h>

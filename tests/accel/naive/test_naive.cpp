@@ -3,7 +3,7 @@
 // counters merged across threads.
 #include "accel/naive/naive_accelerator.h"
 #include "accel/registry.h"
-#include "apps/common/program_keys.h"
+#include "apps/runtime/program_keys.h"
 #include "framework/scene/procedural.h"
 #include "apps/check/oracle.h"
 #include "framework/core/timed_build.h"

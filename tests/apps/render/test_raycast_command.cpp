@@ -2,8 +2,8 @@
 // (docs/plots/count_instructions.sh) are of the queries that count nothing; `--count` adds N_IT
 // and N_TR of a counting pass over the same rays, and leaves the hits written as they were.
 #include "accel/registry.h"
-#include "apps/common/program_keys.h"
-#include "apps/common/trace_rays.h"
+#include "apps/runtime/program_keys.h"
+#include "apps/runtime/trace_rays.h"
 #include "framework/io/ray_file.h"
 #include "framework/render/camera.h"
 #include "framework/scene/procedural.h"

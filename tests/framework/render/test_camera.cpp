@@ -1,5 +1,5 @@
 // Camera rays and the camera chosen for scenes without one.
-#include "apps/common/program_keys.h"
+#include "apps/runtime/program_keys.h"
 #include "framework/core/error.h"
 #include "framework/render/camera.h"
 #include "framework/scene/procedural.h"

@@ -3,7 +3,7 @@
 // on the same rays; N_IT, N_TR and the heat maps are the counting calls', the queries each ray
 // once, the picture the timed calls'.
 #include "accel/registry.h"
-#include "apps/common/program_keys.h"
+#include "apps/runtime/program_keys.h"
 #include "framework/render/camera.h"
 #include "framework/render/renderer.h"
 #include "framework/scene/procedural.h"

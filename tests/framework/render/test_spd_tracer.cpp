@@ -5,7 +5,7 @@
 // count is checked with naive and with the default BVH: the counts are invariants.
 #include "accel/naive/naive_accelerator.h"
 #include "accel/registry.h"
-#include "apps/common/program_keys.h"
+#include "apps/runtime/program_keys.h"
 #include "framework/render/spd_tracer.h"
 
 #include <gtest/gtest.h>

@@ -15,7 +15,7 @@
 #include "accel/bvh/layout/bvh_node.h"
 #include "accel/naive/naive_accelerator.h"
 #include "accel/registry.h"
-#include "apps/common/program_keys.h"
+#include "apps/runtime/program_keys.h"
 #include "framework/core/ray_offset.h"
 #include "framework/core/timed_build.h"
 #include "framework/robustness/stress_checks.h"

@@ -1,6 +1,6 @@
-// The progress line (apps/common/progress.h) on a memory stream with a clock the test moves: the
+// The progress line (apps/runtime/progress.h) on a memory stream with a clock the test moves: the
 // phase line and the 10 s rate off a terminal, the 2 s silence and the redraws on one, --quiet.
-#include "apps/common/progress.h"
+#include "apps/runtime/progress.h"
 #include "tests/support/text_count.h"
 
 #include <gtest/gtest.h>

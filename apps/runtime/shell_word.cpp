@@ -1,4 +1,4 @@
-#include "apps/common/shell_word.h"
+#include "apps/runtime/shell_word.h"
 
 namespace bvhlab {
 

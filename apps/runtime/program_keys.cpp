@@ -1,7 +1,7 @@
-#include "apps/common/program_keys.h"
+#include "apps/runtime/program_keys.h"
 
 #include "accel/registry.h"
-#include "apps/common/app_keys.h"
+#include "apps/runtime/app_keys.h"
 #include "framework/config/common_keys.h"
 #include "framework/config/install_paths.h"
 #include "framework/core/error.h"

@@ -1,4 +1,4 @@
-#include "apps/common/trace_rays.h"
+#include "apps/runtime/trace_rays.h"
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/info.h>

@@ -3,7 +3,7 @@
 // or its env file seen from its own camera, the run recorded in the JSON, --threads and --scenes
 // with one meaning, output paths checked alike, a too-large image refused up front, progress
 // lines and --quiet (the progress line itself: test_progress.cpp).
-#include "apps/common/program_keys.h"
+#include "apps/runtime/program_keys.h"
 #include "framework/io/ray_file.h"
 #include "framework/scene/scene_cache.h"
 #include "tests/support/cli_run.h"

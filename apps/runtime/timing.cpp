@@ -1,6 +1,6 @@
-#include "apps/common/timing.h"
+#include "apps/runtime/timing.h"
 
-#include "apps/common/trace_rays.h"
+#include "apps/runtime/trace_rays.h"
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>

@@ -1,6 +1,6 @@
-#include "apps/common/run_record.h"
+#include "apps/runtime/run_record.h"
 
-#include "apps/common/shell_word.h"
+#include "apps/runtime/shell_word.h"
 #include "framework/scene/scene_cache.h"
 
 #include <fmt/core.h>

@@ -4,7 +4,8 @@
 // each taken with the env file under env/scenes/ that names it where there is one.
 #pragma once
 
-#include "apps/common/cli_common.h"
+#include "apps/runtime/env_options.h"
+#include "framework/config/env.h"
 
 #include <filesystem>
 #include <string>

@@ -1,5 +1,5 @@
 // What the measuring subcommands (bench, tradeoff) share: medians and timed passes over a ray
-// set (see apps/common/accel_config.h for the NAME:Key=value configurations they run).
+// set (see apps/runtime/accel_config.h for the NAME:Key=value configurations they run).
 #pragma once
 
 #include "framework/core/accelerator.h"

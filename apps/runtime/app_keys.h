@@ -1,4 +1,4 @@
-// The env keys the program itself reads: where the scene comes from (cli_common.cpp), what a
+// The env keys the program itself reads: where the scene comes from (scene_loading.cpp), what a
 // render writes (render and batch) and the batch's thread count.
 #pragma once
 

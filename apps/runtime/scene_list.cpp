@@ -1,5 +1,7 @@
-#include "apps/common/scene_list.h"
+#include "apps/runtime/scene_list.h"
 
+#include "apps/runtime/comma_list.h"
+#include "apps/runtime/scene_choice.h"
 #include "framework/config/install_paths.h"
 #include "framework/core/error.h"
 

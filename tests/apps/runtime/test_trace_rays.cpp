@@ -1,11 +1,11 @@
-// The counting split of the ray loops (apps/common/trace_rays.h, timing.h): answers with
+// The counting split of the ray loops (apps/runtime/trace_rays.h, timing.h): answers with
 // QueryCounters::counting off equal those with it on, bit for bit, for structures of ours; the
 // counts a loop reports are its counting pass's; its timed passes count nothing.
 #include "accel/registry.h"
 #include "apps/check/conformance.h"
-#include "apps/common/program_keys.h"
-#include "apps/common/timing.h"
-#include "apps/common/trace_rays.h"
+#include "apps/runtime/program_keys.h"
+#include "apps/runtime/timing.h"
+#include "apps/runtime/trace_rays.h"
 #include "framework/render/camera.h"
 #include "framework/scene/procedural.h"
 #include "framework/scene/surface_point.h"

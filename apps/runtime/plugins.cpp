@@ -1,8 +1,8 @@
-#include "apps/common/plugins.h"
+#include "apps/runtime/plugins.h"
 
 #include "accel/plugins/plugin_loader.h"
 #include "accel/registry.h"
-#include "apps/common/program_keys.h"
+#include "apps/runtime/program_keys.h"
 #include "framework/config/install_paths.h"
 #include "framework/config/plugin_settings.h"
 #include "framework/core/error.h"

@@ -1,8 +1,9 @@
-#include "apps/common/accel_config.h"
+#include "apps/runtime/accel_config.h"
 
 #include "accel/registry.h"
-#include "apps/common/cli_common.h"
-#include "apps/common/plugins.h"
+#include "apps/runtime/comma_list.h"
+#include "apps/runtime/env_options.h"
+#include "apps/runtime/plugins.h"
 #include "framework/core/error.h"
 
 #include <fmt/ranges.h>

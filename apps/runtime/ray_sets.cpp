@@ -1,4 +1,4 @@
-#include "apps/measure/ray_sets.h"
+#include "apps/runtime/ray_sets.h"
 
 #include "accel/registry.h"
 #include "framework/core/error.h"

@@ -2,9 +2,9 @@
 // value env/global.env gives it; with --env, -D or --no-global-env, the configuration they
 // resolve to instead: every key, its value, where the value came from and its default.
 #include "accel/registry.h"
-#include "apps/common/cli_common.h"
-#include "apps/common/commands.h"
-#include "apps/common/program_keys.h"
+#include "apps/cli/command_line.h"
+#include "apps/cli/commands.h"
+#include "apps/runtime/program_keys.h"
 
 #include <fmt/core.h>
 #include <fmt/ranges.h>
@@ -16,7 +16,7 @@ void addKeysCommand(CLI::App& app) {
     auto options = std::make_shared<EnvOptions>();
     CLI::App* command = app.add_subcommand(
         "keys", "print every env key and accelerator as Markdown (docs/env-keys.md); with --env or -D, the resolved values");
-    options->addTo(*command);
+    addEnvOptions(*command, *options);
     command->callback([options, command] {
         const bool resolve = command->count("--env") + command->count("-D") + command->count("--no-global-env") > 0;
         const int code = runGuarded([&] {

@@ -1,4 +1,4 @@
-#include "apps/common/progress.h"
+#include "apps/runtime/progress.h"
 
 #include <fmt/core.h>
 

@@ -1,0 +1,26 @@
+// What every subcommand's command line shares: the env options (--env, -D, --no-global-env,
+// --plugin, --threads), the hint for a -D written without '=', and a failed run's exit code.
+#pragma once
+
+#include "apps/runtime/env_options.h"
+
+#include <CLI/CLI.hpp>
+
+#include <functional>
+#include <string>
+
+namespace bvhlab {
+
+// Adds --env, -D, --no-global-env and --plugin, filling `options`.
+void addEnvOptions(CLI::App& command, EnvOptions& options);
+// Adds --threads N (0 = all hardware threads), setting SetRayTracing::threads.
+void addThreadsOption(CLI::App& command, EnvOptions& options);
+
+// For a command line that CLI11 refused with a word left over: if that word is the value of a
+// -D written without '=' (`-DASDS::type grid`), what to write instead; else empty.
+std::string overrideWithoutEqualsHint(int argc, const char* const* argv);
+
+// Runs `body`, turning InputError and other exceptions into a one-line message and exit code 1.
+int runGuarded(const std::function<void()>& body);
+
+}  // namespace bvhlab

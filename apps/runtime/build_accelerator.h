@@ -1,0 +1,18 @@
+// Building the accelerator an env chooses, timed, with a report on stderr.
+#pragma once
+
+#include "framework/config/env.h"
+#include "framework/core/accelerator.h"
+#include "framework/scene/scene.h"
+
+#include <memory>
+
+namespace bvhlab {
+
+struct BuiltAccelerator {
+    std::unique_ptr<Accelerator> accel;
+    BuildStats stats;
+};
+BuiltAccelerator buildAccelerator(const Scene& scene, const Env& env);
+
+}  // namespace bvhlab

@@ -1,0 +1,24 @@
+// Reading the scene an env names, with what the load met reported on stderr.
+#pragma once
+
+#include "framework/config/env.h"
+#include "framework/scene/scene.h"
+
+#include <filesystem>
+
+namespace bvhlab {
+
+// How loadSceneFor got its scene.
+struct SceneLoadInfo {
+    bool fromCache = false;           // read from the scene cache, not parsed
+    std::filesystem::path cacheFile;  // the cache entry read or written; empty when the cache was not used
+    double ms = 0.0;                  // load time (hashing, reading or parsing, finalize)
+};
+
+// The scene of Scene::file (in Scene::dir; --scene sets it absolute), else the embedded default; load problems
+// (degenerate primitives, NFF spheres and cones, warnings) are reported on stderr. With `useCache`
+// a scene file is read from / stored into the binary cache in Scene::cacheDir (empty = no cache; see
+// framework/scene/scene_cache.h); `bvhlab batch` uses it, render, raycast and bench parse every time.
+Scene loadSceneFor(const Env& env, bool useCache = false, SceneLoadInfo* info = nullptr);
+
+}  // namespace bvhlab
