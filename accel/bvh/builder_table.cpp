@@ -15,39 +15,47 @@ namespace bvhlab {
 
 namespace {
 
-template <typename SplitRule>
-BvhBuilder splitRule(std::string name) {
-    return {std::move(name), [](const BvhBuildConfig& config) { return std::make_unique<SplitRule>(config); }, {}};
-}
+BvhBuilder splitRule(std::string name, SplitRuleFactory make) { return {std::move(name), std::move(make), {}}; }
 
 BvhBuilder wholeTree(std::string name, Bvh (*build)(const BvhBuildConfig&, const PrimitiveSet&)) {
     return {std::move(name), {}, build};
 }
+
+// Each builder given the shared options and its own.
+std::unique_ptr<TopDownBuilder> spatialMedian(const BvhBuildConfig& c) {
+    return std::make_unique<SpatialMedianBuilder>(c.shared, c.spatialMedian);
+}
+std::unique_ptr<TopDownBuilder> binnedSah(const BvhBuildConfig& c) {
+    return std::make_unique<BinnedSahBuilder>(c.shared, c.binnedSah);
+}
+std::unique_ptr<TopDownBuilder> sweepSah(const BvhBuildConfig& c) { return std::make_unique<SweepSahBuilder>(c.shared); }
+Bvh sbvh(const BvhBuildConfig& c, const PrimitiveSet& prims) { return buildSbvh(c.shared, c.binnedSah, c.sbvh, prims); }
+Bvh ploc(const BvhBuildConfig& c, const PrimitiveSet& prims) { return buildPlocBvh(c.shared, c.ploc, prims); }
 
 }  // namespace
 
 const std::vector<BvhBuilderEntry>& bvhBuilderTable() {
     using namespace keys::BVH;
     static const std::vector<BvhBuilderEntry> table = {
-        {splitRule<SpatialMedianBuilder>("tdbvh"),
+        {splitRule("tdbvh", spatialMedian),
          "BVH by spatial median: the middle of the longest axis (BVH::tdbvhSplit), object median fallback",
          {tdbvhSplit.name()},
          {}},
-        {splitRule<BinnedSahBuilder>("sahbvh"),
+        {splitRule("sahbvh", binnedSah),
          "BVH by binned SAH (Wald 2007): BVH::bins bins along the widest centre axis, SSE binning",
          {sahTermination.name(), bins.name(), allAxes.name()},
          {4, 8}},
-        {wholeTree("sbvh", buildSbvh),
+        {wholeTree("sbvh", sbvh),
          "split BVH (Stich et al. 2009): sahbvh's object splits and, where their children overlap "
          "(BVH::sbvhAlpha), spatial splits that clip triangles to bins, within BVH::sbvhGrowth more references",
          {sahTermination.name(), bins.name(), allAxes.name(), sbvhAlpha.name(), sbvhGrowth.name()},
          {8}},
-        {wholeTree("ploc", buildPlocBvh),
+        {wholeTree("ploc", ploc),
          "BVH by PLOC (Meister & Bittner 2018): Morton order, mutual nearest neighbours within BVH::plocRadius "
          "merged bottom-up in parallel, leaves formed by SAH",
          {sahTermination.name(), plocRadius.name()},
          {8}},
-        {splitRule<SweepSahBuilder>("sweepbvh"),
+        {splitRule("sweepbvh", sweepSah),
          "BVH by full-sweep SAH over all N-1 planes per axis: the exact reference for sahbvh; slow build",
          {sahTermination.name()},
          {}},

@@ -32,7 +32,7 @@ BvhAccelerator<Layout>::BvhAccelerator(BvhBuilder builder, const BvhBuildConfig&
     if constexpr (LayoutWidth<Layout>::value > 2) {
         name_ += std::to_string(LayoutWidth<Layout>::value);
         // The leaves test a block of triangles at a time: the SAH charges them so.
-        build_.sahBlockShift = std::countr_zero(unsigned(TriangleBlock::kLanes));
+        build_.shared.sahBlockShift = std::countr_zero(unsigned(TriangleBlock::kLanes));
     }
 }
 
@@ -50,13 +50,13 @@ void BvhAccelerator<Layout>::build(const PrimitiveSet& prims) {
     if constexpr (std::is_same_v<Layout, Bvh>) {
         tree_ = std::move(binary);
     } else {
-        const CollapseCosts costs{build_.cTraversal, build_.cIntersect, build_.effectiveLeafCap()};
-        onThreads(build_.threads, [&] { tree_ = collapseToWide<LayoutWidth<Layout>::value>(binary, costs); });
+        const CollapseCosts costs{build_.shared.cTraversal, build_.shared.cIntersect, build_.shared.effectiveLeafCap()};
+        onThreads(build_.shared.threads, [&] { tree_ = collapseToWide<LayoutWidth<Layout>::value>(binary, costs); });
         binary_ = std::move(binary);
     }
     if (prims.hasQuadrics()) {
         BvhBuildConfig config = build_;
-        config.sahBlockShift = 0;  // quadrics are tested one at a time
+        config.shared.sahBlockShift = 0;  // quadrics are tested one at a time
         quadrics_ = buildQuadricBvh(builder_, config, prims);
     }
 }
@@ -66,15 +66,15 @@ BuildStats BvhAccelerator<Layout>::buildStats() const {
     if (statistics_) return *statistics_;
     const Bvh& binary = binaryTree();
     BuildStats stats;
-    fillTreeStats(binary, build_.cTraversal, build_.cIntersect, stats);
-    stats.leafBound = build_.effectiveLeafCap();  // every builder's leaves, and the collapse's
+    fillTreeStats(binary, build_.shared.cTraversal, build_.shared.cIntersect, stats);
+    stats.leafBound = build_.shared.effectiveLeafCap();  // every builder's leaves, and the collapse's
     if (!binary.empty() && binary.leafTriangles.size() <= stats_.epoMaxTriangles)
-        stats.epo = endPointOverlap(binary.nodes, binary.leafTriangles, build_.cTraversal, build_.cIntersect, build_.threads);
+        stats.epo = endPointOverlap(binary.nodes, binary.leafTriangles, build_.shared.cTraversal, build_.shared.cIntersect, build_.shared.threads);
     stats.primitives = triangles_;
     stats.bytes = tree_.bytes();
     if (!quadrics_.empty()) {
         BuildStats quadricStats;
-        fillTreeStats(quadrics_, build_.cTraversal, build_.cIntersect, quadricStats);
+        fillTreeStats(quadrics_, build_.shared.cTraversal, build_.shared.cIntersect, quadricStats);
         quadricStats.primitives = quadrics_.primIndices.size();
         const Bounds3 triangleRoot = binary.empty() ? Bounds3() : binary.nodes[0].box();
         combineTreeStats(stats, triangleRoot, quadricStats, quadrics_.nodes[0].box());

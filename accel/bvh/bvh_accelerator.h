@@ -2,7 +2,7 @@
 // builder (builder_table.h, or a plugin's) and the traversal setting. Layout = Bvh is the binary tree
 // the builders emit; Layout = WideBvh<N> collapses it by SAH into N-wide nodes (sahbvh4,
 // sahbvh8) whose leaves hold their triangles in SIMD blocks of eight. For them the SAH builders
-// charge a leaf by the blocks it fills (BvhBuildConfig::sahBlockShift), so their binary tree is
+// charge a leaf by the blocks it fills (BuildConfig::sahBlockShift), so their binary tree is
 // built for that leaf test; the env keys are the same. Spheres and cones get a binary tree of
 // their own by the same builder (layout/quadric_leaves.h), traversed after the triangles'.
 #pragma once

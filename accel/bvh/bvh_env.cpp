@@ -23,22 +23,22 @@ std::vector<std::string_view> bvhCommonKeys() {
 BvhBuildConfig bvhConfigFromEnv(const Env& env) {
     using namespace keys::BVH;
     BvhBuildConfig c;
-    c.maxLeaf = env.get(maxLeaf);
-    c.leafCap = env.get(leafCap);
-    c.sahTermination = env.get(sahTermination);
-    c.cTraversal = env.get(cTraversal);
-    c.cIntersect = env.get(cIntersect);
-    c.bins = env.get(bins);
-    c.allAxes = env.get(allAxes);
-    c.sbvhAlpha = env.get(sbvhAlpha);
-    c.sbvhGrowth = env.get(sbvhGrowth);
-    c.plocRadius = env.get(plocRadius);
-    c.simd = env.get(keys::BVH::simd);
-    c.threads = env.get(threads);
-    if (c.threads == 0) c.threads = env.get(keys::SetRayTracing::threads);
-    c.medianSplitBox = env.get(tdbvhSplit) == "nodebox" ? MedianSplitBox::NodeBox : MedianSplitBox::CentroidBox;
+    c.shared.maxLeaf = env.get(maxLeaf);
+    c.shared.leafCap = env.get(leafCap);
+    c.shared.sahTermination = env.get(sahTermination);
+    c.shared.cTraversal = env.get(cTraversal);
+    c.shared.cIntersect = env.get(cIntersect);
+    c.shared.simd = env.get(keys::BVH::simd);
+    c.shared.threads = env.get(threads);
+    if (c.shared.threads == 0) c.shared.threads = env.get(keys::SetRayTracing::threads);
+    c.binnedSah.bins = env.get(bins);
+    c.binnedSah.allAxes = env.get(allAxes);
+    c.sbvh.alpha = env.get(sbvhAlpha);
+    c.sbvh.growth = env.get(sbvhGrowth);
+    c.ploc.radius = env.get(plocRadius);
+    c.spatialMedian.splitBox = env.get(tdbvhSplit) == "nodebox" ? MedianSplitBox::NodeBox : MedianSplitBox::CentroidBox;
     c.optimize = env.get(optimize) == "insertion" ? BvhOptimize::Insertion : BvhOptimize::None;
-    c.optimizeIterations = env.get(optimizeIterations);
+    c.insertion.iterations = env.get(optimizeIterations);
     return c;
 }
 

@@ -9,6 +9,13 @@
 
 namespace bvhlab {
 
+struct InsertionConfig {
+    int iterations = 3;  // at most this many passes over the inner nodes; more lower the SAH
+                         // further, each about as slow as the first
+
+    bool operator==(const InsertionConfig&) const = default;
+};
+
 // Optimises `bvh` in place by at most `passes` passes (fewer when one gains under 1 %): the
 // nodes are emitted again depth-first, the leaf arrays reordered to the new leaf order. With
 // the leaves fixed, the SAH changes only through the inner nodes' areas, whatever C_trav,

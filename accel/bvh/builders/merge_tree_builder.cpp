@@ -1,5 +1,6 @@
 #include "accel/bvh/builders/merge_tree_builder.h"
 
+#include "accel/bvh/builders/build_steps.h"
 #include "accel/bvh/builders/cluster_tree.h"
 
 #include <fmt/core.h>
@@ -27,7 +28,7 @@ void checkMerges(const std::string& builder, std::span<const uint32_t> children,
 
 }  // namespace
 
-Bvh buildFromMerges(const std::string& builder, const BvhBuildConfig& config, const PrimitiveSet& prims,
+Bvh buildFromMerges(const std::string& builder, const BuildConfig& config, const PrimitiveSet& prims,
                     const MergeFunction& merge) {
     const uint32_t n = uint32_t(prims.validTriangles().size());
     Bvh bvh;

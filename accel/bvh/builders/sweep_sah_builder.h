@@ -1,10 +1,11 @@
 // sweepbvh: full-sweep SAH, the exact reference the binning approximates. Per range and per
 // axis, the primitives are sorted by centre (ties by primitive index) and every one of the
 // N-1 splits between neighbours is priced A_L*N_L + A_R*N_R with exact boxes (a suffix sweep
-// of the right boxes, then a prefix sweep). O(N log^2 N) overall: slow is fine here.
+// of the right boxes, then a prefix sweep). O(N log^2 N) overall: slow is fine here. No options
+// of its own: it prices every plane, so there is nothing to tune but the shared BuildConfig.
 #pragma once
 
-#include "accel/bvh/builders/bvh_builder.h"
+#include "accel/bvh/builders/top_down_builder.h"
 
 #include <vector>
 

@@ -90,19 +90,19 @@ TEST(Bvh, InvariantsOnRandomScenes) {
         for (bool simd : {true, false}) {
             SCOPED_TRACE(kind.name + (simd ? " simd" : " scalar"));
             BvhBuildConfig config;
-            config.simd = simd;
+            config.shared.simd = simd;
             BvhAccelerator<Bvh> accel(kind, config);
             buildAndCheck(accel, soup);
         }
     }
     // The other settings of each builder.
     BvhBuildConfig allAxes;
-    allAxes.allAxes = true;
-    allAxes.bins = 7;
+    allAxes.binnedSah.allAxes = true;
+    allAxes.binnedSah.bins = 7;
     BvhBuildConfig nodeBox;
-    nodeBox.medianSplitBox = MedianSplitBox::NodeBox;
+    nodeBox.spatialMedian.splitBox = MedianSplitBox::NodeBox;
     BvhBuildConfig manyBins;
-    manyBins.bins = 256;
+    manyBins.binnedSah.bins = 256;
     for (const auto& [kind, config] : {std::pair{bvhBuilder("sahbvh"), allAxes}, std::pair{bvhBuilder("tdbvh"), nodeBox},
                                        std::pair{bvhBuilder("sahbvh"), manyBins}}) {
         BvhAccelerator<Bvh> accel(kind, config);
@@ -127,8 +127,8 @@ TEST(Bvh, TinyScenes) {
         for (const BvhBuilder& kind : allBuilders()) {
             SCOPED_TRACE(kind.name + " with " + std::to_string(n) + " triangles");
             BvhBuildConfig config;
-            config.maxLeaf = 1;
-            config.sahTermination = false;
+            config.shared.maxLeaf = 1;
+            config.shared.sahTermination = false;
             BvhAccelerator<Bvh> accel(kind, config);
             const TreeFacts facts = buildAndCheck(accel, soup);
             EXPECT_EQ(facts.leaves, n);
@@ -178,7 +178,7 @@ TEST(Bvh, ReportsTheBoundsItPromisesAndKeepsThem) {
     Soup soup = randomSoup(10, 3);
     for (int i = 0; i < 3000; ++i) soup.add(soup.triangles[0]);
     BvhBuildConfig config = defaultConfig();
-    config.leafCap = 5;
+    config.shared.leafCap = 5;
     for (const BvhBuilder& kind : allBuilders()) {
         BvhAccelerator<Bvh> accel(kind, config);
         buildAndCheck(accel, soup);
@@ -198,7 +198,7 @@ TEST(Bvh, WideStatisticsAreTheBinaryTreesOutsideTheBuild) {
     // next build, the new tree's.
     const Soup soup = randomSoup(5000, 17), other = randomSoup(700, 18);
     BvhBuildConfig config = defaultConfig();
-    config.sahBlockShift = 3;  // how the 8-wide accelerator builds its binary tree: leaves in blocks of 8
+    config.shared.sahBlockShift = 3;  // how the 8-wide accelerator builds its binary tree: leaves in blocks of 8
     for (const BvhBuilder& kind : allBuilders()) {
         SCOPED_TRACE(kind.name);
         BvhAccelerator<WideBvh<8>> wide(kind, defaultConfig());
@@ -207,7 +207,7 @@ TEST(Bvh, WideStatisticsAreTheBinaryTreesOutsideTheBuild) {
             const BuildStats stats = wide.buildStats();
             const Bvh binary = buildBvh(kind, config, s->prims());
             BuildStats expected;
-            fillTreeStats(binary, config.cTraversal, config.cIntersect, expected);
+            fillTreeStats(binary, config.shared.cTraversal, config.shared.cIntersect, expected);
             EXPECT_EQ(stats.primitives, s->valid.size());
             EXPECT_EQ(stats.nodes, expected.nodes);
             EXPECT_EQ(stats.leaves, expected.leaves);
@@ -216,8 +216,8 @@ TEST(Bvh, WideStatisticsAreTheBinaryTreesOutsideTheBuild) {
             ASSERT_TRUE(stats.sah.has_value());
             EXPECT_EQ(stats.sah->cost, expected.sah->cost);
             ASSERT_TRUE(stats.epo.has_value());
-            EXPECT_EQ(*stats.epo, endPointOverlap(binary.nodes, binary.leafTriangles, config.cTraversal,
-                                                  config.cIntersect, config.threads));
+            EXPECT_EQ(*stats.epo, endPointOverlap(binary.nodes, binary.leafTriangles, config.shared.cTraversal,
+                                                  config.shared.cIntersect, config.shared.threads));
             EXPECT_EQ(stats.bytes, wide.bvh().bytes());
             EXPECT_EQ(wide.buildStats().epo, stats.epo);
             EXPECT_EQ(wide.buildStats().nodes, stats.nodes);
@@ -236,7 +236,7 @@ TEST(Bvh, HundredThousandCoincidentTriangles) {
         const TreeFacts facts = checkTree(accel.bvh(), soup);
         // Split by index into halves: depth log2(100000 / leafCap) + 1.
         EXPECT_LE(facts.maxDepth, 14);
-        EXPECT_LE(facts.maxLeaf, size_t(defaultConfig().leafCap));
+        EXPECT_LE(facts.maxLeaf, size_t(defaultConfig().shared.leafCap));
 
         Ray ray;
         ray.org = {0.25f, 0.25f, 1.0f};
@@ -248,9 +248,9 @@ TEST(Bvh, HundredThousandCoincidentTriangles) {
     }
     // With leafCap 1 every leaf holds one primitive even here.
     BvhBuildConfig strict;
-    strict.maxLeaf = 1;
-    strict.leafCap = 1;
-    strict.sahTermination = false;
+    strict.shared.maxLeaf = 1;
+    strict.shared.leafCap = 1;
+    strict.shared.sahTermination = false;
     BvhAccelerator<Bvh> accel(bvhBuilder("sahbvh"), strict);
     accel.build(soup.prims());
     EXPECT_EQ(checkTree(accel.bvh(), soup).maxLeaf, 1u);
@@ -272,7 +272,7 @@ TEST(Bvh, CentresOnALineOnAPlaneAndClustered) {
             for (MedianSplitBox box : {MedianSplitBox::CentroidBox, MedianSplitBox::NodeBox}) {
                 if (kind.name != "tdbvh" && box == MedianSplitBox::NodeBox) continue;
                 BvhBuildConfig config;
-                config.medianSplitBox = box;
+                config.spatialMedian.splitBox = box;
                 BvhAccelerator<Bvh> accel(kind, config);
                 buildAndCheck(accel, *soup);
                 expectAgreesWithNaive(accel, *soup, 200, 100.0f, 13);
@@ -293,9 +293,9 @@ TEST(Bvh, DepthStaysBoundedOnGeometricSpacing) {
         for (MedianSplitBox box : {MedianSplitBox::CentroidBox, MedianSplitBox::NodeBox}) {
             SCOPED_TRACE(kind.name);
             BvhBuildConfig config;
-            config.maxLeaf = 1;
-            config.sahTermination = false;
-            config.medianSplitBox = box;
+            config.shared.maxLeaf = 1;
+            config.shared.sahTermination = false;
+            config.spatialMedian.splitBox = box;
             BvhAccelerator<Bvh> accel(kind, config);
             const TreeFacts facts = buildAndCheck(accel, soup);
             EXPECT_EQ(facts.leaves, soup.valid.size());
@@ -321,7 +321,7 @@ TEST(Bvh, AgreesWithNaiveOnRandomRays) {
     for (const BvhBuilder& kind : allBuilders()) {
         for (int maxLeaf : {1, 4}) {
             BvhBuildConfig config;
-            config.maxLeaf = maxLeaf;
+            config.shared.maxLeaf = maxLeaf;
             BvhAccelerator<Bvh> accel(kind, config);
             accel.build(soup.prims());
             expectAgreesWithNaive(accel, soup, 3000, 10.0f, 29);
@@ -340,7 +340,7 @@ TEST(Bvh, AxisParallelRaysAlongBoxFaces) {
     naive.build(soup.prims());
     for (const BvhBuilder& kind : allBuilders()) {
         BvhBuildConfig config;
-        config.maxLeaf = 1;
+        config.shared.maxLeaf = 1;
         BvhAccelerator<Bvh> accel(kind, config);
         accel.build(soup.prims());
         int hits = 0;
@@ -466,8 +466,8 @@ TEST(Bvh, BinnedSahIsCloseToTheSweep) {
     EXPECT_LT(sweep, median);
     // More bins on every axis come closer.
     BvhBuildConfig fine;
-    fine.bins = 64;
-    fine.allAxes = true;
+    fine.binnedSah.bins = 64;
+    fine.binnedSah.allAxes = true;
     EXPECT_LE(sahOf(bvhBuilder("sahbvh"), fine, soup), sweep * 1.015);
 }
 
@@ -476,15 +476,15 @@ TEST(Bvh, SahTerminationMakesMultiPrimitiveLeaves) {
     const Soup soup = randomSoup(3000, 41, 5.0f, 1.0f);
     for (const BvhBuilder& kind : {bvhBuilder("sahbvh"), bvhBuilder("sweepbvh")}) {
         BvhBuildConfig config;
-        config.maxLeaf = 1;
-        config.cTraversal = 2.0f;
+        config.shared.maxLeaf = 1;
+        config.shared.cTraversal = 2.0f;
         BvhAccelerator<Bvh> accel(kind, config);
         const BuildStats stats = timedBuild(accel, soup.prims());
         EXPECT_GT(*stats.avgLeafPrimitives, 1.5) << kind.name;
-        EXPECT_LE(*stats.maxLeafPrimitives, size_t(config.leafCap));
+        EXPECT_LE(*stats.maxLeafPrimitives, size_t(config.shared.leafCap));
         checkTree(accel.bvh(), soup);
 
-        config.sahTermination = false;
+        config.shared.sahTermination = false;
         BvhAccelerator<Bvh> single(kind, config);
         const BuildStats one = timedBuild(single, soup.prims());
         EXPECT_EQ(*one.leaves, soup.valid.size());
@@ -502,9 +502,9 @@ TEST(Bvh, SimdAndScalarBuildTheSameTree) {
             for (bool allAxes : {false, true}) {
                 if (allAxes && kind.name != "sahbvh") continue;
                 BvhBuildConfig config;
-                config.allAxes = allAxes;
+                config.binnedSah.allAxes = allAxes;
                 BvhAccelerator<Bvh> simd(kind, config);
-                config.simd = false;
+                config.shared.simd = false;
                 BvhAccelerator<Bvh> scalar(kind, config);
                 simd.build(soup.prims());
                 scalar.build(soup.prims());
@@ -522,9 +522,9 @@ TEST(Bvh, SahCostFollowsTheStatedFormula) {
     // Two unit triangles far apart, one per leaf: the root is the only inner node.
     const Soup soup = triangleAndCopy({9, 9, 9});
     BvhBuildConfig config;
-    config.maxLeaf = 1;
-    config.cTraversal = 2.0f;
-    config.cIntersect = 3.0f;
+    config.shared.maxLeaf = 1;
+    config.shared.cTraversal = 2.0f;
+    config.shared.cIntersect = 3.0f;
     BvhAccelerator<Bvh> accel(bvhBuilder("sahbvh"), config);
     const BuildStats stats = timedBuild(accel, soup.prims());
     ASSERT_EQ(*stats.nodes, 3u);
@@ -542,8 +542,8 @@ TEST(Bvh, CountersCountVisitsAndTests) {
     // one step and no test; a ray through one leaf of a 2-leaf tree costs root + leaf.
     const Soup soup = triangleAndCopy({0, 0, 5});
     BvhBuildConfig config;
-    config.maxLeaf = 1;
-    config.sahTermination = false;
+    config.shared.maxLeaf = 1;
+    config.shared.sahTermination = false;
     BvhAccelerator<Bvh> accel(bvhBuilder("sahbvh"), config);
     accel.build(soup.prims());
     QueryCounters counters;
@@ -588,10 +588,10 @@ TEST(Bvh, RegisteredWithTheirEnvKeys) {
     env.set(keys::BVH::optimizeIterations, "5", "test");
     const BvhBuildConfig config = bvhConfigFromEnv(env);
     EXPECT_EQ(config.optimize, BvhOptimize::Insertion);
-    EXPECT_EQ(config.optimizeIterations, 5);
-    EXPECT_EQ(config.bins, 8);
-    EXPECT_EQ(config.maxLeaf, 3);
-    EXPECT_EQ(config.medianSplitBox, MedianSplitBox::NodeBox);
+    EXPECT_EQ(config.insertion.iterations, 5);
+    EXPECT_EQ(config.binnedSah.bins, 8);
+    EXPECT_EQ(config.shared.maxLeaf, 3);
+    EXPECT_EQ(config.spatialMedian.splitBox, MedianSplitBox::NodeBox);
     const auto accel = createAccelerator("sahbvh", env);
     EXPECT_STREQ(accel->name(), "sahbvh");
     EXPECT_TRUE(accel->hasCounters());
@@ -770,7 +770,7 @@ TEST(Bvh, SameTreeWhateverTheThreadCount) {
         std::vector<Bvh> trees;
         for (int threads : {1, 2, 0}) {
             BvhBuildConfig config = defaultConfig();
-            config.threads = threads;
+            config.shared.threads = threads;
             trees.push_back(buildBvh(kind, config, soup.prims()));
         }
         for (size_t t = 1; t < trees.size(); ++t) {
@@ -808,9 +808,9 @@ TEST(Bvh, SameTreeWhateverTheThreadCount) {
 TEST(Bvh, SameWideTreeWhateverTheThreadCount) {
     const Soup soup = randomSoup(60000, 69);
     BvhBuildConfig config = defaultConfig();
-    config.sahBlockShift = 3;
+    config.shared.sahBlockShift = 3;
     const Bvh binary = buildBvh(bvhBuilder("sahbvh"), config, soup.prims());
-    const CollapseCosts costs{1.0f, 1.0f, uint32_t(config.leafCap)};
+    const CollapseCosts costs{1.0f, 1.0f, uint32_t(config.shared.leafCap)};
     std::vector<WideBvh<8>> trees;
     for (int threads : {1, 2}) {
         tbb::task_arena arena(threads);
@@ -836,7 +836,7 @@ TEST(Bvh, SahChargedByBlocksKeepsABlockOfTrianglesTogether) {
         SCOPED_TRACE(kind.name);
         for (int shift : {0, 2, 3}) {
             BvhBuildConfig config = defaultConfig();
-            config.sahBlockShift = shift;
+            config.shared.sahBlockShift = shift;
             const Bvh bvh = buildBvh(kind, config, soup.prims());
             // Triangles below each node, children before parents (pairs follow their parent).
             std::vector<uint32_t> below(bvh.nodes.size(), 0);
@@ -905,7 +905,7 @@ TEST(Bvh, RecursionRefusesASplitWithAnEmptyHalf) {
         root.bounds.extend(Bounds3{{float(i), 0.0f, 0.0f}, {float(i) + 0.5f, 1.0f, 1.0f}});
         root.centroidBounds.extend(Vec3(float(i) + 0.25f, 0.5f, 0.5f));
     }
-    BvhBuildConfig config;
+    BuildConfig config;
     config.maxLeaf = 1;
     EmptyHalfBuilder builder(config);
     EXPECT_THROW(builder.build(refs, root), std::logic_error);
@@ -923,7 +923,7 @@ TEST(Ploc, SameTreeWhateverTheThreadCount) {
     std::vector<Bvh> trees;
     for (int threads : {1, 2, 0}) {
         BvhBuildConfig config = defaultConfig();
-        config.threads = threads;
+        config.shared.threads = threads;
         trees.push_back(buildBvh(bvhBuilder("ploc"), config, soup.prims()));
     }
     for (size_t t = 1; t < trees.size(); ++t) {
@@ -944,8 +944,8 @@ TEST(Ploc, ChainOfClustersIsRebuiltWithinTheDepthBound) {
         soup.add({{x, 0, 0}, {x * 1.2f, 0, 0}, {x, x * 0.2f, x * 0.2f}});
     }
     BvhBuildConfig config;
-    config.maxLeaf = 1;
-    config.sahTermination = false;
+    config.shared.maxLeaf = 1;
+    config.shared.sahTermination = false;
     BvhAccelerator<Bvh> accel(bvhBuilder("ploc"), config);
     const TreeFacts facts = buildAndCheck(accel, soup);
     EXPECT_EQ(facts.leaves, soup.valid.size());
@@ -959,8 +959,8 @@ TEST(Ploc, CoincidentTrianglesPairUp) {
     Soup soup;
     for (int i = 0; i < 1024; ++i) soup.add({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
     BvhBuildConfig config;
-    config.maxLeaf = 1;
-    config.sahTermination = false;
+    config.shared.maxLeaf = 1;
+    config.shared.sahTermination = false;
     BvhAccelerator<Bvh> accel(bvhBuilder("ploc"), config);
     const TreeFacts facts = buildAndCheck(accel, soup);
     EXPECT_EQ(facts.maxDepth, 10);
@@ -975,7 +975,7 @@ TEST(Ploc, SahNearTheBinnedBuild) {
     EXPECT_LT(plocSah, 1.15 * binnedSah);
     const TreeFacts facts = checkTree(ploc.bvh(), soup);
     EXPECT_GT(facts.maxLeaf, 2u);
-    EXPECT_LE(facts.maxLeaf, size_t(defaultConfig().leafCap));
+    EXPECT_LE(facts.maxLeaf, size_t(defaultConfig().shared.leafCap));
 }
 
 }  // namespace

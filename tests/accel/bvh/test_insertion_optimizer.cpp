@@ -49,10 +49,10 @@ TEST(InsertionOptimizer, NeverRaisesTheSah) {
         for (int shift : {0, 3}) {
             SCOPED_TRACE(kind.name + " block shift " + std::to_string(shift));
             BvhBuildConfig plain;
-            plain.sahBlockShift = shift;
+            plain.shared.sahBlockShift = shift;
             BvhBuildConfig optimised = insertionConfig();
-            optimised.sahBlockShift = shift;
-            optimised.optimizeIterations = 1;
+            optimised.shared.sahBlockShift = shift;
+            optimised.insertion.iterations = 1;
             EXPECT_LE(sahOf(buildBvh(kind, optimised, soup.prims())), sahOf(buildBvh(kind, plain, soup.prims())));
         }
     }
@@ -65,7 +65,7 @@ TEST(InsertionOptimizer, SameTreeWhateverTheThreadCount) {
         std::vector<Bvh> trees;
         for (int threads : {1, 2}) {
             BvhBuildConfig config = insertionConfig();
-            config.threads = threads;
+            config.shared.threads = threads;
             trees.push_back(buildBvh(kind, config, soup.prims()));
         }
         ASSERT_EQ(trees[1].nodes.size(), trees[0].nodes.size());
@@ -96,8 +96,8 @@ TEST(InsertionOptimizer, StaysWithinTheDepthBound) {
     }
     for (const Soup* soup : {&coincident, &chain}) {
         BvhBuildConfig config = insertionConfig();
-        config.maxLeaf = 1;
-        config.sahTermination = false;
+        config.shared.maxLeaf = 1;
+        config.shared.sahTermination = false;
         const Bvh bvh = buildBvh(bvhBuilder("tdbvh"), config, soup->prims());
         EXPECT_LT(test::checkTree(bvh, *soup).maxDepth, kBvhMaxDepth);
         config.optimize = BvhOptimize::None;
@@ -111,8 +111,8 @@ TEST(InsertionOptimizer, TinyScenes) {
         for (const BvhBuilder& kind : {bvhBuilder("tdbvh"), bvhBuilder("sahbvh"), bvhBuilder("sbvh"), bvhBuilder("ploc")}) {
             SCOPED_TRACE(kind.name + " with " + std::to_string(n) + " triangles");
             BvhBuildConfig config = insertionConfig();
-            config.maxLeaf = 1;
-            config.sahTermination = false;
+            config.shared.maxLeaf = 1;
+            config.shared.sahTermination = false;
             const Bvh bvh = buildBvh(kind, config, soup.prims());
             // sbvh may split a reference, which the walk does not accept: it only must not crash.
             if (kind.name != "sbvh") {

@@ -114,9 +114,9 @@ TEST(Sbvh, InvariantsWithSplitReferences) {
             for (bool allAxes : {false, true}) {
                 SCOPED_TRACE(std::string(simd ? "simd" : "scalar") + (allAxes ? " all axes" : ""));
                 BvhBuildConfig config;
-                config.simd = simd;
-                config.allAxes = allAxes;
-                const size_t refs = checkSbvh(buildBvh(bvhBuilder("sbvh"), config, soup.prims()), soup, config.sbvhGrowth);
+                config.shared.simd = simd;
+                config.binnedSah.allAxes = allAxes;
+                const size_t refs = checkSbvh(buildBvh(bvhBuilder("sbvh"), config, soup.prims()), soup, config.sbvh.growth);
                 EXPECT_GT(refs, soup.valid.size()) << "no spatial split";
             }
         }
@@ -141,7 +141,7 @@ TEST(Sbvh, SpatialSplitsLowerTheSahOnLongThinDiagonalTriangles) {
     const BvhBuildConfig config;
     const Bvh sbvh = buildBvh(bvhBuilder("sbvh"), config, soup.prims());
     const Bvh sahbvh = buildBvh(bvhBuilder("sahbvh"), config, soup.prims());
-    checkSbvh(sbvh, soup, config.sbvhGrowth);
+    checkSbvh(sbvh, soup, config.sbvh.growth);
     EXPECT_GT(sbvh.primIndices.size(), soup.valid.size() * 11 / 10) << "few spatial splits";
     EXPECT_LT(sahOf(sbvh), 0.7 * sahOf(sahbvh));
 }
@@ -151,8 +151,8 @@ TEST(Sbvh, SpatialSplitsLowerTheSahOnLongThinDiagonalTriangles) {
 TEST(Sbvh, WithoutSpatialSplitsItIsSahbvh) {
     const Soup soup = mixedSoup(20000, 5);
     BvhBuildConfig noBudget, alphaOne;
-    noBudget.sbvhGrowth = 0.0f;
-    alphaOne.sbvhAlpha = 1.0f;
+    noBudget.sbvh.growth = 0.0f;
+    alphaOne.sbvh.alpha = 1.0f;
     const Bvh sahbvh = buildBvh(bvhBuilder("sahbvh"), BvhBuildConfig{}, soup.prims());
     for (const BvhBuildConfig& config : {noBudget, alphaOne}) {
         const Bvh sbvh = buildBvh(bvhBuilder("sbvh"), config, soup.prims());
@@ -167,7 +167,7 @@ TEST(Sbvh, SameTreeWhateverTheThreadCount) {
     std::vector<Bvh> trees;
     for (int threads : {1, 2}) {
         BvhBuildConfig config;
-        config.threads = threads;
+        config.shared.threads = threads;
         trees.push_back(buildBvh(bvhBuilder("sbvh"), config, soup.prims()));
     }
     ASSERT_EQ(trees[1].nodes.size(), trees[0].nodes.size());
