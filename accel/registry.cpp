@@ -5,7 +5,6 @@
 #include "accel/bvh/bvh_env.h"
 #include "accel/plugins/plugin_builder.h"
 #include "accel/embree/embree_accelerator.h"
-#include "accel/embree/embree_env.h"
 #include "accel/plugins/guarded_accelerator.h"
 #include "accel/naive/naive_accelerator.h"
 #include "framework/core/error.h"
@@ -32,14 +31,15 @@ using BuilderMaker = std::function<BvhBuilder(const Env&, uint32_t leafBlock)>;
 
 template <typename Layout>
 std::unique_ptr<Accelerator> makeBvhAccelerator(const BuilderMaker& makeBuilder, const Env& env, uint32_t leafBlock) {
-    return std::make_unique<BvhAccelerator<Layout>>(makeBuilder(env, leafBlock), bvhConfigFromEnv(env),
-                                                    traversalConfigFromEnv(env), statsConfigFromEnv(env));
+    const BvhSettings settings = bvhSettingsFromEnv(env);
+    return std::make_unique<BvhAccelerator<Layout>>(makeBuilder(env, leafBlock), settings.build, settings.traversal,
+                                                    settings.stats);
 }
 
 std::vector<AcceleratorInfo> bvhInfos(const std::string& name, const std::string& description,
                                       std::vector<std::string> keys, const std::vector<int>& wideLayouts,
                                       const BuilderMaker& makeBuilder) {
-    for (std::string_view key : bvhCommonKeys()) keys.emplace_back(key);
+    bvhCommonKeys().appendNames(keys);
     std::vector<AcceleratorInfo> infos = {
         {name, description, keys, [makeBuilder](const Env& env) { return makeBvhAccelerator<Bvh>(makeBuilder, env, 1); }, {}}};
     for (int width : wideLayouts) {
@@ -54,17 +54,20 @@ std::vector<AcceleratorInfo> bvhInfos(const std::string& name, const std::string
 
 // bvhlab's own: brute force, Embree, and the accelerators of each builder of the table.
 std::vector<AcceleratorInfo> ownInfos() {
+    std::vector<std::string> embreeKeyNames;
+    embreeKeys().appendNames(embreeKeyNames);
     std::vector<AcceleratorInfo> infos = {
         {"naive", "brute force: tests every triangle; the reference the others are tested against", {},
          [](const Env&) { return std::make_unique<NaiveAccelerator>(); }, {}},
         {"embree", "Intel Embree 3 (rtcIntersect1/rtcOccluded1): the speed reference; no counters, no visible tree",
-         {std::string(keys::Embree::quality.name()), std::string(keys::Embree::robust.name()),
-          std::string(keys::Embree::threads.name())},
+         embreeKeyNames,
          [](const Env& env) { return std::make_unique<EmbreeAccelerator>(env); }, {}},
     };
     for (const BvhBuilderEntry& entry : bvhBuilderTable()) {
         const BvhBuilder& builder = entry.builder;
-        for (AcceleratorInfo& info : bvhInfos(builder.name, entry.description, {entry.keys.begin(), entry.keys.end()},
+        std::vector<std::string> keys;
+        for (const BvhKeys* own : entry.keys) own->appendNames(keys);
+        for (AcceleratorInfo& info : bvhInfos(builder.name, entry.description, keys,
                                               entry.wideLayouts, [&builder](const Env&, uint32_t) { return builder; }))
             infos.push_back(std::move(info));
     }
@@ -118,7 +121,7 @@ void registerAcceleratorKeys(EnvRegistry& registry) {
     for (const AcceleratorInfo& info : acceleratorInfos()) names.push_back(info.name);
     registry.add(keys::ASDS::type.declaration(names));
     registry.add(keys::ASDS::plugins);
-    registerEmbreeKeys(registry);
+    embreeKeys().registerWith(registry);
     registerBvhKeys(registry);
 }
 

@@ -5,7 +5,6 @@
 #include "accel/bvh/builders/sbvh_builder.h"
 #include "accel/bvh/builders/spatial_median_builder.h"
 #include "accel/bvh/builders/sweep_sah_builder.h"
-#include "accel/bvh/bvh_env.h"
 
 #include <fmt/core.h>
 
@@ -35,29 +34,28 @@ Bvh ploc(const BvhBuildConfig& c, const PrimitiveSet& prims) { return buildPlocB
 }  // namespace
 
 const std::vector<BvhBuilderEntry>& bvhBuilderTable() {
-    using namespace keys::BVH;
     static const std::vector<BvhBuilderEntry> table = {
         {splitRule("tdbvh", spatialMedian),
          "BVH by spatial median: the middle of the longest axis (BVH::tdbvhSplit), object median fallback",
-         {tdbvhSplit.name()},
+         {&spatialMedianKeys()},
          {}},
         {splitRule("sahbvh", binnedSah),
          "BVH by binned SAH (Wald 2007): BVH::bins bins along the widest centre axis, SSE binning",
-         {sahTermination.name(), bins.name(), allAxes.name()},
+         {&sahTerminationKeys(), &binnedSahKeys()},
          {4, 8}},
         {wholeTree("sbvh", sbvh),
          "split BVH (Stich et al. 2009): sahbvh's object splits and, where their children overlap "
          "(BVH::sbvhAlpha), spatial splits that clip triangles to bins, within BVH::sbvhGrowth more references",
-         {sahTermination.name(), bins.name(), allAxes.name(), sbvhAlpha.name(), sbvhGrowth.name()},
+         {&sahTerminationKeys(), &binnedSahKeys(), &sbvhKeys()},
          {8}},
         {wholeTree("ploc", ploc),
          "BVH by PLOC (Meister & Bittner 2018): Morton order, mutual nearest neighbours within BVH::plocRadius "
          "merged bottom-up in parallel, leaves formed by SAH",
-         {sahTermination.name(), plocRadius.name()},
+         {&sahTerminationKeys(), &plocKeys()},
          {8}},
         {splitRule("sweepbvh", sweepSah),
          "BVH by full-sweep SAH over all N-1 planes per axis: the exact reference for sahbvh; slow build",
-         {sahTermination.name()},
+         {&sahTerminationKeys()},
          {}},
     };
     return table;

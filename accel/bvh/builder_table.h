@@ -5,6 +5,7 @@
 #pragma once
 
 #include "accel/bvh/builders/bvh_builder.h"
+#include "accel/bvh/bvh_env.h"
 
 #include <string>
 #include <string_view>
@@ -15,7 +16,7 @@ namespace bvhlab {
 struct BvhBuilderEntry {
     BvhBuilder builder;
     std::string description;             // of the binary accelerator, NAME
-    std::vector<std::string_view> keys;  // the BVH:: keys it reads besides bvhCommonKeys()
+    std::vector<const BvhKeys*> keys;    // the BVH:: keys it reads besides bvhCommonKeys()
     std::vector<int> wideLayouts;        // 4 and/or 8: NAME4, NAME8 too
 };
 

@@ -43,7 +43,7 @@ TEST(Docs, EveryDeclaredDefaultIsValid) {
 
 // BvhBuildConfig's member defaults (used by code that builds without an env) are the keys'.
 TEST(Docs, BvhConfigDefaultsAreTheKeysDefaults) {
-    BvhBuildConfig fromKeys = bvhConfigFromEnv(Env(programKeys()));
+    BvhBuildConfig fromKeys = bvhSettingsFromEnv(Env(programKeys())).build;
     const BvhBuildConfig members;
     // BVH::threads 0 is all hardware threads; a build without an env takes one.
     fromKeys.shared.threads = members.shared.threads;

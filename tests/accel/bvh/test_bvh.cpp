@@ -586,7 +586,7 @@ TEST(Bvh, RegisteredWithTheirEnvKeys) {
     env.set(keys::BVH::tdbvhSplit, "nodebox", "test");
     env.set(keys::BVH::optimize, "insertion", "test");
     env.set(keys::BVH::optimizeIterations, "5", "test");
-    const BvhBuildConfig config = bvhConfigFromEnv(env);
+    const BvhBuildConfig config = bvhSettingsFromEnv(env).build;
     EXPECT_EQ(config.optimize, BvhOptimize::Insertion);
     EXPECT_EQ(config.insertion.iterations, 5);
     EXPECT_EQ(config.binnedSah.bins, 8);

@@ -188,7 +188,7 @@ TEST(TraversalKernels, BvhIsaPicksTheKernelsOrSaysWhatTheCpuLacks) {
     for (Isa isa : kIsas) {
         Env env(programKeys());
         env.set(keys::BVH::isa, isaName(isa), "test");
-        EXPECT_EQ(traversalConfigFromEnv(env).isa, isa);
+        EXPECT_EQ(bvhSettingsFromEnv(env).traversal.isa, isa);
         if (cpuRuns(isa)) {
             EXPECT_NO_THROW((void)createAccelerator("sahbvh8", env)) << isaName(isa);
             continue;
@@ -204,7 +204,7 @@ TEST(TraversalKernels, BvhIsaPicksTheKernelsOrSaysWhatTheCpuLacks) {
     }
     Env env(programKeys());
     EXPECT_THROW(env.set(keys::BVH::isa, "sse9", "test"), InputError);
-    EXPECT_EQ(traversalConfigFromEnv(env).isa, Isa::Auto);
+    EXPECT_EQ(bvhSettingsFromEnv(env).traversal.isa, Isa::Auto);
 }
 
 }  // namespace
