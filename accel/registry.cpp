@@ -16,18 +16,15 @@ namespace bvhlab {
 namespace {
 
 std::string wideDescription(const std::string& builder, int width) {
-    return width == 4 ? fmt::format("{}'s tree (leaves charged by blocks of eight) in 4-wide nodes, four child boxes tested "
-                                    "at once (SSE), leaves eight triangles at once (AVX2); N_TR counts wide steps",
-                                    builder)
-                      : fmt::format("{}'s tree (leaves charged by blocks of eight) in {}-wide nodes, eight child boxes "
-                                    "tested at once (AVX2; scalar lanes without it), leaves eight triangles at once; "
-                                    "N_TR counts wide steps",
-                                    builder, width);
+    return fmt::format("{}'s tree (leaves charged by blocks of eight) in {}-wide nodes, {} child boxes tested at "
+                       "once, leaves eight triangles at once, in the SIMD kernels BVH::isa chooses at run time; N_TR "
+                       "counts wide steps",
+                       builder, width, width == 4 ? "four" : "eight");
 }
 
 // The accelerator of a builder over one layout: NAME (binary), NAME4 or NAME8. `makeBuilder`
 // gives the builder with the env's values and the layout's leaf block.
-using BuilderMaker = std::function<BvhBuilder(const Env&, uint32_t leafBlock)>;
+using BuilderMaker = std::function<BuilderRecord(const Env&, uint32_t leafBlock)>;
 
 template <typename Layout>
 std::unique_ptr<Accelerator> makeBvhAccelerator(const BuilderMaker& makeBuilder, const Env& env, uint32_t leafBlock) {
@@ -41,7 +38,7 @@ std::vector<AcceleratorInfo> bvhInfos(const std::string& name, const std::string
                                       const BuilderMaker& makeBuilder) {
     bvhCommonKeys().appendNames(keys);
     std::vector<AcceleratorInfo> infos = {
-        {name, description, keys, [makeBuilder](const Env& env) { return makeBvhAccelerator<Bvh>(makeBuilder, env, 1); }, {}}};
+        {name, description, keys, [makeBuilder](const Env& env) { return makeBvhAccelerator<BinaryBvh>(makeBuilder, env, 1); }, {}}};
     for (int width : wideLayouts) {
         auto create = [makeBuilder, width](const Env& env) {
             return width == 4 ? makeBvhAccelerator<WideBvh<4>>(makeBuilder, env, TriangleBlock::kLanes)
@@ -63,8 +60,8 @@ std::vector<AcceleratorInfo> ownInfos() {
          embreeKeyNames,
          [](const Env& env) { return std::make_unique<EmbreeAccelerator>(env); }, {}},
     };
-    for (const BvhBuilderEntry& entry : bvhBuilderTable()) {
-        const BvhBuilder& builder = entry.builder;
+    for (const BuilderTableEntry& entry : bvhBuilderTable()) {
+        const BuilderRecord& builder = entry.builder;
         std::vector<std::string> keys;
         for (const BvhKeys* own : entry.keys) own->appendNames(keys);
         for (AcceleratorInfo& info : bvhInfos(builder.name, entry.description, keys,
@@ -109,7 +106,7 @@ void addAccelerator(AcceleratorInfo info) {
 void addBvhBuilder(const LoadedBuilder& builder, const std::string& description, const std::string& plugin) {
     for (AcceleratorInfo& info : bvhInfos(builder.name, description, builder.keys, {4, 8},
                                           [builder](const Env& env, uint32_t leafBlock) {
-                                              return pluginBvhBuilder(builder, env, leafBlock);
+                                              return pluginBuilderRecord(builder, env, leafBlock);
                                           })) {
         info.plugin = plugin;
         addAccelerator(std::move(info));

@@ -14,27 +14,27 @@ namespace bvhlab {
 
 namespace {
 
-BvhBuilder splitRule(std::string name, SplitRuleFactory make) { return {std::move(name), std::move(make), {}}; }
+BuilderRecord splitRule(std::string name, SplitRuleFactory make) { return {std::move(name), std::move(make), {}}; }
 
-BvhBuilder wholeTree(std::string name, Bvh (*build)(const BvhBuildConfig&, const PrimitiveSet&)) {
+BuilderRecord wholeTree(std::string name, BinaryBvh (*build)(const BvhBuildConfig&, const PrimitiveSet&)) {
     return {std::move(name), {}, build};
 }
 
 // Each builder given the shared options and its own.
-std::unique_ptr<TopDownBuilder> spatialMedian(const BvhBuildConfig& c) {
+std::unique_ptr<BvhSplitRule> spatialMedian(const BvhBuildConfig& c) {
     return std::make_unique<SpatialMedianBuilder>(c.shared, c.spatialMedian);
 }
-std::unique_ptr<TopDownBuilder> binnedSah(const BvhBuildConfig& c) {
+std::unique_ptr<BvhSplitRule> binnedSah(const BvhBuildConfig& c) {
     return std::make_unique<BinnedSahBuilder>(c.shared, c.binnedSah);
 }
-std::unique_ptr<TopDownBuilder> sweepSah(const BvhBuildConfig& c) { return std::make_unique<SweepSahBuilder>(c.shared); }
-Bvh sbvh(const BvhBuildConfig& c, const PrimitiveSet& prims) { return buildSbvh(c.shared, c.binnedSah, c.sbvh, prims); }
-Bvh ploc(const BvhBuildConfig& c, const PrimitiveSet& prims) { return buildPlocBvh(c.shared, c.ploc, prims); }
+std::unique_ptr<BvhSplitRule> sweepSah(const BvhBuildConfig& c) { return std::make_unique<SweepSahBuilder>(c.shared); }
+BinaryBvh sbvh(const BvhBuildConfig& c, const PrimitiveSet& prims) { return buildSbvh(c.shared, c.binnedSah, c.sbvh, prims); }
+BinaryBvh ploc(const BvhBuildConfig& c, const PrimitiveSet& prims) { return buildPlocBvh(c.shared, c.ploc, prims); }
 
 }  // namespace
 
-const std::vector<BvhBuilderEntry>& bvhBuilderTable() {
-    static const std::vector<BvhBuilderEntry> table = {
+const std::vector<BuilderTableEntry>& bvhBuilderTable() {
+    static const std::vector<BuilderTableEntry> table = {
         {splitRule("tdbvh", spatialMedian),
          "BVH by spatial median: the middle of the longest axis (BVH::tdbvhSplit), object median fallback",
          {&spatialMedianKeys()},
@@ -61,8 +61,8 @@ const std::vector<BvhBuilderEntry>& bvhBuilderTable() {
     return table;
 }
 
-const BvhBuilder& bvhBuilder(std::string_view name) {
-    for (const BvhBuilderEntry& entry : bvhBuilderTable())
+const BuilderRecord& builderRecord(std::string_view name) {
+    for (const BuilderTableEntry& entry : bvhBuilderTable())
         if (entry.builder.name == name) return entry.builder;
     throw std::invalid_argument(fmt::format("no BVH builder named '{}'", name));
 }

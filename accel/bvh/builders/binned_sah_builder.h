@@ -5,14 +5,14 @@
 #pragma once
 
 #include "accel/bvh/builders/object_binning.h"
-#include "accel/bvh/builders/top_down_builder.h"
+#include "accel/bvh/builders/split_rule.h"
 
 namespace bvhlab {
 
-class BinnedSahBuilder final : public TopDownBuilder {
+class BinnedSahBuilder final : public BvhSplitRule {
 public:
     BinnedSahBuilder(const BuildConfig& config, const BinnedSahConfig& binned)
-        : TopDownBuilder(config), binning_(config, binned) {}
+        : BvhSplitRule(config), binning_(config, binned) {}
 
 protected:
     std::optional<Split> trySplit(const BuildRange& range, bool mayBeLeaf) override;

@@ -40,14 +40,14 @@ BuildRange preparePrimRefs(const PrimitiveSet& prims, PrimRef* out, bool simd) {
     return simd::withFloats4(simd, [&](auto f) { return preparePrimRefsWith<decltype(f)>(prims, out); });
 }
 
-void fillLeafArrays(Bvh& bvh, const PrimRef* refs, const PrimitiveSet& prims, int threads) {
+void fillLeafArrays(BinaryBvh& bvh, const PrimRef* refs, const PrimitiveSet& prims, int threads) {
     const size_t n = prims.validTriangles().size();
     bvh.primIndices.resize(n);
     for (size_t i = 0; i < n; ++i) bvh.primIndices[i] = refs[i].prim;
     copyLeafTriangles(prims, threads, bvh);
 }
 
-void copyLeafTriangles(const PrimitiveSet& prims, int threads, Bvh& bvh) {
+void copyLeafTriangles(const PrimitiveSet& prims, int threads, BinaryBvh& bvh) {
     const size_t n = bvh.primIndices.size();
     bvh.leafTriangles.resize(n);
     onThreads(threads, [&] {

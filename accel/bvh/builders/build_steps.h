@@ -3,8 +3,8 @@
 // leaf arrays last.
 #pragma once
 
-#include "accel/bvh/builders/top_down_builder.h"
-#include "accel/bvh/layout/bvh.h"
+#include "accel/bvh/builders/split_rule.h"
+#include "accel/bvh/layout/binary_bvh.h"
 
 namespace bvhlab {
 
@@ -12,8 +12,8 @@ namespace bvhlab {
 // the same PrimRefs.
 BuildRange preparePrimRefs(const PrimitiveSet& prims, PrimRef* out, bool simd);
 // The leaf arrays from PrimRefs in leaf order.
-void fillLeafArrays(Bvh& bvh, const PrimRef* refs, const PrimitiveSet& prims, int threads);
+void fillLeafArrays(BinaryBvh& bvh, const PrimRef* refs, const PrimitiveSet& prims, int threads);
 // bvh.leafTriangles from the triangles bvh.primIndices name, in parallel.
-void copyLeafTriangles(const PrimitiveSet& prims, int threads, Bvh& bvh);
+void copyLeafTriangles(const PrimitiveSet& prims, int threads, BinaryBvh& bvh);
 
 }  // namespace bvhlab

@@ -24,7 +24,7 @@ std::vector<BvhNode, TraversalAllocator<BvhNode>> buildNodes(const SplitRuleFact
         makeBuilder(config)->build(all, root, 0, &jobs, kJobPrimitives);
     std::vector<std::vector<BvhNode, TraversalAllocator<BvhNode>>> subtrees(jobs.size());
     onThreads(config.shared.threads, [&] {
-        tbb::enumerable_thread_specific<std::unique_ptr<TopDownBuilder>> builders(
+        tbb::enumerable_thread_specific<std::unique_ptr<BvhSplitRule>> builders(
             [&] { return makeBuilder(config); });
         tbb::parallel_for(size_t(0), jobs.size(), [&](size_t j) {
             subtrees[j] = builders.local()->build(all, jobs[j].range, jobs[j].depth);
@@ -40,7 +40,7 @@ namespace {
 
 // A plugin's split rule may reorder the PrimRefs, nothing else: each valid triangle once, with
 // the box it was given.
-void checkPrimRefsOf(const BvhBuilder& builder, const PrimRef* refs, const PrimitiveSet& prims) {
+void checkPrimRefsOf(const BuilderRecord& builder, const PrimRef* refs, const PrimitiveSet& prims) {
     const std::span<const uint32_t> valid = prims.validTriangles();
     std::vector<uint8_t> seen(prims.triangles.size(), 0);
     for (const uint32_t prim : valid) seen[prim] = 1;
@@ -60,13 +60,13 @@ void checkPrimRefsOf(const BvhBuilder& builder, const PrimRef* refs, const Primi
 }
 
 // The builder's tree, before any optimisation.
-Bvh buildBinary(const BvhBuilder& builder, const BvhBuildConfig& config, const PrimitiveSet& prims) {
+BinaryBvh buildBinary(const BuilderRecord& builder, const BvhBuildConfig& config, const PrimitiveSet& prims) {
     if (builder.wholeTree) return builder.wholeTree(config, prims);
     const size_t n = prims.validTriangles().size();
     // Uninitialised storage: every PrimRef is written by preparePrimRefs.
     const std::unique_ptr<PrimRef[]> refs = std::make_unique_for_overwrite<PrimRef[]>(n);
     const BuildRange root = preparePrimRefs(prims, refs.get(), config.shared.simd);
-    Bvh bvh;
+    BinaryBvh bvh;
     bvh.nodes = buildNodes(builder.splitRule, config, std::span<PrimRef>(refs.get(), n), root);
     if (builder.fromPlugin) checkPrimRefsOf(builder, refs.get(), prims);
     fillLeafArrays(bvh, refs.get(), prims, config.shared.threads);
@@ -75,13 +75,13 @@ Bvh buildBinary(const BvhBuilder& builder, const BvhBuildConfig& config, const P
 
 }  // namespace
 
-Bvh buildBvh(const BvhBuilder& builder, const BvhBuildConfig& config, const PrimitiveSet& prims) {
-    Bvh bvh = buildBinary(builder, config, prims);
+BinaryBvh buildBvh(const BuilderRecord& builder, const BvhBuildConfig& config, const PrimitiveSet& prims) {
+    BinaryBvh bvh = buildBinary(builder, config, prims);
     if (config.optimize == BvhOptimize::Insertion) optimizeByInsertion(bvh, config.insertion.iterations);
     return bvh;
 }
 
-QuadricBvh buildQuadricBvh(const BvhBuilder& builder, const BvhBuildConfig& config, const PrimitiveSet& prims) {
+QuadricBvh buildQuadricBvh(const BuilderRecord& builder, const BvhBuildConfig& config, const PrimitiveSet& prims) {
     // Few primitives as a rule (the SPD scenes have thousands, not millions): plain loops. The
     // builders of whole trees are for the millions of triangles (ploc) or clip them (sbvh); their
     // spheres and cones get binned SAH, as a plugin's do.

@@ -7,7 +7,7 @@
 #include "accel/bvh/builders/ploc_builder.h"
 #include "accel/bvh/builders/sbvh_builder.h"
 #include "accel/bvh/builders/spatial_median_builder.h"
-#include "accel/bvh/builders/top_down_builder.h"
+#include "accel/bvh/builders/split_rule.h"
 #include "accel/bvh/layout/quadric_leaves.h"
 
 #include <functional>
@@ -34,16 +34,16 @@ struct BvhBuildConfig {
     bool operator==(const BvhBuildConfig&) const = default;
 };
 
-// A builder: how the binary tree is made, by a split rule under the shared recursion
-// (TopDownBuilder) or by a whole tree of its own (sbvh's growing ranges, ploc's clustering).
+// A builder's record: its name and how it makes the binary tree, by a split rule under the shared
+// recursion (BvhSplitRule) or by a whole tree of its own (sbvh's growing ranges, ploc's clustering).
 // accel/bvh/builder_table.cpp names ours; a plugin's comes from <bvhlab/builder.h>.
-using SplitRuleFactory = std::function<std::unique_ptr<TopDownBuilder>(const BvhBuildConfig&)>;
-struct BvhBuilder {
+using SplitRuleFactory = std::function<std::unique_ptr<BvhSplitRule>(const BvhBuildConfig&)>;
+struct BuilderRecord {
     std::string name;  // "sahbvh": the binary accelerator's name
     // Exactly one of the two. splitRule is called once per build thread.
     SplitRuleFactory splitRule;
     // The triangles' tree; spheres and cones then get binned SAH (no triangle to clip, and few).
-    std::function<Bvh(const BvhBuildConfig&, const PrimitiveSet&)> wholeTree;
+    std::function<BinaryBvh(const BvhBuildConfig&, const PrimitiveSet&)> wholeTree;
     // A plugin's: after its split rule, the triangles' PrimRefs are checked to be the ones it was
     // given, reordered; spheres and cones get binned SAH (unchecked, a rule could lose one).
     bool fromPlugin = false;
@@ -52,9 +52,9 @@ struct BvhBuilder {
 // The whole build: PrimRefs from the valid triangles (SIMD or scalar), the builder's recursion
 // or its own tree, then the leaf arrays (primitive indices and triangles in leaf order), then
 // the optimisation the config asks for.
-Bvh buildBvh(const BvhBuilder& builder, const BvhBuildConfig& config, const PrimitiveSet& prims);
+BinaryBvh buildBvh(const BuilderRecord& builder, const BvhBuildConfig& config, const PrimitiveSet& prims);
 
 // buildBvh over the valid spheres and cones (their boxes), with their shapes in leaf order.
-QuadricBvh buildQuadricBvh(const BvhBuilder& builder, const BvhBuildConfig& config, const PrimitiveSet& prims);
+QuadricBvh buildQuadricBvh(const BuilderRecord& builder, const BvhBuildConfig& config, const PrimitiveSet& prims);
 
 }  // namespace bvhlab

@@ -1,10 +1,10 @@
 // A binary tree built bottom-up (ploc's clustering): one leaf node per primitive, inner nodes in
-// the order they were merged. bvhNodesFromClusterTree turns it into the Bvh layout: it forms
+// the order they were merged. bvhNodesFromClusterTree turns it into the BinaryBvh layout: it forms
 // multi-primitive leaves by SAH and keeps the depth below kBvhMaxDepth.
 #pragma once
 
 #include "accel/bvh/builders/build_config.h"
-#include "accel/bvh/layout/bvh.h"
+#include "accel/bvh/layout/binary_bvh.h"
 
 #include <bvhlab/prim_ref.h>
 
@@ -40,7 +40,7 @@ struct ClusterTree {
 // with the children's whole subtrees known.
 void formNode(ClusterTree& tree, uint32_t node, const BuildConfig& config);
 
-// The Bvh nodes over `tree` (not empty, every node formed) whose leaf l is `leafRefs[l]`; writes
+// The BinaryBvh nodes over `tree` (not empty, every node formed) whose leaf l is `leafRefs[l]`; writes
 // the PrimRefs in the tree's leaf order to `ordered`. Nodes formed as leaves become leaves of all
 // the primitives below them, left to right. A subtree that
 // would reach kBvhMaxDepth (a clustered tree can be a chain, N - 1 deep) is rebuilt at depth

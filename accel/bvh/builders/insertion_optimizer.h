@@ -5,7 +5,7 @@
 // whole, only inner nodes move.
 #pragma once
 
-#include "accel/bvh/layout/bvh.h"
+#include "accel/bvh/layout/binary_bvh.h"
 
 namespace bvhlab {
 
@@ -21,6 +21,6 @@ struct InsertionConfig {
 // the leaves fixed, the SAH changes only through the inner nodes' areas, whatever C_trav,
 // C_isect or the leaves' block charge; a pass that would raise it is undone. Sequential: the
 // same tree whatever the thread count.
-void optimizeByInsertion(Bvh& bvh, int passes);
+void optimizeByInsertion(BinaryBvh& bvh, int passes);
 
 }  // namespace bvhlab

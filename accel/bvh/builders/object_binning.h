@@ -8,7 +8,7 @@
 // results.
 #pragma once
 
-#include "accel/bvh/builders/top_down_builder.h"
+#include "accel/bvh/builders/split_rule.h"
 
 #include <optional>
 #include <vector>

@@ -260,9 +260,9 @@ void sortByMortonCode(std::span<const PrimRef> refs, const BuildRange& root, Pri
 
 }  // namespace
 
-Bvh buildPlocBvh(const BuildConfig& config, const PlocConfig& ploc, const PrimitiveSet& prims) {
+BinaryBvh buildPlocBvh(const BuildConfig& config, const PlocConfig& ploc, const PrimitiveSet& prims) {
     const size_t n = prims.validTriangles().size();
-    Bvh bvh;
+    BinaryBvh bvh;
     if (n == 0) return bvh;
     // Uninitialised storage: every PrimRef is written before it is read.
     const std::unique_ptr<PrimRef[]> refs = std::make_unique_for_overwrite<PrimRef[]>(n);

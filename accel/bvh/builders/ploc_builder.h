@@ -8,7 +8,7 @@
 #pragma once
 
 #include "accel/bvh/builders/build_config.h"
-#include "accel/bvh/layout/bvh.h"
+#include "accel/bvh/layout/binary_bvh.h"
 
 #include <bvhlab/prim_ref.h>
 
@@ -21,7 +21,7 @@ struct PlocConfig {
     bool operator==(const PlocConfig&) const = default;
 };
 
-// The Bvh of ploc over the valid triangles, its leaves formed by SAH (cluster_tree.h).
-Bvh buildPlocBvh(const BuildConfig& config, const PlocConfig& ploc, const PrimitiveSet& prims);
+// The BinaryBvh of ploc over the valid triangles, its leaves formed by SAH (cluster_tree.h).
+BinaryBvh buildPlocBvh(const BuildConfig& config, const PlocConfig& ploc, const PrimitiveSet& prims);
 
 }  // namespace bvhlab

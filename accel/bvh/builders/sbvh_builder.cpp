@@ -80,7 +80,7 @@ SbvhSplit SbvhBuilder::objectMedianSplit(SbvhRange& range, int axis) {
     return splitAtIndex(range, mid);
 }
 
-// TopDownBuilder's leaf rules (top_down_builder.cpp), over a range of references.
+// BvhSplitRule's leaf rules (split_rule.cpp), over a range of references.
 std::optional<SbvhSplit> SbvhBuilder::chooseSplit(SbvhRange& range, int depth) {
     const uint32_t n = range.size();
     const bool mayBeLeaf = n <= config_.effectiveLeafCap();
@@ -172,7 +172,7 @@ BvhNodes SbvhBuilder::build(SbvhRange root, int depth, std::vector<Deferred>* de
         });
 }
 
-Bvh buildSbvh(const BuildConfig& config, const BinnedSahConfig& binned, const SbvhConfig& sbvh,
+BinaryBvh buildSbvh(const BuildConfig& config, const BinnedSahConfig& binned, const SbvhConfig& sbvh,
               const PrimitiveSet& prims) {
     const size_t n = prims.validTriangles().size();
     SbvhRange root;
@@ -187,7 +187,7 @@ Bvh buildSbvh(const BuildConfig& config, const BinnedSahConfig& binned, const Sb
     // they were deferred (build_jobs.h): one tree whatever the thread count.
     SbvhBuilder top(config, binned, sbvh, prims.triangles, rootArea);
     std::vector<SbvhBuilder::Deferred> jobs;
-    Bvh bvh;
+    BinaryBvh bvh;
     bvh.nodes = top.build(std::move(root), 0, &jobs, kJobPrimitives);
     struct Subtree {
         BvhNodes nodes;

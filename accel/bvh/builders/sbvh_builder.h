@@ -6,12 +6,12 @@
 // whose whole box on one side costs less than the cut is unsplit. New references
 // come from a budget of growth * N (0.3: at most 30 % more references than triangles).
 //
-// Why not TopDownBuilder and its trySplit hook: spatial splits make ranges grow, and
-// TopDownBuilder partitions one array of exactly N PrimRefs in place. Here each node's
+// Why not BvhSplitRule and its trySplit hook: spatial splits make ranges grow, and
+// BvhSplitRule partitions one array of exactly N PrimRefs in place. Here each node's
 // references are a vector of their own (the left child keeps its parent's storage, the right
 // one takes a vector from a pool), the leaves write their primitives to an output array, and
 // the nodes come from the same recursion (top_down_recursion.h), so the result is the same
-// binary Bvh: a cut triangle appears in several leaves, each time
+// binary BinaryBvh: a cut triangle appears in several leaves, each time
 // whole in leafTriangles, so every traversal and the wide collapse read it unchanged.
 #pragma once
 
@@ -88,7 +88,7 @@ private:
 
 // The whole build over the valid triangles, in parallel jobs below kJobPrimitives references
 // (the same tree whatever config.threads).
-Bvh buildSbvh(const BuildConfig& config, const BinnedSahConfig& binned, const SbvhConfig& sbvh,
+BinaryBvh buildSbvh(const BuildConfig& config, const BinnedSahConfig& binned, const SbvhConfig& sbvh,
               const PrimitiveSet& prims);
 
 }  // namespace bvhlab

@@ -7,7 +7,7 @@
 #pragma once
 
 #include "accel/bvh/builders/build_config.h"
-#include "accel/bvh/layout/bvh.h"
+#include "accel/bvh/layout/binary_bvh.h"
 
 #include <bvhlab/prim_ref.h>
 

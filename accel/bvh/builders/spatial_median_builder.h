@@ -5,7 +5,7 @@
 // the object median along the widest axis of the centres instead.
 #pragma once
 
-#include "accel/bvh/builders/top_down_builder.h"
+#include "accel/bvh/builders/split_rule.h"
 
 namespace bvhlab {
 
@@ -21,10 +21,10 @@ struct SpatialMedianConfig {
     bool operator==(const SpatialMedianConfig&) const = default;
 };
 
-class SpatialMedianBuilder final : public TopDownBuilder {
+class SpatialMedianBuilder final : public BvhSplitRule {
 public:
     SpatialMedianBuilder(const BuildConfig& config, const SpatialMedianConfig& median)
-        : TopDownBuilder(config), median_(median) {}
+        : BvhSplitRule(config), median_(median) {}
 
 protected:
     std::optional<Split> trySplit(const BuildRange& range, bool mayBeLeaf) override;

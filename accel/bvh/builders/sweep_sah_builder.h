@@ -5,15 +5,15 @@
 // of its own: it prices every plane, so there is nothing to tune but the shared BuildConfig.
 #pragma once
 
-#include "accel/bvh/builders/top_down_builder.h"
+#include "accel/bvh/builders/split_rule.h"
 
 #include <vector>
 
 namespace bvhlab {
 
-class SweepSahBuilder final : public TopDownBuilder {
+class SweepSahBuilder final : public BvhSplitRule {
 public:
-    using TopDownBuilder::TopDownBuilder;
+    using BvhSplitRule::BvhSplitRule;
 
 protected:
     std::optional<Split> trySplit(const BuildRange& range, bool mayBeLeaf) override;

@@ -30,8 +30,8 @@ namespace bvhlab {
 namespace {
 
 // The builders of the table that build with the shared recursion or as ploc (sbvh: test_sbvh.cpp).
-std::vector<BvhBuilder> allBuilders() {
-    return {bvhBuilder("tdbvh"), bvhBuilder("sahbvh"), bvhBuilder("sweepbvh"), bvhBuilder("ploc")};
+std::vector<BuilderRecord> allBuilders() {
+    return {builderRecord("tdbvh"), builderRecord("sahbvh"), builderRecord("sweepbvh"), builderRecord("ploc")};
 }
 
 using test::checkTree;
@@ -66,7 +66,7 @@ Soup mixedScaleSoup(size_t n, uint32_t seed) {
 BvhBuildConfig defaultConfig() { return BvhBuildConfig{}; }
 
 // Builds, checks the tree and that BuildStats reports what the walk found.
-TreeFacts buildAndCheck(BvhAccelerator<Bvh>& accel, const Soup& soup) {
+TreeFacts buildAndCheck(BvhAccelerator<BinaryBvh>& accel, const Soup& soup) {
     const BuildStats stats = timedBuild(accel, soup.prims());
     const TreeFacts facts = checkTree(accel.bvh(), soup);
     EXPECT_EQ(stats.primitives, soup.valid.size());
@@ -86,12 +86,12 @@ TEST(Bvh, NodeIsThirtyTwoBytes) {
 
 TEST(Bvh, InvariantsOnRandomScenes) {
     const Soup soup = randomSoup(3000, 1);
-    for (const BvhBuilder& kind : allBuilders()) {
+    for (const BuilderRecord& kind : allBuilders()) {
         for (bool simd : {true, false}) {
             SCOPED_TRACE(kind.name + (simd ? " simd" : " scalar"));
             BvhBuildConfig config;
             config.shared.simd = simd;
-            BvhAccelerator<Bvh> accel(kind, config);
+            BvhAccelerator<BinaryBvh> accel(kind, config);
             buildAndCheck(accel, soup);
         }
     }
@@ -103,9 +103,9 @@ TEST(Bvh, InvariantsOnRandomScenes) {
     nodeBox.spatialMedian.splitBox = MedianSplitBox::NodeBox;
     BvhBuildConfig manyBins;
     manyBins.binnedSah.bins = 256;
-    for (const auto& [kind, config] : {std::pair{bvhBuilder("sahbvh"), allAxes}, std::pair{bvhBuilder("tdbvh"), nodeBox},
-                                       std::pair{bvhBuilder("sahbvh"), manyBins}}) {
-        BvhAccelerator<Bvh> accel(kind, config);
+    for (const auto& [kind, config] : {std::pair{builderRecord("sahbvh"), allAxes}, std::pair{builderRecord("tdbvh"), nodeBox},
+                                       std::pair{builderRecord("sahbvh"), manyBins}}) {
+        BvhAccelerator<BinaryBvh> accel(kind, config);
         buildAndCheck(accel, soup);
     }
 }
@@ -116,7 +116,7 @@ TEST(Bvh, NonRobustTraversalAgreesAwayFromEdges) {
     const Soup soup = randomSoup(3000, 5);
     TraversalConfig traversal;
     traversal.robust = false;
-    BvhAccelerator<Bvh> accel(bvhBuilder("sahbvh"), defaultConfig(), traversal);
+    BvhAccelerator<BinaryBvh> accel(builderRecord("sahbvh"), defaultConfig(), traversal);
     buildAndCheck(accel, soup);
     expectAgreesWithNaive(accel, soup, 3000, 2.0f, 11);
 }
@@ -124,12 +124,12 @@ TEST(Bvh, NonRobustTraversalAgreesAwayFromEdges) {
 TEST(Bvh, TinyScenes) {
     for (size_t n : {0, 1, 2, 3}) {
         const Soup soup = randomSoup(n, 7 + uint32_t(n));
-        for (const BvhBuilder& kind : allBuilders()) {
+        for (const BuilderRecord& kind : allBuilders()) {
             SCOPED_TRACE(kind.name + " with " + std::to_string(n) + " triangles");
             BvhBuildConfig config;
             config.shared.maxLeaf = 1;
             config.shared.sahTermination = false;
-            BvhAccelerator<Bvh> accel(kind, config);
+            BvhAccelerator<BinaryBvh> accel(kind, config);
             const TreeFacts facts = buildAndCheck(accel, soup);
             EXPECT_EQ(facts.leaves, n);
             // A ray at each triangle's centroid finds it (or one equally near).
@@ -164,8 +164,8 @@ TEST(Bvh, DegeneratePrimitivesAreNotBuiltOver) {
     // primitive index of the full list.
     Soup soup = randomSoup(50, 3);
     soup.valid = {4, 9, 10, 31, 49};
-    for (const BvhBuilder& kind : allBuilders()) {
-        BvhAccelerator<Bvh> accel(kind, defaultConfig());
+    for (const BuilderRecord& kind : allBuilders()) {
+        BvhAccelerator<BinaryBvh> accel(kind, defaultConfig());
         buildAndCheck(accel, soup);
         expectAgreesWithNaive(accel, soup, 300, 10.0f, 5);
     }
@@ -179,8 +179,8 @@ TEST(Bvh, ReportsTheBoundsItPromisesAndKeepsThem) {
     for (int i = 0; i < 3000; ++i) soup.add(soup.triangles[0]);
     BvhBuildConfig config = defaultConfig();
     config.shared.leafCap = 5;
-    for (const BvhBuilder& kind : allBuilders()) {
-        BvhAccelerator<Bvh> accel(kind, config);
+    for (const BuilderRecord& kind : allBuilders()) {
+        BvhAccelerator<BinaryBvh> accel(kind, config);
         buildAndCheck(accel, soup);
         const BuildStats stats = timedBuild(accel, soup.prims());
         ASSERT_TRUE(stats.leafBound && stats.depthBound);
@@ -199,13 +199,13 @@ TEST(Bvh, WideStatisticsAreTheBinaryTreesOutsideTheBuild) {
     const Soup soup = randomSoup(5000, 17), other = randomSoup(700, 18);
     BvhBuildConfig config = defaultConfig();
     config.shared.sahBlockShift = 3;  // how the 8-wide accelerator builds its binary tree: leaves in blocks of 8
-    for (const BvhBuilder& kind : allBuilders()) {
+    for (const BuilderRecord& kind : allBuilders()) {
         SCOPED_TRACE(kind.name);
         BvhAccelerator<WideBvh<8>> wide(kind, defaultConfig());
         for (const Soup* s : {&soup, &other}) {
             wide.build(s->prims());
             const BuildStats stats = wide.buildStats();
-            const Bvh binary = buildBvh(kind, config, s->prims());
+            const BinaryBvh binary = buildBvh(kind, config, s->prims());
             BuildStats expected;
             fillTreeStats(binary, config.shared.cTraversal, config.shared.cIntersect, expected);
             EXPECT_EQ(stats.primitives, s->valid.size());
@@ -228,9 +228,9 @@ TEST(Bvh, WideStatisticsAreTheBinaryTreesOutsideTheBuild) {
 TEST(Bvh, HundredThousandCoincidentTriangles) {
     Soup soup;
     for (int i = 0; i < 100000; ++i) soup.add({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
-    for (const BvhBuilder& kind : allBuilders()) {
+    for (const BuilderRecord& kind : allBuilders()) {
         SCOPED_TRACE(kind.name);
-        BvhAccelerator<Bvh> accel(kind, defaultConfig());
+        BvhAccelerator<BinaryBvh> accel(kind, defaultConfig());
         const BuildStats stats = timedBuild(accel, soup.prims());
         EXPECT_LT(stats.buildMs, 2000.0);
         const TreeFacts facts = checkTree(accel.bvh(), soup);
@@ -251,7 +251,7 @@ TEST(Bvh, HundredThousandCoincidentTriangles) {
     strict.shared.maxLeaf = 1;
     strict.shared.leafCap = 1;
     strict.shared.sahTermination = false;
-    BvhAccelerator<Bvh> accel(bvhBuilder("sahbvh"), strict);
+    BvhAccelerator<BinaryBvh> accel(builderRecord("sahbvh"), strict);
     accel.build(soup.prims());
     EXPECT_EQ(checkTree(accel.bvh(), soup).maxLeaf, 1u);
 }
@@ -268,12 +268,12 @@ TEST(Bvh, CentresOnALineOnAPlaneAndClustered) {
         clusters.add({{c - 1, -1, 0}, {c + 1, -1, 0}, {c, 2, 0}});
     }
     for (const Soup* soup : {&line, &plane, &clusters}) {
-        for (const BvhBuilder& kind : allBuilders()) {
+        for (const BuilderRecord& kind : allBuilders()) {
             for (MedianSplitBox box : {MedianSplitBox::CentroidBox, MedianSplitBox::NodeBox}) {
                 if (kind.name != "tdbvh" && box == MedianSplitBox::NodeBox) continue;
                 BvhBuildConfig config;
                 config.spatialMedian.splitBox = box;
-                BvhAccelerator<Bvh> accel(kind, config);
+                BvhAccelerator<BinaryBvh> accel(kind, config);
                 buildAndCheck(accel, *soup);
                 expectAgreesWithNaive(accel, *soup, 200, 100.0f, 13);
             }
@@ -289,14 +289,14 @@ TEST(Bvh, DepthStaysBoundedOnGeometricSpacing) {
         const float x = std::pow(1.5f, float(i) - 100.0f);
         soup.add({{x, 0, 0}, {x * 1.01f, 0, 0}, {x, 1e-3f, 1e-3f}});
     }
-    for (const BvhBuilder& kind : allBuilders()) {
+    for (const BuilderRecord& kind : allBuilders()) {
         for (MedianSplitBox box : {MedianSplitBox::CentroidBox, MedianSplitBox::NodeBox}) {
             SCOPED_TRACE(kind.name);
             BvhBuildConfig config;
             config.shared.maxLeaf = 1;
             config.shared.sahTermination = false;
             config.spatialMedian.splitBox = box;
-            BvhAccelerator<Bvh> accel(kind, config);
+            BvhAccelerator<BinaryBvh> accel(kind, config);
             const TreeFacts facts = buildAndCheck(accel, soup);
             EXPECT_EQ(facts.leaves, soup.valid.size());
             EXPECT_LT(facts.maxDepth, kBvhMaxDepth);
@@ -309,8 +309,8 @@ TEST(Bvh, DepthStaysBoundedOnGeometricSpacing) {
 
 TEST(Bvh, SizesFromMicrometresToKilometres) {
     const Soup soup = mixedScaleSoup(3000, 17);
-    for (const BvhBuilder& kind : allBuilders()) {
-        BvhAccelerator<Bvh> accel(kind, defaultConfig());
+    for (const BuilderRecord& kind : allBuilders()) {
+        BvhAccelerator<BinaryBvh> accel(kind, defaultConfig());
         buildAndCheck(accel, soup);
         expectAgreesWithNaive(accel, soup, 1000, 1000.0f, 19);
     }
@@ -318,11 +318,11 @@ TEST(Bvh, SizesFromMicrometresToKilometres) {
 
 TEST(Bvh, AgreesWithNaiveOnRandomRays) {
     const Soup soup = randomSoup(2000, 23);
-    for (const BvhBuilder& kind : allBuilders()) {
+    for (const BuilderRecord& kind : allBuilders()) {
         for (int maxLeaf : {1, 4}) {
             BvhBuildConfig config;
             config.shared.maxLeaf = maxLeaf;
-            BvhAccelerator<Bvh> accel(kind, config);
+            BvhAccelerator<BinaryBvh> accel(kind, config);
             accel.build(soup.prims());
             expectAgreesWithNaive(accel, soup, 3000, 10.0f, 29);
         }
@@ -338,10 +338,10 @@ TEST(Bvh, AxisParallelRaysAlongBoxFaces) {
     test::addLatticeSquares(soup, 4, 4);
     NaiveAccelerator naive;
     naive.build(soup.prims());
-    for (const BvhBuilder& kind : allBuilders()) {
+    for (const BuilderRecord& kind : allBuilders()) {
         BvhBuildConfig config;
         config.shared.maxLeaf = 1;
-        BvhAccelerator<Bvh> accel(kind, config);
+        BvhAccelerator<BinaryBvh> accel(kind, config);
         accel.build(soup.prims());
         int hits = 0;
         for (int axis = 0; axis < 3; ++axis) {
@@ -382,8 +382,8 @@ TEST(Bvh, FlatBoxesBehindTheOrigin) {
     naive.build(soup.prims());
     std::mt19937 rng(53);
     std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-    for (const BvhBuilder& kind : allBuilders()) {
-        BvhAccelerator<Bvh> accel(kind, defaultConfig());
+    for (const BuilderRecord& kind : allBuilders()) {
+        BvhAccelerator<BinaryBvh> accel(kind, defaultConfig());
         accel.build(soup.prims());
         int hits = 0;
         for (int i = 0; i < 500; ++i) {
@@ -411,7 +411,7 @@ TEST(Bvh, NegativeTminCullsAxisParallelRaysLikeTminZero) {
     const Soup soup = randomSoup(3000, 29);  // in [-1, 11]^3
     std::mt19937 rng(31);
     std::uniform_real_distribution<float> across(0.0f, 10.0f);
-    BvhAccelerator<Bvh> accel(bvhBuilder("sahbvh"), defaultConfig());
+    BvhAccelerator<BinaryBvh> accel(builderRecord("sahbvh"), defaultConfig());
     accel.build(soup.prims());
     for (int i = 0; i < 300; ++i) {
         const int axis = i % 3;
@@ -432,7 +432,7 @@ TEST(Bvh, NegativeTminCullsAxisParallelRaysLikeTminZero) {
 
 TEST(Bvh, InvalidRaysMissAndCountAQuery) {
     const Soup soup = randomSoup(100, 31);
-    BvhAccelerator<Bvh> accel(bvhBuilder("sahbvh"), defaultConfig());
+    BvhAccelerator<BinaryBvh> accel(builderRecord("sahbvh"), defaultConfig());
     accel.build(soup.prims());
     Ray zero;
     zero.dir = Vec3(0.0f);
@@ -451,16 +451,16 @@ TEST(Bvh, InvalidRaysMissAndCountAQuery) {
     }
 }
 
-double sahOf(const BvhBuilder& kind, const BvhBuildConfig& config, const Soup& soup) {
-    BvhAccelerator<Bvh> accel(kind, config);
+double sahOf(const BuilderRecord& kind, const BvhBuildConfig& config, const Soup& soup) {
+    BvhAccelerator<BinaryBvh> accel(kind, config);
     return timedBuild(accel, soup.prims()).sah->cost;
 }
 
 TEST(Bvh, BinnedSahIsCloseToTheSweep) {
     const Soup soup = randomSoup(4000, 37, 10.0f, 0.5f);
-    const double binned = sahOf(bvhBuilder("sahbvh"), defaultConfig(), soup);
-    const double sweep = sahOf(bvhBuilder("sweepbvh"), defaultConfig(), soup);
-    const double median = sahOf(bvhBuilder("tdbvh"), defaultConfig(), soup);
+    const double binned = sahOf(builderRecord("sahbvh"), defaultConfig(), soup);
+    const double sweep = sahOf(builderRecord("sweepbvh"), defaultConfig(), soup);
+    const double median = sahOf(builderRecord("tdbvh"), defaultConfig(), soup);
     EXPECT_LE(sweep, binned * 1.001);
     EXPECT_LE(binned, sweep * 1.03);
     EXPECT_LT(sweep, median);
@@ -468,24 +468,24 @@ TEST(Bvh, BinnedSahIsCloseToTheSweep) {
     BvhBuildConfig fine;
     fine.binnedSah.bins = 64;
     fine.binnedSah.allAxes = true;
-    EXPECT_LE(sahOf(bvhBuilder("sahbvh"), fine, soup), sweep * 1.015);
+    EXPECT_LE(sahOf(builderRecord("sahbvh"), fine, soup), sweep * 1.015);
 }
 
 TEST(Bvh, SahTerminationMakesMultiPrimitiveLeaves) {
     // Dense, overlapping triangles: splitting does not pay near the bottom.
     const Soup soup = randomSoup(3000, 41, 5.0f, 1.0f);
-    for (const BvhBuilder& kind : {bvhBuilder("sahbvh"), bvhBuilder("sweepbvh")}) {
+    for (const BuilderRecord& kind : {builderRecord("sahbvh"), builderRecord("sweepbvh")}) {
         BvhBuildConfig config;
         config.shared.maxLeaf = 1;
         config.shared.cTraversal = 2.0f;
-        BvhAccelerator<Bvh> accel(kind, config);
+        BvhAccelerator<BinaryBvh> accel(kind, config);
         const BuildStats stats = timedBuild(accel, soup.prims());
         EXPECT_GT(*stats.avgLeafPrimitives, 1.5) << kind.name;
         EXPECT_LE(*stats.maxLeafPrimitives, size_t(config.shared.leafCap));
         checkTree(accel.bvh(), soup);
 
         config.shared.sahTermination = false;
-        BvhAccelerator<Bvh> single(kind, config);
+        BvhAccelerator<BinaryBvh> single(kind, config);
         const BuildStats one = timedBuild(single, soup.prims());
         EXPECT_EQ(*one.leaves, soup.valid.size());
         EXPECT_EQ(*one.maxLeafPrimitives, 1u);
@@ -498,17 +498,17 @@ TEST(Bvh, SahTerminationMakesMultiPrimitiveLeaves) {
 TEST(Bvh, SimdAndScalarBuildTheSameTree) {
     const Soup soups[] = {randomSoup(5000, 43), mixedScaleSoup(3000, 47)};
     for (const Soup& soup : soups) {
-        for (const BvhBuilder& kind : allBuilders()) {
+        for (const BuilderRecord& kind : allBuilders()) {
             for (bool allAxes : {false, true}) {
                 if (allAxes && kind.name != "sahbvh") continue;
                 BvhBuildConfig config;
                 config.binnedSah.allAxes = allAxes;
-                BvhAccelerator<Bvh> simd(kind, config);
+                BvhAccelerator<BinaryBvh> simd(kind, config);
                 config.shared.simd = false;
-                BvhAccelerator<Bvh> scalar(kind, config);
+                BvhAccelerator<BinaryBvh> scalar(kind, config);
                 simd.build(soup.prims());
                 scalar.build(soup.prims());
-                const Bvh &a = simd.bvh(), &b = scalar.bvh();
+                const BinaryBvh &a = simd.bvh(), &b = scalar.bvh();
                 ASSERT_EQ(a.nodes.size(), b.nodes.size()) << kind.name;
                 EXPECT_EQ(std::memcmp(a.nodes.data(), b.nodes.data(), a.nodes.size() * sizeof(BvhNode)), 0)
                     << kind.name << (allAxes ? " all axes" : "");
@@ -525,7 +525,7 @@ TEST(Bvh, SahCostFollowsTheStatedFormula) {
     config.shared.maxLeaf = 1;
     config.shared.cTraversal = 2.0f;
     config.shared.cIntersect = 3.0f;
-    BvhAccelerator<Bvh> accel(bvhBuilder("sahbvh"), config);
+    BvhAccelerator<BinaryBvh> accel(builderRecord("sahbvh"), config);
     const BuildStats stats = timedBuild(accel, soup.prims());
     ASSERT_EQ(*stats.nodes, 3u);
     const double rootArea = Bounds3({0, 0, 0}, {10, 10, 9}).halfArea();
@@ -544,7 +544,7 @@ TEST(Bvh, CountersCountVisitsAndTests) {
     BvhBuildConfig config;
     config.shared.maxLeaf = 1;
     config.shared.sahTermination = false;
-    BvhAccelerator<Bvh> accel(bvhBuilder("sahbvh"), config);
+    BvhAccelerator<BinaryBvh> accel(builderRecord("sahbvh"), config);
     accel.build(soup.prims());
     QueryCounters counters;
     Hit hit;
@@ -608,7 +608,7 @@ void expectCollapseKeepsEveryTriangleOnce(size_t n, uint32_t seed) {
     using Leaf = std::vector<uint32_t>;  // primitives in lane order
     constexpr uint32_t kLeafCap = 16;
     const Soup soup = randomSoup(n, seed);
-    Bvh binary = buildBvh(bvhBuilder("sahbvh"), defaultConfig(), soup.prims());
+    BinaryBvh binary = buildBvh(builderRecord("sahbvh"), defaultConfig(), soup.prims());
     // Every binary subtree's primitives, left to right (children come after their parent).
     std::vector<Leaf> below(binary.nodes.size());
     size_t binaryBlocks = 0;
@@ -718,7 +718,7 @@ TEST(WideBvh, CollapseKeepsEveryTriangleOnce) {
 // both hit and stay two lanes. A merge never exceeds the leaf cap.
 TEST(WideBvh, CollapseMergesSiblingLeavesWhenOneBlockPays) {
     const auto twoLeaves = [](Vec3 shift) {
-        Bvh bvh;
+        BinaryBvh bvh;
         for (uint32_t i = 0; i < 7; ++i) {
             const Vec3 s = i < 3 ? Vec3(0.0f) : shift;
             const float f = 0.1f * float(i);
@@ -765,9 +765,9 @@ TEST(WideBvh, CollapseMergesSiblingLeavesWhenOneBlockPays) {
 // depth-first build up to the order of its nodes (same node count, leaves and SAH).
 TEST(Bvh, SameTreeWhateverTheThreadCount) {
     const Soup soup = randomSoup(60000, 67);
-    for (const BvhBuilder& kind : {bvhBuilder("tdbvh"), bvhBuilder("sahbvh")}) {
+    for (const BuilderRecord& kind : {builderRecord("tdbvh"), builderRecord("sahbvh")}) {
         SCOPED_TRACE(kind.name);
-        std::vector<Bvh> trees;
+        std::vector<BinaryBvh> trees;
         for (int threads : {1, 2, 0}) {
             BvhBuildConfig config = defaultConfig();
             config.shared.threads = threads;
@@ -789,7 +789,7 @@ TEST(Bvh, SameTreeWhateverTheThreadCount) {
             refs[i] = PrimRef{{b.lower.x, b.lower.y, b.lower.z}, prims.valid[i], {b.upper.x, b.upper.y, b.upper.z}, 0};
             acc.add(refs[i]);
         }
-        Bvh depthFirst;
+        BinaryBvh depthFirst;
         depthFirst.nodes = kind.splitRule(defaultConfig())->build(refs, {0, uint32_t(refs.size()), acc.bounds(), acc.centroidBounds()});
         depthFirst.primIndices.resize(refs.size());
         for (size_t i = 0; i < refs.size(); ++i) depthFirst.primIndices[i] = refs[i].prim;
@@ -809,7 +809,7 @@ TEST(Bvh, SameWideTreeWhateverTheThreadCount) {
     const Soup soup = randomSoup(60000, 69);
     BvhBuildConfig config = defaultConfig();
     config.shared.sahBlockShift = 3;
-    const Bvh binary = buildBvh(bvhBuilder("sahbvh"), config, soup.prims());
+    const BinaryBvh binary = buildBvh(builderRecord("sahbvh"), config, soup.prims());
     const CollapseCosts costs{1.0f, 1.0f, uint32_t(config.shared.leafCap)};
     std::vector<WideBvh<8>> trees;
     for (int threads : {1, 2}) {
@@ -832,12 +832,12 @@ TEST(Bvh, SameWideTreeWhateverTheThreadCount) {
 // per triangle (the binary layout), the same builders do split such ranges.
 TEST(Bvh, SahChargedByBlocksKeepsABlockOfTrianglesTogether) {
     const Soup soup = randomSoup(3000, 61);
-    for (const BvhBuilder& kind : {bvhBuilder("sahbvh"), bvhBuilder("sweepbvh")}) {
+    for (const BuilderRecord& kind : {builderRecord("sahbvh"), builderRecord("sweepbvh")}) {
         SCOPED_TRACE(kind.name);
         for (int shift : {0, 2, 3}) {
             BvhBuildConfig config = defaultConfig();
             config.shared.sahBlockShift = shift;
-            const Bvh bvh = buildBvh(kind, config, soup.prims());
+            const BinaryBvh bvh = buildBvh(kind, config, soup.prims());
             // Triangles below each node, children before parents (pairs follow their parent).
             std::vector<uint32_t> below(bvh.nodes.size(), 0);
             for (size_t i = bvh.nodes.size(); i-- > 0;) {
@@ -864,8 +864,8 @@ TEST(WideBvh, FourAndEightWideAgreeWithNaive) {
         SCOPED_TRACE(robust ? "robust" : "not robust");
         TraversalConfig traversal;
         traversal.robust = robust;
-        BvhAccelerator<WideBvh<4>> four(bvhBuilder("sahbvh"), defaultConfig(), traversal);
-        BvhAccelerator<WideBvh<8>> eight(bvhBuilder("sahbvh"), defaultConfig(), traversal);
+        BvhAccelerator<WideBvh<4>> four(builderRecord("sahbvh"), defaultConfig(), traversal);
+        BvhAccelerator<WideBvh<8>> eight(builderRecord("sahbvh"), defaultConfig(), traversal);
         four.build(soup.prims());
         const BuildStats stats = timedBuild(eight, soup.prims());
         EXPECT_STREQ(four.name(), "sahbvh4");
@@ -883,9 +883,9 @@ namespace bvhlab {
 namespace {
 
 // A split rule that breaks the hook's contract: it hands back an empty left half.
-class EmptyHalfBuilder : public TopDownBuilder {
+class EmptyHalfSplitRule : public BvhSplitRule {
 public:
-    using TopDownBuilder::TopDownBuilder;
+    using BvhSplitRule::BvhSplitRule;
 
 protected:
     std::optional<Split> trySplit(const BuildRange& range, bool) override {
@@ -907,7 +907,7 @@ TEST(Bvh, RecursionRefusesASplitWithAnEmptyHalf) {
     }
     BuildConfig config;
     config.maxLeaf = 1;
-    EmptyHalfBuilder builder(config);
+    EmptyHalfSplitRule builder(config);
     EXPECT_THROW(builder.build(refs, root), std::logic_error);
 }
 
@@ -920,11 +920,11 @@ namespace {
 // chunks, ties broken by a total order on pairs, so the tree is the same at 1, 2 and all threads.
 TEST(Ploc, SameTreeWhateverTheThreadCount) {
     const Soup soup = randomSoup(60000, 71);
-    std::vector<Bvh> trees;
+    std::vector<BinaryBvh> trees;
     for (int threads : {1, 2, 0}) {
         BvhBuildConfig config = defaultConfig();
         config.shared.threads = threads;
-        trees.push_back(buildBvh(bvhBuilder("ploc"), config, soup.prims()));
+        trees.push_back(buildBvh(builderRecord("ploc"), config, soup.prims()));
     }
     for (size_t t = 1; t < trees.size(); ++t) {
         ASSERT_EQ(trees[t].nodes.size(), trees[0].nodes.size());
@@ -946,7 +946,7 @@ TEST(Ploc, ChainOfClustersIsRebuiltWithinTheDepthBound) {
     BvhBuildConfig config;
     config.shared.maxLeaf = 1;
     config.shared.sahTermination = false;
-    BvhAccelerator<Bvh> accel(bvhBuilder("ploc"), config);
+    BvhAccelerator<BinaryBvh> accel(builderRecord("ploc"), config);
     const TreeFacts facts = buildAndCheck(accel, soup);
     EXPECT_EQ(facts.leaves, soup.valid.size());
     EXPECT_LT(facts.maxDepth, kBvhMaxDepth);
@@ -961,7 +961,7 @@ TEST(Ploc, CoincidentTrianglesPairUp) {
     BvhBuildConfig config;
     config.shared.maxLeaf = 1;
     config.shared.sahTermination = false;
-    BvhAccelerator<Bvh> accel(bvhBuilder("ploc"), config);
+    BvhAccelerator<BinaryBvh> accel(builderRecord("ploc"), config);
     const TreeFacts facts = buildAndCheck(accel, soup);
     EXPECT_EQ(facts.maxDepth, 10);
 }
@@ -970,7 +970,7 @@ TEST(Ploc, CoincidentTrianglesPairUp) {
 // on a soup (within 15 %), and its leaves hold up to leafCap primitives.
 TEST(Ploc, SahNearTheBinnedBuild) {
     const Soup soup = randomSoup(20000, 73);
-    BvhAccelerator<Bvh> ploc(bvhBuilder("ploc"), defaultConfig()), sah(bvhBuilder("sahbvh"), defaultConfig());
+    BvhAccelerator<BinaryBvh> ploc(builderRecord("ploc"), defaultConfig()), sah(builderRecord("sahbvh"), defaultConfig());
     const double plocSah = timedBuild(ploc, soup.prims()).sah->cost, binnedSah = timedBuild(sah, soup.prims()).sah->cost;
     EXPECT_LT(plocSah, 1.15 * binnedSah);
     const TreeFacts facts = checkTree(ploc.bvh(), soup);

@@ -114,7 +114,7 @@ void expectTimedFormAnswersAlike(const Accelerator& accel, const std::vector<Ray
 
 template <typename Layout>
 Answers answersOf(Isa isa, bool robust, const test::Soup& soup, const std::vector<Ray>& rays) {
-    BvhAccelerator<Layout> accel(bvhBuilder("sahbvh"), BvhBuildConfig{}, TraversalConfig{.robust = robust, .isa = isa});
+    BvhAccelerator<Layout> accel(builderRecord("sahbvh"), BvhBuildConfig{}, TraversalConfig{.robust = robust, .isa = isa});
     accel.build(soup.prims());
     Answers a;
     a.hits.resize(rays.size());
@@ -168,7 +168,7 @@ void expectKernelsAgree(const char* layout) {
 }
 
 TEST(TraversalKernels, EveryKernelTheCpuRunsAnswersAsTheScalarOne) {
-    expectKernelsAgree<Bvh>("binary");
+    expectKernelsAgree<BinaryBvh>("binary");
     expectKernelsAgree<WideBvh<4>>("wide4");
     expectKernelsAgree<WideBvh<8>>("wide8");
 }

@@ -1,4 +1,4 @@
-#include "accel/bvh/builders/top_down_builder.h"
+#include "accel/bvh/builders/split_rule.h"
 
 #include "accel/bvh/builders/top_down_recursion.h"
 
@@ -14,7 +14,7 @@ bool nearDepthBound(int depth, uint32_t n) {
     return depth + ceilLog2 >= kBvhMaxDepth - 1;
 }
 
-Split TopDownBuilder::splitAtIndex(const BuildRange& range, uint32_t mid) {
+Split BvhSplitRule::splitAtIndex(const BuildRange& range, uint32_t mid) {
     const PrimRef* refs = refs_.data();
     return simd::withFloats4(config_.simd, [&](auto f) {
         using Accumulator = BoundsAccumulator<decltype(f)>;
@@ -22,7 +22,7 @@ Split TopDownBuilder::splitAtIndex(const BuildRange& range, uint32_t mid) {
     });
 }
 
-Split TopDownBuilder::objectMedianSplit(const BuildRange& range, int axis) {
+Split BvhSplitRule::objectMedianSplit(const BuildRange& range, int axis) {
     PrimRef* begin = refs_.data() + range.begin;
     const uint32_t mid = range.begin + range.size() / 2;
     std::nth_element(begin, refs_.data() + mid, refs_.data() + range.end, [axis](const PrimRef& a, const PrimRef& b) {
@@ -36,7 +36,7 @@ Split TopDownBuilder::objectMedianSplit(const BuildRange& range, int axis) {
 // by any plane (a leaf, or halves by index when too many); near the depth bound only
 // object-median splits (halving the count) are allowed, which bounds the depth by
 // depth + ceil(log2 N) <= kBvhMaxDepth - 1; otherwise the builder decides.
-std::optional<Split> TopDownBuilder::chooseSplit(const BuildRange& range, int depth) {
+std::optional<Split> BvhSplitRule::chooseSplit(const BuildRange& range, int depth) {
     const uint32_t n = range.size();
     const bool mayBeLeaf = n <= config_.effectiveLeafCap();
     if (n <= uint32_t(config_.maxLeaf)) return std::nullopt;
@@ -50,7 +50,7 @@ std::optional<Split> TopDownBuilder::chooseSplit(const BuildRange& range, int de
     return objectMedianSplit(range, range.centroidBounds.largestAxis());
 }
 
-std::vector<BvhNode, TraversalAllocator<BvhNode>> TopDownBuilder::build(std::span<PrimRef> refs,
+std::vector<BvhNode, TraversalAllocator<BvhNode>> BvhSplitRule::build(std::span<PrimRef> refs,
                                                                         const BuildRange& root, int depth,
                                                                         std::vector<DeferredRange>* deferred,
                                                                         uint32_t deferBelow) {

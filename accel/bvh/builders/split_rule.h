@@ -1,12 +1,14 @@
-// The top-down recursion every split rule shares (after madmann91/bvh v2's
-// top_down_sah_builder): a work stack, the leaf rules, the depth bound and node emission live
-// here, once. A split rule only says how to split a range of primitives: it partitions the range
-// in place and returns the two halves, or declines (the range becomes a leaf).
+// A split rule of bvhlab's BVH builders and the top-down recursion every split rule shares (after
+// madmann91/bvh v2's top_down_sah_builder): a work stack, the leaf rules, the depth bound and node
+// emission live here, once. A split rule only says how to split a range of primitives: it
+// partitions the range in place and returns the two halves, or declines (the range becomes a
+// leaf). A plugin's SplitRule (<bvhlab/builder.h>) is the same hook behind the public API, run as
+// one of these (accel/plugins/plugin_builder.cpp).
 #pragma once
 
 #include "accel/bvh/builders/bounds_accumulator.h"
 #include "accel/bvh/builders/build_config.h"
-#include "accel/bvh/layout/bvh.h"
+#include "accel/bvh/layout/binary_bvh.h"
 
 #include <optional>
 #include <span>
@@ -41,10 +43,10 @@ struct DeferredRange {
     int depth;
 };
 
-class TopDownBuilder {
+class BvhSplitRule {
 public:
-    explicit TopDownBuilder(const BuildConfig& config) : config_(config) {}
-    virtual ~TopDownBuilder() = default;
+    explicit BvhSplitRule(const BuildConfig& config) : config_(config) {}
+    virtual ~BvhSplitRule() = default;
 
     // Builds the subtree over `root` (a range of `refs`, which it reorders: leaves index into
     // the reordered array) at `depth`: its root at 0, a padding slot, then sibling pairs.
@@ -86,14 +88,14 @@ private:
 };
 
 template <typename Accumulator>
-BuildRange TopDownBuilder::boundsOf(const PrimRef* refs, uint32_t begin, uint32_t end) {
+BuildRange BvhSplitRule::boundsOf(const PrimRef* refs, uint32_t begin, uint32_t end) {
     Accumulator acc;
     for (uint32_t i = begin; i < end; ++i) acc.add(refs[i]);
     return {begin, end, acc.bounds(), acc.centroidBounds()};
 }
 
 template <typename IsLeft>
-Split TopDownBuilder::partition(const BuildRange& range, IsLeft isLeft) {
+Split BvhSplitRule::partition(const BuildRange& range, IsLeft isLeft) {
     // Hoare partition from both ends; every primitive is classified once and added to the
     // box of the side it ends up on.
     auto run = [&](auto leftAcc, auto rightAcc) {
