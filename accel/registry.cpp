@@ -5,7 +5,6 @@
 #include "accel/bvh/bvh_env.h"
 #include "accel/plugins/plugin_builder.h"
 #include "accel/embree/embree_accelerator.h"
-#include "accel/embree/embree_env.h"
 #include "accel/plugins/guarded_accelerator.h"
 #include "accel/naive/naive_accelerator.h"
 #include "framework/core/error.h"
@@ -17,31 +16,29 @@ namespace bvhlab {
 namespace {
 
 std::string wideDescription(const std::string& builder, int width) {
-    return width == 4 ? fmt::format("{}'s tree (leaves charged by blocks of eight) in 4-wide nodes, four child boxes tested "
-                                    "at once (SSE), leaves eight triangles at once (AVX2); N_TR counts wide steps",
-                                    builder)
-                      : fmt::format("{}'s tree (leaves charged by blocks of eight) in {}-wide nodes, eight child boxes "
-                                    "tested at once (AVX2; scalar lanes without it), leaves eight triangles at once; "
-                                    "N_TR counts wide steps",
-                                    builder, width);
+    return fmt::format("{}'s tree (leaves charged by blocks of eight) in {}-wide nodes, {} child boxes tested at "
+                       "once, leaves eight triangles at once, in the SIMD kernels BVH::isa chooses at run time; N_TR "
+                       "counts wide steps",
+                       builder, width, width == 4 ? "four" : "eight");
 }
 
 // The accelerator of a builder over one layout: NAME (binary), NAME4 or NAME8. `makeBuilder`
 // gives the builder with the env's values and the layout's leaf block.
-using BuilderMaker = std::function<BvhBuilder(const Env&, uint32_t leafBlock)>;
+using BuilderMaker = std::function<BuilderRecord(const Env&, uint32_t leafBlock)>;
 
 template <typename Layout>
 std::unique_ptr<Accelerator> makeBvhAccelerator(const BuilderMaker& makeBuilder, const Env& env, uint32_t leafBlock) {
-    return std::make_unique<BvhAccelerator<Layout>>(makeBuilder(env, leafBlock), bvhConfigFromEnv(env),
-                                                    traversalConfigFromEnv(env), statsConfigFromEnv(env));
+    const BvhSettings settings = bvhSettingsFromEnv(env);
+    return std::make_unique<BvhAccelerator<Layout>>(makeBuilder(env, leafBlock), settings.build, settings.traversal,
+                                                    settings.stats);
 }
 
 std::vector<AcceleratorInfo> bvhInfos(const std::string& name, const std::string& description,
                                       std::vector<std::string> keys, const std::vector<int>& wideLayouts,
                                       const BuilderMaker& makeBuilder) {
-    for (std::string_view key : bvhCommonKeys()) keys.emplace_back(key);
+    bvhCommonKeys().appendNames(keys);
     std::vector<AcceleratorInfo> infos = {
-        {name, description, keys, [makeBuilder](const Env& env) { return makeBvhAccelerator<Bvh>(makeBuilder, env, 1); }, {}}};
+        {name, description, keys, [makeBuilder](const Env& env) { return makeBvhAccelerator<BinaryBvh>(makeBuilder, env, 1); }, {}}};
     for (int width : wideLayouts) {
         auto create = [makeBuilder, width](const Env& env) {
             return width == 4 ? makeBvhAccelerator<WideBvh<4>>(makeBuilder, env, TriangleBlock::kLanes)
@@ -54,17 +51,20 @@ std::vector<AcceleratorInfo> bvhInfos(const std::string& name, const std::string
 
 // bvhlab's own: brute force, Embree, and the accelerators of each builder of the table.
 std::vector<AcceleratorInfo> ownInfos() {
+    std::vector<std::string> embreeKeyNames;
+    embreeKeys().appendNames(embreeKeyNames);
     std::vector<AcceleratorInfo> infos = {
         {"naive", "brute force: tests every triangle; the reference the others are tested against", {},
          [](const Env&) { return std::make_unique<NaiveAccelerator>(); }, {}},
         {"embree", "Intel Embree 3 (rtcIntersect1/rtcOccluded1): the speed reference; no counters, no visible tree",
-         {std::string(keys::Embree::quality.name()), std::string(keys::Embree::robust.name()),
-          std::string(keys::Embree::threads.name())},
+         embreeKeyNames,
          [](const Env& env) { return std::make_unique<EmbreeAccelerator>(env); }, {}},
     };
-    for (const BvhBuilderEntry& entry : bvhBuilderTable()) {
-        const BvhBuilder& builder = entry.builder;
-        for (AcceleratorInfo& info : bvhInfos(builder.name, entry.description, {entry.keys.begin(), entry.keys.end()},
+    for (const BuilderTableEntry& entry : bvhBuilderTable()) {
+        const BuilderRecord& builder = entry.builder;
+        std::vector<std::string> keys;
+        for (const BvhKeys* own : entry.keys) own->appendNames(keys);
+        for (AcceleratorInfo& info : bvhInfos(builder.name, entry.description, keys,
                                               entry.wideLayouts, [&builder](const Env&, uint32_t) { return builder; }))
             infos.push_back(std::move(info));
     }
@@ -106,7 +106,7 @@ void addAccelerator(AcceleratorInfo info) {
 void addBvhBuilder(const LoadedBuilder& builder, const std::string& description, const std::string& plugin) {
     for (AcceleratorInfo& info : bvhInfos(builder.name, description, builder.keys, {4, 8},
                                           [builder](const Env& env, uint32_t leafBlock) {
-                                              return pluginBvhBuilder(builder, env, leafBlock);
+                                              return pluginBuilderRecord(builder, env, leafBlock);
                                           })) {
         info.plugin = plugin;
         addAccelerator(std::move(info));
@@ -118,7 +118,7 @@ void registerAcceleratorKeys(EnvRegistry& registry) {
     for (const AcceleratorInfo& info : acceleratorInfos()) names.push_back(info.name);
     registry.add(keys::ASDS::type.declaration(names));
     registry.add(keys::ASDS::plugins);
-    registerEmbreeKeys(registry);
+    embreeKeys().registerWith(registry);
     registerBvhKeys(registry);
 }
 

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "accel/bvh/builders/bvh_builder.h"
+#include "accel/bvh/bvh_env.h"
 
 #include <string>
 #include <string_view>
@@ -12,16 +13,16 @@
 
 namespace bvhlab {
 
-struct BvhBuilderEntry {
-    BvhBuilder builder;
+struct BuilderTableEntry {
+    BuilderRecord builder;
     std::string description;             // of the binary accelerator, NAME
-    std::vector<std::string_view> keys;  // the BVH:: keys it reads besides bvhCommonKeys()
+    std::vector<const BvhKeys*> keys;    // the BVH:: keys it reads besides bvhCommonKeys()
     std::vector<int> wideLayouts;        // 4 and/or 8: NAME4, NAME8 too
 };
 
-const std::vector<BvhBuilderEntry>& bvhBuilderTable();
+const std::vector<BuilderTableEntry>& bvhBuilderTable();
 
 // The builder of that name in the table; throws std::invalid_argument for an unknown one.
-const BvhBuilder& bvhBuilder(std::string_view name);
+const BuilderRecord& builderRecord(std::string_view name);
 
 }  // namespace bvhlab

@@ -2,7 +2,7 @@
 #include "accel/bvh/builders/build_threads.h"
 
 #include "accel/bvh/layout/end_point_overlap.h"
-#include "accel/bvh/traverse/bvh_traversal.h"
+#include "accel/bvh/traverse/binary_bvh_traversal.h"
 
 #include <fmt/format.h>
 
@@ -25,14 +25,14 @@ struct LayoutWidth<WideBvh<N>> {
 }  // namespace
 
 template <typename Layout>
-BvhAccelerator<Layout>::BvhAccelerator(BvhBuilder builder, const BvhBuildConfig& build, const TraversalConfig& traversal,
+BvhAccelerator<Layout>::BvhAccelerator(BuilderRecord builder, const BvhBuildConfig& build, const TraversalConfig& traversal,
                                        const BvhStatsConfig& stats)
     : builder_(std::move(builder)), build_(build), traversal_(traversal), kernels_(traversalKernels<Layout>(traversal)),
       stats_(stats), name_(builder_.name) {
     if constexpr (LayoutWidth<Layout>::value > 2) {
         name_ += std::to_string(LayoutWidth<Layout>::value);
         // The leaves test a block of triangles at a time: the SAH charges them so.
-        build_.sahBlockShift = std::countr_zero(unsigned(TriangleBlock::kLanes));
+        build_.shared.sahBlockShift = std::countr_zero(unsigned(TriangleBlock::kLanes));
     }
 }
 
@@ -42,21 +42,21 @@ void BvhAccelerator<Layout>::build(const PrimitiveSet& prims) {
     // to the finished node arrays and leaf arrays (primitive indices and the primitives copied
     // in leaf order), including a collapse and the quadric tree.
     tree_ = Layout();
-    binary_ = Bvh();
+    binary_ = BinaryBvh();
     statistics_.reset();
     quadrics_ = QuadricBvh();
     triangles_ = prims.validTriangles().size();
-    Bvh binary = buildBvh(builder_, build_, prims);
-    if constexpr (std::is_same_v<Layout, Bvh>) {
+    BinaryBvh binary = buildBvh(builder_, build_, prims);
+    if constexpr (std::is_same_v<Layout, BinaryBvh>) {
         tree_ = std::move(binary);
     } else {
-        const CollapseCosts costs{build_.cTraversal, build_.cIntersect, build_.effectiveLeafCap()};
-        onThreads(build_.threads, [&] { tree_ = collapseToWide<LayoutWidth<Layout>::value>(binary, costs); });
+        const CollapseCosts costs{build_.shared.cTraversal, build_.shared.cIntersect, build_.shared.effectiveLeafCap()};
+        onThreads(build_.shared.threads, [&] { tree_ = collapseToWide<LayoutWidth<Layout>::value>(binary, costs); });
         binary_ = std::move(binary);
     }
     if (prims.hasQuadrics()) {
         BvhBuildConfig config = build_;
-        config.sahBlockShift = 0;  // quadrics are tested one at a time
+        config.shared.sahBlockShift = 0;  // quadrics are tested one at a time
         quadrics_ = buildQuadricBvh(builder_, config, prims);
     }
 }
@@ -64,17 +64,17 @@ void BvhAccelerator<Layout>::build(const PrimitiveSet& prims) {
 template <typename Layout>
 BuildStats BvhAccelerator<Layout>::buildStats() const {
     if (statistics_) return *statistics_;
-    const Bvh& binary = binaryTree();
+    const BinaryBvh& binary = binaryTree();
     BuildStats stats;
-    fillTreeStats(binary, build_.cTraversal, build_.cIntersect, stats);
-    stats.leafBound = build_.effectiveLeafCap();  // every builder's leaves, and the collapse's
+    fillTreeStats(binary, build_.shared.cTraversal, build_.shared.cIntersect, stats);
+    stats.leafBound = build_.shared.effectiveLeafCap();  // every builder's leaves, and the collapse's
     if (!binary.empty() && binary.leafTriangles.size() <= stats_.epoMaxTriangles)
-        stats.epo = endPointOverlap(binary.nodes, binary.leafTriangles, build_.cTraversal, build_.cIntersect, build_.threads);
+        stats.epo = endPointOverlap(binary.nodes, binary.leafTriangles, build_.shared.cTraversal, build_.shared.cIntersect, build_.shared.threads);
     stats.primitives = triangles_;
     stats.bytes = tree_.bytes();
     if (!quadrics_.empty()) {
         BuildStats quadricStats;
-        fillTreeStats(quadrics_, build_.cTraversal, build_.cIntersect, quadricStats);
+        fillTreeStats(quadrics_, build_.shared.cTraversal, build_.shared.cIntersect, quadricStats);
         quadricStats.primitives = quadrics_.primIndices.size();
         const Bounds3 triangleRoot = binary.empty() ? Bounds3() : binary.nodes[0].box();
         combineTreeStats(stats, triangleRoot, quadricStats, quadrics_.nodes[0].box());
@@ -83,20 +83,20 @@ BuildStats BvhAccelerator<Layout>::buildStats() const {
                              fmt::format("vector width of the traversal kernels that ran: {} (BVH::isa={})",
                                          isaName(kernels_.isa), isaName(traversal_.isa))});
     statistics_ = stats;
-    binary_ = Bvh();
+    binary_ = BinaryBvh();
     return stats;
 }
 
 template <typename Layout>
-const Bvh& BvhAccelerator<Layout>::binaryTree() const {
-    if constexpr (std::is_same_v<Layout, Bvh>) return tree_;
+const BinaryBvh& BvhAccelerator<Layout>::binaryTree() const {
+    if constexpr (std::is_same_v<Layout, BinaryBvh>) return tree_;
     else return binary_;
 }
 
 // The triangles' tree first, then the quadrics' up to the closest hit found so far. One query
-// for the counters, the work of both. The quadric part is a call of its own, out of line: the
-// triangle-only path keeps the code it had before quadrics existed (inlined into it, the
-// quadric tree's traversal cost triangle-only scenes 7-14 % per query, measured).
+// for the counters, the work of both. The quadric part is a call of its own, out of line, so
+// that the triangle-only path stays a triangle traversal and nothing more: inlined into it, the
+// quadric tree's traversal cost triangle-only scenes 7-14 % per query, measured.
 template <typename Layout>
 bool BvhAccelerator<Layout>::findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const {
     const bool found = kernels_.forCounters(counters).findNearest(tree_, ray, hit, counters);
@@ -147,7 +147,7 @@ bool BvhAccelerator<Layout>::isOccludedQuadric(const Ray& ray, QueryCounters& co
     return occluded;
 }
 
-template class BvhAccelerator<Bvh>;
+template class BvhAccelerator<BinaryBvh>;
 template class BvhAccelerator<WideBvh<4>>;
 template class BvhAccelerator<WideBvh<8>>;
 

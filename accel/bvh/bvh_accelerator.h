@@ -1,8 +1,8 @@
 // The BVH accelerators behind our interface: one class over a node layout, parameterised by the
-// builder (builder_table.h, or a plugin's) and the traversal setting. Layout = Bvh is the binary tree
+// builder (builder_table.h, or a plugin's) and the traversal setting. Layout = BinaryBvh is the binary tree
 // the builders emit; Layout = WideBvh<N> collapses it by SAH into N-wide nodes (sahbvh4,
 // sahbvh8) whose leaves hold their triangles in SIMD blocks of eight. For them the SAH builders
-// charge a leaf by the blocks it fills (BvhBuildConfig::sahBlockShift), so their binary tree is
+// charge a leaf by the blocks it fills (BuildConfig::sahBlockShift), so their binary tree is
 // built for that leaf test; the env keys are the same. Spheres and cones get a binary tree of
 // their own by the same builder (layout/quadric_leaves.h), traversed after the triangles'.
 #pragma once
@@ -26,7 +26,7 @@ struct BvhStatsConfig {
 template <typename Layout>
 class BvhAccelerator final : public BuildStatsAccelerator {
 public:
-    BvhAccelerator(BvhBuilder builder, const BvhBuildConfig& build, const TraversalConfig& traversal = {},
+    BvhAccelerator(BuilderRecord builder, const BvhBuildConfig& build, const TraversalConfig& traversal = {},
                    const BvhStatsConfig& stats = {});
 
     const char* name() const override { return name_.c_str(); }
@@ -49,11 +49,11 @@ public:
 
 private:
     // The binary tree the statistics describe: the layout itself, or the one collapsed into it.
-    const Bvh& binaryTree() const;
+    const BinaryBvh& binaryTree() const;
     // The quadric tree's part of a query (after the triangles'), kept out of the hot path.
     [[gnu::noinline]] bool findNearestQuadric(const Ray& ray, bool found, Hit& hit, QueryCounters& counters) const;
     [[gnu::noinline]] bool isOccludedQuadric(const Ray& ray, QueryCounters& counters) const;
-    BvhBuilder builder_;
+    BuilderRecord builder_;
     BvhBuildConfig build_;
     TraversalConfig traversal_;
     // The triangle tree's queries, compiled for the ISA BVH::isa names or the CPU's best
@@ -65,15 +65,15 @@ private:
     // A wide layout's binary tree, kept from build() to the first buildStats() call: the figures
     // are the binary tree's, and computing them in build() would time them. It holds about the
     // memory of the wide tree again, so that call keeps the figures and frees it. Empty for
-    // Layout = Bvh (tree_ is the binary tree). Not for buildStats() on two threads at once.
-    mutable Bvh binary_;
+    // Layout = BinaryBvh (tree_ is the binary tree). Not for buildStats() on two threads at once.
+    mutable BinaryBvh binary_;
     mutable std::optional<BuildStats> statistics_;
     size_t triangles_ = 0;  // valid triangles built over
     QuadricBvh quadrics_;  // the spheres and cones, when the scene has any (quadric_leaves.h)
 };
 
 // Instantiated for these layouts.
-extern template class BvhAccelerator<Bvh>;
+extern template class BvhAccelerator<BinaryBvh>;
 extern template class BvhAccelerator<WideBvh<4>>;
 extern template class BvhAccelerator<WideBvh<8>>;
 

@@ -1,59 +1,96 @@
 #include "accel/bvh/bvh_env.h"
 
+#include "accel/bvh/traverse/traversal_kernels.h"
+
+#include <span>
+
 namespace bvhlab {
 
-void registerBvhKeys(EnvRegistry& r) {
+const BvhKeys& bvhCommonKeys() {
     using namespace keys::BVH;
-    for (const IntKey& key : {maxLeaf, leafCap, bins, plocRadius, threads, epoMaxTriangles, optimizeIterations,
-                               packetFallback}) r.add(key);
-    for (const BoolKey& key : {sahTermination, allAxes, keys::BVH::simd, robust}) r.add(key);
-    for (const FloatKey& key : {cTraversal, cIntersect, sbvhAlpha, sbvhGrowth}) r.add(key);
-    r.add(tdbvhSplit);
-    r.add(optimize);
-    r.add(isa);
+    static const BvhKeys bound = {
+        {maxLeaf, [](BvhSettings& s, int v) { s.build.shared.maxLeaf = v; }},
+        {leafCap, [](BvhSettings& s, int v) { s.build.shared.leafCap = v; }},
+        {cTraversal, [](BvhSettings& s, float v) { s.build.shared.cTraversal = v; }},
+        {cIntersect, [](BvhSettings& s, float v) { s.build.shared.cIntersect = v; }},
+        {keys::BVH::simd, [](BvhSettings& s, bool v) { s.build.shared.simd = v; }},
+        {robust, [](BvhSettings& s, bool v) { s.traversal.robust = v; }},
+        {threads, [](BvhSettings& s, int v) { s.build.shared.threads = v; }},
+        {epoMaxTriangles, [](BvhSettings& s, int v) { s.stats.epoMaxTriangles = uint32_t(v); }},
+        {optimize,
+         [](BvhSettings& s, const std::string& v) {
+             s.build.optimize = v == "insertion" ? BvhOptimize::Insertion : BvhOptimize::None;
+         }},
+        {optimizeIterations, [](BvhSettings& s, int v) { s.build.insertion.iterations = v; }},
+        {packetFallback, [](BvhSettings& s, int v) { s.traversal.packetFallback = v; }},
+        {isa,
+         [](BvhSettings& s, const std::string& v) {
+             for (Isa i : {Isa::Auto, Isa::Scalar, Isa::Avx2, Isa::Avx512})
+                 if (v == isaName(i)) s.traversal.isa = i;
+         }},
+    };
+    return bound;
 }
 
-std::vector<std::string_view> bvhCommonKeys() {
-    using namespace keys::BVH;
-    return {maxLeaf.name(), leafCap.name(), cTraversal.name(),      cIntersect.name(), keys::BVH::simd.name(),
-            robust.name(),  threads.name(), epoMaxTriangles.name(), optimize.name(),   optimizeIterations.name(),
-            packetFallback.name(), isa.name()};
+const BvhKeys& sahTerminationKeys() {
+    static const BvhKeys bound = {
+        {keys::BVH::sahTermination, [](BvhSettings& s, bool v) { s.build.shared.sahTermination = v; }},
+    };
+    return bound;
 }
 
-BvhBuildConfig bvhConfigFromEnv(const Env& env) {
-    using namespace keys::BVH;
-    BvhBuildConfig c;
-    c.maxLeaf = env.get(maxLeaf);
-    c.leafCap = env.get(leafCap);
-    c.sahTermination = env.get(sahTermination);
-    c.cTraversal = env.get(cTraversal);
-    c.cIntersect = env.get(cIntersect);
-    c.bins = env.get(bins);
-    c.allAxes = env.get(allAxes);
-    c.sbvhAlpha = env.get(sbvhAlpha);
-    c.sbvhGrowth = env.get(sbvhGrowth);
-    c.plocRadius = env.get(plocRadius);
-    c.simd = env.get(keys::BVH::simd);
-    c.threads = env.get(threads);
-    if (c.threads == 0) c.threads = env.get(keys::SetRayTracing::threads);
-    c.medianSplitBox = env.get(tdbvhSplit) == "nodebox" ? MedianSplitBox::NodeBox : MedianSplitBox::CentroidBox;
-    c.optimize = env.get(optimize) == "insertion" ? BvhOptimize::Insertion : BvhOptimize::None;
-    c.optimizeIterations = env.get(optimizeIterations);
-    return c;
+const BvhKeys& spatialMedianKeys() {
+    static const BvhKeys bound = {
+        {keys::BVH::tdbvhSplit,
+         [](BvhSettings& s, const std::string& v) {
+             s.build.spatialMedian.splitBox = v == "nodebox" ? MedianSplitBox::NodeBox : MedianSplitBox::CentroidBox;
+         }},
+    };
+    return bound;
 }
 
-BvhStatsConfig statsConfigFromEnv(const Env& env) {
-    return {uint32_t(env.get(keys::BVH::epoMaxTriangles))};
+const BvhKeys& binnedSahKeys() {
+    static const BvhKeys bound = {
+        {keys::BVH::bins, [](BvhSettings& s, int v) { s.build.binnedSah.bins = v; }},
+        {keys::BVH::allAxes, [](BvhSettings& s, bool v) { s.build.binnedSah.allAxes = v; }},
+    };
+    return bound;
 }
 
-TraversalConfig traversalConfigFromEnv(const Env& env) {
-    TraversalConfig c;
-    c.robust = env.get(keys::BVH::robust);
-    c.packetFallback = env.get(keys::BVH::packetFallback);
-    const std::string isa = env.get(keys::BVH::isa);
-    for (Isa i : {Isa::Auto, Isa::Scalar, Isa::Avx2, Isa::Avx512})
-        if (isa == isaName(i)) c.isa = i;
-    return c;
+const BvhKeys& sbvhKeys() {
+    static const BvhKeys bound = {
+        {keys::BVH::sbvhAlpha, [](BvhSettings& s, float v) { s.build.sbvh.alpha = v; }},
+        {keys::BVH::sbvhGrowth, [](BvhSettings& s, float v) { s.build.sbvh.growth = v; }},
+    };
+    return bound;
+}
+
+const BvhKeys& plocKeys() {
+    static const BvhKeys bound = {
+        {keys::BVH::plocRadius, [](BvhSettings& s, int v) { s.build.ploc.radius = v; }},
+    };
+    return bound;
+}
+
+namespace {
+
+std::span<const BvhKeys* const> allKeys() {
+    static const BvhKeys* const all[] = {&bvhCommonKeys(), &sahTerminationKeys(), &spatialMedianKeys(),
+                                         &binnedSahKeys(), &sbvhKeys(),           &plocKeys()};
+    return all;
+}
+
+}  // namespace
+
+void registerBvhKeys(EnvRegistry& registry) {
+    for (const BvhKeys* keys : allKeys()) keys->registerWith(registry);
+}
+
+BvhSettings bvhSettingsFromEnv(const Env& env) {
+    BvhSettings settings;
+    for (const BvhKeys* keys : allKeys()) keys->read(env, settings);
+    if (settings.build.shared.threads == 0) settings.build.shared.threads = env.get(keys::SetRayTracing::threads);
+    return settings;
 }
 
 }  // namespace bvhlab

@@ -1,4 +1,6 @@
-// The env keys of the BVH accelerators (builder_table.h), all in section BVH::.
+// The env keys of the BVH accelerators (builder_table.h), all in section BVH::, each declared
+// once here and bound once, in bvh_env.cpp, to the setting it fills: the bindings register the
+// keys, list those each accelerator reads and read them.
 #pragma once
 
 #include "accel/bvh/builders/bvh_builder.h"
@@ -6,9 +8,7 @@
 #include "accel/bvh/traverse/traversal_config.h"
 #include "framework/config/common_keys.h"
 #include "framework/config/env.h"
-
-#include <string>
-#include <vector>
+#include "framework/config/key_bindings.h"
 
 namespace bvhlab {
 
@@ -77,14 +77,27 @@ inline constexpr IntKey optimizeIterations{
     "under 1 %"};
 }  // namespace keys::BVH
 
+// Everything a BVH accelerator is configured with.
+struct BvhSettings {
+    BvhBuildConfig build;
+    TraversalConfig traversal;
+    BvhStatsConfig stats;
+};
+
+using BvhKeys = KeyBindings<BvhSettings>;
+
+// The keys every BVH accelerator reads, whatever its builder.
+const BvhKeys& bvhCommonKeys();
+// The keys of the builders' own options; builder_table.cpp says which builder reads which.
+const BvhKeys& sahTerminationKeys();
+const BvhKeys& spatialMedianKeys();
+const BvhKeys& binnedSahKeys();
+const BvhKeys& sbvhKeys();
+const BvhKeys& plocKeys();
+
 void registerBvhKeys(EnvRegistry& registry);
 
-// The keys every BVH accelerator reads, whatever its builder (builder_table.h lists each
-// builder's own).
-std::vector<std::string_view> bvhCommonKeys();
-
-BvhBuildConfig bvhConfigFromEnv(const Env& env);
-BvhStatsConfig statsConfigFromEnv(const Env& env);
-TraversalConfig traversalConfigFromEnv(const Env& env);
+// Every BVH key's value (a builder uses its own and the shared ones).
+BvhSettings bvhSettingsFromEnv(const Env& env);
 
 }  // namespace bvhlab

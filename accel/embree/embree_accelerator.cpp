@@ -1,5 +1,4 @@
 #include "accel/embree/embree_accelerator.h"
-#include "accel/embree/embree_env.h"
 #include "framework/config/common_keys.h"
 
 #include <embree3/rtcore.h>
@@ -206,18 +205,6 @@ void check(State& state, RTCDevice device, const char* call) {
 }
 
 }  // namespace
-
-EmbreeConfig EmbreeConfig::fromEnv(const Env& env) {
-    EmbreeConfig config;
-    const std::string quality = env.get(keys::Embree::quality);
-    if (quality == "low") config.quality = EmbreeQuality::Low;
-    else if (quality == "high") config.quality = EmbreeQuality::High;
-    else config.quality = EmbreeQuality::Medium;  // the only other choice the registry allows
-    config.robust = env.get(keys::Embree::robust);
-    config.threads = env.get(keys::Embree::threads);
-    if (config.threads == 0) config.threads = env.get(keys::SetRayTracing::threads);
-    return config;
-}
 
 void EmbreeAccelerator::DeviceDeleter::operator()(RTCDeviceTy* device) const { rtcReleaseDevice(device); }
 void EmbreeAccelerator::SceneDeleter::operator()(RTCSceneTy* scene) const { rtcReleaseScene(scene); }

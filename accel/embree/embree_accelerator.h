@@ -22,7 +22,7 @@
 // Embree, whose Debian build asserts on them.
 #pragma once
 
-#include "framework/config/env.h"
+#include "accel/embree/embree_env.h"
 #include "framework/core/accelerator.h"
 
 #include <array>
@@ -47,8 +47,6 @@ public:
     using std::runtime_error::runtime_error;
 };
 
-enum class EmbreeQuality { Low, Medium, High };
-
 // Rays prepared for one of Embree's APIs, whose answers can be read after trace(): what the
 // tests compare across the APIs. The APIs: "single", one rtcIntersect1 / rtcOccluded1 per ray;
 // "stream", one rtcIntersect1M / rtcOccluded1M per range; "packet8" and "packet16", SoA packets
@@ -61,15 +59,6 @@ public:
     // after a closest-hit trace, Embree's distance of the hit.
     virtual bool hit(size_t i) const = 0;
     virtual float t(size_t i) const = 0;
-};
-
-struct EmbreeConfig {
-    EmbreeQuality quality = EmbreeQuality::Medium;
-    bool robust = false;
-    int threads = 0;  // as passed to rtcNewDevice: 0 = all hardware threads
-
-    // Embree::quality, Embree::robust and Embree::threads (0 = SetRayTracing::threads).
-    static EmbreeConfig fromEnv(const Env& env);
 };
 
 class EmbreeAccelerator final : public BuildStatsAccelerator, public NativeBatchApis {

@@ -12,14 +12,14 @@ namespace bvhlab {
 
 namespace {
 
-BuilderSettings builderSettings(const PluginSettings& keys, uint32_t leafBlock, const BvhBuildConfig& config) {
+BuilderSettings builderSettings(const PluginSettings& keys, uint32_t leafBlock, const BuildConfig& config) {
     return {keys, leafBlock, config.cTraversal, config.cIntersect};
 }
 
-class PluginSplitBuilder final : public TopDownBuilder {
+class PluginSplitRule final : public BvhSplitRule {
 public:
-    PluginSplitBuilder(const BvhBuildConfig& config, std::unique_ptr<SplitRule> rule)
-        : TopDownBuilder(config), rule_(std::move(rule)) {}
+    PluginSplitRule(const BuildConfig& config, std::unique_ptr<SplitRule> rule)
+        : BvhSplitRule(config), rule_(std::move(rule)) {}
 
 protected:
     std::optional<Split> trySplit(const BuildRange& range, bool mayBeLeaf) override {
@@ -35,24 +35,24 @@ private:
 
 }  // namespace
 
-BvhBuilder pluginBvhBuilder(const LoadedBuilder& plugin, const Env& env, uint32_t leafBlock) {
-    BvhBuilder builder{plugin.name, {}, {}, true};
+BuilderRecord pluginBuilderRecord(const LoadedBuilder& plugin, const Env& env, uint32_t leafBlock) {
+    BuilderRecord builder{plugin.name, {}, {}, true};
     const std::shared_ptr<const Env> settingsEnv = std::make_shared<Env>(env);
     const std::string owner = fmt::format("builder '{}'", plugin.name);
     if (plugin.splitRule) {
         builder.splitRule = [plugin, settingsEnv, leafBlock, owner](const BvhBuildConfig& config) {
             const EnvPluginSettings keys(*settingsEnv, plugin.keys, owner);
-            std::unique_ptr<SplitRule> rule(plugin.splitRule(builderSettings(keys, leafBlock, config)));
+            std::unique_ptr<SplitRule> rule(plugin.splitRule(builderSettings(keys, leafBlock, config.shared)));
             if (!rule) throw std::runtime_error(fmt::format("{}: its split rule factory returned nothing", owner));
-            return std::unique_ptr<TopDownBuilder>(std::make_unique<PluginSplitBuilder>(config, std::move(rule)));
+            return std::unique_ptr<BvhSplitRule>(std::make_unique<PluginSplitRule>(config.shared, std::move(rule)));
         };
     } else {
         builder.wholeTree = [plugin, settingsEnv, leafBlock, owner](const BvhBuildConfig& config,
                                                                     const PrimitiveSet& prims) {
-            return buildFromMerges(plugin.name, config, prims, [&](std::span<const PrimRef> refs) {
+            return buildFromMerges(plugin.name, config.shared, prims, [&](std::span<const PrimRef> refs) {
                 const EnvPluginSettings keys(*settingsEnv, plugin.keys, owner);
                 std::vector<Merge> merges(refs.empty() ? 0 : refs.size() - 1);
-                plugin.mergeTree(refs, merges, builderSettings(keys, leafBlock, config));
+                plugin.mergeTree(refs, merges, builderSettings(keys, leafBlock, config.shared));
                 std::vector<uint32_t> children;
                 for (const Merge& m : merges) children.insert(children.end(), {m.left, m.right});
                 return children;

@@ -24,6 +24,6 @@ struct LoadedBuilder {
 };
 
 // `env` (copied) holds the values of the builder's keys; leafBlock as BuilderSettings says.
-BvhBuilder pluginBvhBuilder(const LoadedBuilder& builder, const Env& env, uint32_t leafBlock);
+BuilderRecord pluginBuilderRecord(const LoadedBuilder& builder, const Env& env, uint32_t leafBlock);
 
 }  // namespace bvhlab

@@ -26,6 +26,7 @@
 #include "framework/core/parse_number.h"
 #include "framework/core/timed_build.h"
 #include "framework/render/renderer.h"
+#include "framework/report/build_stats_json.h"
 #include "framework/report/provenance.h"
 
 #include <fmt/core.h>
@@ -190,7 +191,6 @@ std::vector<nlohmann::json> measureRounds(const Scene& scene, const RaySets& ray
                                      [&](const Contender& k) { return k.label == label && k.queries == kind; });
         return it == contenders.end() ? nullptr : &*it;
     };
-    auto optional = [](const auto& v) { return v ? nlohmann::json(*v) : nlohmann::json(); };
     std::vector<nlohmann::json> rows;
     for (const Contender& k : contenders) {
         const Structure& structure = *k.structure;
@@ -202,13 +202,8 @@ std::vector<nlohmann::json> measureRounds(const Scene& scene, const RaySets& ray
                               {"threads", threads},
                               {"prims", scene.triangleCount()},
                               {"build_ms", median(structure.buildMs)},
-                              {"build_ms_all", structure.buildMs},
-                              {"nodes", optional(structure.stats.nodes)},
-                              {"leaves", optional(structure.stats.leaves)},
-                              {"sah", structure.stats.sah ? nlohmann::json(structure.stats.sah->cost) : nlohmann::json()},
-                              {"epo", optional(structure.stats.epo)},
-                              {"leaf_sizes", structure.stats.leafSizes.empty() ? nlohmann::json() : nlohmann::json(structure.stats.leafSizes)},
-                              {"bytes", optional(structure.stats.bytes)}};
+                              {"build_ms_all", structure.buildMs}};
+        row.update(buildStatsJson(structure.stats));
         for (size_t set = 0; set < kSets; ++set) {
             const double q = std::max<double>(1.0, double(k.counters[set].queries));
             row[raySets[set].name] = {

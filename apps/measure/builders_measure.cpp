@@ -2,6 +2,7 @@
 #include "apps/measure/builders.h"
 #include "apps/runtime/scene_loading.h"
 #include "apps/runtime/timing.h"
+#include "framework/report/build_stats_json.h"
 #include "framework/report/provenance.h"
 
 #include <fmt/core.h>
@@ -52,7 +53,6 @@ json measureBuilderConfig(const BuildersScene& b, const AccelConfig& config, con
     const std::vector<Ray>* sets[] = {&b.rays.primary, &b.rays.shadow, &b.rays.incoherent};
     const bool anyHit[] = {false, true, true};
     const bool counted = accel->hasCounters();
-    auto optional = [](const auto& v) { return v ? json(*v) : json(); };
     json result = {{"scene", b.id},
                    {"config", config.label},
                    {"accel", config.name},
@@ -63,15 +63,8 @@ json measureBuilderConfig(const BuildersScene& b, const AccelConfig& config, con
                    {"build_ms_all", buildMs},
                    {"build_cpu_ms", median(buildCpuMs)},
                    {"build_cpu_ms_all", buildCpuMs},
-                   {"nodes", optional(stats.nodes)},
-                   {"leaves", optional(stats.leaves)},
-                   {"avg_leaf", optional(stats.avgLeafPrimitives)},
-                   {"max_leaf", optional(stats.maxLeafPrimitives)},
-                   {"leaf_sizes", stats.leafSizes.empty() ? json() : json(stats.leafSizes)},
-                   {"sah", stats.sah ? json(stats.sah->cost) : json()},
-                   {"epo", optional(stats.epo)},
-                   {"bytes", optional(stats.bytes)},
                    {"provenance", provenanceJson()}};
+    result.update(buildStatsJson(stats, {.mean = "avg_leaf", .largest = "max_leaf"}));
     // Through the batch calls, as the builders' figures have always been measured.
     for (size_t s = 0; s < std::size(kBuilderRaySets); ++s) {
         const PassResult r = tracePasses(*accel, *sets[s], anyHit[s], settings.threads, settings.passes, QueryKind::Batch);

@@ -208,7 +208,7 @@ std::string writeBuildersReport(const std::filesystem::path& dir, const std::vec
                           marks(m.pareto));
     }
 
-    // Issue #14's trace bar: sbvh8 against Embree HIGH, scene by scene.
+    // The trace bar sbvh8 is held to: Embree HIGH, scene by scene.
     md += "\nsbvh8 faster than embree-high (scenes won / scenes with both):";
     for (size_t s = 0; s < kSets; ++s) {
         int won = 0, both = 0;

@@ -10,6 +10,7 @@
 #include "framework/core/timed_build.h"
 #include "framework/io/image_io.h"
 #include "framework/render/render_keys.h"
+#include "framework/report/build_stats_json.h"
 #include "framework/report/provenance.h"
 
 #include <fmt/core.h>
@@ -278,29 +279,26 @@ json measureTradeoffConfig(const TradeoffScene& t, const AccelConfig& config, co
         }
     }
 
-    auto optional = [](const auto& v) { return v ? json(*v) : json(); };
     const size_t colon = config.label.find("-K");
-    return {{"scene", t.id},
-            {"config", config.label},
-            {"accel", config.name},
-            {"bins", colon == std::string::npos ? json() : json(std::stoi(config.label.substr(colon + 2)))},
-            {"overrides", config.overrides},
-            {"prims", t.scene.triangleCount()},
-            {"build_ms", buildMedian},
-            {"build_ms_all", buildMs},
-            {"build_cpu_ms", buildCpuMedian},
-            {"build_cpu_ms_all", buildCpuMs},
-            {"nodes", optional(stats.nodes)},
-            {"leaves", optional(stats.leaves)},
-            {"sah", stats.sah ? json(stats.sah->cost) : json()},
-            {"bytes", optional(stats.bytes)},
-            {"primary", primary},
-            {"shadow", shadow},
-            {"series_width", t.seriesCamera.width},
-            {"series_height", t.seriesCamera.height},
-            {"series", series},
-            {"same_image_1spp", sameImage},
-            {"provenance", provenanceJson()}};
+    json result = {{"scene", t.id},
+                   {"config", config.label},
+                   {"accel", config.name},
+                   {"bins", colon == std::string::npos ? json() : json(std::stoi(config.label.substr(colon + 2)))},
+                   {"overrides", config.overrides},
+                   {"prims", t.scene.triangleCount()},
+                   {"build_ms", buildMedian},
+                   {"build_ms_all", buildMs},
+                   {"build_cpu_ms", buildCpuMedian},
+                   {"build_cpu_ms_all", buildCpuMs},
+                   {"primary", primary},
+                   {"shadow", shadow},
+                   {"series_width", t.seriesCamera.width},
+                   {"series_height", t.seriesCamera.height},
+                   {"series", series},
+                   {"same_image_1spp", sameImage},
+                   {"provenance", provenanceJson()}};
+    result.update(buildStatsJson(stats));
+    return result;
 }
 
 }  // namespace bvhlab

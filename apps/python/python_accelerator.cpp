@@ -9,7 +9,7 @@
 #include "framework/config/common_keys.h"
 #include "framework/core/error.h"
 #include "framework/core/timed_build.h"
-#include "framework/report/statistics.h"
+#include "framework/report/build_stats_json.h"
 
 #include <fmt/core.h>
 #include <pybind11/stl.h>
@@ -25,10 +25,10 @@ namespace py = pybind11;
 namespace bvhlab {
 namespace {
 
-// The build statistics under the names of the statistics JSON (framework/report/statistics.h);
-// an unset figure (std::optional) is None.
+// The build statistics under the names of the statistics JSON (buildStatsJson); an unset figure
+// (std::optional) is None.
 py::object statsDict(const BuildStats& b) {
-    nlohmann::json j = treeStatsJson(b);
+    nlohmann::json j = buildStatsJson(b);
     j["build_ms"] = b.buildMs;
     j["build_cpu_ms"] = b.buildCpuMs;
     j["primitives"] = b.primitives;

@@ -18,8 +18,8 @@
 #include "framework/core/timed_build.h"
 #include "framework/io/image_io.h"
 #include "framework/render/spd_tracer.h"
+#include "framework/report/build_stats_json.h"
 #include "framework/report/provenance.h"
-#include "framework/report/statistics.h"
 
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>

@@ -1,5 +1,7 @@
 #include "framework/report/statistics.h"
 
+#include "framework/report/build_stats_json.h"
+
 #include <fmt/format.h>
 
 namespace bvhlab {
@@ -27,11 +29,6 @@ nlohmann::json queryJson(const QueryStats& q, bool hasCounters) {
     j["n_it_cone"] = traced && hasCounters ? nlohmann::json(perQuery(q.counters.coneTests, q.counters.queries))
                                            : nlohmann::json();
     return j;
-}
-
-template <typename T>
-nlohmann::json optionalJson(const std::optional<T>& value) {
-    return value ? nlohmann::json(*value) : nlohmann::json();
 }
 
 }  // namespace
@@ -74,29 +71,6 @@ std::string formatStatsTable(const StatsRow& row) {
     return out;
 }
 
-nlohmann::json figuresJson(const std::vector<NamedFigure>& figures) {
-    nlohmann::json j = nlohmann::json::object();
-    for (const NamedFigure& f : figures) j[f.name] = {{"value", f.value}, {"meaning", f.meaning}};
-    return j;
-}
-
-nlohmann::json treeStatsJson(const BuildStats& b) {
-    return {
-        {"nodes", optionalJson(b.nodes)},
-        {"leaves", optionalJson(b.leaves)},
-        {"avg_leaf_prims", optionalJson(b.avgLeafPrimitives)},
-        {"max_leaf_prims", optionalJson(b.maxLeafPrimitives)},
-        {"max_depth", optionalJson(b.maxDepth)},
-        {"bytes", optionalJson(b.bytes)},
-        {"sah", b.sah ? nlohmann::json(b.sah->cost) : nlohmann::json()},
-        {"sah_c_trav", b.sah ? nlohmann::json(b.sah->cTraversal) : nlohmann::json()},
-        {"sah_c_isect", b.sah ? nlohmann::json(b.sah->cIntersect) : nlohmann::json()},
-        {"epo", optionalJson(b.epo)},
-        {"leaf_sizes", b.leafSizes.empty() ? nlohmann::json() : nlohmann::json(b.leafSizes)},
-        {"figures", figuresJson(b.figures)},
-    };
-}
-
 nlohmann::json statsJson(const StatsRow& row) {
     const BuildStats& b = row.build;
     nlohmann::json j = {
@@ -117,7 +91,7 @@ nlohmann::json statsJson(const StatsRow& row) {
                      {"shadow_backfacing", row.render.shadowRaysSkippedBackfacing},
                      {"bounces", row.render.bouncesSkipped}}},
     };
-    j.update(treeStatsJson(b));
+    j.update(buildStatsJson(b));
     return j;
 }
 

@@ -26,13 +26,9 @@ struct StatsRow {
 std::string formatStatsTable(const StatsRow& row);
 
 // JSON with keys scene, accel, prims, degenerate, degenerate_spheres, degenerate_cones,
-// nodes, leaves, sah, epo, leaf_sizes ([k]: leaves of k primitives), figures, build_ms, render_ms, threads and objects primary/shadow {queries, n_it,
-// n_it_sphere, n_it_cone, n_tr, t_r_us}; unavailable values are null.
+// skipped_polygons, ear_clipped_polygons, build_ms, render_ms, threads, the tree's statistics
+// (buildStatsJson: nodes, leaves, sah, epo, leaf_sizes, figures...) and objects primary/shadow
+// {queries, n_it, n_it_sphere, n_it_cone, n_tr, t_r_us}; unavailable values are null.
 nlohmann::json statsJson(const StatsRow& row);
-// The tree part of it, from a structure's statistics(): nodes, leaves, avg_leaf_prims,
-// max_leaf_prims, max_depth, bytes, sah, sah_c_trav, sah_c_isect, epo, leaf_sizes, figures.
-nlohmann::json treeStatsJson(const BuildStats& stats);
-// A structure's own figures: {"name": {"value", "meaning"}, ...}.
-nlohmann::json figuresJson(const std::vector<NamedFigure>& figures);
 
 }  // namespace bvhlab

@@ -29,7 +29,7 @@ inline void readEveryEnvKey(const Env& env) {
         (void)env.isExplicit(name);
     }
     (void)env.toJson();
-    (void)bvhConfigFromEnv(env);
+    (void)bvhSettingsFromEnv(env);
     (void)EmbreeConfig::fromEnv(env);
     Scene scene;
     scene.finalize();

@@ -60,7 +60,7 @@ Ray randomRay(std::mt19937& rng, float extent) {
 
 }  // namespace
 
-TreeFacts checkTree(const Bvh& bvh, const Soup& soup) {
+TreeFacts checkTree(const BinaryBvh& bvh, const Soup& soup) {
     TreeFacts facts;
     const size_t n = soup.valid.size();
     EXPECT_EQ(bvh.primIndices.size(), n);
@@ -125,7 +125,7 @@ TreeFacts checkTree(const Bvh& bvh, const Soup& soup) {
     return facts;
 }
 
-double sahOf(const Bvh& bvh) {
+double sahOf(const BinaryBvh& bvh) {
     BuildStats stats;
     fillTreeStats(bvh, 1.0, 1.0, stats);
     return stats.sah->cost;

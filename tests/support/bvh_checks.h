@@ -3,7 +3,7 @@
 // force on random rays.
 #pragma once
 
-#include "accel/bvh/layout/bvh.h"
+#include "accel/bvh/layout/binary_bvh.h"
 #include "tests/support/triangle_soup.h"
 
 #include <cstdint>
@@ -27,10 +27,10 @@ struct TreeFacts {
 // each valid primitive exactly once in the leaves, leaf ranges tiling the leaf arrays, the
 // leaf triangles the primitives' own, boxes exactly the union of what they hold (children
 // inside their parent, triangles inside their leaf), sibling pairs at even indices.
-TreeFacts checkTree(const Bvh& bvh, const Soup& soup);
+TreeFacts checkTree(const BinaryBvh& bvh, const Soup& soup);
 
 // The reported SAH (fillTreeStats) with C_trav = C_isect = 1.
-double sahOf(const Bvh& bvh);
+double sahOf(const BinaryBvh& bvh);
 
 // Both queries against brute force on `count` rays.
 void expectAgreesWithNaive(const Accelerator& accel, const Soup& soup, int count, float extent, uint32_t seed);

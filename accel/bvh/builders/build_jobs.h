@@ -6,7 +6,7 @@
 #pragma once
 
 #include "accel/bvh/builders/build_threads.h"
-#include "accel/bvh/layout/bvh.h"
+#include "accel/bvh/layout/binary_bvh.h"
 
 #include <cassert>
 #include <vector>

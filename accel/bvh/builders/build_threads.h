@@ -1,4 +1,4 @@
-// How the builders (and the collapse into wide nodes) run on BvhBuildConfig::threads (internal to
+// How the builders (and the collapse into wide nodes) run on BuildConfig::threads (internal to
 // build/ and its caller, bvh_accelerator.cpp).
 #pragma once
 

@@ -26,7 +26,7 @@ void ClusterTree::resize(uint32_t leaves) {
     prims.resize(nodes), height.resize(nodes), cost.resize(nodes), leaf.resize(nodes);
 }
 
-void formNode(ClusterTree& tree, uint32_t node, const BvhBuildConfig& config) {
+void formNode(ClusterTree& tree, uint32_t node, const BuildConfig& config) {
     const float area = halfArea(tree.boxes[node]);
     if (node < tree.leafCount) {
         tree.prims[node] = 1, tree.height[node] = 0, tree.leaf[node] = 1;
@@ -65,7 +65,7 @@ struct EmitJob {
 
 class Emitter {
 public:
-    Emitter(const ClusterTree& tree, std::span<const PrimRef> leafRefs, const BvhBuildConfig& config,
+    Emitter(const ClusterTree& tree, std::span<const PrimRef> leafRefs, const BuildConfig& config,
             std::span<PrimRef> ordered)
         : tree_(tree), leafRefs_(leafRefs), config_(config), ordered_(ordered) {}
 
@@ -137,13 +137,13 @@ private:
         BoundsAccumulator<simd::Scalar<4>> acc;
         for (uint32_t i = first; i < written_; ++i) acc.add(ordered_[i]);
         const Nodes subtree =
-            BinnedSahBuilder(config_).build(ordered_, {first, written_, acc.bounds(), acc.centroidBounds()}, item.depth);
+            BinnedSahBuilder(config_, BinnedSahConfig{}).build(ordered_, {first, written_, acc.bounds(), acc.centroidBounds()}, item.depth);
         appendSubtree(nodes, item.slot, subtree);
     }
 
     const ClusterTree& tree_;
     std::span<const PrimRef> leafRefs_;
-    const BvhBuildConfig& config_;
+    const BuildConfig& config_;
     std::span<PrimRef> ordered_;
     uint32_t written_ = 0;
     std::vector<uint32_t> below_;  // the gather's stack
@@ -151,7 +151,7 @@ private:
 
 }  // namespace
 
-Nodes bvhNodesFromClusterTree(const ClusterTree& tree, std::span<const PrimRef> leafRefs, const BvhBuildConfig& config,
+Nodes bvhNodesFromClusterTree(const ClusterTree& tree, std::span<const PrimRef> leafRefs, const BuildConfig& config,
                               std::span<PrimRef> ordered) {
     std::vector<EmitJob> jobs;
     Nodes nodes = Emitter(tree, leafRefs, config, ordered).emit({tree.root(), 0, 0, 0}, &jobs);

@@ -1,9 +1,12 @@
 // A binary tree built bottom-up (ploc's clustering): one leaf node per primitive, inner nodes in
-// the order they were merged. bvhNodesFromClusterTree turns it into the Bvh layout: it forms
+// the order they were merged. bvhNodesFromClusterTree turns it into the BinaryBvh layout: it forms
 // multi-primitive leaves by SAH and keeps the depth below kBvhMaxDepth.
 #pragma once
 
-#include "accel/bvh/builders/bvh_builder.h"
+#include "accel/bvh/builders/build_config.h"
+#include "accel/bvh/layout/binary_bvh.h"
+
+#include <bvhlab/prim_ref.h>
 
 #include <span>
 #include <vector>
@@ -35,16 +38,16 @@ struct ClusterTree {
 // its cheapest form, a leaf (C_isect * tests * A, at most the leaf cap; always at most maxLeaf)
 // or an inner node (C_trav * A + its children's costs), as the top-down SAH builders decide but
 // with the children's whole subtrees known.
-void formNode(ClusterTree& tree, uint32_t node, const BvhBuildConfig& config);
+void formNode(ClusterTree& tree, uint32_t node, const BuildConfig& config);
 
-// The Bvh nodes over `tree` (not empty, every node formed) whose leaf l is `leafRefs[l]`; writes
+// The BinaryBvh nodes over `tree` (not empty, every node formed) whose leaf l is `leafRefs[l]`; writes
 // the PrimRefs in the tree's leaf order to `ordered`. Nodes formed as leaves become leaves of all
 // the primitives below them, left to right. A subtree that
 // would reach kBvhMaxDepth (a clustered tree can be a chain, N - 1 deep) is rebuilt at depth
-// kBvhMaxDepth / 2 by binned SAH, whose median rule keeps it within the bound.
+// kBvhMaxDepth / 2 by binned SAH (its default bins), whose median rule keeps it within the bound.
 std::vector<BvhNode, TraversalAllocator<BvhNode>> bvhNodesFromClusterTree(const ClusterTree& tree,
                                                                           std::span<const PrimRef> leafRefs,
-                                                                          const BvhBuildConfig& config,
+                                                                          const BuildConfig& config,
                                                                           std::span<PrimRef> ordered);
 
 }  // namespace bvhlab

@@ -192,8 +192,8 @@ void optimizePass(LinkedTree& tree) {
 
 // The pair layout again, depth-first with the left subtree first, and the leaf arrays in the
 // new leaf order.
-void emit(const LinkedTree& tree, Bvh& bvh) {
-    Bvh out;
+void emit(const LinkedTree& tree, BinaryBvh& bvh) {
+    BinaryBvh out;
     out.nodes.reserve(bvh.nodes.size());
     out.nodes.resize(2);
     out.nodes[1] = BvhNode{{0, 0, 0, 0, 0, 0}, 0, 0};
@@ -226,7 +226,7 @@ void emit(const LinkedTree& tree, Bvh& bvh) {
 
 }  // namespace
 
-void optimizeByInsertion(Bvh& bvh, int passes) {
+void optimizeByInsertion(BinaryBvh& bvh, int passes) {
     // Fewer than three leaves: no inner node other than the root to take out.
     if (bvh.nodes.size() < 6) return;
     LinkedTree tree(bvh.nodes);

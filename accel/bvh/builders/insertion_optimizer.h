@@ -5,15 +5,22 @@
 // whole, only inner nodes move.
 #pragma once
 
-#include "accel/bvh/layout/bvh.h"
+#include "accel/bvh/layout/binary_bvh.h"
 
 namespace bvhlab {
+
+struct InsertionConfig {
+    int iterations = 3;  // at most this many passes over the inner nodes; more lower the SAH
+                         // further, each about as slow as the first
+
+    bool operator==(const InsertionConfig&) const = default;
+};
 
 // Optimises `bvh` in place by at most `passes` passes (fewer when one gains under 1 %): the
 // nodes are emitted again depth-first, the leaf arrays reordered to the new leaf order. With
 // the leaves fixed, the SAH changes only through the inner nodes' areas, whatever C_trav,
 // C_isect or the leaves' block charge; a pass that would raise it is undone. Sequential: the
 // same tree whatever the thread count.
-void optimizeByInsertion(Bvh& bvh, int passes);
+void optimizeByInsertion(BinaryBvh& bvh, int passes);
 
 }  // namespace bvhlab

@@ -1,5 +1,6 @@
 #include "accel/bvh/builders/merge_tree_builder.h"
 
+#include "accel/bvh/builders/build_steps.h"
 #include "accel/bvh/builders/cluster_tree.h"
 
 #include <fmt/core.h>
@@ -27,10 +28,10 @@ void checkMerges(const std::string& builder, std::span<const uint32_t> children,
 
 }  // namespace
 
-Bvh buildFromMerges(const std::string& builder, const BvhBuildConfig& config, const PrimitiveSet& prims,
+BinaryBvh buildFromMerges(const std::string& builder, const BuildConfig& config, const PrimitiveSet& prims,
                     const MergeFunction& merge) {
     const uint32_t n = uint32_t(prims.validTriangles().size());
-    Bvh bvh;
+    BinaryBvh bvh;
     if (n == 0) return bvh;
     // Uninitialised storage: every PrimRef is written before it is read.
     const std::unique_ptr<PrimRef[]> refs = std::make_unique_for_overwrite<PrimRef[]>(n);

@@ -4,7 +4,10 @@
 // whose leaves are formed by SAH and whose depth is bounded as ploc's (cluster_tree.h).
 #pragma once
 
-#include "accel/bvh/builders/bvh_builder.h"
+#include "accel/bvh/builders/build_config.h"
+#include "accel/bvh/layout/binary_bvh.h"
+
+#include <bvhlab/prim_ref.h>
 
 #include <functional>
 #include <span>
@@ -18,7 +21,7 @@ using MergeFunction = std::function<std::vector<uint32_t>(std::span<const PrimRe
 
 // Throws std::runtime_error naming `builder` when the merges are not a binary tree over exactly
 // those primitives (their count, a child not below its parent, a node used twice or never).
-Bvh buildFromMerges(const std::string& builder, const BvhBuildConfig& config, const PrimitiveSet& prims,
+BinaryBvh buildFromMerges(const std::string& builder, const BuildConfig& config, const PrimitiveSet& prims,
                     const MergeFunction& merge);
 
 }  // namespace bvhlab

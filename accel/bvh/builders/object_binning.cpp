@@ -38,9 +38,10 @@ inline void growBin(float* binLower, float* binUpper, F lo, F hi) {
 
 }  // namespace
 
-ObjectBinning::ObjectBinning(const BvhBuildConfig& config)
+ObjectBinning::ObjectBinning(const BuildConfig& config, const BinnedSahConfig& binned)
     : config_(config),
-      binCount_(uint32_t(std::max(config.bins, 2))),
+      allAxes_(binned.allAxes),
+      binCount_(uint32_t(std::max(binned.bins, 2))),
       maxBin_(float(binCount_ - 1)),
       bins_(3 * binCount_),
       counts_(3 * binCount_),
@@ -135,19 +136,19 @@ std::optional<ObjectPlane> ObjectBinning::bestPlaneWith(const PrimRef* refs, con
         active[axis] = extent2 > 0.0f && std::isfinite(k1);
     }
     const int widest = cb.largestAxis();
-    if (!config_.allAxes) {
+    if (!allAxes_) {
         for (int axis = 0; axis < 3; ++axis) active[axis] = active[axis] && axis == widest;
     }
     if (!active[0] && !active[1] && !active[2]) return std::nullopt;
 
     // All axes are binned in all-axes mode (inactive ones with k1 = 0: all in bin 0, unread).
     for (int axis = 0; axis < 3; ++axis) {
-        if (config_.allAxes && !active[axis]) binning[axis].k1 = 0.0f;
-        if (!active[axis] && !config_.allAxes) continue;
+        if (allAxes_ && !active[axis]) binning[axis].k1 = 0.0f;
+        if (!active[axis] && !allAxes_) continue;
         std::fill_n(binsOf(axis), K, Bin{{kInfinity, kInfinity, kInfinity, 0.0f}, {-kInfinity, -kInfinity, -kInfinity, 0.0f}});
         std::fill_n(countsOf(axis), K, 0u);
     }
-    if (config_.allAxes) {
+    if (allAxes_) {
         binAllAxes<F>(refs, range, binning);
     } else {
         binOneAxis<F>(refs, range, binning[widest]);

@@ -1,6 +1,6 @@
 // The object binning of Wald (2007), shared by sahbvh (BinnedSahBuilder) and sbvh (its object
 // splits). The centres of a range are binned into K equal bins along the widest axis of the
-// centre box (or along all three axes, config.allAxes):
+// centre box (or along all three axes, BinnedSahConfig::allAxes):
 //   binID = k1 * (c - k0),  k0 = cb_min,  k1 = K * (1 - eps) / (cb_max - cb_min);
 // each bin keeps the box and the count of its primitives. Sweeps from both ends over the K-1
 // planes between bins give A_L, N_L, A_R, N_R; the cheapest plane by A_L*N_L + A_R*N_R wins.
@@ -8,16 +8,24 @@
 // results.
 #pragma once
 
-#include "accel/bvh/builders/bvh_builder.h"
+#include "accel/bvh/builders/split_rule.h"
 
 #include <optional>
 #include <vector>
 
 namespace bvhlab {
 
+// The binned SAH's own options (sahbvh's, and sbvh's for its object splits).
+struct BinnedSahConfig {
+    int bins = 16;         // bins per axis; more bins approach the full sweep, and bin slower
+    bool allAxes = false;  // bin all three axes and take the best plane, not only the widest axis
+
+    bool operator==(const BinnedSahConfig&) const = default;
+};
+
 // The cheapest plane of a binning, and the rule that sends a primitive to its left.
 struct ObjectPlane {
-    float cost;  // A_L*N_L + A_R*N_R (N as the SAH charges it: BvhBuildConfig::sahTests)
+    float cost;  // A_L*N_L + A_R*N_R (N as the SAH charges it: BuildConfig::sahTests)
     int axis;
     float k0, k1, maxBin;  // binID = min(k1 * (c2 - k0), K - 1), truncated; c2 = lower + upper
     uint32_t plane;        // bins [0, plane) go left
@@ -36,7 +44,7 @@ struct ObjectPlane {
 
 class ObjectBinning {
 public:
-    explicit ObjectBinning(const BvhBuildConfig& config);
+    ObjectBinning(const BuildConfig& config, const BinnedSahConfig& binned);
 
     // The cheapest plane over refs[range.begin, range.end), or nullopt when the centres do not
     // spread along any binned axis. The bins stay until the next call: see the boxes below.
@@ -69,7 +77,8 @@ private:
     const Bin* binsOf(int axis) const { return bins_.data() + uint32_t(axis) * binCount_; }
     uint32_t* countsOf(int axis) { return counts_.data() + uint32_t(axis) * binCount_; }
 
-    BvhBuildConfig config_;
+    BuildConfig config_;
+    bool allAxes_;
     uint32_t binCount_;
     float maxBin_;           // K - 1, the clamp of binID
     std::vector<Bin> bins_;  // K bins per axis

@@ -1,5 +1,6 @@
 #include "accel/bvh/builders/ploc_builder.h"
 
+#include "accel/bvh/builders/build_steps.h"
 #include "accel/bvh/builders/build_threads.h"
 #include "accel/bvh/builders/cluster_tree.h"
 #include "accel/bvh/builders/morton_code.h"
@@ -82,8 +83,8 @@ private:
 
 class Clustering {
 public:
-    Clustering(const BvhBuildConfig& config, std::span<const PrimRef> leafRefs)
-        : config_(config), radius_(uint32_t(std::clamp(config.plocRadius, 1, 256))) {
+    Clustering(const BuildConfig& config, const PlocConfig& ploc, std::span<const PrimRef> leafRefs)
+        : config_(config), radius_(uint32_t(std::clamp(ploc.radius, 1, 256))) {
         const uint32_t n = uint32_t(leafRefs.size());
         const uint32_t pad = (radius_ + kLanes - 1) / kLanes * kLanes + kLanes;
         tree_.resize(n);
@@ -230,7 +231,7 @@ private:
         return kept;
     }
 
-    const BvhBuildConfig& config_;
+    const BuildConfig& config_;
     uint32_t radius_;
     ClusterTree tree_;
     std::vector<uint32_t> ids_, nextIds_;  // the clusters' nodes, in order
@@ -259,9 +260,9 @@ void sortByMortonCode(std::span<const PrimRef> refs, const BuildRange& root, Pri
 
 }  // namespace
 
-Bvh buildPlocBvh(const BvhBuildConfig& config, const PrimitiveSet& prims) {
+BinaryBvh buildPlocBvh(const BuildConfig& config, const PlocConfig& ploc, const PrimitiveSet& prims) {
     const size_t n = prims.validTriangles().size();
-    Bvh bvh;
+    BinaryBvh bvh;
     if (n == 0) return bvh;
     // Uninitialised storage: every PrimRef is written before it is read.
     const std::unique_ptr<PrimRef[]> refs = std::make_unique_for_overwrite<PrimRef[]>(n);
@@ -270,7 +271,7 @@ Bvh buildPlocBvh(const BvhBuildConfig& config, const PrimitiveSet& prims) {
     ClusterTree tree;
     onThreads(config.threads, [&] {
         sortByMortonCode({refs.get(), n}, root, sorted.get());
-        tree = Clustering(config, {sorted.get(), n}).run();
+        tree = Clustering(config, ploc, {sorted.get(), n}).run();
     });
     bvh.nodes = bvhNodesFromClusterTree(tree, {sorted.get(), n}, config, {refs.get(), n});
     fillLeafArrays(bvh, refs.get(), prims, config.threads);

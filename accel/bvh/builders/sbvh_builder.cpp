@@ -1,5 +1,6 @@
 #include "accel/bvh/builders/sbvh_builder.h"
 
+#include "accel/bvh/builders/build_steps.h"
 #include "accel/bvh/builders/reference_split.h"
 #include "accel/bvh/builders/top_down_recursion.h"
 
@@ -17,12 +18,13 @@ enum RefSide : int { kLeft = 1, kRight = 2, kBoth = 3 };
 
 }  // namespace
 
-SbvhBuilder::SbvhBuilder(const BvhBuildConfig& config, std::span<const Triangle> triangles, float rootArea)
+SbvhBuilder::SbvhBuilder(const BuildConfig& config, const BinnedSahConfig& binned, const SbvhConfig& sbvh,
+                         std::span<const Triangle> triangles, float rootArea)
     : config_(config),
       triangles_(triangles),
-      minOverlap_(config.sbvhAlpha * rootArea),
-      objectBinning_(config),
-      spatialBinning_(config) {}
+      minOverlap_(sbvh.alpha * rootArea),
+      objectBinning_(config, binned),
+      spatialBinning_(config, binned.bins) {}
 
 std::vector<PrimRef> SbvhBuilder::takeVector() {
     if (pool_.empty()) return {};
@@ -78,7 +80,7 @@ SbvhSplit SbvhBuilder::objectMedianSplit(SbvhRange& range, int axis) {
     return splitAtIndex(range, mid);
 }
 
-// TopDownBuilder's leaf rules (bvh_builder.cpp), over a range of references.
+// BvhSplitRule's leaf rules (split_rule.cpp), over a range of references.
 std::optional<SbvhSplit> SbvhBuilder::chooseSplit(SbvhRange& range, int depth) {
     const uint32_t n = range.size();
     const bool mayBeLeaf = n <= config_.effectiveLeafCap();
@@ -170,21 +172,22 @@ BvhNodes SbvhBuilder::build(SbvhRange root, int depth, std::vector<Deferred>* de
         });
 }
 
-Bvh buildSbvh(const BvhBuildConfig& config, const PrimitiveSet& prims) {
+BinaryBvh buildSbvh(const BuildConfig& config, const BinnedSahConfig& binned, const SbvhConfig& sbvh,
+              const PrimitiveSet& prims) {
     const size_t n = prims.validTriangles().size();
     SbvhRange root;
     root.refs.resize(n);
     const BuildRange all = preparePrimRefs(prims, root.refs.data(), config.simd);
     root.bounds = all.bounds;
     root.centroidBounds = all.centroidBounds;
-    root.budget = uint32_t(double(config.sbvhGrowth) * double(n));
+    root.budget = uint32_t(double(sbvh.growth) * double(n));
     const float rootArea = root.bounds.halfArea();
 
     // The nodes above the jobs, then the jobs' subtrees and leaf entries appended in the order
     // they were deferred (build_jobs.h): one tree whatever the thread count.
-    SbvhBuilder top(config, prims.triangles, rootArea);
+    SbvhBuilder top(config, binned, sbvh, prims.triangles, rootArea);
     std::vector<SbvhBuilder::Deferred> jobs;
-    Bvh bvh;
+    BinaryBvh bvh;
     bvh.nodes = top.build(std::move(root), 0, &jobs, kJobPrimitives);
     struct Subtree {
         BvhNodes nodes;
@@ -193,7 +196,7 @@ Bvh buildSbvh(const BvhBuildConfig& config, const PrimitiveSet& prims) {
     std::vector<Subtree> subtrees(jobs.size());
     onThreads(config.threads, [&] {
         tbb::parallel_for(size_t(0), jobs.size(), [&](size_t j) {
-            SbvhBuilder builder(config, prims.triangles, rootArea);
+            SbvhBuilder builder(config, binned, sbvh, prims.triangles, rootArea);
             subtrees[j].nodes = builder.build(std::move(jobs[j].range), jobs[j].depth);
             subtrees[j].leafPrims = std::move(builder.leafPrims());
         });

@@ -1,22 +1,21 @@
 // sbvh: the split BVH of Stich, Friedrich and Dietrich, "Spatial Splits in Bounding Volume
 // Hierarchies" (HPG 2009). Per node, the binned object split of sahbvh (object_binning.h);
-// when its two children overlap by more than alpha * A(root) (BvhBuildConfig::sbvhAlpha), also
+// when its two children overlap by more than alpha * A(root) (SbvhConfig::alpha), also
 // spatial splits (spatial_binning.h), which cut the references a plane crosses into chopped
 // boxes of the triangle's parts (reference_split.h); the cheaper split wins. A cut reference
 // whose whole box on one side costs less than the cut is unsplit. New references
-// come from a budget of sbvhGrowth * N (0.3: at most 30 % more references than triangles).
+// come from a budget of growth * N (0.3: at most 30 % more references than triangles).
 //
-// Why not TopDownBuilder and its trySplit hook: spatial splits make ranges grow, and
-// TopDownBuilder partitions one array of exactly N PrimRefs in place. Here each node's
+// Why not BvhSplitRule and its trySplit hook: spatial splits make ranges grow, and
+// BvhSplitRule partitions one array of exactly N PrimRefs in place. Here each node's
 // references are a vector of their own (the left child keeps its parent's storage, the right
 // one takes a vector from a pool), the leaves write their primitives to an output array, and
 // the nodes come from the same recursion (top_down_recursion.h), so the result is the same
-// binary Bvh: a cut triangle appears in several leaves, each time
+// binary BinaryBvh: a cut triangle appears in several leaves, each time
 // whole in leafTriangles, so every traversal and the wide collapse read it unchanged.
 #pragma once
 
 #include "accel/bvh/builders/build_jobs.h"
-#include "accel/bvh/builders/bvh_builder.h"
 #include "accel/bvh/builders/object_binning.h"
 #include "accel/bvh/builders/spatial_binning.h"
 
@@ -24,6 +23,15 @@
 #include <vector>
 
 namespace bvhlab {
+
+// sbvh's own options; its object splits and its spatial bins follow BinnedSahConfig.
+struct SbvhConfig {
+    float alpha = 1e-5f;   // spatial splits only where the object split's children overlap by more
+                           // than alpha * A(root): lower finds more overlap to remove, builds slower
+    float growth = 0.3f;   // at most this many new references per triangle: memory for quality
+
+    bool operator==(const SbvhConfig&) const = default;
+};
 
 // A node under construction: its references, their boxes, and how many new references its
 // subtree may still make. The budget is split between children in proportion to their
@@ -43,7 +51,8 @@ struct SbvhSplit {
 class SbvhBuilder {
 public:
     // rootArea: the half area of the whole tree's root box (alpha is relative to it).
-    SbvhBuilder(const BvhBuildConfig& config, std::span<const Triangle> triangles, float rootArea);
+    SbvhBuilder(const BuildConfig& config, const BinnedSahConfig& binned, const SbvhConfig& sbvh,
+                std::span<const Triangle> triangles, float rootArea);
 
     struct Deferred {
         SbvhRange range;
@@ -68,7 +77,7 @@ private:
     SbvhSplit objectMedianSplit(SbvhRange& range, int axis);
     std::vector<PrimRef> takeVector();
 
-    BvhBuildConfig config_;
+    BuildConfig config_;
     std::span<const Triangle> triangles_;
     float minOverlap_;  // alpha * A(root)
     ObjectBinning objectBinning_;
@@ -79,6 +88,7 @@ private:
 
 // The whole build over the valid triangles, in parallel jobs below kJobPrimitives references
 // (the same tree whatever config.threads).
-Bvh buildSbvh(const BvhBuildConfig& config, const PrimitiveSet& prims);
+BinaryBvh buildSbvh(const BuildConfig& config, const BinnedSahConfig& binned, const SbvhConfig& sbvh,
+              const PrimitiveSet& prims);
 
 }  // namespace bvhlab

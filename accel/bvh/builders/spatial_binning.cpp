@@ -7,9 +7,9 @@
 
 namespace bvhlab {
 
-SpatialBinning::SpatialBinning(const BvhBuildConfig& config)
+SpatialBinning::SpatialBinning(const BuildConfig& config, int bins)
     : config_(config),
-      binCount_(uint32_t(std::max(config.bins, 2))),
+      binCount_(uint32_t(std::max(bins, 2))),
       bins_(binCount_),
       rightBox_(binCount_),
       entries_(binCount_),

@@ -6,7 +6,10 @@
 // cuts go to both sides, so N_L + N_R - N references are new.
 #pragma once
 
-#include "accel/bvh/builders/bvh_builder.h"
+#include "accel/bvh/builders/build_config.h"
+#include "accel/bvh/layout/binary_bvh.h"
+
+#include <bvhlab/prim_ref.h>
 
 #include <optional>
 #include <span>
@@ -15,7 +18,7 @@
 namespace bvhlab {
 
 struct SpatialPlane {
-    float cost;  // A_L*N_L + A_R*N_R, N as the SAH charges it (BvhBuildConfig::sahTests)
+    float cost;  // A_L*N_L + A_R*N_R, N as the SAH charges it (BuildConfig::sahTests)
     int axis;
     uint32_t plane;           // the plane between bins plane-1 and plane
     float k0, k1, maxBin;     // bin of x: min(k1 * (x - k0), K - 1), truncated
@@ -28,7 +31,8 @@ struct SpatialPlane {
 
 class SpatialBinning {
 public:
-    explicit SpatialBinning(const BvhBuildConfig& config);
+    // `bins` per axis: BinnedSahConfig::bins, as the object splits bin.
+    SpatialBinning(const BuildConfig& config, int bins);
 
     // The cheapest plane over refs (bounded by `bounds`) whose new references fit in `budget`,
     // or nullopt when there is none.
@@ -39,7 +43,7 @@ private:
     void binAxis(std::span<const PrimRef> refs, std::span<const Triangle> triangles, const SpatialPlane& binning);
     void sweep(SpatialPlane binning, uint32_t refCount, uint32_t budget, std::optional<SpatialPlane>& best);
 
-    BvhBuildConfig config_;
+    BuildConfig config_;
     uint32_t binCount_;
     // Per bin: the box of what lies in it, how many references start and end in it; per plane:
     // the box and count of the bins right of it.

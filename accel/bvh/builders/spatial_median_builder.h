@@ -5,16 +5,32 @@
 // the object median along the widest axis of the centres instead.
 #pragma once
 
-#include "accel/bvh/builders/bvh_builder.h"
+#include "accel/bvh/builders/split_rule.h"
 
 namespace bvhlab {
 
-class SpatialMedianBuilder final : public TopDownBuilder {
+enum class MedianSplitBox {
+    NodeBox,      // halve the box of the primitives (classic spatial median)
+    CentroidBox,  // halve the box of their centres (pbrt's "middle"; never an empty side unless
+                  // rounding puts the midpoint on the lowest centre)
+};
+
+struct SpatialMedianConfig {
+    MedianSplitBox splitBox = MedianSplitBox::CentroidBox;  // which box's longest axis is halved
+
+    bool operator==(const SpatialMedianConfig&) const = default;
+};
+
+class SpatialMedianBuilder final : public BvhSplitRule {
 public:
-    using TopDownBuilder::TopDownBuilder;
+    SpatialMedianBuilder(const BuildConfig& config, const SpatialMedianConfig& median)
+        : BvhSplitRule(config), median_(median) {}
 
 protected:
     std::optional<Split> trySplit(const BuildRange& range, bool mayBeLeaf) override;
+
+private:
+    SpatialMedianConfig median_;
 };
 
 }  // namespace bvhlab

@@ -1,4 +1,4 @@
-// The recursion every top-down BVH build shares (TopDownBuilder's in-place ranges, sbvh's
+// The recursion every top-down BVH build shares (BvhSplitRule's in-place ranges, sbvh's
 // growing reference vectors): a work stack, depth first and left before right, so that a
 // subtree's nodes are contiguous and the stack holds at most one pending right sibling per
 // level; the root at 0, a padding slot, then sibling pairs. The build decides the rest:

@@ -24,7 +24,7 @@ namespace bvhlab {
 // quadratic, and EPO is not computed.
 inline constexpr int kEpoVisitsPerTriangle = 512;
 
-// EPO of the tree `nodes` (the Bvh layout) whose leaf slot i holds leafTriangles[i]; 0 for an
+// EPO of the tree `nodes` (the BinaryBvh layout) whose leaf slot i holds leafTriangles[i]; 0 for an
 // empty tree or geometry of no area; nullopt past the visit budget. TBB-parallel on `threads`
 // (0 = all) over fixed chunks of triangles, summed in a fixed order: the same value whatever
 // the thread count (and whether the budget is exceeded depends only on the total visits).

@@ -21,7 +21,7 @@ struct QuadricLeaves {
     size_t leafBytes() const { return primIndices.size() * sizeof(uint32_t) + leafShapes.size() * sizeof(QuadricShape); }
 };
 
-// Laid out as Bvh (root at 0, a padding slot, sibling pairs); leaf l holds
+// Laid out as BinaryBvh (root at 0, a padding slot, sibling pairs); leaf l holds
 // leafShapes[l.index .. l.index + l.count).
 using QuadricBvh = NodeTree<BvhNode, QuadricLeaves>;
 

@@ -64,7 +64,7 @@ class CollapsePlan {
 public:
     CollapsePlan(const std::vector<BvhNode, TraversalAllocator<BvhNode>>& binary, const CollapseCosts& costs)
         : binary_(binary), plan_(new Choice[binary.size()]) {
-        // Children come after their parent (depth-first order, bvh.h): bottom up is backwards.
+        // Children come after their parent (depth-first order, binary_bvh.h): bottom up is backwards.
         for (size_t n = binary.size(); n-- > 0;) {
             if (n != 1) plan(uint32_t(n), costs);
         }
@@ -168,7 +168,7 @@ constexpr uint32_t kParallelBlocks = 512;
 template <int N>
 class WideEmitter {
 public:
-    WideEmitter(const Bvh& bvh, const CollapsePlan<N>& plan, WideBvh<N>& wide)
+    WideEmitter(const BinaryBvh& bvh, const CollapsePlan<N>& plan, WideBvh<N>& wide)
         : bvh_(bvh), plan_(plan), wide_(wide), sizes_(new SubtreeSize[bvh.nodes.size()]) {}
 
     // The sizes of the wide subtree of inner binary node n and of every wide node below it.
@@ -255,7 +255,7 @@ public:
     }
 
 private:
-    const Bvh& bvh_;
+    const BinaryBvh& bvh_;
     const CollapsePlan<N>& plan_;
     WideBvh<N>& wide_;
     std::unique_ptr<SubtreeSize[]> sizes_;  // per inner binary node that becomes a wide node
@@ -264,7 +264,7 @@ private:
 }  // namespace
 
 template <int N>
-WideBvh<N> collapseToWide(const Bvh& bvh, const CollapseCosts& costs) {
+WideBvh<N> collapseToWide(const BinaryBvh& bvh, const CollapseCosts& costs) {
     WideBvh<N> wide;
     if (bvh.empty()) return wide;
     const CollapsePlan<N> plan(bvh.nodes, costs);
@@ -288,7 +288,7 @@ WideBvh<N> collapseToWide(const Bvh& bvh, const CollapseCosts& costs) {
     return wide;
 }
 
-template WideBvh<4> collapseToWide<4>(const Bvh&, const CollapseCosts&);
-template WideBvh<8> collapseToWide<8>(const Bvh&, const CollapseCosts&);
+template WideBvh<4> collapseToWide<4>(const BinaryBvh&, const CollapseCosts&);
+template WideBvh<8> collapseToWide<8>(const BinaryBvh&, const CollapseCosts&);
 
 }  // namespace bvhlab

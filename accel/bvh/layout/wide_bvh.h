@@ -5,7 +5,7 @@
 // sahbvh4 is N = 4, sahbvh8 N = 8.
 #pragma once
 
-#include "accel/bvh/layout/bvh.h"
+#include "accel/bvh/layout/binary_bvh.h"
 #include "accel/bvh/layout/triangle_blocks.h"
 
 #include <cmath>
@@ -77,6 +77,6 @@ struct CollapseCosts {
 // subtrees are written as TBB tasks (in the caller's arena), each at a place fixed beforehand:
 // the layout does not depend on the thread count. Instantiated for N = 4 and 8.
 template <int N>
-WideBvh<N> collapseToWide(const Bvh& bvh, const CollapseCosts& costs);
+WideBvh<N> collapseToWide(const BinaryBvh& bvh, const CollapseCosts& costs);
 
 }  // namespace bvhlab

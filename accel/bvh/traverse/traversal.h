@@ -1,7 +1,7 @@
 // What the traversal skeletons of every layout share: the two queries (closest hit, any hit),
 // the leaves' triangle test, and the entry that picks the skeleton's variant for a ray. Each
 // layout has one skeleton, `traverse<Counting, Query, NegativeT, Robust>(tree, ray, counters)`
-// (bvh_traversal.h, wide_bvh_traversal.h), with a fixed-size stack and no allocation.
+// (binary_bvh_traversal.h, wide_bvh_traversal.h), with a fixed-size stack and no allocation.
 //
 // What the counters count (QueryCounters, Havran's terms):
 //   N_TR (traversalSteps): nodes visited. The root is visited by every valid query; any other
@@ -93,7 +93,7 @@ template <typename Query, bool Robust>
     return false;
 }
 
-// How the leaves of a binary tree are tested (bvh_traversal.h): its triangles, or its quadrics.
+// How the leaves of a binary tree are tested (binary_bvh_traversal.h): its triangles, or its quadrics.
 template <typename Leaves, bool Robust>
 struct LeafTester;
 

@@ -65,7 +65,7 @@ TraversalKernels<Tree> traversalKernels(const TraversalConfig& config) {
     }
 }
 
-template TraversalKernels<Bvh> traversalKernels(const TraversalConfig&);
+template TraversalKernels<BinaryBvh> traversalKernels(const TraversalConfig&);
 template TraversalKernels<WideBvh<4>> traversalKernels(const TraversalConfig&);
 template TraversalKernels<WideBvh<8>> traversalKernels(const TraversalConfig&);
 

@@ -1,4 +1,4 @@
-// The traversal kernels: the query entry points of every layout (bvh_traversal.h,
+// The traversal kernels: the query entry points of every layout (binary_bvh_traversal.h,
 // wide_bvh_traversal.h), compiled once per ISA (traversal_kernels_isa.cpp, accel/CMakeLists.txt)
 // and chosen at run time, as Embree does, so that one binary runs the SIMD code of the machine
 // it runs on:
@@ -10,7 +10,7 @@
 // setting folded in: a query is one indirect call, no test of the setting.
 #pragma once
 
-#include "accel/bvh/layout/bvh.h"
+#include "accel/bvh/layout/binary_bvh.h"
 #include "accel/bvh/layout/wide_bvh.h"
 #include "accel/bvh/traverse/traversal_config.h"
 #include "framework/core/accelerator.h"
@@ -20,7 +20,7 @@
 
 namespace bvhlab {
 
-// The triangle tree's part of the accelerator's queries, for one layout (Tree: Bvh or
+// The triangle tree's part of the accelerator's queries, for one layout (Tree: BinaryBvh or
 // WideBvh<N>), in two forms compiled apart: one counts N_IT and N_TR, the other counts
 // nothing but the queries and is what a timed query runs (QueryCounters::counting picks one).
 // The batch calls take rays one by one (or as the kernel packs them) with the Accelerator's

@@ -3,7 +3,7 @@
 // instantiates lives in namespace bvhlab::<isa> (kernel_namespace.h) and the table it exports is
 // kernels::<isa>. The entry points themselves have internal linkage.
 #include "accel/bvh/traverse/traversal_kernels.h"
-#include "accel/bvh/traverse/bvh_traversal.h"
+#include "accel/bvh/traverse/binary_bvh_traversal.h"
 #include "accel/bvh/traverse/packet_traversal.h"
 #include "accel/bvh/traverse/wide_bvh_traversal.h"
 
@@ -31,7 +31,7 @@ bool isOccludedKernel(const Tree& tree, const Ray& ray, QueryCounters& counters)
 // packets (packet_traversal.h), the binary one ray by ray.
 template <typename Query, bool Robust, bool Counting, typename Tree, typename Answer>
 void traceRange(const Tree& tree, std::span<const Ray> rays, int packetFallback, Answer&& answer) {
-    if constexpr (std::is_same_v<Tree, Bvh>) {
+    if constexpr (std::is_same_v<Tree, BinaryBvh>) {
         for (size_t i = 0; i < rays.size(); ++i) {
             QueryCounters work;
             const Query query = runQuery<Query, Robust, Counting>(tree, rays[i], work);
@@ -84,7 +84,7 @@ const TraversalKernels<Tree>& BVHLAB_KERNEL_NS(bool robust) {
     return robust ? kKernels<Tree, true> : kKernels<Tree, false>;
 }
 
-template const TraversalKernels<Bvh>& BVHLAB_KERNEL_NS(bool);
+template const TraversalKernels<BinaryBvh>& BVHLAB_KERNEL_NS(bool);
 template const TraversalKernels<WideBvh<4>>& BVHLAB_KERNEL_NS(bool);
 template const TraversalKernels<WideBvh<8>>& BVHLAB_KERNEL_NS(bool);
 

@@ -30,8 +30,8 @@ namespace bvhlab {
 namespace {
 
 // The builders of the table that build with the shared recursion or as ploc (sbvh: test_sbvh.cpp).
-std::vector<BvhBuilder> allBuilders() {
-    return {bvhBuilder("tdbvh"), bvhBuilder("sahbvh"), bvhBuilder("sweepbvh"), bvhBuilder("ploc")};
+std::vector<BuilderRecord> allBuilders() {
+    return {builderRecord("tdbvh"), builderRecord("sahbvh"), builderRecord("sweepbvh"), builderRecord("ploc")};
 }
 
 using test::checkTree;
@@ -66,7 +66,7 @@ Soup mixedScaleSoup(size_t n, uint32_t seed) {
 BvhBuildConfig defaultConfig() { return BvhBuildConfig{}; }
 
 // Builds, checks the tree and that BuildStats reports what the walk found.
-TreeFacts buildAndCheck(BvhAccelerator<Bvh>& accel, const Soup& soup) {
+TreeFacts buildAndCheck(BvhAccelerator<BinaryBvh>& accel, const Soup& soup) {
     const BuildStats stats = timedBuild(accel, soup.prims());
     const TreeFacts facts = checkTree(accel.bvh(), soup);
     EXPECT_EQ(stats.primitives, soup.valid.size());
@@ -86,26 +86,26 @@ TEST(Bvh, NodeIsThirtyTwoBytes) {
 
 TEST(Bvh, InvariantsOnRandomScenes) {
     const Soup soup = randomSoup(3000, 1);
-    for (const BvhBuilder& kind : allBuilders()) {
+    for (const BuilderRecord& kind : allBuilders()) {
         for (bool simd : {true, false}) {
             SCOPED_TRACE(kind.name + (simd ? " simd" : " scalar"));
             BvhBuildConfig config;
-            config.simd = simd;
-            BvhAccelerator<Bvh> accel(kind, config);
+            config.shared.simd = simd;
+            BvhAccelerator<BinaryBvh> accel(kind, config);
             buildAndCheck(accel, soup);
         }
     }
     // The other settings of each builder.
     BvhBuildConfig allAxes;
-    allAxes.allAxes = true;
-    allAxes.bins = 7;
+    allAxes.binnedSah.allAxes = true;
+    allAxes.binnedSah.bins = 7;
     BvhBuildConfig nodeBox;
-    nodeBox.medianSplitBox = MedianSplitBox::NodeBox;
+    nodeBox.spatialMedian.splitBox = MedianSplitBox::NodeBox;
     BvhBuildConfig manyBins;
-    manyBins.bins = 256;
-    for (const auto& [kind, config] : {std::pair{bvhBuilder("sahbvh"), allAxes}, std::pair{bvhBuilder("tdbvh"), nodeBox},
-                                       std::pair{bvhBuilder("sahbvh"), manyBins}}) {
-        BvhAccelerator<Bvh> accel(kind, config);
+    manyBins.binnedSah.bins = 256;
+    for (const auto& [kind, config] : {std::pair{builderRecord("sahbvh"), allAxes}, std::pair{builderRecord("tdbvh"), nodeBox},
+                                       std::pair{builderRecord("sahbvh"), manyBins}}) {
+        BvhAccelerator<BinaryBvh> accel(kind, config);
         buildAndCheck(accel, soup);
     }
 }
@@ -116,7 +116,7 @@ TEST(Bvh, NonRobustTraversalAgreesAwayFromEdges) {
     const Soup soup = randomSoup(3000, 5);
     TraversalConfig traversal;
     traversal.robust = false;
-    BvhAccelerator<Bvh> accel(bvhBuilder("sahbvh"), defaultConfig(), traversal);
+    BvhAccelerator<BinaryBvh> accel(builderRecord("sahbvh"), defaultConfig(), traversal);
     buildAndCheck(accel, soup);
     expectAgreesWithNaive(accel, soup, 3000, 2.0f, 11);
 }
@@ -124,12 +124,12 @@ TEST(Bvh, NonRobustTraversalAgreesAwayFromEdges) {
 TEST(Bvh, TinyScenes) {
     for (size_t n : {0, 1, 2, 3}) {
         const Soup soup = randomSoup(n, 7 + uint32_t(n));
-        for (const BvhBuilder& kind : allBuilders()) {
+        for (const BuilderRecord& kind : allBuilders()) {
             SCOPED_TRACE(kind.name + " with " + std::to_string(n) + " triangles");
             BvhBuildConfig config;
-            config.maxLeaf = 1;
-            config.sahTermination = false;
-            BvhAccelerator<Bvh> accel(kind, config);
+            config.shared.maxLeaf = 1;
+            config.shared.sahTermination = false;
+            BvhAccelerator<BinaryBvh> accel(kind, config);
             const TreeFacts facts = buildAndCheck(accel, soup);
             EXPECT_EQ(facts.leaves, n);
             // A ray at each triangle's centroid finds it (or one equally near).
@@ -164,8 +164,8 @@ TEST(Bvh, DegeneratePrimitivesAreNotBuiltOver) {
     // primitive index of the full list.
     Soup soup = randomSoup(50, 3);
     soup.valid = {4, 9, 10, 31, 49};
-    for (const BvhBuilder& kind : allBuilders()) {
-        BvhAccelerator<Bvh> accel(kind, defaultConfig());
+    for (const BuilderRecord& kind : allBuilders()) {
+        BvhAccelerator<BinaryBvh> accel(kind, defaultConfig());
         buildAndCheck(accel, soup);
         expectAgreesWithNaive(accel, soup, 300, 10.0f, 5);
     }
@@ -178,9 +178,9 @@ TEST(Bvh, ReportsTheBoundsItPromisesAndKeepsThem) {
     Soup soup = randomSoup(10, 3);
     for (int i = 0; i < 3000; ++i) soup.add(soup.triangles[0]);
     BvhBuildConfig config = defaultConfig();
-    config.leafCap = 5;
-    for (const BvhBuilder& kind : allBuilders()) {
-        BvhAccelerator<Bvh> accel(kind, config);
+    config.shared.leafCap = 5;
+    for (const BuilderRecord& kind : allBuilders()) {
+        BvhAccelerator<BinaryBvh> accel(kind, config);
         buildAndCheck(accel, soup);
         const BuildStats stats = timedBuild(accel, soup.prims());
         ASSERT_TRUE(stats.leafBound && stats.depthBound);
@@ -198,16 +198,16 @@ TEST(Bvh, WideStatisticsAreTheBinaryTreesOutsideTheBuild) {
     // next build, the new tree's.
     const Soup soup = randomSoup(5000, 17), other = randomSoup(700, 18);
     BvhBuildConfig config = defaultConfig();
-    config.sahBlockShift = 3;  // how the 8-wide accelerator builds its binary tree: leaves in blocks of 8
-    for (const BvhBuilder& kind : allBuilders()) {
+    config.shared.sahBlockShift = 3;  // how the 8-wide accelerator builds its binary tree: leaves in blocks of 8
+    for (const BuilderRecord& kind : allBuilders()) {
         SCOPED_TRACE(kind.name);
         BvhAccelerator<WideBvh<8>> wide(kind, defaultConfig());
         for (const Soup* s : {&soup, &other}) {
             wide.build(s->prims());
             const BuildStats stats = wide.buildStats();
-            const Bvh binary = buildBvh(kind, config, s->prims());
+            const BinaryBvh binary = buildBvh(kind, config, s->prims());
             BuildStats expected;
-            fillTreeStats(binary, config.cTraversal, config.cIntersect, expected);
+            fillTreeStats(binary, config.shared.cTraversal, config.shared.cIntersect, expected);
             EXPECT_EQ(stats.primitives, s->valid.size());
             EXPECT_EQ(stats.nodes, expected.nodes);
             EXPECT_EQ(stats.leaves, expected.leaves);
@@ -216,8 +216,8 @@ TEST(Bvh, WideStatisticsAreTheBinaryTreesOutsideTheBuild) {
             ASSERT_TRUE(stats.sah.has_value());
             EXPECT_EQ(stats.sah->cost, expected.sah->cost);
             ASSERT_TRUE(stats.epo.has_value());
-            EXPECT_EQ(*stats.epo, endPointOverlap(binary.nodes, binary.leafTriangles, config.cTraversal,
-                                                  config.cIntersect, config.threads));
+            EXPECT_EQ(*stats.epo, endPointOverlap(binary.nodes, binary.leafTriangles, config.shared.cTraversal,
+                                                  config.shared.cIntersect, config.shared.threads));
             EXPECT_EQ(stats.bytes, wide.bvh().bytes());
             EXPECT_EQ(wide.buildStats().epo, stats.epo);
             EXPECT_EQ(wide.buildStats().nodes, stats.nodes);
@@ -228,15 +228,15 @@ TEST(Bvh, WideStatisticsAreTheBinaryTreesOutsideTheBuild) {
 TEST(Bvh, HundredThousandCoincidentTriangles) {
     Soup soup;
     for (int i = 0; i < 100000; ++i) soup.add({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
-    for (const BvhBuilder& kind : allBuilders()) {
+    for (const BuilderRecord& kind : allBuilders()) {
         SCOPED_TRACE(kind.name);
-        BvhAccelerator<Bvh> accel(kind, defaultConfig());
+        BvhAccelerator<BinaryBvh> accel(kind, defaultConfig());
         const BuildStats stats = timedBuild(accel, soup.prims());
         EXPECT_LT(stats.buildMs, 2000.0);
         const TreeFacts facts = checkTree(accel.bvh(), soup);
         // Split by index into halves: depth log2(100000 / leafCap) + 1.
         EXPECT_LE(facts.maxDepth, 14);
-        EXPECT_LE(facts.maxLeaf, size_t(defaultConfig().leafCap));
+        EXPECT_LE(facts.maxLeaf, size_t(defaultConfig().shared.leafCap));
 
         Ray ray;
         ray.org = {0.25f, 0.25f, 1.0f};
@@ -248,10 +248,10 @@ TEST(Bvh, HundredThousandCoincidentTriangles) {
     }
     // With leafCap 1 every leaf holds one primitive even here.
     BvhBuildConfig strict;
-    strict.maxLeaf = 1;
-    strict.leafCap = 1;
-    strict.sahTermination = false;
-    BvhAccelerator<Bvh> accel(bvhBuilder("sahbvh"), strict);
+    strict.shared.maxLeaf = 1;
+    strict.shared.leafCap = 1;
+    strict.shared.sahTermination = false;
+    BvhAccelerator<BinaryBvh> accel(builderRecord("sahbvh"), strict);
     accel.build(soup.prims());
     EXPECT_EQ(checkTree(accel.bvh(), soup).maxLeaf, 1u);
 }
@@ -268,12 +268,12 @@ TEST(Bvh, CentresOnALineOnAPlaneAndClustered) {
         clusters.add({{c - 1, -1, 0}, {c + 1, -1, 0}, {c, 2, 0}});
     }
     for (const Soup* soup : {&line, &plane, &clusters}) {
-        for (const BvhBuilder& kind : allBuilders()) {
+        for (const BuilderRecord& kind : allBuilders()) {
             for (MedianSplitBox box : {MedianSplitBox::CentroidBox, MedianSplitBox::NodeBox}) {
                 if (kind.name != "tdbvh" && box == MedianSplitBox::NodeBox) continue;
                 BvhBuildConfig config;
-                config.medianSplitBox = box;
-                BvhAccelerator<Bvh> accel(kind, config);
+                config.spatialMedian.splitBox = box;
+                BvhAccelerator<BinaryBvh> accel(kind, config);
                 buildAndCheck(accel, *soup);
                 expectAgreesWithNaive(accel, *soup, 200, 100.0f, 13);
             }
@@ -289,14 +289,14 @@ TEST(Bvh, DepthStaysBoundedOnGeometricSpacing) {
         const float x = std::pow(1.5f, float(i) - 100.0f);
         soup.add({{x, 0, 0}, {x * 1.01f, 0, 0}, {x, 1e-3f, 1e-3f}});
     }
-    for (const BvhBuilder& kind : allBuilders()) {
+    for (const BuilderRecord& kind : allBuilders()) {
         for (MedianSplitBox box : {MedianSplitBox::CentroidBox, MedianSplitBox::NodeBox}) {
             SCOPED_TRACE(kind.name);
             BvhBuildConfig config;
-            config.maxLeaf = 1;
-            config.sahTermination = false;
-            config.medianSplitBox = box;
-            BvhAccelerator<Bvh> accel(kind, config);
+            config.shared.maxLeaf = 1;
+            config.shared.sahTermination = false;
+            config.spatialMedian.splitBox = box;
+            BvhAccelerator<BinaryBvh> accel(kind, config);
             const TreeFacts facts = buildAndCheck(accel, soup);
             EXPECT_EQ(facts.leaves, soup.valid.size());
             EXPECT_LT(facts.maxDepth, kBvhMaxDepth);
@@ -309,8 +309,8 @@ TEST(Bvh, DepthStaysBoundedOnGeometricSpacing) {
 
 TEST(Bvh, SizesFromMicrometresToKilometres) {
     const Soup soup = mixedScaleSoup(3000, 17);
-    for (const BvhBuilder& kind : allBuilders()) {
-        BvhAccelerator<Bvh> accel(kind, defaultConfig());
+    for (const BuilderRecord& kind : allBuilders()) {
+        BvhAccelerator<BinaryBvh> accel(kind, defaultConfig());
         buildAndCheck(accel, soup);
         expectAgreesWithNaive(accel, soup, 1000, 1000.0f, 19);
     }
@@ -318,11 +318,11 @@ TEST(Bvh, SizesFromMicrometresToKilometres) {
 
 TEST(Bvh, AgreesWithNaiveOnRandomRays) {
     const Soup soup = randomSoup(2000, 23);
-    for (const BvhBuilder& kind : allBuilders()) {
+    for (const BuilderRecord& kind : allBuilders()) {
         for (int maxLeaf : {1, 4}) {
             BvhBuildConfig config;
-            config.maxLeaf = maxLeaf;
-            BvhAccelerator<Bvh> accel(kind, config);
+            config.shared.maxLeaf = maxLeaf;
+            BvhAccelerator<BinaryBvh> accel(kind, config);
             accel.build(soup.prims());
             expectAgreesWithNaive(accel, soup, 3000, 10.0f, 29);
         }
@@ -338,10 +338,10 @@ TEST(Bvh, AxisParallelRaysAlongBoxFaces) {
     test::addLatticeSquares(soup, 4, 4);
     NaiveAccelerator naive;
     naive.build(soup.prims());
-    for (const BvhBuilder& kind : allBuilders()) {
+    for (const BuilderRecord& kind : allBuilders()) {
         BvhBuildConfig config;
-        config.maxLeaf = 1;
-        BvhAccelerator<Bvh> accel(kind, config);
+        config.shared.maxLeaf = 1;
+        BvhAccelerator<BinaryBvh> accel(kind, config);
         accel.build(soup.prims());
         int hits = 0;
         for (int axis = 0; axis < 3; ++axis) {
@@ -382,8 +382,8 @@ TEST(Bvh, FlatBoxesBehindTheOrigin) {
     naive.build(soup.prims());
     std::mt19937 rng(53);
     std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-    for (const BvhBuilder& kind : allBuilders()) {
-        BvhAccelerator<Bvh> accel(kind, defaultConfig());
+    for (const BuilderRecord& kind : allBuilders()) {
+        BvhAccelerator<BinaryBvh> accel(kind, defaultConfig());
         accel.build(soup.prims());
         int hits = 0;
         for (int i = 0; i < 500; ++i) {
@@ -411,7 +411,7 @@ TEST(Bvh, NegativeTminCullsAxisParallelRaysLikeTminZero) {
     const Soup soup = randomSoup(3000, 29);  // in [-1, 11]^3
     std::mt19937 rng(31);
     std::uniform_real_distribution<float> across(0.0f, 10.0f);
-    BvhAccelerator<Bvh> accel(bvhBuilder("sahbvh"), defaultConfig());
+    BvhAccelerator<BinaryBvh> accel(builderRecord("sahbvh"), defaultConfig());
     accel.build(soup.prims());
     for (int i = 0; i < 300; ++i) {
         const int axis = i % 3;
@@ -432,7 +432,7 @@ TEST(Bvh, NegativeTminCullsAxisParallelRaysLikeTminZero) {
 
 TEST(Bvh, InvalidRaysMissAndCountAQuery) {
     const Soup soup = randomSoup(100, 31);
-    BvhAccelerator<Bvh> accel(bvhBuilder("sahbvh"), defaultConfig());
+    BvhAccelerator<BinaryBvh> accel(builderRecord("sahbvh"), defaultConfig());
     accel.build(soup.prims());
     Ray zero;
     zero.dir = Vec3(0.0f);
@@ -451,41 +451,41 @@ TEST(Bvh, InvalidRaysMissAndCountAQuery) {
     }
 }
 
-double sahOf(const BvhBuilder& kind, const BvhBuildConfig& config, const Soup& soup) {
-    BvhAccelerator<Bvh> accel(kind, config);
+double sahOf(const BuilderRecord& kind, const BvhBuildConfig& config, const Soup& soup) {
+    BvhAccelerator<BinaryBvh> accel(kind, config);
     return timedBuild(accel, soup.prims()).sah->cost;
 }
 
 TEST(Bvh, BinnedSahIsCloseToTheSweep) {
     const Soup soup = randomSoup(4000, 37, 10.0f, 0.5f);
-    const double binned = sahOf(bvhBuilder("sahbvh"), defaultConfig(), soup);
-    const double sweep = sahOf(bvhBuilder("sweepbvh"), defaultConfig(), soup);
-    const double median = sahOf(bvhBuilder("tdbvh"), defaultConfig(), soup);
+    const double binned = sahOf(builderRecord("sahbvh"), defaultConfig(), soup);
+    const double sweep = sahOf(builderRecord("sweepbvh"), defaultConfig(), soup);
+    const double median = sahOf(builderRecord("tdbvh"), defaultConfig(), soup);
     EXPECT_LE(sweep, binned * 1.001);
     EXPECT_LE(binned, sweep * 1.03);
     EXPECT_LT(sweep, median);
     // More bins on every axis come closer.
     BvhBuildConfig fine;
-    fine.bins = 64;
-    fine.allAxes = true;
-    EXPECT_LE(sahOf(bvhBuilder("sahbvh"), fine, soup), sweep * 1.015);
+    fine.binnedSah.bins = 64;
+    fine.binnedSah.allAxes = true;
+    EXPECT_LE(sahOf(builderRecord("sahbvh"), fine, soup), sweep * 1.015);
 }
 
 TEST(Bvh, SahTerminationMakesMultiPrimitiveLeaves) {
     // Dense, overlapping triangles: splitting does not pay near the bottom.
     const Soup soup = randomSoup(3000, 41, 5.0f, 1.0f);
-    for (const BvhBuilder& kind : {bvhBuilder("sahbvh"), bvhBuilder("sweepbvh")}) {
+    for (const BuilderRecord& kind : {builderRecord("sahbvh"), builderRecord("sweepbvh")}) {
         BvhBuildConfig config;
-        config.maxLeaf = 1;
-        config.cTraversal = 2.0f;
-        BvhAccelerator<Bvh> accel(kind, config);
+        config.shared.maxLeaf = 1;
+        config.shared.cTraversal = 2.0f;
+        BvhAccelerator<BinaryBvh> accel(kind, config);
         const BuildStats stats = timedBuild(accel, soup.prims());
         EXPECT_GT(*stats.avgLeafPrimitives, 1.5) << kind.name;
-        EXPECT_LE(*stats.maxLeafPrimitives, size_t(config.leafCap));
+        EXPECT_LE(*stats.maxLeafPrimitives, size_t(config.shared.leafCap));
         checkTree(accel.bvh(), soup);
 
-        config.sahTermination = false;
-        BvhAccelerator<Bvh> single(kind, config);
+        config.shared.sahTermination = false;
+        BvhAccelerator<BinaryBvh> single(kind, config);
         const BuildStats one = timedBuild(single, soup.prims());
         EXPECT_EQ(*one.leaves, soup.valid.size());
         EXPECT_EQ(*one.maxLeafPrimitives, 1u);
@@ -498,17 +498,17 @@ TEST(Bvh, SahTerminationMakesMultiPrimitiveLeaves) {
 TEST(Bvh, SimdAndScalarBuildTheSameTree) {
     const Soup soups[] = {randomSoup(5000, 43), mixedScaleSoup(3000, 47)};
     for (const Soup& soup : soups) {
-        for (const BvhBuilder& kind : allBuilders()) {
+        for (const BuilderRecord& kind : allBuilders()) {
             for (bool allAxes : {false, true}) {
                 if (allAxes && kind.name != "sahbvh") continue;
                 BvhBuildConfig config;
-                config.allAxes = allAxes;
-                BvhAccelerator<Bvh> simd(kind, config);
-                config.simd = false;
-                BvhAccelerator<Bvh> scalar(kind, config);
+                config.binnedSah.allAxes = allAxes;
+                BvhAccelerator<BinaryBvh> simd(kind, config);
+                config.shared.simd = false;
+                BvhAccelerator<BinaryBvh> scalar(kind, config);
                 simd.build(soup.prims());
                 scalar.build(soup.prims());
-                const Bvh &a = simd.bvh(), &b = scalar.bvh();
+                const BinaryBvh &a = simd.bvh(), &b = scalar.bvh();
                 ASSERT_EQ(a.nodes.size(), b.nodes.size()) << kind.name;
                 EXPECT_EQ(std::memcmp(a.nodes.data(), b.nodes.data(), a.nodes.size() * sizeof(BvhNode)), 0)
                     << kind.name << (allAxes ? " all axes" : "");
@@ -522,10 +522,10 @@ TEST(Bvh, SahCostFollowsTheStatedFormula) {
     // Two unit triangles far apart, one per leaf: the root is the only inner node.
     const Soup soup = triangleAndCopy({9, 9, 9});
     BvhBuildConfig config;
-    config.maxLeaf = 1;
-    config.cTraversal = 2.0f;
-    config.cIntersect = 3.0f;
-    BvhAccelerator<Bvh> accel(bvhBuilder("sahbvh"), config);
+    config.shared.maxLeaf = 1;
+    config.shared.cTraversal = 2.0f;
+    config.shared.cIntersect = 3.0f;
+    BvhAccelerator<BinaryBvh> accel(builderRecord("sahbvh"), config);
     const BuildStats stats = timedBuild(accel, soup.prims());
     ASSERT_EQ(*stats.nodes, 3u);
     const double rootArea = Bounds3({0, 0, 0}, {10, 10, 9}).halfArea();
@@ -542,9 +542,9 @@ TEST(Bvh, CountersCountVisitsAndTests) {
     // one step and no test; a ray through one leaf of a 2-leaf tree costs root + leaf.
     const Soup soup = triangleAndCopy({0, 0, 5});
     BvhBuildConfig config;
-    config.maxLeaf = 1;
-    config.sahTermination = false;
-    BvhAccelerator<Bvh> accel(bvhBuilder("sahbvh"), config);
+    config.shared.maxLeaf = 1;
+    config.shared.sahTermination = false;
+    BvhAccelerator<BinaryBvh> accel(builderRecord("sahbvh"), config);
     accel.build(soup.prims());
     QueryCounters counters;
     Hit hit;
@@ -586,12 +586,12 @@ TEST(Bvh, RegisteredWithTheirEnvKeys) {
     env.set(keys::BVH::tdbvhSplit, "nodebox", "test");
     env.set(keys::BVH::optimize, "insertion", "test");
     env.set(keys::BVH::optimizeIterations, "5", "test");
-    const BvhBuildConfig config = bvhConfigFromEnv(env);
+    const BvhBuildConfig config = bvhSettingsFromEnv(env).build;
     EXPECT_EQ(config.optimize, BvhOptimize::Insertion);
-    EXPECT_EQ(config.optimizeIterations, 5);
-    EXPECT_EQ(config.bins, 8);
-    EXPECT_EQ(config.maxLeaf, 3);
-    EXPECT_EQ(config.medianSplitBox, MedianSplitBox::NodeBox);
+    EXPECT_EQ(config.insertion.iterations, 5);
+    EXPECT_EQ(config.binnedSah.bins, 8);
+    EXPECT_EQ(config.shared.maxLeaf, 3);
+    EXPECT_EQ(config.spatialMedian.splitBox, MedianSplitBox::NodeBox);
     const auto accel = createAccelerator("sahbvh", env);
     EXPECT_STREQ(accel->name(), "sahbvh");
     EXPECT_TRUE(accel->hasCounters());
@@ -608,7 +608,7 @@ void expectCollapseKeepsEveryTriangleOnce(size_t n, uint32_t seed) {
     using Leaf = std::vector<uint32_t>;  // primitives in lane order
     constexpr uint32_t kLeafCap = 16;
     const Soup soup = randomSoup(n, seed);
-    Bvh binary = buildBvh(bvhBuilder("sahbvh"), defaultConfig(), soup.prims());
+    BinaryBvh binary = buildBvh(builderRecord("sahbvh"), defaultConfig(), soup.prims());
     // Every binary subtree's primitives, left to right (children come after their parent).
     std::vector<Leaf> below(binary.nodes.size());
     size_t binaryBlocks = 0;
@@ -718,7 +718,7 @@ TEST(WideBvh, CollapseKeepsEveryTriangleOnce) {
 // both hit and stay two lanes. A merge never exceeds the leaf cap.
 TEST(WideBvh, CollapseMergesSiblingLeavesWhenOneBlockPays) {
     const auto twoLeaves = [](Vec3 shift) {
-        Bvh bvh;
+        BinaryBvh bvh;
         for (uint32_t i = 0; i < 7; ++i) {
             const Vec3 s = i < 3 ? Vec3(0.0f) : shift;
             const float f = 0.1f * float(i);
@@ -765,12 +765,12 @@ TEST(WideBvh, CollapseMergesSiblingLeavesWhenOneBlockPays) {
 // depth-first build up to the order of its nodes (same node count, leaves and SAH).
 TEST(Bvh, SameTreeWhateverTheThreadCount) {
     const Soup soup = randomSoup(60000, 67);
-    for (const BvhBuilder& kind : {bvhBuilder("tdbvh"), bvhBuilder("sahbvh")}) {
+    for (const BuilderRecord& kind : {builderRecord("tdbvh"), builderRecord("sahbvh")}) {
         SCOPED_TRACE(kind.name);
-        std::vector<Bvh> trees;
+        std::vector<BinaryBvh> trees;
         for (int threads : {1, 2, 0}) {
             BvhBuildConfig config = defaultConfig();
-            config.threads = threads;
+            config.shared.threads = threads;
             trees.push_back(buildBvh(kind, config, soup.prims()));
         }
         for (size_t t = 1; t < trees.size(); ++t) {
@@ -789,7 +789,7 @@ TEST(Bvh, SameTreeWhateverTheThreadCount) {
             refs[i] = PrimRef{{b.lower.x, b.lower.y, b.lower.z}, prims.valid[i], {b.upper.x, b.upper.y, b.upper.z}, 0};
             acc.add(refs[i]);
         }
-        Bvh depthFirst;
+        BinaryBvh depthFirst;
         depthFirst.nodes = kind.splitRule(defaultConfig())->build(refs, {0, uint32_t(refs.size()), acc.bounds(), acc.centroidBounds()});
         depthFirst.primIndices.resize(refs.size());
         for (size_t i = 0; i < refs.size(); ++i) depthFirst.primIndices[i] = refs[i].prim;
@@ -808,9 +808,9 @@ TEST(Bvh, SameTreeWhateverTheThreadCount) {
 TEST(Bvh, SameWideTreeWhateverTheThreadCount) {
     const Soup soup = randomSoup(60000, 69);
     BvhBuildConfig config = defaultConfig();
-    config.sahBlockShift = 3;
-    const Bvh binary = buildBvh(bvhBuilder("sahbvh"), config, soup.prims());
-    const CollapseCosts costs{1.0f, 1.0f, uint32_t(config.leafCap)};
+    config.shared.sahBlockShift = 3;
+    const BinaryBvh binary = buildBvh(builderRecord("sahbvh"), config, soup.prims());
+    const CollapseCosts costs{1.0f, 1.0f, uint32_t(config.shared.leafCap)};
     std::vector<WideBvh<8>> trees;
     for (int threads : {1, 2}) {
         tbb::task_arena arena(threads);
@@ -832,12 +832,12 @@ TEST(Bvh, SameWideTreeWhateverTheThreadCount) {
 // per triangle (the binary layout), the same builders do split such ranges.
 TEST(Bvh, SahChargedByBlocksKeepsABlockOfTrianglesTogether) {
     const Soup soup = randomSoup(3000, 61);
-    for (const BvhBuilder& kind : {bvhBuilder("sahbvh"), bvhBuilder("sweepbvh")}) {
+    for (const BuilderRecord& kind : {builderRecord("sahbvh"), builderRecord("sweepbvh")}) {
         SCOPED_TRACE(kind.name);
         for (int shift : {0, 2, 3}) {
             BvhBuildConfig config = defaultConfig();
-            config.sahBlockShift = shift;
-            const Bvh bvh = buildBvh(kind, config, soup.prims());
+            config.shared.sahBlockShift = shift;
+            const BinaryBvh bvh = buildBvh(kind, config, soup.prims());
             // Triangles below each node, children before parents (pairs follow their parent).
             std::vector<uint32_t> below(bvh.nodes.size(), 0);
             for (size_t i = bvh.nodes.size(); i-- > 0;) {
@@ -864,8 +864,8 @@ TEST(WideBvh, FourAndEightWideAgreeWithNaive) {
         SCOPED_TRACE(robust ? "robust" : "not robust");
         TraversalConfig traversal;
         traversal.robust = robust;
-        BvhAccelerator<WideBvh<4>> four(bvhBuilder("sahbvh"), defaultConfig(), traversal);
-        BvhAccelerator<WideBvh<8>> eight(bvhBuilder("sahbvh"), defaultConfig(), traversal);
+        BvhAccelerator<WideBvh<4>> four(builderRecord("sahbvh"), defaultConfig(), traversal);
+        BvhAccelerator<WideBvh<8>> eight(builderRecord("sahbvh"), defaultConfig(), traversal);
         four.build(soup.prims());
         const BuildStats stats = timedBuild(eight, soup.prims());
         EXPECT_STREQ(four.name(), "sahbvh4");
@@ -883,9 +883,9 @@ namespace bvhlab {
 namespace {
 
 // A split rule that breaks the hook's contract: it hands back an empty left half.
-class EmptyHalfBuilder : public TopDownBuilder {
+class EmptyHalfSplitRule : public BvhSplitRule {
 public:
-    using TopDownBuilder::TopDownBuilder;
+    using BvhSplitRule::BvhSplitRule;
 
 protected:
     std::optional<Split> trySplit(const BuildRange& range, bool) override {
@@ -905,9 +905,9 @@ TEST(Bvh, RecursionRefusesASplitWithAnEmptyHalf) {
         root.bounds.extend(Bounds3{{float(i), 0.0f, 0.0f}, {float(i) + 0.5f, 1.0f, 1.0f}});
         root.centroidBounds.extend(Vec3(float(i) + 0.25f, 0.5f, 0.5f));
     }
-    BvhBuildConfig config;
+    BuildConfig config;
     config.maxLeaf = 1;
-    EmptyHalfBuilder builder(config);
+    EmptyHalfSplitRule builder(config);
     EXPECT_THROW(builder.build(refs, root), std::logic_error);
 }
 
@@ -920,11 +920,11 @@ namespace {
 // chunks, ties broken by a total order on pairs, so the tree is the same at 1, 2 and all threads.
 TEST(Ploc, SameTreeWhateverTheThreadCount) {
     const Soup soup = randomSoup(60000, 71);
-    std::vector<Bvh> trees;
+    std::vector<BinaryBvh> trees;
     for (int threads : {1, 2, 0}) {
         BvhBuildConfig config = defaultConfig();
-        config.threads = threads;
-        trees.push_back(buildBvh(bvhBuilder("ploc"), config, soup.prims()));
+        config.shared.threads = threads;
+        trees.push_back(buildBvh(builderRecord("ploc"), config, soup.prims()));
     }
     for (size_t t = 1; t < trees.size(); ++t) {
         ASSERT_EQ(trees[t].nodes.size(), trees[0].nodes.size());
@@ -944,9 +944,9 @@ TEST(Ploc, ChainOfClustersIsRebuiltWithinTheDepthBound) {
         soup.add({{x, 0, 0}, {x * 1.2f, 0, 0}, {x, x * 0.2f, x * 0.2f}});
     }
     BvhBuildConfig config;
-    config.maxLeaf = 1;
-    config.sahTermination = false;
-    BvhAccelerator<Bvh> accel(bvhBuilder("ploc"), config);
+    config.shared.maxLeaf = 1;
+    config.shared.sahTermination = false;
+    BvhAccelerator<BinaryBvh> accel(builderRecord("ploc"), config);
     const TreeFacts facts = buildAndCheck(accel, soup);
     EXPECT_EQ(facts.leaves, soup.valid.size());
     EXPECT_LT(facts.maxDepth, kBvhMaxDepth);
@@ -959,9 +959,9 @@ TEST(Ploc, CoincidentTrianglesPairUp) {
     Soup soup;
     for (int i = 0; i < 1024; ++i) soup.add({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}});
     BvhBuildConfig config;
-    config.maxLeaf = 1;
-    config.sahTermination = false;
-    BvhAccelerator<Bvh> accel(bvhBuilder("ploc"), config);
+    config.shared.maxLeaf = 1;
+    config.shared.sahTermination = false;
+    BvhAccelerator<BinaryBvh> accel(builderRecord("ploc"), config);
     const TreeFacts facts = buildAndCheck(accel, soup);
     EXPECT_EQ(facts.maxDepth, 10);
 }
@@ -970,12 +970,12 @@ TEST(Ploc, CoincidentTrianglesPairUp) {
 // on a soup (within 15 %), and its leaves hold up to leafCap primitives.
 TEST(Ploc, SahNearTheBinnedBuild) {
     const Soup soup = randomSoup(20000, 73);
-    BvhAccelerator<Bvh> ploc(bvhBuilder("ploc"), defaultConfig()), sah(bvhBuilder("sahbvh"), defaultConfig());
+    BvhAccelerator<BinaryBvh> ploc(builderRecord("ploc"), defaultConfig()), sah(builderRecord("sahbvh"), defaultConfig());
     const double plocSah = timedBuild(ploc, soup.prims()).sah->cost, binnedSah = timedBuild(sah, soup.prims()).sah->cost;
     EXPECT_LT(plocSah, 1.15 * binnedSah);
     const TreeFacts facts = checkTree(ploc.bvh(), soup);
     EXPECT_GT(facts.maxLeaf, 2u);
-    EXPECT_LE(facts.maxLeaf, size_t(defaultConfig().leafCap));
+    EXPECT_LE(facts.maxLeaf, size_t(defaultConfig().shared.leafCap));
 }
 
 }  // namespace

@@ -18,8 +18,8 @@ namespace {
 const Triangle kUnit{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};  // area 0.5, box [0,1] x [0,1] x [0,0]
 
 // Root over two leaves of one triangle each: a at slot 0, b at slot 1.
-Bvh twoLeafTree(const Triangle& a, const Triangle& b) {
-    Bvh bvh;
+BinaryBvh twoLeafTree(const Triangle& a, const Triangle& b) {
+    BinaryBvh bvh;
     bvh.nodes.resize(4);
     bvh.nodes[0].setBox(unionOf(a.bounds(), b.bounds()));
     bvh.nodes[0].index = 2, bvh.nodes[0].count = 0;
@@ -42,7 +42,7 @@ TEST(EndPointOverlap, ClippedAreaOfKnownCases) {
 }
 
 TEST(EndPointOverlap, DisjointTrianglesOverlapNothing) {
-    const Bvh bvh = twoLeafTree(kUnit, {{5, 0, 0}, {6, 0, 0}, {5, 1, 0}});
+    const BinaryBvh bvh = twoLeafTree(kUnit, {{5, 0, 0}, {6, 0, 0}, {5, 1, 0}});
     EXPECT_EQ(endPointOverlap(bvh.nodes, bvh.leafTriangles, 1.0, 1.0, 1).value(), 0.0);
 }
 
@@ -50,7 +50,7 @@ TEST(EndPointOverlap, DisjointTrianglesOverlapNothing) {
 // and 0.125 of a in b's (x >= 0.5); the root holds both. EPO = (C_isect * 0.5) / (0.5 + 0.5).
 TEST(EndPointOverlap, TriangleCrossingASiblingBox) {
     const Triangle b{{0.5f, 0, 0}, {1.5f, 0, 0}, {0.5f, 1, 0}};
-    const Bvh bvh = twoLeafTree(kUnit, b);
+    const BinaryBvh bvh = twoLeafTree(kUnit, b);
     EXPECT_NEAR(endPointOverlap(bvh.nodes, bvh.leafTriangles, 1.0, 1.0, 1).value(), 0.5, 1e-12);
     EXPECT_NEAR(endPointOverlap(bvh.nodes, bvh.leafTriangles, 3.0, 2.0, 1).value(), 1.0, 1e-12);  // leaves cost C_isect
 }
@@ -69,7 +69,7 @@ std::vector<Triangle> randomSoup(size_t n, uint32_t seed, float size) {
 }
 
 // The definition, node by node: every triangle outside the node's leaf range clipped to its box.
-double bruteForceEpo(const Bvh& bvh, double cTraversal, double cIntersect) {
+double bruteForceEpo(const BinaryBvh& bvh, double cTraversal, double cIntersect) {
     struct Range {
         uint32_t first, end;
     };
@@ -91,9 +91,9 @@ TEST(EndPointOverlap, TreeWalkEqualsTheDefinitionAndIgnoresThreads) {
     const std::vector<Triangle> soup = randomSoup(600, 3, 2.0f);
     std::vector<uint32_t> valid(soup.size());
     for (uint32_t i = 0; i < valid.size(); ++i) valid[i] = i;
-    for (const BvhBuilder& kind : {bvhBuilder("tdbvh"), bvhBuilder("sahbvh"), bvhBuilder("ploc")}) {
+    for (const BuilderRecord& kind : {builderRecord("tdbvh"), builderRecord("sahbvh"), builderRecord("ploc")}) {
         SCOPED_TRACE(kind.name);
-        const Bvh bvh = buildBvh(kind, BvhBuildConfig{}, {soup, valid});
+        const BinaryBvh bvh = buildBvh(kind, BvhBuildConfig{}, {soup, valid});
         const double epo = endPointOverlap(bvh.nodes, bvh.leafTriangles, 1.0, 1.5, 1).value();
         EXPECT_NEAR(epo, bruteForceEpo(bvh, 1.0, 1.5), 1e-9 * epo);
         EXPECT_GT(epo, 0.0);
@@ -109,7 +109,7 @@ TEST(EndPointOverlap, SpatialMedianAboveSahOnASoup) {
     std::vector<uint32_t> valid(soup.size());
     for (uint32_t i = 0; i < valid.size(); ++i) valid[i] = i;
     const PrimitiveSet prims{soup, valid};
-    BvhAccelerator<Bvh> median(bvhBuilder("tdbvh"), {}), sah(bvhBuilder("sahbvh"), {});
+    BvhAccelerator<BinaryBvh> median(builderRecord("tdbvh"), {}), sah(builderRecord("sahbvh"), {});
     const BuildStats m = timedBuild(median, prims), s = timedBuild(sah, prims);
     ASSERT_TRUE(m.epo && s.epo);
     std::printf("[ NOTE     ] EPO spatial median %.3f, binned SAH %.3f\n", *m.epo, *s.epo);
@@ -122,7 +122,7 @@ TEST(EndPointOverlap, LeftOutWhereBoxesOverlapEverything) {
     const std::vector<Triangle> soup(100000, kUnit);
     std::vector<uint32_t> valid(soup.size());
     for (uint32_t i = 0; i < valid.size(); ++i) valid[i] = i;
-    const Bvh bvh = buildBvh(bvhBuilder("sahbvh"), BvhBuildConfig{}, {soup, valid});
+    const BinaryBvh bvh = buildBvh(builderRecord("sahbvh"), BvhBuildConfig{}, {soup, valid});
     EXPECT_FALSE(endPointOverlap(bvh.nodes, bvh.leafTriangles, 1.0, 1.0, 1).has_value());
 }
 
@@ -131,7 +131,7 @@ TEST(EndPointOverlap, ReportedUpToTheTriangleLimit) {
     std::vector<uint32_t> valid(soup.size());
     for (uint32_t i = 0; i < valid.size(); ++i) valid[i] = i;
     const PrimitiveSet prims{soup, valid};
-    BvhAccelerator<WideBvh<8>> within(bvhBuilder("ploc"), {}, {}, {3000}), above(bvhBuilder("ploc"), {}, {}, {2999});
+    BvhAccelerator<WideBvh<8>> within(builderRecord("ploc"), {}, {}, {3000}), above(builderRecord("ploc"), {}, {}, {2999});
     const BuildStats in = timedBuild(within, prims), out = timedBuild(above, prims);
     ASSERT_TRUE(in.epo.has_value());
     EXPECT_GT(*in.epo, 0.0);

@@ -30,12 +30,12 @@ TEST(InsertionOptimizer, LowersTheSahAndKeepsTheInvariants) {
     // How far below the builder's SAH the optimised tree must at least be. On uniform random
     // triangles the spatial median is already close to the SAH builders (-5.5 % measured); on
     // the scenes of docs/builders.md it drops far more.
-    const std::pair<BvhBuilder, double> kinds[] = {
-        {bvhBuilder("tdbvh"), 0.97}, {bvhBuilder("sahbvh"), 1.0}, {bvhBuilder("sweepbvh"), 1.0}, {bvhBuilder("ploc"), 1.0}};
+    const std::pair<BuilderRecord, double> kinds[] = {
+        {builderRecord("tdbvh"), 0.97}, {builderRecord("sahbvh"), 1.0}, {builderRecord("sweepbvh"), 1.0}, {builderRecord("ploc"), 1.0}};
     for (const auto& [kind, bound] : kinds) {
         SCOPED_TRACE(kind.name);
         const double before = sahOf(buildBvh(kind, BvhBuildConfig{}, soup.prims()));
-        const Bvh optimised = buildBvh(kind, insertionConfig(), soup.prims());
+        const BinaryBvh optimised = buildBvh(kind, insertionConfig(), soup.prims());
         test::checkTree(optimised, soup);
         EXPECT_LT(sahOf(optimised), bound * before);
     }
@@ -45,14 +45,14 @@ TEST(InsertionOptimizer, LowersTheSahAndKeepsTheInvariants) {
 // not rise either. Leaves charged by blocks (the wide layouts) change nothing for the pass.
 TEST(InsertionOptimizer, NeverRaisesTheSah) {
     const Soup soup = randomSoup(3000, 5, 10.0f, 3.0f);
-    for (const BvhBuilder& kind : {bvhBuilder("tdbvh"), bvhBuilder("sahbvh"), bvhBuilder("sbvh"), bvhBuilder("ploc")}) {
+    for (const BuilderRecord& kind : {builderRecord("tdbvh"), builderRecord("sahbvh"), builderRecord("sbvh"), builderRecord("ploc")}) {
         for (int shift : {0, 3}) {
             SCOPED_TRACE(kind.name + " block shift " + std::to_string(shift));
             BvhBuildConfig plain;
-            plain.sahBlockShift = shift;
+            plain.shared.sahBlockShift = shift;
             BvhBuildConfig optimised = insertionConfig();
-            optimised.sahBlockShift = shift;
-            optimised.optimizeIterations = 1;
+            optimised.shared.sahBlockShift = shift;
+            optimised.insertion.iterations = 1;
             EXPECT_LE(sahOf(buildBvh(kind, optimised, soup.prims())), sahOf(buildBvh(kind, plain, soup.prims())));
         }
     }
@@ -60,12 +60,12 @@ TEST(InsertionOptimizer, NeverRaisesTheSah) {
 
 TEST(InsertionOptimizer, SameTreeWhateverTheThreadCount) {
     const Soup soup = randomSoup(20000, 7);
-    for (const BvhBuilder& kind : {bvhBuilder("sahbvh"), bvhBuilder("ploc")}) {
+    for (const BuilderRecord& kind : {builderRecord("sahbvh"), builderRecord("ploc")}) {
         SCOPED_TRACE(kind.name);
-        std::vector<Bvh> trees;
+        std::vector<BinaryBvh> trees;
         for (int threads : {1, 2}) {
             BvhBuildConfig config = insertionConfig();
-            config.threads = threads;
+            config.shared.threads = threads;
             trees.push_back(buildBvh(kind, config, soup.prims()));
         }
         ASSERT_EQ(trees[1].nodes.size(), trees[0].nodes.size());
@@ -76,10 +76,10 @@ TEST(InsertionOptimizer, SameTreeWhateverTheThreadCount) {
 
 TEST(InsertionOptimizer, AgreesWithNaiveOnRandomRays) {
     const Soup soup = randomSoup(3000, 11);
-    BvhAccelerator<Bvh> binary(bvhBuilder("tdbvh"), insertionConfig());
+    BvhAccelerator<BinaryBvh> binary(builderRecord("tdbvh"), insertionConfig());
     binary.build(soup.prims());
     test::expectAgreesWithNaive(binary, soup, 2000, 10.0f, 13);
-    BvhAccelerator<WideBvh<8>> wide(bvhBuilder("sahbvh"), insertionConfig());
+    BvhAccelerator<WideBvh<8>> wide(builderRecord("sahbvh"), insertionConfig());
     wide.build(soup.prims());
     test::expectAgreesWithNaive(wide, soup, 2000, 10.0f, 17);
 }
@@ -96,24 +96,24 @@ TEST(InsertionOptimizer, StaysWithinTheDepthBound) {
     }
     for (const Soup* soup : {&coincident, &chain}) {
         BvhBuildConfig config = insertionConfig();
-        config.maxLeaf = 1;
-        config.sahTermination = false;
-        const Bvh bvh = buildBvh(bvhBuilder("tdbvh"), config, soup->prims());
+        config.shared.maxLeaf = 1;
+        config.shared.sahTermination = false;
+        const BinaryBvh bvh = buildBvh(builderRecord("tdbvh"), config, soup->prims());
         EXPECT_LT(test::checkTree(bvh, *soup).maxDepth, kBvhMaxDepth);
         config.optimize = BvhOptimize::None;
-        EXPECT_LE(sahOf(bvh), sahOf(buildBvh(bvhBuilder("tdbvh"), config, soup->prims())));
+        EXPECT_LE(sahOf(bvh), sahOf(buildBvh(builderRecord("tdbvh"), config, soup->prims())));
     }
 }
 
 TEST(InsertionOptimizer, TinyScenes) {
     for (size_t n : {0, 1, 2, 3}) {
         const Soup soup = randomSoup(n, 19 + uint32_t(n));
-        for (const BvhBuilder& kind : {bvhBuilder("tdbvh"), bvhBuilder("sahbvh"), bvhBuilder("sbvh"), bvhBuilder("ploc")}) {
+        for (const BuilderRecord& kind : {builderRecord("tdbvh"), builderRecord("sahbvh"), builderRecord("sbvh"), builderRecord("ploc")}) {
             SCOPED_TRACE(kind.name + " with " + std::to_string(n) + " triangles");
             BvhBuildConfig config = insertionConfig();
-            config.maxLeaf = 1;
-            config.sahTermination = false;
-            const Bvh bvh = buildBvh(kind, config, soup.prims());
+            config.shared.maxLeaf = 1;
+            config.shared.sahTermination = false;
+            const BinaryBvh bvh = buildBvh(kind, config, soup.prims());
             // sbvh may split a reference, which the walk does not accept: it only must not crash.
             if (kind.name != "sbvh") {
                 EXPECT_EQ(test::checkTree(bvh, soup).leaves, n);

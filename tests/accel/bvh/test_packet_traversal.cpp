@@ -195,7 +195,7 @@ void expectPacketsAsSingle(const Soup& soup, Match axisParallel = Match::Bits) {
             TraversalConfig traversal;
             traversal.robust = robust;
             traversal.packetFallback = fallback;
-            BvhAccelerator<Layout> accel(bvhBuilder("sahbvh"), BvhBuildConfig{}, traversal);
+            BvhAccelerator<Layout> accel(builderRecord("sahbvh"), BvhBuildConfig{}, traversal);
             accel.build(soup.prims());
             const std::vector<Ray> primary = primaryRays(Vec3(3, 14, 22), 64, 48);
             expectBatchAsSingle(accel, primary, "primary");
@@ -218,12 +218,12 @@ TEST(PacketTraversal, TiesOnDuplicatesAnswerAsSingleRays) {
 
 // The binary layout keeps its single loop, and the tie rule is the same there: of four
 // duplicates the first in leaf order, whichever leaf is visited first.
-TEST(PacketTraversal, BinaryBatchAnswersAsSingleRays) { expectPacketsAsSingle<Bvh>(duplicatesScene()); }
+TEST(PacketTraversal, BinaryBatchAnswersAsSingleRays) { expectPacketsAsSingle<BinaryBvh>(duplicatesScene()); }
 
 // Packets of 16 (AVX-512's width; here whatever backend Floats<16> is, Scalar<16> on AVX2
 // machines) answer as single rays too: tracePacket for every width the batch entry may pick.
 TEST(PacketTraversal, SixteenRayPacketsAnswerAsSingleRays) {
-    BvhAccelerator<WideBvh<8>> accel(bvhBuilder("sahbvh"), BvhBuildConfig{});
+    BvhAccelerator<WideBvh<8>> accel(builderRecord("sahbvh"), BvhBuildConfig{});
     accel.build(randomScene(3).prims());
     const WideBvh<8>& tree = accel.bvh();
     std::vector<Ray> rays;

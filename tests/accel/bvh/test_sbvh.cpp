@@ -63,7 +63,7 @@ bool contains(const Bounds3& box, const Vec3& p) { return contains(box, Bounds3(
 // Checks a tree with split references and returns the number of references. Each leaf's box
 // is the union of its references' boxes, each inside its triangle's box: so the leaf box lies
 // inside the union of its triangles' boxes and meets each of them.
-size_t checkSbvh(const Bvh& bvh, const Soup& soup, float growth) {
+size_t checkSbvh(const BinaryBvh& bvh, const Soup& soup, float growth) {
     const size_t n = soup.valid.size(), refs = bvh.primIndices.size();
     EXPECT_GE(refs, n);
     EXPECT_LE(refs, n + size_t(double(growth) * double(n))) << "more references than the budget allows";
@@ -114,9 +114,9 @@ TEST(Sbvh, InvariantsWithSplitReferences) {
             for (bool allAxes : {false, true}) {
                 SCOPED_TRACE(std::string(simd ? "simd" : "scalar") + (allAxes ? " all axes" : ""));
                 BvhBuildConfig config;
-                config.simd = simd;
-                config.allAxes = allAxes;
-                const size_t refs = checkSbvh(buildBvh(bvhBuilder("sbvh"), config, soup.prims()), soup, config.sbvhGrowth);
+                config.shared.simd = simd;
+                config.binnedSah.allAxes = allAxes;
+                const size_t refs = checkSbvh(buildBvh(builderRecord("sbvh"), config, soup.prims()), soup, config.sbvh.growth);
                 EXPECT_GT(refs, soup.valid.size()) << "no spatial split";
             }
         }
@@ -126,7 +126,7 @@ TEST(Sbvh, InvariantsWithSplitReferences) {
 // BuildStats: primitives are the distinct triangles; the tree's counts are of references.
 TEST(Sbvh, StatsCountPrimitivesAndReferences) {
     const Soup soup = diagonalSlivers(2000, 3);
-    BvhAccelerator<Bvh> accel(bvhBuilder("sbvh"), BvhBuildConfig{});
+    BvhAccelerator<BinaryBvh> accel(builderRecord("sbvh"), BvhBuildConfig{});
     const BuildStats stats = timedBuild(accel, soup.prims());
     EXPECT_EQ(stats.primitives, soup.valid.size());
     EXPECT_NEAR(stats.avgLeafPrimitives.value() * double(stats.leaves.value()), double(accel.bvh().primIndices.size()), 1e-6);
@@ -139,9 +139,9 @@ TEST(Sbvh, StatsCountPrimitivesAndReferences) {
 TEST(Sbvh, SpatialSplitsLowerTheSahOnLongThinDiagonalTriangles) {
     const Soup soup = mixedSoup(20000, 4);
     const BvhBuildConfig config;
-    const Bvh sbvh = buildBvh(bvhBuilder("sbvh"), config, soup.prims());
-    const Bvh sahbvh = buildBvh(bvhBuilder("sahbvh"), config, soup.prims());
-    checkSbvh(sbvh, soup, config.sbvhGrowth);
+    const BinaryBvh sbvh = buildBvh(builderRecord("sbvh"), config, soup.prims());
+    const BinaryBvh sahbvh = buildBvh(builderRecord("sahbvh"), config, soup.prims());
+    checkSbvh(sbvh, soup, config.sbvh.growth);
     EXPECT_GT(sbvh.primIndices.size(), soup.valid.size() * 11 / 10) << "few spatial splits";
     EXPECT_LT(sahOf(sbvh), 0.7 * sahOf(sahbvh));
 }
@@ -151,11 +151,11 @@ TEST(Sbvh, SpatialSplitsLowerTheSahOnLongThinDiagonalTriangles) {
 TEST(Sbvh, WithoutSpatialSplitsItIsSahbvh) {
     const Soup soup = mixedSoup(20000, 5);
     BvhBuildConfig noBudget, alphaOne;
-    noBudget.sbvhGrowth = 0.0f;
-    alphaOne.sbvhAlpha = 1.0f;
-    const Bvh sahbvh = buildBvh(bvhBuilder("sahbvh"), BvhBuildConfig{}, soup.prims());
+    noBudget.sbvh.growth = 0.0f;
+    alphaOne.sbvh.alpha = 1.0f;
+    const BinaryBvh sahbvh = buildBvh(builderRecord("sahbvh"), BvhBuildConfig{}, soup.prims());
     for (const BvhBuildConfig& config : {noBudget, alphaOne}) {
-        const Bvh sbvh = buildBvh(bvhBuilder("sbvh"), config, soup.prims());
+        const BinaryBvh sbvh = buildBvh(builderRecord("sbvh"), config, soup.prims());
         EXPECT_EQ(checkSbvh(sbvh, soup, 0.0f), soup.valid.size());
         ASSERT_EQ(sbvh.nodes.size(), sahbvh.nodes.size());
         EXPECT_EQ(std::memcmp(sbvh.nodes.data(), sahbvh.nodes.data(), sbvh.nodes.size() * sizeof(BvhNode)), 0);
@@ -164,11 +164,11 @@ TEST(Sbvh, WithoutSpatialSplitsItIsSahbvh) {
 
 TEST(Sbvh, SameTreeWhateverTheThreadCount) {
     const Soup soup = mixedSoup(40000, 6);
-    std::vector<Bvh> trees;
+    std::vector<BinaryBvh> trees;
     for (int threads : {1, 2}) {
         BvhBuildConfig config;
-        config.threads = threads;
-        trees.push_back(buildBvh(bvhBuilder("sbvh"), config, soup.prims()));
+        config.shared.threads = threads;
+        trees.push_back(buildBvh(builderRecord("sbvh"), config, soup.prims()));
     }
     ASSERT_EQ(trees[1].nodes.size(), trees[0].nodes.size());
     EXPECT_EQ(std::memcmp(trees[1].nodes.data(), trees[0].nodes.data(), trees[0].nodes.size() * sizeof(BvhNode)), 0);
@@ -230,8 +230,8 @@ TEST(Sbvh, QueriesAgreeWithBruteForceOnSplitReferences) {
     const Soup soup = mixedSoup(3000, 8);
     NaiveAccelerator naive;
     naive.build(soup.prims());
-    BvhAccelerator<Bvh> binary(bvhBuilder("sbvh"), BvhBuildConfig{});
-    BvhAccelerator<WideBvh<8>> wide(bvhBuilder("sbvh"), BvhBuildConfig{});
+    BvhAccelerator<BinaryBvh> binary(builderRecord("sbvh"), BvhBuildConfig{});
+    BvhAccelerator<WideBvh<8>> wide(builderRecord("sbvh"), BvhBuildConfig{});
     binary.build(soup.prims());
     wide.build(soup.prims());
     for (const Accelerator* accel : {static_cast<const Accelerator*>(&binary), static_cast<const Accelerator*>(&wide)}) {

@@ -114,7 +114,7 @@ void expectTimedFormAnswersAlike(const Accelerator& accel, const std::vector<Ray
 
 template <typename Layout>
 Answers answersOf(Isa isa, bool robust, const test::Soup& soup, const std::vector<Ray>& rays) {
-    BvhAccelerator<Layout> accel(bvhBuilder("sahbvh"), BvhBuildConfig{}, TraversalConfig{.robust = robust, .isa = isa});
+    BvhAccelerator<Layout> accel(builderRecord("sahbvh"), BvhBuildConfig{}, TraversalConfig{.robust = robust, .isa = isa});
     accel.build(soup.prims());
     Answers a;
     a.hits.resize(rays.size());
@@ -168,7 +168,7 @@ void expectKernelsAgree(const char* layout) {
 }
 
 TEST(TraversalKernels, EveryKernelTheCpuRunsAnswersAsTheScalarOne) {
-    expectKernelsAgree<Bvh>("binary");
+    expectKernelsAgree<BinaryBvh>("binary");
     expectKernelsAgree<WideBvh<4>>("wide4");
     expectKernelsAgree<WideBvh<8>>("wide8");
 }
@@ -188,7 +188,7 @@ TEST(TraversalKernels, BvhIsaPicksTheKernelsOrSaysWhatTheCpuLacks) {
     for (Isa isa : kIsas) {
         Env env(programKeys());
         env.set(keys::BVH::isa, isaName(isa), "test");
-        EXPECT_EQ(traversalConfigFromEnv(env).isa, isa);
+        EXPECT_EQ(bvhSettingsFromEnv(env).traversal.isa, isa);
         if (cpuRuns(isa)) {
             EXPECT_NO_THROW((void)createAccelerator("sahbvh8", env)) << isaName(isa);
             continue;
@@ -204,7 +204,7 @@ TEST(TraversalKernels, BvhIsaPicksTheKernelsOrSaysWhatTheCpuLacks) {
     }
     Env env(programKeys());
     EXPECT_THROW(env.set(keys::BVH::isa, "sse9", "test"), InputError);
-    EXPECT_EQ(traversalConfigFromEnv(env).isa, Isa::Auto);
+    EXPECT_EQ(bvhSettingsFromEnv(env).traversal.isa, Isa::Auto);
 }
 
 }  // namespace

@@ -1,11 +1,11 @@
-// The traversal skeleton of the binary layout (bvh.h, and the quadric tree of
+// The traversal skeleton of the binary layout (binary_bvh.h, and the quadric tree of
 // quadric_leaves.h: the leaf test is LeafTester's), for either query: per inner node the two
 // child boxes are tested one after the other (box_test.h), the nearer child hit is visited
 // first (by the entry distances), the other pushed.
 #pragma once
 
 #include "accel/bvh/simd/kernel_namespace.h"
-#include "accel/bvh/layout/bvh.h"
+#include "accel/bvh/layout/binary_bvh.h"
 #include "accel/bvh/traverse/box_test.h"
 #include "accel/bvh/traverse/traversal.h"
 

@@ -1,4 +1,4 @@
-#include "accel/bvh/layout/bvh.h"
+#include "accel/bvh/layout/binary_bvh.h"
 
 #include <algorithm>
 

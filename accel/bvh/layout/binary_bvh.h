@@ -1,4 +1,5 @@
-// A finished BVH: what every builder produces and the one traversal reads. The statistics of a
+// The binary BVH: what every builder produces, the layout the binary traversal reads and the wide
+// layouts are collapsed from. The statistics of a
 // tree (node counts, depth, SAH cost, memory) are computed here, from the tree alone, so that
 // every builder is measured by the same code.
 #pragma once
@@ -15,10 +16,10 @@ namespace bvhlab {
 // pair starts at an even index, i.e. on a cache line of its own. So nodes.size() is one more
 // than the node count (0 when there is nothing to build over). Depth-first order, left
 // subtree first. Leaf l holds leafTriangles[l.index .. l.index + l.count).
-using Bvh = NodeTree<BvhNode>;
+using BinaryBvh = NodeTree<BvhNode>;
 
 // Fills the tree fields of BuildStats (nodes, leaves, leaf sizes and their histogram, depth, SAH;
-// not the build time, the bytes nor EPO: end_point_overlap.h) from the nodes of a tree laid out as Bvh. The SAH cost, the same formula
+// not the build time, the bytes nor EPO: end_point_overlap.h) from the nodes of a tree laid out as BinaryBvh. The SAH cost, the same formula
 // for every builder, normalised by the root area:
 //   C_trav * sum_inner A(n)/A(root) + C_isect * sum_leaves A(l)/A(root) * N(l).
 void fillTreeStats(std::span<const BvhNode> nodes, double cTraversal, double cIntersect, BuildStats& stats);
