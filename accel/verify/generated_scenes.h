@@ -22,8 +22,9 @@ Scene makeTerrainScene(int cells, uint32_t seed);  // cells x cells height field
 // triangles scattered in the air.
 Scene makeCostScene();
 // `groups` random triangles, each `copies` times over in turns: as it is, again, with its winding
-// reversed, with its vertices rotated, and slid within its plane to overlap itself.
-Scene makeCoincidentScene(size_t groups, size_t copies, uint64_t seed);
+// reversed, with its vertices rotated; and, if `slid`, once more slid within its plane to overlap
+// the others.
+Scene makeCoincidentScene(size_t groups, size_t copies, bool slid, uint64_t seed);
 // A soup with degenerate triangles (points, exact segments, repeated vertices, NaN and infinite
 // vertices) mixed in at random places.
 Scene makeDegenerateMixScene(size_t count, uint32_t seed);
