@@ -27,7 +27,6 @@ const std::map<std::string, std::vector<std::string>> kMayInclude = {
     {"framework/render", {"framework/core", "framework/config", "framework/scene"}},
     {"framework/io", {"framework/core", "framework/config", "framework/scene", "framework/render"}},
     {"framework/report", {"framework/core", "framework/config", "framework/scene", "framework/render"}},
-    {"framework/robustness", {"framework/core", "framework/config", "framework/scene", "framework/render"}},
     {"accel/naive", {"framework/core"}},
     {"accel/embree", {"framework/core", "framework/config"}},
     {"accel/grid", {}},  // a plugin: <bvhlab/...> only
@@ -40,14 +39,17 @@ const std::map<std::string, std::vector<std::string>> kMayInclude = {
       "accel/bvh/traverse"}},
     {"accel/plugins", {"framework/core", "framework/config", "accel/bvh/builders"}},
     {"accel", {"framework/core", "framework/config", "accel/naive", "accel/embree", "accel/bvh", "accel/plugins"}},
+    // Verification reaches the structures it compares with through the registry alone.
+    {"accel/verify", {"framework/core", "framework/config", "framework/scene", "framework/render", "accel"}},
 };
 
-// apps/ sees all of framework/ and, of accel/, only the registry and the plugin loader: a
-// structure is reached by its name and the Accelerator interface, a plugin file opened by the
-// loader and what it adds registered by name.
+// apps/ sees all of framework/ and, of accel/, the registry, the plugin loader and the
+// verification library: a structure is reached by its name and the Accelerator interface, a
+// plugin file opened by the loader and what it adds registered by name, and `bvhlab check` and
+// `bvhlab stress` are commands over accel/verify.
 bool appMayInclude(const std::string& path) {
-    return path.starts_with("framework/") || path.starts_with("apps/") || path == "accel/registry.h" ||
-           path == "accel/plugins/plugin_loader.h";
+    return path.starts_with("framework/") || path.starts_with("apps/") || path.starts_with("accel/verify/") ||
+           path == "accel/registry.h" || path == "accel/plugins/plugin_loader.h";
 }
 
 // The front ends that share the runtime and the folders of apps/ each may include besides its
@@ -127,6 +129,20 @@ TEST(Architecture, TheRuntimeAndThePythonModuleDoNotIncludeCli11) {
                 EXPECT_FALSE(target.starts_with("CLI/")) << fs::relative(file, source).string() << " includes <" << target << ">";
         }
     EXPECT_GT(files, 20u);
+}
+
+// The tests of framework/ and accel/ stand below the program as their sources do: they reach
+// the keys, the reference structures and the checks through accel/verify, never through apps/.
+TEST(Architecture, TestsOfFrameworkAndAccelIncludeNoAppHeader) {
+    const fs::path source = bvhlab::test::sourceTree();
+    size_t checked = 0;
+    for (const char* top : {"tests/framework", "tests/accel"})
+        for (const fs::path& file : sourcesUnder(source / top)) {
+            ++checked;
+            for (const std::string& target : includes(file, true))
+                EXPECT_FALSE(target.starts_with("apps/")) << fs::relative(file, source).generic_string() << " includes " << target;
+        }
+    EXPECT_GT(checked, 30u);
 }
 
 TEST(Architecture, FrameworkHasNoSourceAtItsTop) {

@@ -1,11 +1,12 @@
-// `bvhlab check --accel NAME`: the conformance suite (apps/check/conformance.h) for one
+// `bvhlab check --accel NAME`: the conformance suite (accel/verify/conformance.h) for one
 // accelerator, each check in a child process (apps/check/check_process.h) unless --in-process.
 // One line per check on stdout (PASS/WARN/FAIL/SKIP, counts, time) and the failures' rays under
 // it; exit 0 when every check passes (a warning included), 1 when one fails (a crash or an
 // exception included), 2 on bad input (an unknown accelerator or check, a bad env file or -D).
 #include "accel/registry.h"
+#include "accel/verify/conformance.h"
 #include "apps/check/check_process.h"
-#include "apps/check/conformance.h"
+#include "accel/verify/conformance.h"
 #include "apps/cli/command_line.h"
 #include "apps/cli/commands.h"
 #include "apps/runtime/accel_config.h"
@@ -32,7 +33,7 @@ struct CheckCommandOptions {
     check::ChildCheck child;
 };
 
-std::string resultLine(const check::CheckResult& r) {
+std::string resultLine(const verify::CheckResult& r) {
     const char* verdict = r.skipped ? "SKIP" : !r.passed() ? "FAIL" : r.warning ? "WARN" : "PASS";
     std::string line = fmt::format("{} {:<21} {:>3} scenes {:>8} {:<6} {:>6} failures {:>7.1f} s", verdict, r.check,
                                    r.scenes, r.cases, r.unit, r.failures, r.seconds);
@@ -42,19 +43,19 @@ std::string resultLine(const check::CheckResult& r) {
 
 // Runs a check here, its progress on stderr. A check that throws (a plugin's exception, which
 // the guard names) fails with the message as its example.
-check::CheckResult runCheckHere(const std::string& name, const check::Subject& subject) {
+verify::CheckResult runCheckHere(const std::string& name, const verify::Subject& subject) {
     Progress progress;
     progress.phase(fmt::format("check {}: {}", subject.name, name));
-    check::CheckOptions options;
+    verify::CheckOptions options;
     uint64_t lastDone = 0;
     options.progress = [&](uint64_t done, uint64_t /*total*/) {
         if (done > lastDone) progress.advance(done - lastDone);
         lastDone = done;
     };
     try {
-        return check::runCheck(name, subject, options);
+        return verify::runCheck(name, subject, options);
     } catch (const std::exception& e) {
-        check::CheckResult failed;
+        verify::CheckResult failed;
         failed.check = name;
         failed.failures = 1;
         failed.note = "threw";
@@ -74,11 +75,11 @@ int runChecks(CheckCommandOptions options) {
     checkAccelConfigs(configs, base);  // an unknown name or key fails before any work
     const Env env = accelConfigEnv(config, base);
     createAccelerator(config.name, env);
-    std::vector<std::string> names = options.checks.empty() ? check::checkNames() : splitCommaList(options.checks);
-    if (names.empty()) throw InputError(fmt::format("--checks: none given (known: {})", fmt::join(check::checkNames(), ", ")));
-    for (const std::string& name : names) check::findCheck(name);
+    std::vector<std::string> names = options.checks.empty() ? verify::checkNames() : splitCommaList(options.checks);
+    if (names.empty()) throw InputError(fmt::format("--checks: none given (known: {})", fmt::join(verify::checkNames(), ", ")));
+    for (const std::string& name : names) verify::findCheck(name);
     // Named as registered: the checks look up what the structure promises by name.
-    const check::Subject subject{config.name, [&] { return createAccelerator(config.name, env); }};
+    const verify::Subject subject{config.name, [&] { return createAccelerator(config.name, env); }};
     if (options.child.isChild()) {
         options.child.reportFatalSignals();
         options.child.writeResult(runCheckHere(options.child.check, subject));
@@ -90,7 +91,7 @@ int runChecks(CheckCommandOptions options) {
     std::vector<std::string> warned;
     nlohmann::json results = nlohmann::json::array();
     for (const std::string& name : names) {
-        const check::CheckResult r = options.inProcess ? runCheckHere(name, subject) : check::runCheckInChild(name);
+        const verify::CheckResult r = options.inProcess ? runCheckHere(name, subject) : check::runCheckInChild(name);
         fmt::print("{}\n", resultLine(r));
         for (const std::string& e : r.examples) fmt::print("    {}\n", e);
         std::fflush(stdout);
@@ -124,7 +125,7 @@ void addCheckCommand(CLI::App& app) {
                         "the accelerator to check, NAME or NAME:Key=value:... (`bvhlab keys` lists them)")
         ->required();
     command->add_option("--checks", options->checks,
-                        fmt::format("comma-separated checks to run (default: all of {})", fmt::join(check::checkNames(), ",")));
+                        fmt::format("comma-separated checks to run (default: all of {})", fmt::join(verify::checkNames(), ",")));
     command->add_option("--json", options->json, "write the results as JSON to this file");
     command->add_flag("--in-process", options->inProcess,
                       "run the checks in this process, not each in a child process: a crash ends the run "

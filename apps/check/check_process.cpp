@@ -62,9 +62,9 @@ std::string readAndRemove(const std::filesystem::path& file) {
 
 void ChildCheck::reportFatalSignals() const { reportFatalSignalsTo(resultFile); }
 
-void ChildCheck::writeResult(const CheckResult& result) const { writeFileAtomically(resultFile, toJson(result).dump() + "\n"); }
+void ChildCheck::writeResult(const verify::CheckResult& result) const { writeFileAtomically(resultFile, toJson(result).dump() + "\n"); }
 
-CheckResult runCheckInChild(const std::string& name) {
+verify::CheckResult runCheckInChild(const std::string& name) {
     const std::filesystem::path resultFile =
         std::filesystem::temp_directory_path() / fmt::format("bvhlab-check-{}-{}.json", ::getpid(), name);
     std::vector<std::string> words = ownCommandLine();
@@ -76,7 +76,7 @@ CheckResult runCheckInChild(const std::string& name) {
         const nlohmann::json json = nlohmann::json::parse(text, nullptr, false);
         if (!json.is_discarded()) return checkResultFromJson(json);
     }
-    CheckResult failed;
+    verify::CheckResult failed;
     failed.check = name;
     failed.failures = 1;
     failed.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -94,14 +94,14 @@ CheckResult runCheckInChild(const std::string& name) {
     return failed;
 }
 
-nlohmann::json toJson(const CheckResult& r) {
+nlohmann::json toJson(const verify::CheckResult& r) {
     return {{"check", r.check},   {"passed", r.passed()}, {"skipped", r.skipped},   {"warning", r.warning},
             {"scenes", r.scenes}, {"cases", r.cases},     {"unit", r.unit},         {"failures", r.failures},
             {"seconds", r.seconds}, {"note", r.note},     {"examples", r.examples}};
 }
 
-CheckResult checkResultFromJson(const nlohmann::json& json) {
-    CheckResult r;
+verify::CheckResult checkResultFromJson(const nlohmann::json& json) {
+    verify::CheckResult r;
     r.check = json.at("check");
     r.unit = json.at("unit");
     r.scenes = json.at("scenes");

@@ -5,7 +5,7 @@
 // where its fatal-signal report goes too (framework/core/fatal_signal_report.h).
 #pragma once
 
-#include "apps/check/conformance.h"
+#include "accel/verify/conformance.h"
 
 #include <nlohmann/json.hpp>
 
@@ -21,15 +21,15 @@ struct ChildCheck {
     bool isChild() const { return !check.empty(); }
     // From now on a fatal signal is reported in the result file. Throws InputError.
     void reportFatalSignals() const;
-    void writeResult(const CheckResult& result) const;
+    void writeResult(const verify::CheckResult& result) const;
 };
 
 // Runs check `name` in a child process and returns its result; a child that dies of a signal
 // or ends without a result fails the check, its examples saying what the child reported.
-CheckResult runCheckInChild(const std::string& name);
+verify::CheckResult runCheckInChild(const std::string& name);
 
 // A check's result as `--json` writes it, and back.
-nlohmann::json toJson(const CheckResult& result);
-CheckResult checkResultFromJson(const nlohmann::json& json);
+nlohmann::json toJson(const verify::CheckResult& result);
+verify::CheckResult checkResultFromJson(const nlohmann::json& json);
 
 }  // namespace bvhlab::check

@@ -4,10 +4,11 @@
 // ones (bit for bit for ours; Embree's stream kernels round differently from rtcIntersect1, so its
 // batch is held to hitsAgree, docs/accuracy.md), count the same (packets: the same queries) and
 // add up their per-ray costs is
-// the conformance suite's batch check (apps/check/conformance.h, tests/accel/test_conformance.cpp).
+// the conformance suite's batch check (accel/verify/conformance.h, tests/accel/verify/test_conformance.cpp).
 #include "accel/registry.h"
-#include "apps/check/conformance.h"
-#include "apps/runtime/program_keys.h"
+#include "accel/verify/conformance.h"
+#include "accel/verify/generated_scenes.h"
+#include "accel/verify/verify_keys.h"
 #include "framework/render/camera.h"
 #include "framework/render/renderer.h"
 #include "framework/scene/procedural.h"
@@ -18,7 +19,7 @@
 namespace bvhlab {
 namespace {
 
-using check::sameCounters;
+using verify::sameCounters;
 
 // An accelerator seen through its single-ray calls only: the interface's default batch loop.
 class SingleRayCalls final : public Accelerator {
@@ -39,7 +40,7 @@ private:
 
 class BatchQueries : public testing::TestWithParam<std::string> {
 protected:
-    BatchQueries() : env_(programKeys()) {}
+    BatchQueries() : env_(verify::verifyKeys()) {}
     std::unique_ptr<Accelerator> built(const Scene& scene) {
         auto accel = createAccelerator(GetParam(), env_);
         accel->build(scene.primitives());
@@ -50,7 +51,7 @@ protected:
 };
 
 TEST_P(BatchQueries, RenderAsThroughTheSingleRayCalls) {
-    const Scene scene = check::makeBatchScene();
+    const Scene scene = verify::makeBatchScene();
     const auto accel = built(scene);
     const SingleRayCalls single(*accel);
     CameraSpec spec{Vec3(0, 4, 12), Vec3(0), Vec3(0, 1, 0), 60.0f, 48, 40};
@@ -63,12 +64,12 @@ TEST_P(BatchQueries, RenderAsThroughTheSingleRayCalls) {
     const RenderStats a = render(scene, *accel, Camera(spec), settings, viaBatch);
     const RenderStats b = render(scene, single, Camera(spec), settings, viaSingle);
     // Packets (the wide layouts) count each ray's work in the packet's visit order.
-    const bool packets = check::batchTracesPackets(GetParam());
-    const auto same = packets ? check::sameQueries : sameCounters;
+    const bool packets = verify::batchTracesPackets(GetParam());
+    const auto same = packets ? verify::sameQueries : sameCounters;
     EXPECT_TRUE(same(a.primary.counters, b.primary.counters));
     EXPECT_TRUE(same(a.shadow.counters, b.shadow.counters));
     EXPECT_GT(a.shadow.counters.queries, 0u);
-    if (!check::batchIsBitExact(GetParam())) {
+    if (!verify::batchIsBitExact(GetParam())) {
         // Rounding apart, the same picture: a hit found at a t a few ulps off shades the same.
         size_t differ = 0;
         for (size_t p = 0; p < viaBatch.color.size(); ++p)

@@ -1,11 +1,12 @@
 // Scenes that mix triangles, spheres and cones (NFF's native primitives): the counters by kind,
 // and rays leaving a quadric. Every registered accelerator's closest and any hits on them against
 // a double-precision brute force are the conformance suite's mixed-primitives check
-// (apps/check/conformance.h, tests/accel/test_conformance.cpp).
+// (accel/verify/conformance.h, tests/accel/verify/test_conformance.cpp).
 #include "accel/naive/naive_accelerator.h"
 #include "accel/registry.h"
-#include "apps/check/conformance.h"
-#include "apps/runtime/program_keys.h"
+#include "accel/verify/conformance.h"
+#include "accel/verify/generated_scenes.h"
+#include "accel/verify/verify_keys.h"
 #include "framework/core/timed_build.h"
 #include "framework/scene/surface_point.h"
 #include "tests/support/random_geometry.h"
@@ -22,7 +23,7 @@ using test::randomUnit;
 
 // Counters by kind: what naive tests per query is known exactly.
 TEST(MixedPrimitives, NaiveCountsEveryKind) {
-    const Scene scene = check::makeMixedScene(3);
+    const Scene scene = verify::makeMixedScene(3);
     NaiveAccelerator naive;
     naive.build(scene.primitives());
     QueryCounters counters;
@@ -36,8 +37,8 @@ TEST(MixedPrimitives, NaiveCountsEveryKind) {
 
 // The BVHs count quadric tests by kind too, and test far fewer than naive.
 TEST(MixedPrimitives, BvhCountsQuadricTestsByKind) {
-    const Scene scene = check::makeMixedScene(5);
-    const auto accel = createAccelerator("sahbvh8", Env(programKeys()));
+    const Scene scene = verify::makeMixedScene(5);
+    const auto accel = createAccelerator("sahbvh8", Env(verify::verifyKeys()));
     const BuildStats stats = timedBuild(*accel, scene.primitives());
     EXPECT_EQ(stats.primitives, scene.validPrimitives.size());
     ASSERT_TRUE(stats.leaves && stats.nodes && stats.sah);
@@ -56,7 +57,7 @@ TEST(MixedPrimitives, BvhCountsQuadricTestsByKind) {
 // A ray leaving a sphere or a cone outward from its surface (surfaceAt's origin) never finds
 // that primitive again: both are convex seen from outside.
 TEST(MixedPrimitives, RaysLeavingAQuadricOutwardDoNotHitItAgain) {
-    const Scene scene = check::makeMixedScene(9);
+    const Scene scene = verify::makeMixedScene(9);
     const PrimitiveSet prims = scene.primitives();
     NaiveAccelerator naive;
     naive.build(prims);

@@ -11,7 +11,7 @@
 #include "accel/bvh/layout/wide_bvh.h"
 #include "accel/naive/naive_accelerator.h"
 #include "accel/registry.h"
-#include "apps/runtime/program_keys.h"
+#include "accel/verify/verify_keys.h"
 #include "framework/core/timed_build.h"
 #include "framework/scene/scene.h"
 #include "tests/support/bvh_checks.h"
@@ -573,14 +573,14 @@ TEST(Bvh, CountersCountVisitsAndTests) {
 }
 
 TEST(Bvh, RegisteredWithTheirEnvKeys) {
-    const EnvRegistry& registry = programKeys();
+    const EnvRegistry& registry = verify::verifyKeys();
     for (const char* name : {"tdbvh", "sahbvh", "sahbvh4", "sahbvh8", "sweepbvh", "ploc", "ploc8"}) {
         const auto& infos = acceleratorInfos();
         const auto it = std::find_if(infos.begin(), infos.end(), [&](const AcceleratorInfo& i) { return i.name == name; });
         ASSERT_NE(it, infos.end()) << name;
         for (const std::string& key : it->envKeys) EXPECT_NE(registry.find(key), nullptr) << key;
     }
-    Env env(programKeys());
+    Env env(verify::verifyKeys());
     env.set(keys::BVH::bins, "8", "test");
     env.set(keys::BVH::maxLeaf, "3", "test");
     env.set(keys::BVH::tdbvhSplit, "nodebox", "test");

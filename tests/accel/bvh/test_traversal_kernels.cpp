@@ -8,7 +8,7 @@
 #include "accel/bvh/bvh_accelerator.h"
 #include "accel/bvh/bvh_env.h"
 #include "accel/registry.h"
-#include "apps/runtime/program_keys.h"
+#include "accel/verify/verify_keys.h"
 #include "framework/core/error.h"
 #include "tests/support/bvh_checks.h"
 
@@ -186,7 +186,7 @@ TEST(TraversalKernels, AutoIsTheBestTheCpuRuns) {
 
 TEST(TraversalKernels, BvhIsaPicksTheKernelsOrSaysWhatTheCpuLacks) {
     for (Isa isa : kIsas) {
-        Env env(programKeys());
+        Env env(verify::verifyKeys());
         env.set(keys::BVH::isa, isaName(isa), "test");
         EXPECT_EQ(bvhSettingsFromEnv(env).traversal.isa, isa);
         if (cpuRuns(isa)) {
@@ -202,7 +202,7 @@ TEST(TraversalKernels, BvhIsaPicksTheKernelsOrSaysWhatTheCpuLacks) {
             EXPECT_NE(message.find(isaName(bestIsa())), std::string::npos) << message;
         }
     }
-    Env env(programKeys());
+    Env env(verify::verifyKeys());
     EXPECT_THROW(env.set(keys::BVH::isa, "sse9", "test"), InputError);
     EXPECT_EQ(bvhSettingsFromEnv(env).traversal.isa, Isa::Auto);
 }

@@ -3,8 +3,8 @@
 // points (where rounding decides), axis-parallel rays, and the padding lanes of short leaves.
 #include "accel/bvh/traverse/triangle_block_test.h"
 #include "accel/bvh/traverse/traversal.h"
+#include "accel/verify/verify_rng.h"
 #include "framework/core/triangle_moller_trumbore.h"
-#include "framework/robustness/stress_rng.h"
 
 #include <gtest/gtest.h>
 
@@ -19,7 +19,7 @@ constexpr int kAllLanes = (1 << kLanes) - 1;
 
 // A fan of triangles around a shared vertex, so that rays at the vertex and along the shared
 // edges probe the cases the exact edge functions exist for.
-std::vector<Triangle> fanAround(StressRng& rng, Vec3 centre, int count) {
+std::vector<Triangle> fanAround(verify::VerifyRng& rng, Vec3 centre, int count) {
     std::vector<Triangle> fan;
     const Vec3 u(1.0f, 0.3f, -0.2f), v(-0.1f, 0.4f, 1.0f);
     for (int i = 0; i < count; ++i) {
@@ -30,7 +30,7 @@ std::vector<Triangle> fanAround(StressRng& rng, Vec3 centre, int count) {
     return fan;
 }
 
-std::vector<Ray> probeRays(StressRng& rng, const std::vector<Triangle>& tris, int count) {
+std::vector<Ray> probeRays(verify::VerifyRng& rng, const std::vector<Triangle>& tris, int count) {
     std::vector<Ray> rays;
     for (int i = 0; i < count; ++i) {
         const Triangle& tri = tris[rng.index(tris.size())];
@@ -62,7 +62,7 @@ TriangleBlock blockOf(const std::vector<Triangle>& tris, size_t first, int lanes
 // Moeller-Trumbore (BVH::robust=false).
 template <bool Robust>
 void expectLanesAnswerAsScalar(uint64_t seed) {
-    StressRng rng(seed);
+    verify::VerifyRng rng(seed);
     std::vector<Triangle> tris = fanAround(rng, Vec3(0.3f, -1.7f, 2.9f), 8);
     for (int i = 0; i < 8; ++i) tris.push_back({rng.inBox({Vec3(-3), Vec3(3)}), rng.inBox({Vec3(-3), Vec3(3)}), rng.inBox({Vec3(-3), Vec3(3)})});
     size_t hits = 0;
@@ -95,7 +95,7 @@ TEST(TriangleBlock, LanesAnswerAsScalarMollerTrumbore) { expectLanesAnswerAsScal
 // A leaf of 1-7 triangles pads its block with repeats of its last triangle: they hit exactly
 // where that triangle does, and the block's closest lane is the triangle's own.
 TEST(TriangleBlock, PaddingLanesRepeatTheLastTriangle) {
-    StressRng rng(12);
+    verify::VerifyRng rng(12);
     const std::vector<Triangle> tris = fanAround(rng, Vec3(1.0f, 2.0f, 3.0f), kLanes - 1);
     size_t hits = 0;
     for (int lanes = 1; lanes < kLanes; ++lanes) {
@@ -121,7 +121,7 @@ TEST(TriangleBlock, PaddingLanesRepeatTheLastTriangle) {
 
 // A leaf of blocks counts and chooses as the binary layout's loop over the same triangles.
 TEST(TriangleBlock, LeafCountsAndChoosesAsTheScalarLoop) {
-    StressRng rng(13);
+    verify::VerifyRng rng(13);
     std::vector<Triangle> tris = fanAround(rng, Vec3(0.0f), 2 * kLanes - 1);
     tris.push_back(tris[2]);  // a duplicate: equal t in two lanes
     for (uint32_t count : {1u, 3u, 4u, 5u, 8u, 9u, 13u, 16u}) {  // one block, and two

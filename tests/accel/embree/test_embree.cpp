@@ -5,12 +5,11 @@
 #include "accel/embree/embree_accelerator.h"
 #include "accel/naive/naive_accelerator.h"
 #include "accel/registry.h"
-#include "apps/runtime/program_keys.h"
+#include "accel/verify/ray_generators.h"
+#include "accel/verify/verify_keys.h"
 #include "framework/core/timed_build.h"
-#include "framework/scene/procedural.h"
-#include "apps/check/oracle.h"
-#include "apps/runtime/ray_sets.h"
 #include "framework/render/camera.h"
+#include "framework/scene/procedural.h"
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
@@ -354,7 +353,7 @@ TEST(Embree, NativeBatchAnswersAsTheInterface) {
     const Scene scene = smallScene();
     EmbreeAccelerator accel;
     accel.build(scene.primitives());
-    std::vector<Ray> rays = check::generateRays(check::RayKind::Outside, scene.primitives(), scene.bounds, 2000, 5u);
+    std::vector<Ray> rays = verify::generateRays(verify::RayKind::Outside, scene.primitives(), scene.bounds, 2000, 5u);
     for (Ray& ray : rays) ray.tmax = 4.0f;  // some rays end before what they would hit
     size_t nearest = 0, occluded = 0;
     QueryCounters counters;
@@ -390,13 +389,20 @@ TEST(Embree, BatchApisAnswerAsTheSingleRayCall) {
     ASSERT_FALSE(apis.empty());
     EXPECT_EQ(apis[0], "stream");
     const Camera camera(framingCamera(scene.bounds, 60.0f, 101, 83));  // 8383 rays: a partial packet and range
-    const RaySets sets = makeRaySets(scene, camera, {PointLight{Vec3(0.0f, 5.0f, 4.0f)}}, accel, 0.3f);
+    std::vector<Ray> primary;
+    for (int y = 0; y < camera.height(); ++y)
+        for (int x = 0; x < camera.width(); ++x) primary.push_back(camera.generateRay(x + 0.5f, y + 0.5f));
+    // Random directions from inside the scene, as short as ambient-occlusion rays: some miss.
+    std::vector<Ray> incoherent =
+        verify::generateRays(verify::RayKind::Inside, scene.primitives(), scene.bounds, primary.size(), 3u);
+    const float aoRadius = 0.3f * glm::length(scene.bounds.diagonal());
+    for (Ray& ray : incoherent) ray.tmax = aoRadius / glm::length(ray.dir);
     struct Case {
         const char* name;
         const std::vector<Ray>* rays;
         bool coherent;
     };
-    for (const Case& c : {Case{"primary", &sets.primary, true}, Case{"incoherent", &sets.incoherent, false}}) {
+    for (const Case& c : {Case{"primary", &primary, true}, Case{"incoherent", &incoherent, false}}) {
         const std::vector<Ray>& rays = *c.rays;
         const std::unique_ptr<EmbreePreparedRays> single = accel.prepareRays(rays, "single", false);
         for (bool anyHit : {false, true}) {
@@ -426,14 +432,14 @@ TEST(Embree, BatchApisAnswerAsTheSingleRayCall) {
         }
     }
     if (apis.size() > 1) {  // a packet range must start on a packet
-        const std::unique_ptr<EmbreePreparedRays> packets = accel.prepareRays(sets.primary, apis[1], true);
+        const std::unique_ptr<EmbreePreparedRays> packets = accel.prepareRays(primary, apis[1], true);
         EXPECT_THROW(packets->trace(1, 9, false), std::logic_error);
     }
-    EXPECT_THROW(accel.prepareRays(sets.primary, "packet4", true), std::invalid_argument);
+    EXPECT_THROW(accel.prepareRays(primary, "packet4", true), std::invalid_argument);
 }
 
 TEST(Embree, ConfigFromEnv) {
-    Env env(programKeys());
+    Env env(verify::verifyKeys());
     EmbreeConfig config = EmbreeConfig::fromEnv(env);
     EXPECT_EQ(config.quality, EmbreeQuality::Medium);
     EXPECT_FALSE(config.robust);

@@ -3,10 +3,12 @@
 // counters merged across threads.
 #include "accel/naive/naive_accelerator.h"
 #include "accel/registry.h"
-#include "apps/runtime/program_keys.h"
-#include "framework/scene/procedural.h"
-#include "apps/check/oracle.h"
+#include "accel/verify/comparison.h"
+#include "accel/verify/generated_scenes.h"
+#include "accel/verify/ray_generators.h"
+#include "accel/verify/verify_keys.h"
 #include "framework/core/timed_build.h"
+#include "framework/scene/procedural.h"
 
 #include <gtest/gtest.h>
 
@@ -17,7 +19,7 @@
 namespace bvhlab {
 namespace {
 
-using check::sceneFromTriangles;
+using verify::sceneFromTriangles;
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
@@ -211,7 +213,7 @@ TEST(Naive, RebuildReplacesTheScene) {
 }
 
 TEST(Naive, CreatedByTheRegistry) {
-    const auto accel = createAccelerator("naive", Env(programKeys()));
+    const auto accel = createAccelerator("naive", Env(verify::verifyKeys()));
     ASSERT_NE(accel, nullptr);
     EXPECT_STREQ(accel->name(), "naive");
     EXPECT_TRUE(accel->hasCounters());
@@ -222,7 +224,7 @@ TEST(Naive, CountersMergedAcrossThreads) {
     NaiveAccelerator naive;
     naive.build(scene.primitives());
     const size_t valid = scene.validPrimitives.size();
-    const std::vector<Ray> rays = check::generateRays(check::RayKind::Outside, scene.primitives(), scene.bounds, 800, 5);
+    const std::vector<Ray> rays = verify::generateRays(verify::RayKind::Outside, scene.primitives(), scene.bounds, 800, 5);
 
     // Single-threaded reference.
     QueryCounters single;
@@ -278,9 +280,9 @@ TEST(Naive, AgreesWithTheDoubleOracleOnTheDefaultScene) {
     const Scene scene = makeDefaultScene();
     NaiveAccelerator naive;
     naive.build(scene.primitives());
-    const check::Oracle oracle(scene.primitives());
-    const std::vector<Ray> rays = check::generateRays(check::RayKind::Outside, scene.primitives(), scene.bounds, 1500, 9);
-    const check::ComparisonReport report = check::compareWithNaive(naive, naive, oracle, rays);
+    const verify::Oracle oracle(scene.primitives());
+    const std::vector<Ray> rays = verify::generateRays(verify::RayKind::Outside, scene.primitives(), scene.bounds, 1500, 9);
+    const verify::ComparisonReport report = verify::compareWithNaive(naive, naive, oracle, rays);
     EXPECT_EQ(report.failures(), 0u) << report.summary();
     EXPECT_EQ(report.disagreements, 0u);
     // Random rays from outside: the hits match the oracle's (not merely "not wrong").

@@ -5,10 +5,10 @@
 // count and is the same for every structure; a second run keeps every result, a missing one is
 // measured again, and so is everything when the settings change or with --fresh.
 #include "accel/registry.h"
+#include "accel/verify/generated_scenes.h"
 #include "apps/measure/builders.h"
 #include "apps/measure/tradeoff.h"
 #include "tests/support/cli_run.h"
-#include "apps/check/oracle.h"
 #include "tests/support/scratch_dir.h"
 #include "tests/support/test_paths.h"
 
@@ -42,8 +42,8 @@ fs::path makeScenes() {
     const fs::path dir = test::scratchDir("tradeoff");
     fs::remove_all(dir);
     fs::create_directories(dir);
-    writeObj(check::makeSoupScene(1500, 7, 0.2f, 3.0f, 20.0f), dir / "soup.obj");
-    writeObj(check::makeTerrainScene(24, 3), dir / "terrain.obj");
+    writeObj(verify::makeSoupScene(1500, 7, 0.2f, 3.0f, 20.0f), dir / "soup.obj");
+    writeObj(verify::makeTerrainScene(24, 3), dir / "terrain.obj");
     for (const char* id : {"soup", "terrain"})
         std::ofstream(dir / (std::string(id) + ".env")) << "Scene::file " << id << ".obj\nScene::dir .\n";
     return dir;

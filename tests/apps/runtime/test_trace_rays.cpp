@@ -2,7 +2,8 @@
 // QueryCounters::counting off equal those with it on, bit for bit, for structures of ours; the
 // counts a loop reports are its counting pass's; its timed passes count nothing.
 #include "accel/registry.h"
-#include "apps/check/conformance.h"
+#include "accel/verify/conformance.h"
+#include "accel/verify/generated_scenes.h"
 #include "apps/runtime/program_keys.h"
 #include "apps/runtime/timing.h"
 #include "apps/runtime/trace_rays.h"
@@ -63,9 +64,9 @@ const DefaultSceneRays& defaultSceneRays() {
 // Primary and shadow rays of the embedded scene; random, axis-parallel, behind-the-origin, empty
 // and NaN rays over the batch check's scene of triangles, spheres and cones.
 std::vector<RaySet> raySets() {
-    static const Scene batchScene = check::makeBatchScene();
+    static const Scene batchScene = verify::makeBatchScene();
     const DefaultSceneRays& d = defaultSceneRays();
-    const std::vector<Ray> mixed = check::makeBatchRays();
+    const std::vector<Ray> mixed = verify::makeBatchRays();
     return {{"primary", &d.scene, d.primary, false},
             {"shadow", &d.scene, d.shadow, true},
             {"mixed closest", &batchScene, mixed, false},
@@ -173,7 +174,7 @@ TEST(TracePasses, TimesWithCountingOffAndCountsInAPassOfItsOwn) {
                     accel->findNearestBatch(range, std::span(hits).first(range.size()), expected, {});
                 }
             }
-            EXPECT_TRUE(check::sameCounters(r.counters, expected));
+            EXPECT_TRUE(verify::sameCounters(r.counters, expected));
             EXPECT_GT(expected.traversalSteps, 0u);
 
             const CountingSpy uncounted(*accel);

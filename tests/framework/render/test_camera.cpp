@@ -1,5 +1,5 @@
 // Camera rays and the camera chosen for scenes without one.
-#include "apps/runtime/program_keys.h"
+#include "accel/verify/verify_keys.h"
 #include "framework/core/error.h"
 #include "framework/render/camera.h"
 #include "framework/scene/procedural.h"
@@ -41,7 +41,7 @@ TEST(Camera, FramingViewSeesWholeSceneAtAnyScale) {
 
 TEST(Camera, EnvOverridesSceneCamera) {
     Scene scene = makeDefaultScene();
-    Env env(programKeys());
+    Env env(verify::verifyKeys());
     env.setOverride("Camera::from=0 5 5");
     env.setOverride("Camera::width=32");
     const CameraSpec spec = resolveCamera(scene, env);
@@ -55,7 +55,7 @@ TEST(Camera, EnvOverridesSceneCamera) {
 // Every render's camera passes resolveCamera, so a scene's own camera (from a reader or a
 // forged scene cache entry) is held to the ranges of the env keys.
 TEST(Camera, SceneCameraOutOfRangeIsRefused) {
-    const Env env(programKeys());
+    const Env env(verify::verifyKeys());
     for (int bad = 0; bad < 5; ++bad) {
         Scene scene;
         CameraSpec spec;

@@ -3,7 +3,7 @@
 // on the same rays; N_IT, N_TR and the heat maps are the counting calls', the queries each ray
 // once, the picture the timed calls'.
 #include "accel/registry.h"
-#include "apps/runtime/program_keys.h"
+#include "accel/verify/verify_keys.h"
 #include "framework/render/camera.h"
 #include "framework/render/renderer.h"
 #include "framework/scene/procedural.h"
@@ -22,7 +22,7 @@ double sum(const std::vector<float>& values) { return std::accumulate(values.beg
 
 class RenderCounting : public testing::TestWithParam<std::string> {
 protected:
-    RenderCounting() : scene_(makeDefaultScene()), accel_(createAccelerator(GetParam(), Env(programKeys()))) {
+    RenderCounting() : scene_(makeDefaultScene()), accel_(createAccelerator(GetParam(), Env(verify::verifyKeys()))) {
         accel_->build(scene_.primitives());
         spec_ = *scene_.camera;
         spec_.width = 48;

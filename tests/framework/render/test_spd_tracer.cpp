@@ -5,7 +5,7 @@
 // count is checked with naive and with the default BVH: the counts are invariants.
 #include "accel/naive/naive_accelerator.h"
 #include "accel/registry.h"
-#include "apps/runtime/program_keys.h"
+#include "accel/verify/verify_keys.h"
 #include "framework/render/spd_tracer.h"
 
 #include <gtest/gtest.h>
@@ -49,7 +49,7 @@ SpdCounts counts(const Scene& scene, SpdRules rules = {}) {
     NaiveAccelerator naive;
     naive.build(scene.primitives());
     const SpdCounts expected = countsWith(scene, naive, rules);
-    const auto bvh = createAccelerator("sahbvh8", Env(programKeys()));
+    const auto bvh = createAccelerator("sahbvh8", Env(verify::verifyKeys()));
     bvh->build(scene.primitives());
     const SpdCounts got = countsWith(scene, *bvh, rules);
     EXPECT_EQ(got.primaryRays, expected.primaryRays);

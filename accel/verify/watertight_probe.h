@@ -1,6 +1,6 @@
 // Watertightness probes for closed meshes: rays aimed exactly at points on interior edges and at
 // vertices, kept only where the answer is unambiguous, and the count of the rays an accelerator
-// lets through ("leaks"). Shared by `bvhlab stress` and tests/framework/robustness/test_stress.cpp.
+// lets through ("leaks"): the probes of `bvhlab stress`, `bvhlab check` and the tests.
 //
 // The recipe (docs/accuracy.md, "Robustness"): pick a point p on an interior edge (or a
 // vertex), an origin outside along a direction d, and keep the ray only if every triangle
@@ -24,7 +24,7 @@
 #include <string>
 #include <vector>
 
-namespace bvhlab {
+namespace bvhlab::verify {
 
 // The connectivity of a triangle mesh with vertices welded by position (meshes that repeat a
 // position per face, like procedural.h's addBox, are handled too). Only valid (non-degenerate)
@@ -106,4 +106,4 @@ struct LeakStats {
 LeakStats countLeaks(const Accelerator& accel, std::span<const WatertightProbeRay> probes, int threads = 0,
                      size_t maxExamples = 5);
 
-}  // namespace bvhlab
+}  // namespace bvhlab::verify

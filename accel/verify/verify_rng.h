@@ -1,7 +1,6 @@
-// The random numbers of the stress suite (framework/robustness/watertight_probe.cpp, stress_scenes.cpp)
-// and of the tests' generated scenes and rays (apps/check/oracle.cpp): SplitMix64, small and
-// fast, and the same sequence on every platform and standard library (std::*_distribution are
-// not), so a seed names the same rays everywhere.
+// The random numbers of verification: of the generated scenes, rays and watertightness probes.
+// SplitMix64, small and fast, and the same sequence on every platform and standard library
+// (std::*_distribution are not), so a seed names the same rays everywhere.
 #pragma once
 
 #include "framework/core/math.h"
@@ -9,11 +8,11 @@
 #include <cmath>
 #include <cstdint>
 
-namespace bvhlab {
+namespace bvhlab::verify {
 
-class StressRng {
+class VerifyRng {
 public:
-    explicit StressRng(uint64_t seed) : state_(seed) {}
+    explicit VerifyRng(uint64_t seed) : state_(seed) {}
     uint64_t next() {
         uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
         z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
@@ -30,6 +29,8 @@ public:
         return {float(uniform(b.lower.x, b.upper.x)), float(uniform(b.lower.y, b.upper.y)),
                 float(uniform(b.lower.z, b.upper.z))};
     }
+    // A point in a random direction at a uniform distance up to `radius` from the origin.
+    Vec3 pointWithin(double radius) { return Vec3(unitVector() * (radius * uniform())); }
     DVec3 unitVector() {
         for (;;) {
             const DVec3 v(uniform(-1, 1), uniform(-1, 1), uniform(-1, 1));
@@ -42,4 +43,4 @@ private:
     uint64_t state_;
 };
 
-}  // namespace bvhlab
+}  // namespace bvhlab::verify

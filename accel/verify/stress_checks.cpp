@@ -1,16 +1,19 @@
-#include "framework/robustness/stress_checks.h"
+#include "accel/verify/stress_checks.h"
 
+#include "accel/registry.h"
+#include "accel/verify/verify_keys.h"
 #include "framework/core/timed_build.h"
 #include "framework/render/camera.h"
 #include "framework/render/renderer.h"
 
 #include <fmt/format.h>
 
+#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
 
-namespace bvhlab {
+namespace bvhlab::verify {
 
 TransformCheck checkTransformed(const Accelerator& accel, double scale, const DVec3& offset,
                                 std::span<const Ray> baseRays, std::span<const Hit> baseHits,
@@ -67,6 +70,20 @@ AcneCheck checkShadowAcne(const Scene& scene, const Accelerator& accel, int pixe
     return check;
 }
 
+std::vector<Hit> naiveAnswers(const Scene& scene, std::span<const Ray> rays, int threads) {
+    const std::unique_ptr<Accelerator> naive = createAccelerator("naive", Env(verifyKeys()));
+    naive->build(scene.primitives());
+    std::vector<Hit> answers(rays.size());
+    tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+    arena.execute([&] {
+        tbb::parallel_for(size_t(0), rays.size(), [&](size_t i) {
+            QueryCounters counters;
+            naive->findNearest(rays[i], answers[i], counters);
+        });
+    });
+    return answers;
+}
+
 EdgeBuildCheck checkEdgeBuild(Accelerator& accel, const Scene& scene, std::span<const Ray> rays,
                               std::span<const Hit> reference, double maxSeconds, int threads, size_t maxExamples) {
     EdgeBuildCheck check;
@@ -106,4 +123,4 @@ EdgeBuildCheck checkEdgeBuild(Accelerator& accel, const Scene& scene, std::span<
     return check;
 }
 
-}  // namespace bvhlab
+}  // namespace bvhlab::verify

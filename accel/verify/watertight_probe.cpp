@@ -1,6 +1,6 @@
-#include "framework/robustness/watertight_probe.h"
+#include "accel/verify/watertight_probe.h"
 
-#include "framework/robustness/stress_rng.h"
+#include "accel/verify/verify_rng.h"
 
 #include <fmt/format.h>
 #include <tbb/enumerable_thread_specific.h>
@@ -14,7 +14,7 @@
 #include <numbers>
 #include <unordered_map>
 
-namespace bvhlab {
+namespace bvhlab::verify {
 namespace {
 
 struct PositionKey {
@@ -162,7 +162,7 @@ ProbeSet makeWatertightProbes(const MeshTopology& m, const ProbeOptions& o) {
     }
     if (vertices.empty() && edges.empty()) return set;
 
-    StressRng rng(o.seed * 0x2545F4914F6CDD1Dull + 0x1234567);
+    VerifyRng rng(o.seed * 0x2545F4914F6CDD1Dull + 0x1234567);
     const double radius = 0.5 * glm::length(DVec3(m.bounds.diagonal()));
     const double sinMin = std::sin(o.minDegreesFromGrazing * std::numbers::pi / 180.0);
     // Bound on how far (across the ray) the float ray and the float triangle test may stray from
@@ -322,4 +322,4 @@ LeakStats countLeaks(const Accelerator& accel, std::span<const WatertightProbeRa
     return total;
 }
 
-}  // namespace bvhlab
+}  // namespace bvhlab::verify

@@ -1,9 +1,9 @@
-// The conformance suite (`bvhlab check`, apps/check/conformance.h) for every registered
+// The conformance suite (`bvhlab check`, accel/verify/conformance.h) for every registered
 // accelerator, one test per check: Registered/CheckSuite.Passes/<accelerator>_<check>. And the
 // suite must be able to fail: an accelerator that drops hits fails it, naming a ray.
 #include "accel/registry.h"
-#include "apps/check/conformance.h"
-#include "apps/runtime/program_keys.h"
+#include "accel/verify/conformance.h"
+#include "accel/verify/verify_keys.h"
 #include "framework/core/error.h"
 
 #include <fmt/format.h>
@@ -21,15 +21,15 @@ using Param = std::tuple<std::string, std::string>;  // accelerator, check
 std::vector<Param> everyAcceleratorAndCheck() {
     std::vector<Param> params;
     for (const AcceleratorInfo& info : acceleratorInfos())
-        for (const std::string& check : check::checkNames()) params.emplace_back(info.name, check);
+        for (const std::string& check : verify::checkNames()) params.emplace_back(info.name, check);
     return params;
 }
 
-check::Subject registered(const std::string& name) {
-    return {name, [name] { return createAccelerator(name, Env(programKeys())); }};
+verify::Subject registered(const std::string& name) {
+    return {name, [name] { return createAccelerator(name, Env(verify::verifyKeys())); }};
 }
 
-std::string report(const check::CheckResult& r) {
+std::string report(const verify::CheckResult& r) {
     std::string s = fmt::format("{} failures of {} {}{}", r.failures, r.cases, r.unit, r.note.empty() ? "" : " (" + r.note + ")");
     for (const std::string& e : r.examples) s += "\n    " + e;
     return s;
@@ -39,7 +39,7 @@ class CheckSuite : public testing::TestWithParam<Param> {};
 
 TEST_P(CheckSuite, Passes) {
     const auto& [accel, check] = GetParam();
-    const check::CheckResult r = check::runCheck(check, registered(accel));
+    const verify::CheckResult r = verify::runCheck(check, registered(accel));
     RecordProperty("cases", int(r.cases));
     if (!r.note.empty()) std::printf("[ NOTE     ] %s %s: %s\n", accel.c_str(), check.c_str(), r.note.c_str());
     if (r.skipped) GTEST_SKIP() << r.note;
@@ -57,7 +57,7 @@ INSTANTIATE_TEST_SUITE_P(Registered, CheckSuite, testing::ValuesIn(everyAccelera
 // A registered structure that answers every third closest-hit query with a miss.
 class DropsEveryThirdHit final : public Accelerator {
 public:
-    DropsEveryThirdHit() : inner_(createAccelerator("sahbvh", Env(programKeys()))) {}
+    DropsEveryThirdHit() : inner_(createAccelerator("sahbvh", Env(verify::verifyKeys()))) {}
     const char* name() const override { return "drops-hits"; }
     void build(const PrimitiveSet& prims) override { inner_->build(prims); }
     void statistics(BuildStatistics& out) const override { inner_->statistics(out); }
@@ -76,12 +76,12 @@ private:
 };
 
 TEST(CheckSuiteCanFail, AnAcceleratorThatDropsHitsFailsNamingARay) {
-    const check::Subject broken{"drops-hits", [] { return std::make_unique<DropsEveryThirdHit>(); }};
-    check::CheckOptions options;
+    const verify::Subject broken{"drops-hits", [] { return std::make_unique<DropsEveryThirdHit>(); }};
+    verify::CheckOptions options;
     options.rayScale = 0.2;
     for (const char* name : {"agreement", "any-hit", "watertight"}) {
         SCOPED_TRACE(name);
-        const check::CheckResult r = check::runCheck(name, broken, options);
+        const verify::CheckResult r = verify::runCheck(name, broken, options);
         EXPECT_FALSE(r.passed()) << report(r);
         EXPECT_GT(r.failures, r.cases / 20) << report(r);
         ASSERT_FALSE(r.examples.empty());
@@ -94,12 +94,12 @@ TEST(CheckSuiteCanFail, AnAcceleratorThatDropsHitsFailsNamingARay) {
     }
     // The structure it wraps passes the same runs.
     for (const char* name : {"agreement", "any-hit"})
-        EXPECT_TRUE(check::runCheck(name, registered("sahbvh"), options).passed()) << name;
+        EXPECT_TRUE(verify::runCheck(name, registered("sahbvh"), options).passed()) << name;
 }
 
 TEST(CheckSuiteCanFail, UnknownCheckIsAnInputErrorListingTheKnownOnes) {
     try {
-        check::findCheck("nosuch");
+        verify::findCheck("nosuch");
         FAIL() << "no error";
     } catch (const InputError& e) {
         EXPECT_NE(std::string(e.what()).find("unknown check 'nosuch'"), std::string::npos) << e.what();

@@ -1,0 +1,51 @@
+// `bvhlab stress` end to end, tiny: tables on stdout, JSON in --out, every registered structure
+// by default, an unknown one refused.
+#include "accel/registry.h"
+#include "tests/support/cli_run.h"
+#include "tests/support/scratch_dir.h"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <fstream>
+
+namespace bvhlab {
+namespace {
+
+TEST(StressCommand, WritesTablesAndJson) {
+    const auto out = test::scratchDir("stress") / "stress.json";
+    const test::Result r = test::run("stress --rays 2000 --scenes cube --parts watertight,acne --acne-pixels 16 "
+                                     "--accel naive,sahbvh,embree:Embree::robust=true --threads 1 --out " + out.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("per million"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("stress: all checks passed"), std::string::npos) << r.output;
+    std::ifstream in(out);
+    const nlohmann::json j = nlohmann::json::parse(in);
+    ASSERT_TRUE(j.contains("watertight"));
+    size_t rows = 0;
+    for (const auto& row : j["watertight"]) {
+        ++rows;
+        EXPECT_EQ(row["rays"], 2000);
+        if (row["accel"] != "embree-robust") {
+            EXPECT_EQ(row["leaks"], 0) << row.dump();
+        }
+        if (row["accel"] == "naive") {
+            EXPECT_EQ(row["mesh"], "cube4") << "naive only on small meshes";
+        }
+    }
+    EXPECT_EQ(rows, 5u);  // cube4: naive, sahbvh, embree-robust; cube64: sahbvh, embree-robust
+    EXPECT_TRUE(j["failures"].empty());
+    EXPECT_EQ(j["acne"].size(), 6u * 3u);  // 4 planes and 2 grounds, 3 accelerators
+
+    // By default every registered structure is checked (Embree reported, not failed).
+    const test::Result help = test::run("stress --help");
+    for (const AcceleratorInfo& info : acceleratorInfos())
+        EXPECT_NE(help.output.find(info.name + ","), std::string::npos) << info.name << " is not in\n" << help.output;
+
+    const test::Result bad = test::run("stress --accel nosuch --out " + out.string());
+    EXPECT_EQ(bad.exitCode, 1) << bad.output;
+    EXPECT_NE(bad.output.find("unknown accelerator 'nosuch'"), std::string::npos) << bad.output;
+}
+
+}  // namespace
+}  // namespace bvhlab
