@@ -463,65 +463,67 @@ RTCIntersectContextFlags streamFlags(std::span<const Ray> rays, std::span<const 
     return RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
 }
 
-}  // namespace
-
-// A ray Embree cannot take as it is takes the single-ray call (which counts it); the others go
-// into the chunk, each answer written once.
-void EmbreeAccelerator::findNearestBatch(View<const Ray> rays, View<Hit> hits, QueryCounters& counters,
-                                         View<RayCost> costs) const {
-    std::fill(costs.begin(), costs.end(), RayCost{});
+// Streams `rays` to Embree a chunk at a time: a ray Embree cannot take as it is goes to
+// single(i), the single-ray call, which counts it; the others are converted by
+// convert(ray, rtcRay), traced by trace(context, chunk, n) and answered by answer(i, rtcRay),
+// each answer written once.
+template <typename RtcRay, typename Single, typename Convert, typename Trace, typename Answer>
+void streamInChunks(bool haveScene, View<const Ray> rays, QueryCounters& counters, Single&& single,
+                    Convert&& convert, Trace&& trace, Answer&& answer) {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    RTCRayHit chunk[kStreamChunk];
+    RtcRay chunk[kStreamChunk];
     size_t index[kStreamChunk];
     for (size_t next = 0; next < rays.size();) {
         size_t n = 0;
         for (; next < rays.size() && n < kStreamChunk; ++next) {
-            const Ray& ray = rays[next];
-            if (!(takenAsIs(ray) & bool(scene_))) [[unlikely]] {
-                Hit hit;
-                findNearest(ray, hit, counters);
-                hits[next] = hit;
+            if (!(takenAsIs(rays[next]) & haveScene)) [[unlikely]] {
+                single(next);
                 continue;
             }
-            toRtc(ray, chunk[n]);
+            convert(rays[next], chunk[n]);
             index[n++] = next;
         }
         if (n == 0) continue;
         counters.queries += n;
         context.flags = streamFlags(rays, {index, n});
-        rtcIntersect1M(scene_.get(), &context, chunk, unsigned(n), sizeof(RTCRayHit));
-        for (size_t k = 0; k < n; ++k) {
-            const RTCHit& h = chunk[k].hit;
-            hits[index[k]] = h.geomID == RTC_INVALID_GEOMETRY_ID ? Hit{} : hitOf(chunk[k], primitiveOf_[h.geomID](h.primID));
-        }
+        trace(&context, chunk, n);
+        for (size_t k = 0; k < n; ++k) answer(index[k], chunk[k]);
     }
+}
+
+}  // namespace
+
+void EmbreeAccelerator::findNearestBatch(View<const Ray> rays, View<Hit> hits, QueryCounters& counters,
+                                         View<RayCost> costs) const {
+    std::fill(costs.begin(), costs.end(), RayCost{});
+    streamInChunks<RTCRayHit>(
+        bool(scene_), rays, counters,
+        [&](size_t i) {
+            Hit hit;
+            findNearest(rays[i], hit, counters);
+            hits[i] = hit;
+        },
+        [](const Ray& ray, RTCRayHit& rtc) { toRtc(ray, rtc); },
+        [&](RTCIntersectContext* context, RTCRayHit* chunk, size_t n) {
+            rtcIntersect1M(scene_.get(), context, chunk, unsigned(n), sizeof(RTCRayHit));
+        },
+        [&](size_t i, const RTCRayHit& rtc) {
+            const RTCHit& h = rtc.hit;
+            hits[i] = h.geomID == RTC_INVALID_GEOMETRY_ID ? Hit{} : hitOf(rtc, primitiveOf_[h.geomID](h.primID));
+        });
 }
 
 void EmbreeAccelerator::isOccludedBatch(View<const Ray> rays, View<uint8_t> occluded,
                                         QueryCounters& counters, View<RayCost> costs) const {
     std::fill(costs.begin(), costs.end(), RayCost{});
-    RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
-    RTCRay chunk[kStreamChunk];
-    size_t index[kStreamChunk];
-    for (size_t next = 0; next < rays.size();) {
-        size_t n = 0;
-        for (; next < rays.size() && n < kStreamChunk; ++next) {
-            const Ray& ray = rays[next];
-            if (!(takenAsIs(ray) & bool(scene_))) [[unlikely]] {
-                occluded[next] = isOccluded(ray, counters) ? 1 : 0;
-                continue;
-            }
-            toRtc(Segment{ray.org, ray.tmin, ray.tmax, 0.0f}, ray.dir, chunk[n]);
-            index[n++] = next;
-        }
-        if (n == 0) continue;
-        counters.queries += n;
-        context.flags = streamFlags(rays, {index, n});
-        rtcOccluded1M(scene_.get(), &context, chunk, unsigned(n), sizeof(RTCRay));
-        for (size_t k = 0; k < n; ++k) occluded[index[k]] = chunk[k].tfar == kOccludedMark ? 1 : 0;
-    }
+    streamInChunks<RTCRay>(
+        bool(scene_), rays, counters, [&](size_t i) { occluded[i] = isOccluded(rays[i], counters) ? 1 : 0; },
+        [](const Ray& ray, RTCRay& rtc) { toRtc(Segment{ray.org, ray.tmin, ray.tmax, 0.0f}, ray.dir, rtc); },
+        [&](RTCIntersectContext* context, RTCRay* chunk, size_t n) {
+            rtcOccluded1M(scene_.get(), context, chunk, unsigned(n), sizeof(RTCRay));
+        },
+        [&](size_t i, const RTCRay& rtc) { occluded[i] = rtc.tfar == kOccludedMark ? 1 : 0; });
 }
 
 namespace {

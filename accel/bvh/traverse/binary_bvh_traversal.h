@@ -91,11 +91,7 @@ Query traverse(const NodeTree<BvhNode, Leaves>& bvh, const Ray& ray, QueryCounte
             ++steps;
         }
     }
-    // Without Counting the tallies above are dead code, and the compiler drops them.
-    if constexpr (Counting) {
-        counters.traversalSteps += steps;
-        counters.intersectionTests += tests;
-    }
+    addWork<Counting>(counters, steps, tests);
     return query;
 }
 

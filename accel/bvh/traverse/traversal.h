@@ -78,6 +78,16 @@ struct AnyHitQuery {
     void record(const TriangleHitT<float>&, uint32_t) { occluded = true; }
 };
 
+// Adds a skeleton's tallies to the counters; without Counting they are dead code, and the
+// compiler drops them.
+template <bool Counting>
+[[gnu::always_inline]] inline void addWork(QueryCounters& counters, uint64_t steps, uint64_t tests) {
+    if constexpr (Counting) {
+        counters.traversalSteps += steps;
+        counters.intersectionTests += tests;
+    }
+}
+
 // Tests the triangles [first, first + count) of leaf order; true when the query is answered.
 template <typename Query, bool Robust>
 [[gnu::always_inline]] inline bool testLeaf(Query& query, const LeafTriangleTest<Robust>& test, const Triangle* triangles,

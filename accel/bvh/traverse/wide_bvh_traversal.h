@@ -71,10 +71,7 @@ Query traverse(const WideBvh<N>& bvh, const Ray& ray, QueryCounters& counters) {
     Query query(ray);
     uint64_t steps = 0, tests = 0;
     traverseFrom<Counting>(bvh, boxTest, triangleTest, query, wide_child::inner(0), steps, tests);  // from the root
-    if constexpr (Counting) {
-        counters.traversalSteps += steps;
-        counters.intersectionTests += tests;
-    }
+    addWork<Counting>(counters, steps, tests);
     return query;
 }
 
