@@ -32,7 +32,7 @@ SpdCounts& SpdCounts::operator+=(const SpdCounts& o) {
 
 namespace {
 
-struct ThreadState {
+struct SpdThreadState {
     SpdResult result;
     // One row of eye rays, traced as one batch.
     std::vector<Ray> rays;
@@ -60,7 +60,7 @@ public:
     }
 
     // The eye ray `ray`, whose closest hit `hit` (Hit{} on a miss) a batch found at `cost`.
-    Sample eyeRay(const Ray& ray, const Hit& hit, RayCost cost, ThreadState& ts) const {
+    Sample eyeRay(const Ray& ray, const Hit& hit, RayCost cost, SpdThreadState& ts) const {
         Sample sample;
         const QueryCounters before = total(ts);
         sample.color = shade(ray, hit, 1, ts, &sample);
@@ -71,21 +71,21 @@ public:
     }
 
 private:
-    static QueryCounters total(const ThreadState& ts) {
+    static QueryCounters total(const SpdThreadState& ts) {
         QueryCounters c = ts.result.closest;
         c += ts.result.shadow;
         return c;
     }
 
     // The colour seen along `ray`, a ray of tree depth `depth` (the eye ray is 1).
-    Vec3 trace(const Ray& ray, int depth, ThreadState& ts, Sample* eye) const {
+    Vec3 trace(const Ray& ray, int depth, SpdThreadState& ts, Sample* eye) const {
         Hit hit;
         accel_.findNearest(ray, hit, ts.result.closest);
         return shade(ray, hit, depth, ts, eye);
     }
 
     // The colour seen along `ray`, whose closest hit is `hit`.
-    Vec3 shade(const Ray& ray, const Hit& hit, int depth, ThreadState& ts, Sample* eye) const {
+    Vec3 shade(const Ray& ray, const Hit& hit, int depth, SpdThreadState& ts, Sample* eye) const {
         SpdCounts& counts = ts.result.counts;
         ++(depth == 1 ? counts.primaryRays : counts.secondaryRays);
         if (!hit.found()) return background_;
@@ -192,13 +192,13 @@ SpdResult traceSpd(const Scene& scene, const Accelerator& accel, const SpdRules&
     const SpdTracer tracer(scene, accel, rules, scene.background.value_or(Vec3(0.0f)));
 
     std::vector<Sample> corners(size_t(cornersX) * size_t(cornersY));
-    tbb::enumerable_thread_specific<ThreadState> states;
+    tbb::enumerable_thread_specific<SpdThreadState> states;
     const int threads = rules.threads > 0 ? rules.threads : tbb::info::default_concurrency();
     const auto start = std::chrono::steady_clock::now();
     tbb::task_arena arena(threads);
     arena.execute([&] {
         tbb::parallel_for(0, cornersY, [&](int y) {
-            ThreadState& ts = states.local();
+            SpdThreadState& ts = states.local();
             const uint64_t before = ts.result.closest.queries + ts.result.shadow.queries;
             ts.rays.resize(size_t(cornersX));
             ts.hits.resize(size_t(cornersX));
@@ -214,7 +214,7 @@ SpdResult traceSpd(const Scene& scene, const Accelerator& accel, const SpdRules&
     SpdResult result;
     result.traceMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     result.threads = threads;
-    for (const ThreadState& ts : states) {
+    for (const SpdThreadState& ts : states) {
         result.counts += ts.result.counts;
         result.closest += ts.result.closest;
         result.shadow += ts.result.shadow;

@@ -23,6 +23,7 @@
 #include "framework/scene/scene_loader.h"
 #include "tests/support/polygons.h"
 #include "tests/support/random_geometry.h"
+#include "tests/support/registered_accelerators.h"
 #include "tests/support/test_paths.h"
 
 #include <fmt/format.h>
@@ -40,12 +41,6 @@ namespace {
 
 using namespace bvhlab::verify;
 using namespace bvhlab::test;  // polygons and random geometry
-
-std::vector<std::string> registeredAccelerators() {
-    std::vector<std::string> names;
-    for (const AcceleratorInfo& info : acceleratorInfos()) names.push_back(info.name);
-    return names;
-}
 
 // One scene with its oracle and, per ray kind, the rays and naive's and the oracle's answers:
 // computed once, shared by every accelerator's run.
@@ -252,7 +247,7 @@ FILE_TEST(SceneFileTeapotNff, "nff/teapot.nff", 1000)
 FILE_TEST(SceneFileTetraNff, "nff/tetra.nff", 1000)
 FILE_TEST(SceneFileMunichPly, "munich.ply", 250)
 
-INSTANTIATE_TEST_SUITE_P(Registered, AccelCorrectness, ::testing::ValuesIn(registeredAccelerators()),
+INSTANTIATE_TEST_SUITE_P(Registered, AccelCorrectness, ::testing::ValuesIn(test::registeredAccelerators()),
                          [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include "framework/render/camera.h"
 #include "framework/render/renderer.h"
 #include "framework/scene/procedural.h"
+#include "tests/support/registered_accelerators.h"
 
 #include <gtest/gtest.h>
 
@@ -87,13 +88,7 @@ TEST_P(BatchQueries, RenderAsThroughTheSingleRayCalls) {
 }
 
 
-std::vector<std::string> registeredAccelerators() {
-    std::vector<std::string> names;
-    for (const AcceleratorInfo& info : acceleratorInfos()) names.push_back(info.name);
-    return names;
-}
-
-INSTANTIATE_TEST_SUITE_P(Registered, BatchQueries, testing::ValuesIn(registeredAccelerators()),
+INSTANTIATE_TEST_SUITE_P(Registered, BatchQueries, testing::ValuesIn(test::registeredAccelerators()),
                          [](const auto& info) { return info.param; });
 
 }  // namespace

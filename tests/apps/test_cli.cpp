@@ -18,25 +18,25 @@ namespace {
 using test::Result;
 using test::run;
 
-std::filesystem::path tempDir() {
+std::filesystem::path cliScratchDir() {
     return test::scratchDir("cli");
 }
 
 // A file of `bytes` in the scratch folder: a scene, env or ray file a run reads.
 std::filesystem::path scratchFile(const std::string& name, const std::string& bytes) {
-    const auto path = tempDir() / name;
+    const auto path = cliScratchDir() / name;
     std::ofstream(path, std::ios::binary) << bytes;
     return path;
 }
 
 // `bvhlab render ARGS`, its images (should it get that far) in a throwaway path: the runs that
 // must fail.
-Result renderToScratch(const std::string& args) { return run("render " + args + " --out " + (tempDir() / "x").string()); }
+Result renderToScratch(const std::string& args) { return run("render " + args + " --out " + (cliScratchDir() / "x").string()); }
 
 }  // namespace
 
 TEST(Cli, RenderWritesImagesAndStatistics) {
-    const auto out = tempDir() / "default";
+    const auto out = cliScratchDir() / "default";
     const Result r = run("render -DASDS::type=naive -DSetRayTracing::depthLimit=1 -DCamera::width=80 -DCamera::height=60 --out " + out.string());
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("N_IT"), std::string::npos) << r.output;
@@ -101,7 +101,7 @@ TEST(Cli, SpheresAndConesAreRenderedAndTheirDegenerateOnesCounted) {
     // balls.nff in small: a ground quad, three spheres (one of radius 0) and a cone.
     const auto scene = scratchFile("balls.nff", "p 4\n-1 -1 0\n1 -1 0\n1 1 0\n-1 1 0\n"
                                                 "s 0 0 1 0.5\ns 0 0 2 0\ns 0 0 3 0.5\nc 0 0 0 0.2 0 0 1 0.1\n");
-    const auto out = tempDir() / "balls";
+    const auto out = cliScratchDir() / "balls";
     const Result r = run("render -DASDS::type=naive -DCamera::width=16 -DCamera::height=16 --scene " + scene.string() +
                          " --out " + out.string());
     ASSERT_EQ(r.exitCode, 0) << r.output;
@@ -124,7 +124,7 @@ TEST(Cli, RaycastAnswersRayFileWithNaive) {
     const std::vector<Ray> rays = {{Vec3(0.5f, -0.5f, 5), Vec3(0, 0, -1), 0.0f, kInfinity},
                                    {Vec3(3, 3, 5), Vec3(0, 0, -1), 0.0f, kInfinity},
                                    {Vec3(0, 0, 5), Vec3(0, 0, -2), 0.0f, 1.0f}};
-    const auto raysFile = tempDir() / "rays.bin", hitsFile = tempDir() / "hits.bin";
+    const auto raysFile = cliScratchDir() / "rays.bin", hitsFile = cliScratchDir() / "hits.bin";
     writeRayFile(raysFile, rays);
     Result r = run("raycast -DASDS::type=naive --scene " + scene.string() + " --rays " + raysFile.string() +
                    " --out " + hitsFile.string());
@@ -152,7 +152,7 @@ TEST(Cli, RaysWritesTheBenchRaySetsForRaycast) {
     const std::string tiny = " -DCamera::width=16 -DCamera::height=12 --out ";
     for (const std::string kind : {"primary", "shadow", "incoherent"}) {
         SCOPED_TRACE(kind);
-        const auto file = tempDir() / (kind + ".rays");
+        const auto file = cliScratchDir() / (kind + ".rays");
         Result r = run("rays --kind " + kind + tiny + file.string());
         ASSERT_EQ(r.exitCode, 0) << r.output;
         const std::vector<Ray> rays = readRayFile(file);
@@ -162,12 +162,12 @@ TEST(Cli, RaysWritesTheBenchRaySetsForRaycast) {
             EXPECT_GT(rays.size(), 0u);
         }
         for (const Ray& ray : rays) EXPECT_TRUE(ray.isValid());
-        const auto hits = tempDir() / (kind + ".hits");
+        const auto hits = cliScratchDir() / (kind + ".hits");
         r = run("raycast --rays " + file.string() + (kind == "primary" ? "" : " --any") + " --out " + hits.string());
         ASSERT_EQ(r.exitCode, 0) << r.output;
         EXPECT_EQ(readHitFile(hits).size(), rays.size());
     }
-    const Result bad = run("rays --kind sideways --out " + (tempDir() / "x.rays").string());
+    const Result bad = run("rays --kind sideways --out " + (cliScratchDir() / "x.rays").string());
     EXPECT_NE(bad.exitCode, 0);
     EXPECT_NE(bad.output.find("sideways"), std::string::npos) << bad.output;
 }
@@ -178,7 +178,7 @@ TEST(Cli, RaysWritesTheBenchRaySetsForRaycast) {
 // Embree API it kept per ray set.
 TEST(Cli, BenchMeasuresInRoundsWithPairedRatios) {
     const auto env = scratchFile("tiny.env", "Camera::width 24\nCamera::height 16\n");
-    const auto out = tempDir() / "bench.json";
+    const auto out = cliScratchDir() / "bench.json";
     const Result r = run("bench --scenes " + env.string() +
                          " --accel sahbvh,sahbvh:BVH::robust=false --threads 1 --builds 2 --passes 3 --out " + out.string());
     ASSERT_EQ(r.exitCode, 0) << r.output;
@@ -232,7 +232,7 @@ TEST(Cli, BenchMeasuresInRoundsWithPairedRatios) {
 // know is an error naming it.
 TEST(Cli, BenchQueriesChoosesTheKinds) {
     const auto env = scratchFile("tiny.env", "Camera::width 24\nCamera::height 16\n");
-    const auto out = tempDir() / "bench.json";
+    const auto out = cliScratchDir() / "bench.json";
     for (const std::string kind : {"single", "batch"}) {
         const Result r = run("bench --scenes " + env.string() + " --accel sahbvh --queries " + kind +
                              " --threads 1 --builds 1 --passes 1 --out " + out.string());

@@ -3,14 +3,11 @@
 #pragma once
 
 #include "framework/core/triangle.h"
+#include "tests/support/quiet_nan.h"
 
 #include <glm/glm.hpp>
 
-#include <limits>
-
 namespace bvhlab::test {
-
-inline constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
 template <typename Real>
 bool hits(const Ray& ray, const Triangle& tri, TriangleHitT<Real>* out = nullptr) {

@@ -31,7 +31,7 @@ uint64_t pairRank(uint32_t first, uint32_t second) {
 }
 
 constexpr int kLanes = 8;
-constexpr uint32_t kNone = ~uint32_t(0);
+constexpr uint32_t kNoCluster = ~uint32_t(0);
 constexpr int kMaxRowVectors = (256 + kLanes - 1) / kLanes;  // BVH::plocRadius <= 256
 
 // Added to a vector of areas whose first k lanes are candidates: NaN rules out the others (no
@@ -127,7 +127,7 @@ private:
             const uint32_t lo = b > uint32_t(r) ? b - r : 0;
             LeftBest& left = leftBest_.local();
             left.area.assign(e - lo + r + kLanes, kInf);
-            left.index.assign(e - lo + r + kLanes, std::bit_cast<float>(kNone));
+            left.index.assign(e - lo + r + kLanes, std::bit_cast<float>(kNoCluster));
             F row[kMaxRowVectors];
             for (uint32_t i = lo; i < e; ++i) {
                 F lower[3], upper[3];
@@ -158,17 +158,17 @@ private:
                 alignas(32) float lanes[kLanes];
                 least.store(lanes);
                 const float rightArea = *std::min_element(lanes, lanes + kLanes);
-                uint32_t right = kNone;
-                for (int v = 0; v < vectors && right == kNone; ++v) {
+                uint32_t right = kNoCluster;
+                for (int v = 0; v < vectors && right == kNoCluster; ++v) {
                     if (const int bits = movemask(row[v] <= F::broadcast(rightArea)))
                         right = i + 1 + kLanes * v + uint32_t(std::countr_zero(unsigned(bits)));
                 }
-                if (right >= count) right = kNone;  // only the infinite boxes past the end
+                if (right >= count) right = kNoCluster;  // only the infinite boxes past the end
                 const uint32_t leftIndex = std::bit_cast<uint32_t>(left.index[i - lo]);
                 const float leftArea = left.area[i - lo];
                 uint32_t best;
-                if (right == kNone || leftIndex == kNone) {
-                    best = right == kNone ? leftIndex : right;
+                if (right == kNoCluster || leftIndex == kNoCluster) {
+                    best = right == kNoCluster ? leftIndex : right;
                 } else if (rightArea != leftArea) {
                     best = rightArea < leftArea ? right : leftIndex;
                 } else {

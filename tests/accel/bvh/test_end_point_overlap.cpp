@@ -6,6 +6,7 @@
 #include "accel/bvh/layout/end_point_overlap.h"
 #include "framework/core/timed_build.h"
 #include "framework/scene/scene.h"
+#include "tests/support/bvh_checks.h"
 
 #include <gtest/gtest.h>
 
@@ -56,18 +57,6 @@ TEST(EndPointOverlap, TriangleCrossingASiblingBox) {
 }
 
 // Triangles with corners in [0, 10)^3, edges up to `size`.
-std::vector<Triangle> randomSoup(size_t n, uint32_t seed, float size) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> pos(0.0f, 10.0f), offset(-size, size);
-    std::vector<Triangle> soup;
-    while (soup.size() < n) {
-        const Vec3 p(pos(rng), pos(rng), pos(rng));
-        const Triangle t{p, p + Vec3(offset(rng), offset(rng), offset(rng)), p + Vec3(offset(rng), offset(rng), offset(rng))};
-        if (!isDegenerate(t)) soup.push_back(t);
-    }
-    return soup;
-}
-
 // The definition, node by node: every triangle outside the node's leaf range clipped to its box.
 double bruteForceEpo(const BinaryBvh& bvh, double cTraversal, double cIntersect) {
     struct Range {
@@ -88,9 +77,7 @@ double bruteForceEpo(const BinaryBvh& bvh, double cTraversal, double cIntersect)
 }
 
 TEST(EndPointOverlap, TreeWalkEqualsTheDefinitionAndIgnoresThreads) {
-    const std::vector<Triangle> soup = randomSoup(600, 3, 2.0f);
-    std::vector<uint32_t> valid(soup.size());
-    for (uint32_t i = 0; i < valid.size(); ++i) valid[i] = i;
+    const auto [soup, valid] = test::randomSoup(600, 3, 10.0f, 2.0f);
     for (const BuilderRecord& kind : {builderRecord("tdbvh"), builderRecord("sahbvh"), builderRecord("ploc")}) {
         SCOPED_TRACE(kind.name);
         const BinaryBvh bvh = buildBvh(kind, BvhBuildConfig{}, {soup, valid});
@@ -105,9 +92,7 @@ TEST(EndPointOverlap, TreeWalkEqualsTheDefinitionAndIgnoresThreads) {
 // Not a theorem, but on this soup of overlapping triangles the spatial median's boxes hold more
 // foreign geometry than the SAH's (measured 62.5 against 54.2): asserted for this soup only.
 TEST(EndPointOverlap, SpatialMedianAboveSahOnASoup) {
-    const std::vector<Triangle> soup = randomSoup(20000, 5, 1.0f);
-    std::vector<uint32_t> valid(soup.size());
-    for (uint32_t i = 0; i < valid.size(); ++i) valid[i] = i;
+    const auto [soup, valid] = test::randomSoup(20000, 5, 10.0f, 1.0f);
     const PrimitiveSet prims{soup, valid};
     BvhAccelerator<BinaryBvh> median(builderRecord("tdbvh"), {}), sah(builderRecord("sahbvh"), {});
     const BuildStats m = timedBuild(median, prims), s = timedBuild(sah, prims);
@@ -127,9 +112,7 @@ TEST(EndPointOverlap, LeftOutWhereBoxesOverlapEverything) {
 }
 
 TEST(EndPointOverlap, ReportedUpToTheTriangleLimit) {
-    const std::vector<Triangle> soup = randomSoup(3000, 7, 1.0f);
-    std::vector<uint32_t> valid(soup.size());
-    for (uint32_t i = 0; i < valid.size(); ++i) valid[i] = i;
+    const auto [soup, valid] = test::randomSoup(3000, 7, 10.0f, 1.0f);
     const PrimitiveSet prims{soup, valid};
     BvhAccelerator<WideBvh<8>> within(builderRecord("ploc"), {}, {}, {3000}), above(builderRecord("ploc"), {}, {}, {2999});
     const BuildStats in = timedBuild(within, prims), out = timedBuild(above, prims);

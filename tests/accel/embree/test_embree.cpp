@@ -10,6 +10,7 @@
 #include "framework/core/timed_build.h"
 #include "framework/render/camera.h"
 #include "framework/scene/procedural.h"
+#include "tests/support/quiet_nan.h"
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
@@ -23,7 +24,7 @@
 namespace bvhlab {
 namespace {
 
-constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+using test::kNaN;
 
 // A unit right triangle in the plane z = `z`: v0 = (0,0,z), v1 = (1,0,z), v2 = (0,1,z).
 Triangle flatTriangle(float z) { return {{0, 0, z}, {1, 0, z}, {0, 1, z}}; }

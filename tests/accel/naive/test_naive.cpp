@@ -9,6 +9,7 @@
 #include "accel/verify/verify_keys.h"
 #include "framework/core/timed_build.h"
 #include "framework/scene/procedural.h"
+#include "tests/support/quiet_nan.h"
 
 #include <gtest/gtest.h>
 
@@ -21,7 +22,7 @@ namespace {
 
 using verify::sceneFromTriangles;
 
-constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+using test::kNaN;
 
 // Four degenerate triangles (a point, an exact segment, a NaN vertex, an infinite vertex), then
 // the quad (0,0,4)-(2,0,4)-(2,2,4)-(0,2,4) as primitives 4 and 5, then a degenerate one.

@@ -4,6 +4,7 @@
 // tangent rays at scales from 1e-3 to 1e4 and far from the origin, bounds, NFF's radii, degenerate
 // cones and NaN rays.
 #include "tests/support/quadric_agreement.h"
+#include "tests/support/quiet_nan.h"
 #include "tests/support/random_geometry.h"
 
 #include <bvhlab/cone.h>
@@ -19,7 +20,7 @@ namespace {
 
 using namespace test;  // the shared helpers of the primitives' tests
 
-constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+using test::kNaN;
 
 // Independent of cone.h: the quadratic F(t) = a t^2 + 2 halfB t + c, F = |p_xy|^2 - R(z)^2 along
 // the ray, in world space (no frame; distance from the axis by projection), the textbook roots in
@@ -216,7 +217,7 @@ Ray randomRayTowards(std::mt19937& rng, const Cone& cone, double size) {
     return Ray(org, Vec3((target - widen(org)) * std::exp(U(rng) * 4 - 2)));
 }
 
-test::QuadricAgreement shootRandomRays(uint32_t seed, int count, double minSize, double maxSize, double maxOffset) {
+test::QuadricAgreement shootRandomRaysAtCones(uint32_t seed, int count, double minSize, double maxSize, double maxOffset) {
     const auto compareOne = [](std::mt19937& rng, double size, const DVec3& offset, test::QuadricAgreement& agreement) {
         const Cone cone = randomCone(rng, size, offset);
         const Ray ray = randomRayTowards(rng, cone, size);
@@ -254,12 +255,12 @@ TEST(Cone, ReferenceMatchesAnIndependentSolution) {
 constexpr int kMaxGrazing = 4000;
 
 TEST(Cone, FloatAgreesWithDoubleOnRandomRays) {
-    shootRandomRays(42, 200000, 0.5, 2.0, 4.0).expectCounts("unit cones", 60000, 40000, kMaxGrazing);
+    shootRandomRaysAtCones(42, 200000, 0.5, 2.0, 4.0).expectCounts("unit cones", 60000, 40000, kMaxGrazing);
 }
 
 TEST(Cone, FloatAgreesWithDoubleAtHugeAndTinyScalesFarFromTheOrigin) {
     for (const double offset : {0.0, 1e5}) {
-        shootRandomRays(43, 200000, 1e-3, 1e4, offset)
+        shootRandomRaysAtCones(43, 200000, 1e-3, 1e4, offset)
             .expectCounts(offset == 0.0 ? "cones of 1e-3 to 1e4 at the origin" : "cones of 1e-3 to 1e4 up to 1e5 from the origin",
                           60000, 40000, kMaxGrazing);
     }

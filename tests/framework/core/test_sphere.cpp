@@ -3,6 +3,7 @@
 // random and tangent rays at scales from 1e-3 to 1e4 and far from the origin, bounds, NFF's
 // negative radius, degenerate spheres and NaN rays.
 #include "tests/support/quadric_agreement.h"
+#include "tests/support/quiet_nan.h"
 #include "tests/support/random_geometry.h"
 
 #include <bvhlab/sphere.h>
@@ -18,7 +19,7 @@ namespace {
 
 using namespace test;  // the shared helpers of the primitives' tests
 
-constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+using test::kNaN;
 
 // Independent of sphere.h (long double, the line's distance from the centre by a cross product):
 // how far the ray's line passes from the sphere's surface, relative to the origin's distance
@@ -151,7 +152,7 @@ TEST(Sphere, ReferenceMatchesAnIndependentSolution) {
 
 // Random spheres of size `size` around `offset`, rays from 1.5 to 40 radii away (or from
 // inside) aimed near them: about half hit.
-test::QuadricAgreement shootRandomRays(uint32_t seed, int count, double minSize, double maxSize, double maxOffset) {
+test::QuadricAgreement shootRandomRaysAtSpheres(uint32_t seed, int count, double minSize, double maxSize, double maxOffset) {
     const auto compareOne = [](std::mt19937& rng, double size, const DVec3& offset, test::QuadricAgreement& agreement) {
         std::uniform_real_distribution<double> U(0.0, 1.0);
         const Sphere sphere{Vec3(offset + randomUnit(rng) * size), float(size * (0.5 + U(rng)))};
@@ -166,12 +167,12 @@ test::QuadricAgreement shootRandomRays(uint32_t seed, int count, double minSize,
 }
 
 TEST(Sphere, FloatAgreesWithDoubleOnRandomRays) {
-    shootRandomRays(33, 200000, 0.5, 2.0, 4.0).expectCounts("unit spheres", 60000, 60000, 200);
+    shootRandomRaysAtSpheres(33, 200000, 0.5, 2.0, 4.0).expectCounts("unit spheres", 60000, 60000, 200);
 }
 
 TEST(Sphere, FloatAgreesWithDoubleAtHugeAndTinyScalesFarFromTheOrigin) {
-    shootRandomRays(34, 200000, 1e-3, 1e4, 0.0).expectCounts("spheres of 1e-3 to 1e4 at the origin", 60000, 60000, 200);
-    shootRandomRays(35, 200000, 1e-3, 1e4, 1e5)
+    shootRandomRaysAtSpheres(34, 200000, 1e-3, 1e4, 0.0).expectCounts("spheres of 1e-3 to 1e4 at the origin", 60000, 60000, 200);
+    shootRandomRaysAtSpheres(35, 200000, 1e-3, 1e4, 1e5)
         .expectCounts("spheres of 1e-3 to 1e4 up to 1e5 from the origin", 60000, 60000, 200);
 }
 

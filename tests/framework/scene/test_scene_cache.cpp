@@ -18,7 +18,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path tempDir() {
+fs::path cacheScratchDir() {
     return test::scratchDir("scene_cache");
 }
 
@@ -45,11 +45,11 @@ Scene richScene() {
 
 TEST(SceneCache, RoundTripKeepsEveryField) {
     const Scene scene = richScene();
-    const fs::path source = tempDir() / "rich.obj";
+    const fs::path source = cacheScratchDir() / "rich.obj";
     std::ofstream(source) << "source bytes";
     const SceneCacheKey key = sceneCacheKey(source);
     EXPECT_EQ(key.size, 12u);
-    const fs::path file = tempDir() / key.cacheFileName();
+    const fs::path file = cacheScratchDir() / key.cacheFileName();
     writeSceneCache(file, key, scene);
 
     std::string why;
@@ -102,7 +102,7 @@ TEST(SceneCache, RoundTripKeepsEveryField) {
 }
 
 TEST(SceneCache, KeyFollowsTheBytes) {
-    const fs::path a = tempDir() / "same.obj", b = tempDir() / "same.ply";
+    const fs::path a = cacheScratchDir() / "same.obj", b = cacheScratchDir() / "same.ply";
     std::ofstream(a) << "v 0 0 0\n";
     std::ofstream(b) << "v 0 0 0\n";
     const SceneCacheKey ka = sceneCacheKey(a), kb = sceneCacheKey(b);
@@ -115,10 +115,10 @@ TEST(SceneCache, KeyFollowsTheBytes) {
 
 TEST(SceneCache, DamagedOrForeignEntriesAreRefused) {
     const Scene scene = richScene();
-    const fs::path source = tempDir() / "damaged.obj";
+    const fs::path source = cacheScratchDir() / "damaged.obj";
     std::ofstream(source) << "abc";
     const SceneCacheKey key = sceneCacheKey(source);
-    const fs::path file = tempDir() / key.cacheFileName();
+    const fs::path file = cacheScratchDir() / key.cacheFileName();
     auto reason = [&]() {
         std::string why;
         EXPECT_FALSE(readSceneCache(file, key, source, &why));
@@ -153,9 +153,9 @@ TEST(SceneCache, DamagedOrForeignEntriesAreRefused) {
     EXPECT_EQ(reason(), "missing");
 
     // loadSceneCached parses and rewrites past a bad entry.
-    const fs::path obj = tempDir() / "tri.obj";
+    const fs::path obj = cacheScratchDir() / "tri.obj";
     std::ofstream(obj) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
-    const fs::path cacheDir = tempDir() / "cache";
+    const fs::path cacheDir = cacheScratchDir() / "cache";
     fs::remove_all(cacheDir);
     CachedScene first = loadSceneCached(obj, cacheDir);
     EXPECT_FALSE(first.fromCache);
@@ -173,10 +173,10 @@ TEST(SceneCache, DamagedOrForeignEntriesAreRefused) {
 TEST(SceneCache, AnEntryWithNothingToRenderIsRefusedAsTheFileWouldBe) {
     // An entry for these bytes that holds no triangles (written by hand, or before loadScene
     // refused such scenes) must not give the empty scene that loading the file refuses.
-    const fs::path source = tempDir() / "hollow.obj";
+    const fs::path source = cacheScratchDir() / "hollow.obj";
     std::ofstream(source) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
     const SceneCacheKey key = sceneCacheKey(source);
-    const fs::path cacheDir = tempDir() / "hollow_cache";
+    const fs::path cacheDir = cacheScratchDir() / "hollow_cache";
     fs::create_directories(cacheDir);
     Scene empty;
     empty.name = "hollow";
@@ -195,10 +195,10 @@ TEST(SceneCache, ReadersRacingWritersOfOneEntrySeeItWholeOrMissing) {
     // it) while two readers read it: a read gives the whole scene, or "missing" before the first
     // rename, never a part of one; no temporary file is left.
     const Scene scene = richScene();
-    const fs::path source = tempDir() / "raced.obj";
+    const fs::path source = cacheScratchDir() / "raced.obj";
     std::ofstream(source) << "raced source";
     const SceneCacheKey key = sceneCacheKey(source);
-    const fs::path dir = tempDir() / "raced_cache";
+    const fs::path dir = cacheScratchDir() / "raced_cache";
     fs::remove_all(dir);
     fs::create_directories(dir);
     const fs::path file = dir / key.cacheFileName();
