@@ -178,6 +178,8 @@ TEST(Architecture, ThePluginApiAndThePluginsIncludeOnlyThePluginApi) {
     for (const fs::path& folder : {source / "accel/grid", source / "tests/plugins"})
         for (const fs::path& file : sourcesUnder(folder)) {
             checkAngled(file);
-            if (folder.filename() == "plugins") EXPECT_TRUE(includes(file, true).empty()) << file;
+            if (folder.filename() == "plugins") {
+                EXPECT_TRUE(includes(file, true).empty()) << file;
+            }
         }
 }

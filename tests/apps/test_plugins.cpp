@@ -174,7 +174,9 @@ TEST(Plugins, TheJsonProvenanceNamesEveryPluginLoaded) {
     EXPECT_EQ(plugins[0]["compiler"], provenance["compiler"]);
     EXPECT_NE(plugins[0]["cxx_flags"].get<std::string>().find("-ffp-contract=off"), std::string::npos) << plugins.dump();
     EXPECT_EQ(plugins[0]["optimized"], kPluginsOptimized);
-    if (kPluginsOptimized) EXPECT_EQ(r.output.find(kUnoptimizedWarning), std::string::npos) << r.output;
+    if (kPluginsOptimized) {
+        EXPECT_EQ(r.output.find(kUnoptimizedWarning), std::string::npos) << r.output;
+    }
 }
 
 TEST(Plugins, APluginCompiledWithoutOptimisationIsMeasuredWithAWarning) {

@@ -2,6 +2,8 @@
 // without the timing columns, which differ from run to run while every other column must not.
 #pragma once
 
+#include "tests/support/json_file.h"
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -12,18 +14,6 @@
 #include <vector>
 
 namespace bvhlab::test {
-
-inline std::string readText(const std::filesystem::path& file) {
-    std::ifstream in(file);
-    std::stringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
-
-inline nlohmann::json readJson(const std::filesystem::path& file) {
-    std::ifstream in(file);
-    return nlohmann::json::parse(in);
-}
 
 // The timing columns of results.csv and of the rows of results.json.
 inline constexpr const char* kTimingColumns[] = {"t_b_ms", "t_r_us", "render_ms"};

@@ -1,10 +1,12 @@
 #include "tests/support/bvh_checks.h"
 
 #include "accel/naive/naive_accelerator.h"
+#include "framework/core/timed_build.h"
 #include "framework/scene/scene.h"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 #include <set>
 
@@ -26,6 +28,25 @@ void addLatticeSquares(Soup& soup, int planes, int cells) {
     }
 }
 
+std::vector<Ray> axisRaysThroughLattice(int planes) {
+    std::vector<Ray> rays;
+    const float last = float(planes);
+    for (int axis = 0; axis < 3; ++axis) {
+        const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+        for (float a : {0.0f, 0.5f, 1.0f, last})
+            for (float b : {0.0f, 0.25f, 2.0f, last})
+                for (float sign : {1.0f, -1.0f}) {
+                    Ray ray;
+                    ray.org[axis] = sign > 0 ? -1.0f : last + 2.0f;
+                    ray.org[u] = a, ray.org[v] = b;
+                    ray.dir = Vec3(sign < 0 ? -0.0f : 0.0f);
+                    ray.dir[axis] = sign;
+                    rays.push_back(ray);
+                }
+    }
+    return rays;
+}
+
 Soup randomSoup(size_t n, uint32_t seed, float extent, float size) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<float> pos(0.0f, extent), offset(-size, size);
@@ -36,6 +57,31 @@ Soup randomSoup(size_t n, uint32_t seed, float extent, float size) {
         if (!isDegenerate(t)) soup.add(t);
     }
     return soup;
+}
+
+Soup mixedScaleSoup(size_t n, uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> pos(-500.0f, 500.0f), unit(-1.0f, 1.0f), exponent(-6.0f, 3.0f);
+    Soup soup;
+    while (soup.triangles.size() < n) {
+        const float size = std::pow(10.0f, exponent(rng));
+        const Vec3 p(pos(rng), pos(rng), pos(rng));
+        const Triangle t{p, p + size * Vec3(unit(rng), unit(rng), unit(rng)), p + size * Vec3(unit(rng), unit(rng), unit(rng))};
+        if (!isDegenerate(t)) soup.add(t);
+    }
+    return soup;
+}
+
+Soup triangleAndCopy(Vec3 shift) {
+    const Triangle unit{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    Soup soup;
+    soup.add(unit);
+    soup.add({unit.v0 + shift, unit.v1 + shift, unit.v2 + shift});
+    return soup;
+}
+
+std::vector<BuilderRecord> allBuilders() {
+    return {builderRecord("tdbvh"), builderRecord("sahbvh"), builderRecord("sweepbvh"), builderRecord("ploc")};
 }
 
 namespace {
@@ -122,6 +168,19 @@ TreeFacts checkTree(const BinaryBvh& bvh, const Soup& soup) {
     for (size_t i = 0; i < n; ++i) EXPECT_EQ(covered[i], 1) << "leaf slot " << i << " covered " << covered[i] << " times";
     EXPECT_EQ(facts.nodes, 2 * facts.leaves - 1);
     EXPECT_LT(facts.maxDepth, kBvhMaxDepth);
+    return facts;
+}
+
+TreeFacts buildAndCheck(BvhAccelerator<BinaryBvh>& accel, const Soup& soup) {
+    const BuildStats stats = timedBuild(accel, soup.prims());
+    const TreeFacts facts = checkTree(accel.bvh(), soup);
+    EXPECT_EQ(stats.primitives, soup.valid.size());
+    EXPECT_EQ(stats.nodes.value_or(0), facts.nodes);
+    EXPECT_EQ(stats.leaves.value_or(0), facts.leaves);
+    EXPECT_EQ(stats.maxLeafPrimitives.value_or(0), facts.maxLeaf);
+    EXPECT_EQ(stats.maxDepth.value_or(-1), facts.maxDepth);
+    EXPECT_EQ(stats.bytes.value_or(0), accel.bvh().bytes());
+    EXPECT_TRUE(stats.sah.has_value());
     return facts;
 }
 

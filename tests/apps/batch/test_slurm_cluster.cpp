@@ -98,8 +98,6 @@ std::string solidBatchArgs(const fs::path& dir, const std::string& accels, const
            (dir / out).string();
 }
 
-}  // namespace
-
 TEST_F(SlurmCluster, ThreeShardsAndTheirMergeGiveTheTablesOfOneRun) {
     const fs::path dir = makeSolidScenes("slurm_cluster");
     const Submitted jobs = submit(solidBatchArgs(dir, "sahbvh,embree", "cluster"));
@@ -153,3 +151,5 @@ TEST_F(SlurmCluster, ACancelledShardFailsTheMergeNamingItsLog) {
     EXPECT_NE(readText(slurm / "shard-1.log").find("CANCELLED"), std::string::npos);  // slurmstepd says so
     EXPECT_FALSE(fs::exists(dir / "cluster" / "results.md"));
 }
+
+}  // namespace

@@ -7,6 +7,7 @@
 #include "framework/io/ray_file.h"
 #include "framework/scene/scene_cache.h"
 #include "tests/support/cli_run.h"
+#include "tests/support/json_file.h"
 #include "tests/support/scratch_dir.h"
 #include "tests/support/test_paths.h"
 
@@ -21,6 +22,8 @@ using namespace bvhlab;
 
 namespace {
 
+using test::readJson;
+
 using test::Result;
 using test::run;
 namespace fs = std::filesystem;
@@ -29,11 +32,6 @@ fs::path tempDir() { return test::scratchDir("cli_conventions"); }
 
 // Scene::dir's default: the scenes beside the repository.
 fs::path scenesDir() { return fs::path(test::sourceTree()) / ".." / "shared" / "scenes"; }
-
-nlohmann::json readJson(const fs::path& file) {
-    std::ifstream in(file);
-    return nlohmann::json::parse(in);
-}
 
 // A unit quad in z = 0, in a scene file no env file names.
 fs::path quadScene() {

@@ -5,6 +5,7 @@
 #include "framework/io/image_io.h"
 #include "framework/io/image_text.h"
 #include "tests/support/cli_run.h"
+#include "tests/support/json_file.h"
 #include "tests/support/scratch_dir.h"
 
 #include <gtest/gtest.h>
@@ -18,6 +19,8 @@
 using namespace bvhlab;
 
 namespace {
+
+using test::readJson;
 
 namespace fs = std::filesystem;
 
@@ -35,11 +38,6 @@ bool near(const Rgb& a, const Rgb& b) {
 // The rows from `y0` on, as bytes.
 std::vector<uint8_t> rowsFrom(const Rgb8Image& image, int y0) {
     return {image.pixels.begin() + ptrdiff_t(y0) * image.width * 3, image.pixels.end()};
-}
-
-nlohmann::json readJson(const fs::path& file) {
-    std::ifstream in(file);
-    return nlohmann::json::parse(in);
 }
 
 }  // namespace

@@ -41,19 +41,7 @@ std::vector<Ray> kernelRays() {
         if (i % 5 == 0) ray.tmin = -4.0f;
         rays.push_back(ray);
     }
-    for (int axis = 0; axis < 3; ++axis) {  // along each axis, on and between the lattice planes
-        const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-        for (float a : {0.0f, 0.5f, 1.0f, 3.0f})
-            for (float b : {0.0f, 0.25f, 2.0f, 3.0f})
-                for (float sign : {1.0f, -1.0f}) {
-                    Ray ray;
-                    ray.org[axis] = sign > 0 ? -1.0f : 5.0f;
-                    ray.org[u] = a, ray.org[v] = b;
-                    ray.dir = Vec3(sign < 0 ? -0.0f : 0.0f);
-                    ray.dir[axis] = sign;
-                    rays.push_back(ray);
-                }
-    }
+    for (const Ray& ray : test::axisRaysThroughLattice(3)) rays.push_back(ray);
     for (int i = 0; i < 500; ++i) {  // grazing: in the plane of a lattice square, across its edges
         const int axis = i % 3, u = (axis + 1) % 3, v = (axis + 2) % 3;
         Ray ray;

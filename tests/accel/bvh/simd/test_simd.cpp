@@ -4,7 +4,7 @@
 // x86-64-v4 wherever the CPU runs it) give the same bits for every operation.
 #include "accel/bvh/simd/simd.h"
 #include "accel/bvh/traverse/traversal_kernels.h"
-#include "tests/accel/bvh/simd_ops.h"
+#include "tests/accel/bvh/simd/simd_ops.h"
 
 #include <gtest/gtest.h>
 

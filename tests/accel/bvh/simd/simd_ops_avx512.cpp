@@ -1,6 +1,6 @@
 // simd_ops.h on the AVX-512 backend: compiled for x86-64-v4 in namespace bvhlab::avx512
 // (tests/CMakeLists.txt), called by test_simd.cpp only where the CPU runs it.
-#include "tests/accel/bvh/simd_ops.h"
+#include "tests/accel/bvh/simd/simd_ops.h"
 
 namespace bvhlab::test {
 
