@@ -18,6 +18,7 @@
 
 #include <bvhlab/ray.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <optional>
