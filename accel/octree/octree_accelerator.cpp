@@ -25,7 +25,7 @@ void OctreeAccelerator::statistics(BuildStatistics& out) const {
     const uint64_t leaves = tree_.leaves(), refs = tree_.references();
     out.set("nodes", double(tree_.nodes.size()));
     out.set("leaves", double(leaves));
-    out.set("avg_leaf_prims", leaves > 0 ? double(refs) / double(leaves) : 0.0);
+    out.set("avg_leaf_prims", leaves > 0 ? double(tree_.refs.size()) / double(leaves) : 0.0);
     out.set("max_leaf_prims", double(tree_.maxLeafReferences()));
     out.set("max_depth", double(tree_.deepestLeaf));
     out.set("bytes", double(tree_.bytes()));
@@ -36,7 +36,8 @@ void OctreeAccelerator::statistics(BuildStatistics& out) const {
     out.figure("N_IN", double(tree_.innerNodes()), "inner nodes (Havran)");
     out.figure("N_V", double(leaves), "leaves, the elementary cells (Havran)");
     out.figure("N_EV", double(tree_.emptyLeaves()), "empty leaves (Havran)");
-    out.figure("N_OIV", double(refs), "object references in the leaves (Havran)");
+    out.figure("N_OIV", double(refs), "object references in the leaves (Havran; a polygon is one object)");
+    out.figure("objects", double(tree_.objects), "objects built over: primitives, a polygon's fan of triangles one");
     if (const uint64_t queries = countedQueries_.load(); queries > 0) {
         out.figure("N_ETS", double(leavesVisited_.load()) / double(queries),
                    "leaves visited per ray, over the counted queries since the build (Havran)");
@@ -53,7 +54,7 @@ void OctreeAccelerator::walk(const Ray& ray, QueryCounters& counters, Visit&& vi
         const auto counted = [&](uint32_t leaf, double exit) {
             const OctreeNode& node = tree_.nodes[leaf];
             ++leaves;
-            empty += node.references() == 0;
+            empty += node.objects == 0;
             return visit(tree_.leafReferences(node), exit);
         };
         if (traversal_ == Traversal::Octree84) walkOctree84(tree_, clipped, counters.traversalSteps, counted);

@@ -17,6 +17,9 @@ inline constexpr PluginKey maxDepth{"Octree::maxDepth", KeyType::Int, "5",
 inline constexpr PluginKey maxObjects{"Octree::maxObjects", KeyType::Int, "1",
                                       "MO: a node referring to at most this many objects is a leaf (Havran: 1)", 0,
                                       1000000};
+inline constexpr PluginKey polygons{"Octree::polygons", KeyType::Bool, "true",
+                                    "a polygon is one object, as in Havran's GOLEM: consecutive triangles forming a "
+                                    "fan in one plane (the loader's cut of a convex polygon); false: each primitive"};
 inline constexpr const char* kTraversals[] = {"octree84", "octree93"};
 inline constexpr PluginKey traversal{
     "Octree::traversal", KeyType::Choice, "octree84",

@@ -1,5 +1,7 @@
 #include "accel/octree/octree_nodes.h"
 
+#include "accel/octree/octree_objects.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -13,7 +15,7 @@ std::optional<Subdivision> parseSubdivision(std::string_view name) {
 
 uint64_t Octree::emptyLeaves() const {
     uint64_t empty = 0;
-    for (const OctreeNode& n : nodes) empty += n.isLeaf() && n.references() == 0;
+    for (const OctreeNode& n : nodes) empty += n.isLeaf() && n.objects == 0;
     return empty;
 }
 
@@ -61,16 +63,13 @@ namespace {
 class Builder {
 public:
     Builder(const PrimitiveSet& prims, const OctreeParameters& parameters, Octree& tree)
-        : parameters_(parameters), tree_(tree) {
-        boxes_.resize(prims.triangles.size() + prims.spheres.size() + prims.cones.size());
-        for (uint32_t p : prims.validTriangles()) boxes_[p] = prims.triangles[p].bounds();
-        for (uint32_t p : prims.validQuadrics()) boxes_[p] = boundsOf(prims.quadric(p));
+        : prims_(prims), parameters_(parameters), tree_(tree), objects_(octreeObjects(prims, parameters.polygons)) {
         budget_ = std::max(kMinReferenceBudget, kReferencesPerPrimitive * uint64_t(prims.valid.size()));
     }
 
-    void build(View<const uint32_t> objects) {
+    void build() {
         Bounds3 box;
-        for (uint32_t p : objects) box.extend(boxes_[p]);
+        for (const Bounds3& b : objects_.boxes) box.extend(b);
         const DVec3 lower(box.lower), upper(box.upper);
         const DVec3 extent = upper - lower;
         const double magnitude = std::max({std::abs(lower.x), std::abs(lower.y), std::abs(lower.z), std::abs(upper.x),
@@ -78,9 +77,12 @@ public:
         const double pad = kRootPad * std::max({extent.x, extent.y, extent.z, magnitude}) + 1e-30;
         tree_.lower = lower - pad;
         tree_.upper = upper + pad;
+        tree_.objects = objects_.size();
         tree_.nodes.emplace_back();
-        used_ = objects.size();
-        node(0, std::vector<uint32_t>(objects.begin(), objects.end()), tree_.lower, tree_.upper, 0);
+        std::vector<uint32_t> all(objects_.size());
+        for (uint32_t o = 0; o < all.size(); ++o) all[o] = o;
+        used_ = all.size();
+        node(0, std::move(all), tree_.lower, tree_.upper, 0);
     }
 
 private:
@@ -89,17 +91,18 @@ private:
         if (int(objects.size()) > parameters_.maxObjects && depth < parameters_.maxDepth) {
             DVec3 split;
             for (int a = 0; a < 3; ++a)
-                split[a] = parameters_.subdivision == Subdivision::Adaptive ? adaptiveSplit(boxes_, objects, lo, hi, a)
-                                                                            : 0.5 * (lo[a] + hi[a]);
+                split[a] = parameters_.subdivision == Subdivision::Adaptive
+                               ? adaptiveSplit(objects_.boxes, objects, lo, hi, a)
+                               : 0.5 * (lo[a] + hi[a]);
             std::vector<uint32_t> children[8];
             uint64_t made = 0;
             for (int c = 0; c < 8; ++c) {
-                for (uint32_t p : objects) {
-                    const Bounds3& b = boxes_[p];
+                for (uint32_t o : objects) {
+                    const Bounds3& b = objects_.boxes[o];
                     bool touches = true;
                     for (int a = 0; a < 3 && touches; ++a)
                         touches = (c >> a & 1) ? double(b.upper[a]) >= split[a] : double(b.lower[a]) <= split[a];
-                    if (touches) children[c].push_back(p);
+                    if (touches) children[c].push_back(o);
                 }
                 made += children[c].size();
             }
@@ -121,14 +124,18 @@ private:
         }
         OctreeNode& leaf = tree_.nodes[n];
         leaf.begin = uint32_t(tree_.refs.size());
-        tree_.refs.insert(tree_.refs.end(), objects.begin(), objects.end());
+        for (uint32_t o : objects)
+            for (uint32_t i = objects_.first[o]; i < objects_.first[o + 1]; ++i) tree_.refs.push_back(prims_.valid[i]);
         leaf.end = uint32_t(tree_.refs.size());
+        leaf.objects = uint32_t(objects.size());
+        tree_.objectReferences += objects.size();
         tree_.deepestLeaf = std::max(tree_.deepestLeaf, depth);
     }
 
+    const PrimitiveSet& prims_;
     const OctreeParameters& parameters_;
     Octree& tree_;
-    std::vector<Bounds3> boxes_;
+    OctreeObjects objects_;
     uint64_t budget_ = 0, used_ = 0;
 };
 
@@ -137,7 +144,7 @@ private:
 Octree buildOctree(const PrimitiveSet& prims, const OctreeParameters& parameters) {
     Octree tree;
     if (prims.valid.empty()) return tree;
-    Builder(prims, parameters, tree).build(prims.valid);
+    Builder(prims, parameters, tree).build();
     return tree;
 }
 

@@ -7,9 +7,11 @@
 //   from the spatial median to the object median, the one of least cost
 //     C = (left + cut) * (t 2 (b + c) + b c) + (right + cut) * ((a - t) 2 (b + c) + b c)
 //   for a node of a x b x c split at t along a (docs/spd.md, "Havran's octrees").
-// The root's box is the primitives' bounds, padded by kRootPad of the larger of its longest side
-// and its coordinates: Havran's counts on tetra, whose vertices lie on the planes of centre
-// subdivision, are those of a padded box (docs/spd.md).
+// The objects are Havran's: a sphere, a cone, and a polygon, which bvhlab's loader cuts into a fan
+// of triangles (octree_objects.h); a leaf refers to every triangle of its objects. The root's box
+// is the objects' bounds, padded by kRootPad of the larger of its longest side and its
+// coordinates: Havran's counts on tetra, whose vertices lie on the planes of centre subdivision,
+// are those of a padded box (docs/spd.md).
 #pragma once
 
 #include <bvhlab/primitive_set.h>
@@ -34,15 +36,18 @@ inline constexpr uint64_t kReferencesPerPrimitive = 32;
 struct OctreeParameters {
     Subdivision subdivision = Subdivision::Centre;
     int maxDepth = 5;
-    int maxObjects = 1;  // MO
+    int maxObjects = 1;      // MO
+    bool polygons = true;    // a fan of triangles is one object (false: every primitive is one)
 };
 
 // An inner node's children are nodes[firstChild + c], c's bit a set for the side above split[a];
-// a leaf (firstChild 0: the root is no one's child) refers to refs[begin .. end).
+// a leaf (firstChild 0: the root is no one's child) refers to `objects` objects, whose primitives
+// are refs[begin .. end).
 struct OctreeNode {
     DVec3 split{0.0};
     uint32_t firstChild = 0;
     uint32_t begin = 0, end = 0;
+    uint32_t objects = 0;
     bool isLeaf() const { return firstChild == 0; }
     uint32_t references() const { return end - begin; }
 };
@@ -50,7 +55,9 @@ struct OctreeNode {
 struct Octree {
     DVec3 lower{0.0}, upper{0.0};  // the root's box
     std::vector<OctreeNode> nodes;   // empty: nothing to trace
-    std::vector<uint32_t> refs;
+    std::vector<uint32_t> refs;     // primitives, leaf by leaf
+    uint64_t objects = 0;           // built over
+    uint64_t objectReferences = 0;  // Havran's N_OIV
     int deepestLeaf = 0;
     bool budgetReached = false;  // some nodes became leaves because the reference budget ran out
 
@@ -61,7 +68,7 @@ struct Octree {
     uint64_t innerNodes() const { return nodes.empty() ? 0 : (nodes.size() - 1) / 8; }
     uint64_t leaves() const { return nodes.size() - innerNodes(); }
     uint64_t emptyLeaves() const;
-    uint64_t references() const { return refs.size(); }
+    uint64_t references() const { return objectReferences; }
     size_t maxLeafReferences() const;
     size_t bytes() const { return nodes.size() * sizeof(OctreeNode) + refs.size() * sizeof(uint32_t); }
 };
@@ -69,7 +76,7 @@ struct Octree {
 Octree buildOctree(const PrimitiveSet& prims, const OctreeParameters& parameters);
 
 // The split position of adaptive subdivision along `axis` of the node [lo, hi] referring to
-// `objects` (boxes[p] the box of primitive p): of the N positions evenly spaced from the node's
+// `objects` (boxes[o] the box of object o): of the N positions evenly spaced from the node's
 // middle to the median of the objects' box centres (both included), the first of least cost.
 // Positions on or outside the node's faces are skipped, so no child is flat.
 double adaptiveSplit(View<const Bounds3> boxes, View<const uint32_t> objects, const DVec3& lo, const DVec3& hi,

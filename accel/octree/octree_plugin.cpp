@@ -17,7 +17,8 @@ Accelerator* createOctree(const PluginSettings& settings) {
     const auto traversal = octree::parseTraversal(settings.getText(keys::Octree::traversal.name));
     if (!traversal) throw std::invalid_argument("Octree::traversal: unknown traversal");
     const octree::OctreeParameters parameters{*subdivision, settings.getInt(keys::Octree::maxDepth.name),
-                                              settings.getInt(keys::Octree::maxObjects.name)};
+                                              settings.getInt(keys::Octree::maxObjects.name),
+                                              settings.getBool(keys::Octree::polygons.name)};
     return new octree::OctreeAccelerator(parameters, *traversal);
 }
 
@@ -30,6 +31,7 @@ BVHLAB_PLUGIN(registrar) {
          "Havran's octree: centre or adaptive subdivision, objects by their boxes, Glassner's or Gargantini and "
          "Atkinson's traversal, no mailboxes; figures N_IN, N_V, N_EV, N_OIV, and after a trace N_ETS, N_EETS "
          "(a plugin: accel/octree/, docs/spd.md)",
-         {keys::Octree::subdivision, keys::Octree::maxDepth, keys::Octree::maxObjects, keys::Octree::traversal},
+         {keys::Octree::subdivision, keys::Octree::maxDepth, keys::Octree::maxObjects, keys::Octree::polygons,
+          keys::Octree::traversal},
          createOctree});
 }

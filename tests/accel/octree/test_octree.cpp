@@ -5,6 +5,7 @@
 // (ctest CheckOctreePlugin, CheckOctreePluginAdaptive93) holds it to the conformance suite.
 #include "accel/octree/octree_accelerator.h"
 #include "accel/octree/octree_nodes.h"
+#include "accel/octree/octree_objects.h"
 #include "tests/support/cli_run.h"
 #include "tests/support/figures_in_json.h"
 #include "tests/support/scratch_dir.h"
@@ -70,6 +71,29 @@ TEST(OctreeNodes, HavransCountsOnAScenePlannedByHand) {
     EXPECT_EQ(mo3.innerNodes(), 0u);
     EXPECT_EQ(mo3.leaves(), 1u);
     EXPECT_EQ(mo3.references(), 3u);
+}
+
+TEST(OctreeObjects, APolygonsFanIsOneObject) {
+    // A square cut as the loader cuts it, (c0, c1, c2) and (c0, c2, c3); then a triangle that
+    // continues the fan but leaves its plane; a triangle apart; a sphere.
+    const std::vector<Triangle> tris = {{Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(2, 2, 0)},
+                                        {Vec3(0, 0, 0), Vec3(2, 2, 0), Vec3(0, 2, 0)},
+                                        {Vec3(0, 0, 0), Vec3(0, 2, 0), Vec3(0, 1, 3)},
+                                        {Vec3(5, 5, 5), Vec3(6, 5, 5), Vec3(5, 6, 5)}};
+    const std::vector<Sphere> spheres = {{Vec3(3, 3, 3), 0.5f}};
+    const std::vector<uint32_t> valid = allOf(5);
+    const PrimitiveSet prims{tris, valid, spheres};
+    EXPECT_TRUE(octree::continuesFan(tris[0], tris[1]));
+    EXPECT_FALSE(octree::continuesFan(tris[1], tris[2]));
+    EXPECT_FALSE(octree::continuesFan(tris[2], tris[3]));
+    const octree::OctreeObjects objects = octree::octreeObjects(prims, true);
+    EXPECT_EQ(objects.first, (std::vector<uint32_t>{0, 2, 3, 4, 5}));
+    EXPECT_EQ(objects.boxes[0].upper, Vec3(2, 2, 0));  // the square's box
+    EXPECT_EQ(octree::octreeObjects(prims, false).size(), 5u);
+    // A root that is a leaf: four objects referred to (N_OIV), five primitives tested.
+    const octree::Octree leaf = octree::buildOctree(prims, {Subdivision::Centre, 0, 1, true});
+    EXPECT_EQ(leaf.references(), 4u);
+    EXPECT_EQ(leaf.refs.size(), 5u);
 }
 
 TEST(OctreeNodes, TheAdaptiveSplitIsTheLeastOfWhangsCost) {
