@@ -14,7 +14,6 @@ bool continuesFan(const Triangle& previous, const Triangle& next) {
 
 OctreeObjects octreeObjects(const PrimitiveSet& prims, bool polygons) {
     OctreeObjects objects;
-    objects.first.clear();
     const View<const uint32_t> valid = prims.valid;
     for (size_t i = 0; i < valid.size(); ++i) {
         const uint32_t p = valid[i];

@@ -18,7 +18,7 @@ namespace bvhlab::octree {
 // Object o is the primitives valid[first[o]] .. valid[first[o + 1] - 1] (valid: the
 // PrimitiveSet's), with its box boxes[o].
 struct OctreeObjects {
-    std::vector<uint32_t> first{0};
+    std::vector<uint32_t> first;
     std::vector<Bounds3> boxes;
     size_t size() const { return boxes.size(); }
 };
