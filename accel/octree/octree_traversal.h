@@ -32,24 +32,13 @@ std::optional<Traversal> parseTraversal(std::string_view name);
 // The ray in double precision, clipped to the root's box: [t0, t1], empty when it misses it.
 struct ClippedRay {
     DVec3 org, dir, inv;
-    double t0 = 0.0, t1 = -1.0;
+    double t0 = 0.0, t1 = 0.0;
+    bool inside = false;
     ClippedRay(const Octree& tree, const Ray& ray) : org(ray.org), dir(ray.dir) {
-        t0 = ray.tmin;
-        t1 = ray.tmax;
-        for (int a = 0; a < 3; ++a) {
-            if (dir[a] == 0.0) {
-                inv[a] = 0.0;
-                if (!(org[a] >= tree.lower[a] && org[a] <= tree.upper[a])) t1 = -1.0;
-                continue;
-            }
-            inv[a] = 1.0 / dir[a];
-            double ta = (tree.lower[a] - org[a]) * inv[a], tb = (tree.upper[a] - org[a]) * inv[a];
-            if (ta > tb) std::swap(ta, tb);
-            t0 = std::max(t0, ta);
-            t1 = std::min(t1, tb);
-        }
+        inside = clipToBox(ray, tree.lower, tree.upper, t0, t1);
+        for (int a = 0; a < 3; ++a) inv[a] = dir[a] == 0.0 ? 0.0 : 1.0 / dir[a];
     }
-    bool hits() const { return t0 <= t1 && std::isfinite(t0); }  // also NaN and an infinite origin
+    bool hits() const { return inside; }
     // The t at which the ray meets the plane x[axis] = position (infinite when parallel to it).
     double at(int axis, double position) const {
         return dir[axis] == 0.0 ? double(kInfinity) : (position - org[axis]) * inv[axis];
