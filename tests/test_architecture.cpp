@@ -30,6 +30,7 @@ const std::map<std::string, std::vector<std::string>> kMayInclude = {
     {"accel/naive", {"framework/core"}},
     {"accel/embree", {"framework/core", "framework/config"}},
     {"accel/grid", {}},  // a plugin: <bvhlab/...> only
+    {"accel/octree", {}},  // a plugin: <bvhlab/...> only
     {"accel/bvh/simd", {"framework/core"}},
     {"accel/bvh/layout", {"framework/core", "accel/bvh/simd"}},
     {"accel/bvh/builders", {"framework/core", "accel/bvh/simd", "accel/bvh/layout"}},
@@ -175,7 +176,7 @@ TEST(Architecture, ThePluginApiAndThePluginsIncludeOnlyThePluginApi) {
         ++headers;
     }
     EXPECT_GT(headers, 10u);
-    for (const fs::path& folder : {source / "accel/grid", source / "tests/plugins"})
+    for (const fs::path& folder : {source / "accel/grid", source / "accel/octree", source / "tests/plugins"})
         for (const fs::path& file : sourcesUnder(folder)) {
             checkAngled(file);
             if (folder.filename() == "plugins") {

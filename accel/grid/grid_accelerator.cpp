@@ -2,6 +2,8 @@
 
 #include "accel/grid/grid_traversal.h"
 
+#include <bvhlab/reference_tests.h>
+
 namespace bvhlab::grid {
 
 void GridAccelerator::build(const PrimitiveSet& prims) {
@@ -30,30 +32,20 @@ void GridAccelerator::statistics(BuildStatistics& out) const {
 
 namespace {
 
-// Tests every reference of cell `c` in [ray.tmin, tmax]; onHit(t, prim, u, v) returns true to stop.
-template <typename OnHit>
-bool testCell(const GridCells& g, const PrimitiveSet& prims, size_t c, const Ray& ray, const ShearedRay& sheared,
-              float& tmax, QueryCounters& counters, OnHit&& onHit) {
-    for (uint32_t i = g.cellStart[c]; i < g.cellStart[c + 1]; ++i) {
-        const uint32_t prim = g.refs[i];
-        if (prims.kind(prim) == PrimitiveKind::Triangle) {
-            ++counters.intersectionTests;
-            TriangleHitT<float> h;
-            if (intersectTriangle(sheared, prims.triangles[prim], ray.tmin, tmax, h)) {
-                tmax = h.t;
-                if (onHit(h.t, prim, h.u, h.v)) return true;
-            }
-        } else {
-            const QuadricShape shape = prims.quadric(prim);
-            counters.countQuadricTest(shape);
-            QuadricHitT<float> h;
-            if (intersectQuadric(ray, shape, ray.tmin, tmax, h)) {
-                tmax = h.t;
-                if (onHit(h.t, prim, 0.0f, 0.0f)) return true;
-            }
-        }
-    }
-    return false;
+// The references of cell c.
+View<const uint32_t> cellReferences(const GridCells& g, size_t c) {
+    return {g.refs.data() + g.cellStart[c], size_t(g.cellStart[c + 1] - g.cellStart[c])};
+}
+
+// The cells along the ray, each counted in N_TS (our N_TR). Cells are closed and enlarged
+// (grid_cells.h), so a hit on a face is referenced by the cell before it.
+auto cellWalk(const GridCells& g, const Ray& ray, QueryCounters& counters) {
+    return [&g, &ray, &counters](auto&& visit) {
+        walkCells(g, ray, [&](size_t c, double exit) {
+            ++counters.traversalSteps;
+            return visit(cellReferences(g, c), exit);
+        });
+    };
 }
 
 }  // namespace
@@ -61,38 +53,13 @@ bool testCell(const GridCells& g, const PrimitiveSet& prims, size_t c, const Ray
 bool GridAccelerator::findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const {
     ++counters.queries;
     if (!ray.isValid() || grid_.refs.empty()) return false;
-    const ShearedRay sheared(ray);
-    float tmax = ray.tmax;
-    Hit best;
-    walkCells(grid_, ray, [&](size_t c, double exit) {
-        ++counters.traversalSteps;
-        testCell(grid_, prims_, c, ray, sheared, tmax, counters, [&](float t, uint32_t prim, float u, float v) {
-            best = {t, prim, u, v};
-            return false;
-        });
-        // A hit beyond this cell's exit is kept (tmax) but answered only once the walk reaches
-        // its cell: a closer one may lie in the cells between. Cells are closed and enlarged
-        // (grid_cells.h), so a hit on a face is referenced by the cell before it.
-        return !(best.found() && double(best.t) <= exit);
-    });
-    if (!best.found()) return false;
-    hit = best;
-    return true;
+    return findNearestAlong(prims_, ray, counters, cellWalk(grid_, ray, counters), hit);
 }
 
 bool GridAccelerator::isOccluded(const Ray& ray, QueryCounters& counters) const {
     ++counters.queries;
     if (!ray.isValid() || grid_.refs.empty()) return false;
-    const ShearedRay sheared(ray);
-    float tmax = ray.tmax;
-    bool occluded = false;
-    walkCells(grid_, ray, [&](size_t c, double) {
-        ++counters.traversalSteps;
-        occluded = testCell(grid_, prims_, c, ray, sheared, tmax, counters,
-                            [](float, uint32_t, float, float) { return true; });
-        return !occluded;
-    });
-    return occluded;
+    return isOccludedAlong(prims_, ray, counters, cellWalk(grid_, ray, counters));
 }
 
 }  // namespace bvhlab::grid

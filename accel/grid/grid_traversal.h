@@ -17,22 +17,11 @@ namespace bvhlab::grid {
 // the ray's interval misses the grid's box.
 template <typename Visit>
 bool walkCells(const GridCells& g, const Ray& ray, Visit&& visit) {
+    double t0 = 0.0, t1 = 0.0;
+    if (!clipToBox(ray, g.lower, g.upper, t0, t1)) return false;
     const DVec3 org(ray.org), dir(ray.dir);
-    double t0 = ray.tmin, t1 = ray.tmax;
     DVec3 inv;
-    for (int a = 0; a < 3; ++a) {
-        if (dir[a] == 0.0) {
-            if (!(org[a] >= g.lower[a] && org[a] <= g.upper[a])) return false;
-            inv[a] = 0.0;
-            continue;
-        }
-        inv[a] = 1.0 / dir[a];
-        double ta = (g.lower[a] - org[a]) * inv[a], tb = (g.upper[a] - org[a]) * inv[a];
-        if (ta > tb) std::swap(ta, tb);
-        t0 = std::max(t0, ta);
-        t1 = std::min(t1, tb);
-    }
-    if (!(t0 <= t1) || !std::isfinite(t0)) return false;  // also NaN and an infinite origin
+    for (int a = 0; a < 3; ++a) inv[a] = dir[a] == 0.0 ? 0.0 : 1.0 / dir[a];
 
     int cell[3], step[3], end[3];
     double next[3];

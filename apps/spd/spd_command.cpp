@@ -1,6 +1,7 @@
 // `bvhlab spd SCENE.nff... --out DIR`: the SPD test (framework/render/spd_tracer.h) with each
-// chosen accelerator, beside Havran's published figures (apps/spd/havran_reference.h):
-// DIR/spd.json, DIR/spd.md and an image per scene and accelerator.
+// chosen accelerator, beside Havran's published figures (apps/spd/havran_reference.h), an octree's
+// beside the column of his octree tables it was built as: DIR/spd.json, DIR/spd.md and an image
+// per scene and accelerator.
 #include "apps/cli/commands.h"
 
 #include "accel/registry.h"
@@ -15,6 +16,8 @@
 #include "apps/runtime/scene_loading.h"
 #include "apps/spd/havran_reference.h"
 #include "framework/config/common_keys.h"
+#include "framework/core/accelerator.h"
+#include "framework/core/parse_number.h"
 #include "framework/core/timed_build.h"
 #include "framework/io/image_io.h"
 #include "framework/render/spd_tracer.h"
@@ -23,6 +26,10 @@
 
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
+
+#include <iterator>
+#include <optional>
+#include <utility>
 
 namespace bvhlab {
 namespace {
@@ -35,7 +42,8 @@ nlohmann::json invariantsJson(const SpdCounts& c) {
             {"AllRays", c.allRays()},          {"IntersRequired", c.intersRequired()}};
 }
 
-nlohmann::json accelJson(const std::string& label, const BuildStats& build, const SpdResult& r, bool counted) {
+nlohmann::json accelJson(const std::string& label, const BuildStats& build, const SpdResult& r, bool counted,
+                         nlohmann::json havran) {
     const uint64_t rays = r.counts.allRays();
     QueryCounters all = r.closest;
     all += r.shadow;
@@ -56,7 +64,36 @@ nlohmann::json accelJson(const std::string& label, const BuildStats& build, cons
               {"cut_by_depth", r.counts.raysCutByDepth},
               {"total_internal_reflections", r.counts.totalInternalReflections}}},
             {"reflection_rays", r.counts.reflectionRays},
-            {"refraction_rays", r.counts.refractionRays}};
+            {"refraction_rays", r.counts.refractionRays},
+            {"havran", std::move(havran)}};  // the column of his tables this run stands beside, or null
+}
+
+// The column of Havran's tables that a run of the octree plugin stands beside: the table of its
+// traversal and subdivision ("Octree84-C"), the column of its maximum depth (his are 4 to 7).
+std::optional<std::pair<std::string, size_t>> havranOctreeColumn(const AccelConfig& config, const Env& env) {
+    if (config.name != "octree") return std::nullopt;
+    const nlohmann::json keys = env.toJson();
+    const auto value = [&](const char* key) {
+        return keys.contains(key) ? keys[key]["value"].get<std::string>() : std::string();
+    };
+    const std::string traversal = value("Octree::traversal"), subdivision = value("Octree::subdivision");
+    double depth = 0.0;
+    if (traversal.rfind("octree", 0) != 0 || !parseNumber(value("Octree::maxDepth"), depth)) return std::nullopt;
+    const int column = int(depth) - kHavranFirstDepth;
+    if (column < 0 || column > 3) return std::nullopt;
+    return std::pair{fmt::format("Octree{}-{}", traversal.substr(6), subdivision == "adaptive" ? "A" : "C"),
+                     size_t(column)};
+}
+
+// Havran's figures of `column` in `table` of the scene, for the rows bvhlab measures.
+nlohmann::json havranOctreeJson(const HavranScene& scene, const std::string& table, size_t column) {
+    const auto t = scene.tables.find(table);
+    if (t == scene.tables.end()) return nullptr;
+    nlohmann::json values = nlohmann::json::object();
+    for (const char* row : kHavranOctreeRows)
+        if (const auto r = t->second.find(row); r != t->second.end() && column < r->second.size())
+            values[row] = r->second[column];
+    return {{"table", table}, {"max_depth", int(column) + kHavranFirstDepth}, {"values", values}};
 }
 
 std::string percentDiff(double ours, double theirs) {
@@ -64,8 +101,48 @@ std::string percentDiff(double ours, double theirs) {
     return fmt::format("{:+.2f} %", 100.0 * (ours - theirs) / theirs);
 }
 
+// The octree runs beside the column of Havran's octree tables each stands beside (empty when no
+// run has one): his row, then ours with the difference. His octree tables' N_IT is the tests per
+// intersection required (IntersRequired), not per ray (docs/spd.md, "Havran's octrees"): ours is
+// set beside it so computed, and given per ray in the last column.
+std::string octreeMarkdown(const nlohmann::json& accels) {
+    std::string md;
+    for (const nlohmann::json& a : accels) {
+        if (!a.contains("havran") || a["havran"].is_null()) continue;
+        if (md.empty()) {
+            md = "| octree | N_IN | N_V | N_EV | N_OIV | N_IT per IntersRequired | N_TS | N_ETS | N_EETS "
+                 "| N_IT per ray |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+        }
+        const nlohmann::json& havran = a["havran"]["values"];
+        const nlohmann::json& invariants = a["invariants"];
+        const double required = invariants["IntersRequired"].get<double>(), rays = invariants["AllRays"].get<double>();
+        std::string theirs = fmt::format("| Havran's {}, depth {} |", a["havran"]["table"].get<std::string>(),
+                                         a["havran"]["max_depth"].get<int>());
+        std::string ours = fmt::format("| {} |", a["accel"].get<std::string>());
+        for (const char* row : kHavranOctreeRows) {
+            const std::string name(row);
+            nlohmann::json mine;
+            if (name == "N_IT" && !a["n_it"].is_null() && required > 0.0)
+                mine = a["n_it"].get<double>() * rays / required;
+            else if (name == "N_TS") mine = a["n_ts"];
+            else if (a["figures"].contains(name)) mine = a["figures"][name]["value"];
+            const bool whole = name == "N_IN" || name == "N_V" || name == "N_EV" || name == "N_OIV";
+            const auto number = [&](double v) { return whole ? fmt::format("{:.0f}", v) : fmt::format("{:.2f}", v); };
+            theirs += havran.contains(name) ? fmt::format(" {} |", number(havran[name].get<double>())) : " n/a |";
+            if (mine.is_null()) ours += " n/a |";
+            else if (!havran.contains(name)) ours += fmt::format(" {} |", number(mine.get<double>()));
+            else ours += fmt::format(" {} ({}) |", number(mine.get<double>()),
+                                     percentDiff(mine.get<double>(), havran[name].get<double>()));
+        }
+        theirs += " |";
+        ours += a["n_it"].is_null() ? " n/a |" : fmt::format(" {:.2f} |", a["n_it"].get<double>());
+        md += theirs + "\n" + ours + "\n";
+    }
+    return md.empty() ? md : md + "\n";
+}
+
 // spd.md: per scene, our invariants beside Havran's, then N_IT / N_TS per accelerator beside
-// his best grid and octree.
+// his best grid and octree, then the octree runs beside his octree tables.
 std::string markdown(const nlohmann::json& results) {
     std::string md = "# The SPD test: bvhlab beside Havran's GOLEM statistics\n\n";
     md += "Rules: SPD_Readme.txt \"Testing Procedures\" (framework/render/spd_tracer.h). Havran's figures: "
@@ -93,7 +170,7 @@ std::string markdown(const nlohmann::json& results) {
             md += fmt::format("| {} | {} | {} | {:.1f} | {:.0f} |\n", a["accel"].get<std::string>(), cell(a["n_it"]),
                               cell(a["n_ts"]), a["build_ms"].get<double>(), a["trace_ms"].get<double>());
         }
-        md += "\n";
+        md += "\n" + octreeMarkdown(scene["accels"]);
     }
     return md;
 }
@@ -163,7 +240,15 @@ void addSpdCommand(CLI::App& app) {
                         traceSpd(scene, *accel, rules, fb, [&](uint64_t rays) { progress.advance(1, rays); });
                     progress.finish();
                     writePng(out / fmt::format("{}.{}.png", scene.name, config.label), fb);
-                    sceneJson["accels"].push_back(accelJson(config.label, build, result, accel->hasCounters()));
+                    // The figures after the trace: a structure's per-ray figures (an octree's N_ETS)
+                    // count the queries since its build.
+                    BuildStats traced = build;
+                    traced.figures = statisticsOf(*accel).figures;
+                    nlohmann::json havranColumn;
+                    if (const auto column = havranOctreeColumn(config, accelEnv); column && havran.count(scene.name))
+                        havranColumn = havranOctreeJson(havran.at(scene.name), column->first, column->second);
+                    sceneJson["accels"].push_back(
+                        accelJson(config.label, traced, result, accel->hasCounters(), std::move(havranColumn)));
                 }
                 results["scenes"].push_back(sceneJson);
             }

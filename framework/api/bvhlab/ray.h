@@ -35,6 +35,31 @@ struct Hit {
     bool found() const { return primitive != kInvalidPrimitive; }
 };
 
+// The part [t0, t1] of the ray's interval [tmin, tmax] inside the closed box [lower, upper], in
+// double precision: false when there is none (also for a NaN or an infinite origin). On an axis
+// the ray is parallel to, the origin must lie within the box's slab.
+inline bool clipToBox(const Ray& ray, const DVec3& lower, const DVec3& upper, double& t0, double& t1) {
+    t0 = ray.tmin;
+    t1 = ray.tmax;
+    for (int a = 0; a < 3; ++a) {
+        const double org = ray.org[a], dir = ray.dir[a];
+        if (dir == 0.0) {
+            if (!(org >= lower[a] && org <= upper[a])) return false;
+            continue;
+        }
+        const double inv = 1.0 / dir;
+        double ta = (lower[a] - org) * inv, tb = (upper[a] - org) * inv;
+        if (ta > tb) {
+            const double swapped = ta;
+            ta = tb;
+            tb = swapped;
+        }
+        t0 = math::max(t0, ta);
+        t1 = math::min(t1, tb);
+    }
+    return t0 <= t1 && math::isfinite(t0);
+}
+
 // Two closest-hit answers agree when both miss, or their t differ by at most
 // 1e-4*max(1,|t|); the primitive may then differ (ties at shared edges, coincident triangles).
 inline bool hitsAgree(const Hit& a, const Hit& b) {
