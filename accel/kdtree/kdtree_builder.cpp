@@ -154,7 +154,15 @@ private:
             if (!r.isEmpty()) addEvents(clippedRight, prim, r);
         });
         for (int a = 0; a < 3; ++a) {
+            size_t leftCount = 0, rightCount = 0;
+            for (const Event& e : events.axis[a]) {
+                const uint8_t s = side_[e.prim()];
+                leftCount += s == kLeftOnly;
+                rightCount += s == kRightOnly;
+            }
             std::vector<Event> onlyLeft, onlyRight;
+            onlyLeft.reserve(leftCount + clippedLeft.axis[a].size());
+            onlyRight.reserve(rightCount + clippedRight.axis[a].size());
             for (const Event& e : events.axis[a]) {
                 const uint8_t s = side_[e.prim()];
                 if (s == kLeftOnly) onlyLeft.push_back(e);
@@ -165,14 +173,13 @@ private:
         }
     }
 
+    // `kept` has room for `added`: the merge runs in place, from the back.
     static void mergeSorted(std::vector<Event>&& kept, std::vector<Event>& added, std::vector<Event>& out) {
-        if (added.empty()) {
-            out = std::move(kept);
-            return;
-        }
         std::sort(added.begin(), added.end());
-        out.resize(kept.size() + added.size());
-        std::merge(kept.begin(), kept.end(), added.begin(), added.end(), out.begin());
+        size_t i = kept.size(), j = added.size(), o = i + j;
+        kept.resize(o);
+        while (j > 0) kept[--o] = (i > 0 && added[j - 1] < kept[i - 1]) ? kept[--i] : added[--j];
+        out = std::move(kept);
     }
 
     void leaf(const NodeEvents& events, int depth) {

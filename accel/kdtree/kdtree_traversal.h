@@ -33,15 +33,16 @@ void walkLeaves(const KdTree& tree, const Ray& ray, const float& tmax, QueryCoun
     const double dirMagnitude = std::max({std::abs(dir.x), std::abs(dir.y), std::abs(dir.z)});
     // The ray's interval, widened by the margin, clipped to the root's box widened alike.
     double t0 = double(ray.tmin) - margin / dirMagnitude, t1 = double(ray.tmax) + margin / dirMagnitude;
-    DVec3 inv;
+    DVec3 inv, marginT;  // marginT: the t the ray takes to cross the margin along each axis
     for (int a = 0; a < 3; ++a) {
         const double lo = double(box.lower[a]) - margin, hi = double(box.upper[a]) + margin;
         if (dir[a] == 0.0) {
             if (org[a] < lo || org[a] > hi) return;
-            inv[a] = 0.0;
+            inv[a] = marginT[a] = 0.0;
             continue;
         }
         inv[a] = 1.0 / dir[a];
+        marginT[a] = margin * std::abs(inv[a]);
         const double ta = (lo - org[a]) * inv[a], tb = (hi - org[a]) * inv[a];
         t0 = std::max(t0, std::min(ta, tb));
         t1 = std::min(t1, std::max(ta, tb));
@@ -71,12 +72,12 @@ void walkLeaves(const KdTree& tree, const Ray& ray, const float& tmax, QueryCoun
                 nearEnd = t1;
                 farStart = inBelow && inAbove ? t0 : kInfinity;
             } else {
-                const double tLow = (split - margin - org[k]) * inv[k], tHigh = (split + margin - org[k]) * inv[k];
+                const double tPlane = (split - org[k]) * inv[k];
                 const bool belowFirst = dir[k] > 0.0;
                 near = belowFirst ? below : above;
                 far = belowFirst ? above : below;
-                nearEnd = belowFirst ? tHigh : tLow;
-                farStart = belowFirst ? tLow : tHigh;
+                nearEnd = tPlane + marginT[k];
+                farStart = tPlane - marginT[k];
             }
             if (nearEnd < t0) {
                 index = far;
