@@ -6,6 +6,7 @@
 #include "accel/grid/grid_cells.h"
 #include "accel/grid/grid_resolution.h"
 #include "tests/support/cli_run.h"
+#include "tests/support/json_figures.h"
 #include "tests/support/scratch_dir.h"
 
 #include <gtest/gtest.h>
@@ -14,7 +15,6 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
-#include <functional>
 #include <random>
 
 namespace bvhlab::test {
@@ -135,17 +135,7 @@ TEST(GridPlugin, FoundByNameItsFiguresInTheJson) {
     EXPECT_NE(r.output.find("grid N_OIV:"), std::string::npos) << r.output;
     std::ifstream in(out.string() + ".json");
     const nlohmann::json json = nlohmann::json::parse(in);
-    // Wherever the statistics row sits, its "figures" hold Havran's build figures.
-    std::vector<nlohmann::json> found;
-    std::function<void(const nlohmann::json&)> walk = [&](const nlohmann::json& j) {
-        if (j.is_object()) {
-            if (j.contains("figures") && j["figures"].contains("N_V")) found.push_back(j["figures"]);
-            for (const auto& [key, value] : j.items()) walk(value);
-        } else if (j.is_array()) {
-            for (const auto& value : j) walk(value);
-        }
-    };
-    walk(json);
+    const std::vector<nlohmann::json> found = figuresWith(json, "N_V");  // Havran's build figures
     ASSERT_FALSE(found.empty()) << json.dump();
     const nlohmann::json& f = found.front();
     for (const char* name : {"res_x", "res_y", "res_z", "N_V", "N_EV", "N_OIV"}) EXPECT_TRUE(f.contains(name)) << name;
