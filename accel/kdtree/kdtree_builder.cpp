@@ -3,6 +3,7 @@
 #include "accel/kdtree/kdtree_clip.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 
@@ -68,9 +69,15 @@ public:
         clipMargin_ = kClipMargin * double(std::max({magnitude.x, magnitude.y, magnitude.z}));
         side_.assign(size_t(prims.coneBase()) + prims.cones.size(), kBoth);
         referenceBudget_ = 64 * prims.valid.size() + (size_t(1) << 20);
+        levels_.resize(size_t(tree.maxDepth) + 2);  // sized once: node() holds references into it
     }
 
-    void node(NodeEvents events, const Bounds3& box, int depth) {
+    // The root's events: those of every node live in buffers kept per depth (below).
+    NodeEvents& rootEvents() { return levelEvents(0, 0); }
+
+    // Builds the node whose events are levelEvents(depth, side), appending it and its subtree.
+    void node(int depth, int side, const Bounds3& box) {
+        const NodeEvents& events = levelEvents(depth, side);
         size_t n = 0;
         forEachPrimitive(events, [&](uint32_t) { ++n; });
         tree_.eventsSwept += events.size();
@@ -81,15 +88,13 @@ public:
 
         Bounds3 leftBox = box, rightBox = box;
         leftBox.upper[plane.axis] = rightBox.lower[plane.axis] = plane.pos;
-        NodeEvents left, right;
-        split(events, plane, leftBox, rightBox, left, right);
-        events = {};
+        split(events, plane, leftBox, rightBox, levelEvents(depth + 1, 0), levelEvents(depth + 1, 1));
         if (tree_.nodes.size() + 2 > kMaxIndex) throw std::length_error("kdtree: more than 2^30 nodes");
         const size_t self = tree_.nodes.size();
         tree_.nodes.push_back(KdNode::leaf(0, 0));  // made an inner node once its children are placed
-        node(std::move(left), leftBox, depth + 1);
+        node(depth + 1, 0, leftBox);
         tree_.nodes[self] = KdNode::inner(plane.axis, plane.pos, uint32_t(tree_.nodes.size()));
-        node(std::move(right), rightBox, depth + 1);
+        node(depth + 1, 1, rightBox);
     }
 
 private:
@@ -145,7 +150,9 @@ private:
             else if (type == kPlanar)
                 side_[e.prim()] = (e.pos < plane.pos || (e.pos == plane.pos && plane.planarLeft)) ? kLeftOnly : kRightOnly;
         }
-        NodeEvents clippedLeft, clippedRight;
+        NodeEvents& clippedLeft = clippedLeft_;
+        NodeEvents& clippedRight = clippedRight_;
+        for (int a = 0; a < 3; ++a) clippedLeft.axis[a].clear(), clippedRight.axis[a].clear();
         forEachPrimitive(events, [&](uint32_t prim) {
             if (side_[prim] != kBoth) return;
             const Bounds3 l = clippedBounds(prims_, prim, leftBox, clipMargin_);
@@ -160,7 +167,9 @@ private:
                 leftCount += s == kLeftOnly;
                 rightCount += s == kRightOnly;
             }
-            std::vector<Event> onlyLeft, onlyRight;
+            std::vector<Event>& onlyLeft = left.axis[a];
+            std::vector<Event>& onlyRight = right.axis[a];
+            onlyLeft.clear(), onlyRight.clear();
             onlyLeft.reserve(leftCount + clippedLeft.axis[a].size());
             onlyRight.reserve(rightCount + clippedRight.axis[a].size());
             for (const Event& e : events.axis[a]) {
@@ -168,19 +177,23 @@ private:
                 if (s == kLeftOnly) onlyLeft.push_back(e);
                 else if (s == kRightOnly) onlyRight.push_back(e);
             }
-            mergeSorted(std::move(onlyLeft), clippedLeft.axis[a], left.axis[a]);
-            mergeSorted(std::move(onlyRight), clippedRight.axis[a], right.axis[a]);
+            mergeSorted(onlyLeft, clippedLeft.axis[a]);
+            mergeSorted(onlyRight, clippedRight.axis[a]);
         }
     }
 
-    // `kept` has room for `added`: the merge runs in place, from the back.
-    static void mergeSorted(std::vector<Event>&& kept, std::vector<Event>& added, std::vector<Event>& out) {
+    // Sorts `added` and merges it into `kept`, in place from the back (`kept` has the room).
+    static void mergeSorted(std::vector<Event>& kept, std::vector<Event>& added) {
         std::sort(added.begin(), added.end());
         size_t i = kept.size(), j = added.size(), o = i + j;
         kept.resize(o);
         while (j > 0) kept[--o] = (i > 0 && added[j - 1] < kept[i - 1]) ? kept[--i] : added[--j];
-        out = std::move(kept);
     }
+
+    // One pair of event lists per depth, the children's of the node being split there: the right
+    // child's list at depth d + 1 is untouched while the left child's subtree uses depths below,
+    // so the lists are reused from node to node without allocating.
+    NodeEvents& levelEvents(int depth, int side) { return levels_[size_t(depth)][size_t(side)]; }
 
     void leaf(const NodeEvents& events, int depth) {
         const size_t first = tree_.references.size();
@@ -200,6 +213,8 @@ private:
     const KdTreeParameters& parameters_;
     KdTree& tree_;
     double clipMargin_ = 0.0;
+    std::vector<std::array<NodeEvents, 2>> levels_;
+    NodeEvents clippedLeft_, clippedRight_;  // a split's straddling primitives, clipped to each child
     std::vector<uint8_t> side_;  // per primitive, during one node's split
     size_t referenceBudget_ = 0;  // past it, nodes become leaves: bounded memory on any input
 };
@@ -223,14 +238,14 @@ KdTree buildKdTree(const PrimitiveSet& prims, const KdTreeParameters& parameters
     tree.maxDepth = parameters.maxDepth > 0 ? parameters.maxDepth : autoMaxDepth(prims.valid.size());
     // A box that is not finite has no planes to sweep: everything in one leaf.
     const bool finite = isFinite(tree.bounds.lower) && isFinite(tree.bounds.upper);
-    NodeEvents events;
+    if (!finite) tree.maxDepth = 0;
+    Builder builder(prims, parameters, tree);
+    NodeEvents& events = builder.rootEvents();
     for (int a = 0; a < 3; ++a) events.axis[a].reserve(2 * prims.valid.size());
     for (uint32_t prim : prims.valid) addEvents(events, prim, primitiveBounds(prims, prim));
     if (finite)
         for (auto& axis : events.axis) std::sort(axis.begin(), axis.end());
-    else
-        tree.maxDepth = 0;
-    Builder(prims, parameters, tree).node(std::move(events), tree.bounds, 0);
+    builder.node(0, 0, tree.bounds);
     return tree;
 }
 
