@@ -68,7 +68,7 @@ public:
         const Vec3 magnitude = math::max(math::abs(tree.bounds.lower), math::abs(tree.bounds.upper));
         clipMargin_ = kClipMargin * double(std::max({magnitude.x, magnitude.y, magnitude.z}));
         side_.assign(size_t(prims.coneBase()) + prims.cones.size(), kBoth);
-        referenceBudget_ = 64 * prims.valid.size() + (size_t(1) << 20);
+        referenceBudget_ = 16 * prims.valid.size() + (size_t(1) << 20);
         levels_.resize(size_t(tree.maxDepth) + 2);  // sized once: node() holds references into it
     }
 
