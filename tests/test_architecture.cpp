@@ -29,7 +29,8 @@ const std::map<std::string, std::vector<std::string>> kMayInclude = {
     {"framework/report", {"framework/core", "framework/config", "framework/scene", "framework/render"}},
     {"accel/naive", {"framework/core"}},
     {"accel/embree", {"framework/core", "framework/config"}},
-    {"accel/grid", {}},  // a plugin: <bvhlab/...> only
+    {"accel/grid", {}},    // a plugin: <bvhlab/...> only
+    {"accel/kdtree", {}},  // a plugin: <bvhlab/...> only
     {"accel/octree", {}},  // a plugin: <bvhlab/...> only
     {"accel/bvh/simd", {"framework/core"}},
     {"accel/bvh/layout", {"framework/core", "accel/bvh/simd"}},
@@ -176,7 +177,8 @@ TEST(Architecture, ThePluginApiAndThePluginsIncludeOnlyThePluginApi) {
         ++headers;
     }
     EXPECT_GT(headers, 10u);
-    for (const fs::path& folder : {source / "accel/grid", source / "accel/octree", source / "tests/plugins"})
+    for (const fs::path& folder :
+         {source / "accel/grid", source / "accel/kdtree", source / "accel/octree", source / "tests/plugins"})
         for (const fs::path& file : sourcesUnder(folder)) {
             checkAngled(file);
             if (folder.filename() == "plugins") {

@@ -66,9 +66,9 @@ TEST(Cli, BadValueAndUnknownAcceleratorAreErrors) {
     Result r = renderToScratch("-DSetRayTracing::cntSamples=0");
     EXPECT_EQ(r.exitCode, 1);
     EXPECT_NE(r.output.find("cntSamples"), std::string::npos) << r.output;
-    r = renderToScratch("-DASDS::type=kdtree");
+    r = renderToScratch("-DASDS::type=bsptree");
     EXPECT_EQ(r.exitCode, 1);
-    EXPECT_NE(r.output.find("kdtree"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("bsptree"), std::string::npos) << r.output;
 }
 
 TEST(Cli, BrokenSceneIsOneLineErrorWithFileAndLine) {

@@ -115,14 +115,14 @@ TEST(PluginCommands, AFileFoundByNameThatAddsAnotherNameSaysWhatItAdds) {
     const Workspace w;
     const fs::path folder = w.dir / "my_plugins";
     fs::create_directories(folder);
-    fs::copy_file(fs::path(bvhlabProgram()).parent_path() / "plugins" / "grid.so", folder / "kdtree.so",
+    fs::copy_file(fs::path(bvhlabProgram()).parent_path() / "plugins" / "grid.so", folder / "bsptree.so",
                   fs::copy_options::overwrite_existing);
-    const Result r = runShell(fmt::format("BVHLAB_PLUGIN_PATH={} {} render -DASDS::type=kdtree --out {}", folder.string(),
+    const Result r = runShell(fmt::format("BVHLAB_PLUGIN_PATH={} {} render -DASDS::type=bsptree --out {}", folder.string(),
                                           bvhlabProgram(), (w.dir / "x").string()));
     EXPECT_EQ(r.exitCode, 1) << r.output;
-    EXPECT_NE(r.output.find(fmt::format("unknown accelerator 'kdtree': the plugin {} was loaded for it, but it adds grid, "
-                                        "not 'kdtree'",
-                                        (folder / "kdtree.so").string())),
+    EXPECT_NE(r.output.find(fmt::format("unknown accelerator 'bsptree': the plugin {} was loaded for it, but it adds grid, "
+                                        "not 'bsptree'",
+                                        (folder / "bsptree.so").string())),
               std::string::npos)
         << r.output;
 }

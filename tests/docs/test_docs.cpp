@@ -56,7 +56,7 @@ TEST(Docs, BvhConfigDefaultsAreTheKeysDefaults) {
 TEST(Docs, EveryRepositoryPathTheyNameExists) {
     namespace fs = std::filesystem;
     const fs::path root(test::sourceTree());
-    const std::set<std::string> examples = {"accel/kdtree"};
+    const std::set<std::string> examples = {"accel/bih"};
     std::vector<fs::path> files = {root / "README.md", root / "CMakeLists.txt"};
     for (const char* folder : {"docs", "framework", "accel", "apps", "tests"})
         for (const auto& entry : fs::recursive_directory_iterator(root / folder))

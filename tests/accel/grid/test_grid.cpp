@@ -6,7 +6,7 @@
 #include "accel/grid/grid_cells.h"
 #include "accel/grid/grid_resolution.h"
 #include "tests/support/cli_run.h"
-#include "tests/support/figures_in_json.h"
+#include "tests/support/json_figures.h"
 #include "tests/support/scratch_dir.h"
 
 #include <gtest/gtest.h>
@@ -135,8 +135,7 @@ TEST(GridPlugin, FoundByNameItsFiguresInTheJson) {
     EXPECT_NE(r.output.find("grid N_OIV:"), std::string::npos) << r.output;
     std::ifstream in(out.string() + ".json");
     const nlohmann::json json = nlohmann::json::parse(in);
-    // Wherever the statistics row sits, its "figures" hold Havran's build figures.
-    const std::vector<nlohmann::json> found = figuresWith(json, "N_V");
+    const std::vector<nlohmann::json> found = figuresWith(json, "N_V");  // Havran's build figures
     ASSERT_FALSE(found.empty()) << json.dump();
     const nlohmann::json& f = found.front();
     for (const char* name : {"res_x", "res_y", "res_z", "N_V", "N_EV", "N_OIV"}) EXPECT_TRUE(f.contains(name)) << name;

@@ -7,7 +7,7 @@
 #include "accel/octree/octree_nodes.h"
 #include "accel/octree/octree_objects.h"
 #include "tests/support/cli_run.h"
-#include "tests/support/figures_in_json.h"
+#include "tests/support/json_figures.h"
 #include "tests/support/scratch_dir.h"
 
 #include <bvhlab/reference_tests.h>

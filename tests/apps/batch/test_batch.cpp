@@ -209,9 +209,9 @@ TEST(Batch, BadArgumentsAreOneLineErrors) {
         EXPECT_NE(r.output.find("--shard " + std::string(shard) + ": expected i/n"), std::string::npos) << r.output;
         EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << r.output;
     }
-    Result r = run(batchArgs(dir, "out") + " --accel naive,kdtree");
+    Result r = run(batchArgs(dir, "out") + " --accel naive,bsptree");
     EXPECT_EQ(r.exitCode, 1);
-    EXPECT_NE(r.output.find("kdtree"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("bsptree"), std::string::npos) << r.output;
     r = run(batchArgs(dir, "out") + " --shard 0/2 --merge " + (dir / "out").string());
     EXPECT_EQ(r.exitCode, 1);
     EXPECT_FALSE(fs::exists(dir / "out" / "jobs" / "first__naive.json"));  // nothing ran

@@ -108,9 +108,9 @@ TEST(CliConventions, AccelListsAreCheckedFirstAndNamedAsTyped) {
                                        "spd " + nff.string() + " --out " + out, "tradeoff --out " + out,
                                        "tradeoff --builders --out " + out}) {
         SCOPED_TRACE(command);
-        Result r = run(command + " --accel sahbvh,kdtree");
+        Result r = run(command + " --accel sahbvh,bsptree");
         EXPECT_EQ(r.exitCode, 1) << r.output;
-        EXPECT_NE(r.output.find("--accel kdtree: unknown accelerator 'kdtree': none of bvhlab's"), std::string::npos)
+        EXPECT_NE(r.output.find("--accel bsptree: unknown accelerator 'bsptree': none of bvhlab's"), std::string::npos)
             << r.output;
         EXPECT_EQ(r.output.find("triangles ("), std::string::npos) << "a scene was loaded first:\n" << r.output;
         r = run(command + " --accel sahbvh:BVH::binz=8");
