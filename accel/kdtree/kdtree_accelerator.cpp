@@ -2,6 +2,8 @@
 
 #include "accel/kdtree/kdtree_traversal.h"
 
+#include <bvhlab/reference_tests.h>
+
 #include <vector>
 
 namespace bvhlab::kdtree {
@@ -40,29 +42,15 @@ void KdTreeAccelerator::statistics(BuildStatistics& out) const {
     out.leafSizes(leavesOfSize);
 }
 
-template <typename OnHit>
-bool KdTreeAccelerator::testPrimitive(uint32_t prim, const Ray& ray, const ShearedRay& sheared, float& tmax,
-                                      QueryCounters& counters, OnHit&& onHit) const {
-    if (prims_.kind(prim) == PrimitiveKind::Triangle) {
-        ++counters.intersectionTests;
-        TriangleHitT<float> h;
-        if (!intersectTriangle(sheared, prims_.triangles[prim], ray.tmin, tmax, h)) return false;
-        tmax = h.t;
-        return onHit(h.t, prim, h.u, h.v);
-    }
-    const QuadricShape shape = prims_.quadric(prim);
-    counters.countQuadricTest(shape);
-    QuadricHitT<float> h;
-    if (!intersectQuadric(ray, shape, ray.tmin, tmax, h)) return false;
-    tmax = h.t;
-    return onHit(h.t, prim, 0.0f, 0.0f);
-}
-
 namespace {
 
 // A ray whose origin or direction is not finite has no interval to walk: it is tested against
 // every primitive, as the reference does, so that it gets the reference's answer.
 bool walkable(const Ray& ray) { return isFinite(ray.org) && isFinite(ray.dir); }
+
+View<const uint32_t> leafReferences(const KdTree& tree, const KdNode& leaf) {
+    return {tree.references.data() + leaf.firstReference(), leaf.references()};
+}
 
 }  // namespace
 
@@ -78,12 +66,11 @@ bool KdTreeAccelerator::findNearest(const Ray& ray, Hit& hit, QueryCounters& cou
     };
     if (walkable(ray)) {
         walkLeaves(tree_, ray, tmax, counters, [&](const KdNode& leaf) {
-            for (uint32_t i = leaf.firstReference(); i < leaf.firstReference() + leaf.references(); ++i)
-                testPrimitive(tree_.references[i], ray, sheared, tmax, counters, keep);
+            testReferences(prims_, leafReferences(tree_, leaf), ray, sheared, tmax, counters, keep);
             return false;  // the walk skips what lies beyond the closest hit
         });
     } else {
-        for (uint32_t prim : prims_.valid) testPrimitive(prim, ray, sheared, tmax, counters, keep);
+        testReferences(prims_, prims_.valid, ray, sheared, tmax, counters, keep);
     }
     if (!best.found()) return false;
     hit = best;
@@ -99,13 +86,10 @@ bool KdTreeAccelerator::isOccluded(const Ray& ray, QueryCounters& counters) cons
     auto stop = [&](float, uint32_t, float, float) { return occluded = true; };
     if (walkable(ray)) {
         walkLeaves(tree_, ray, tmax, counters, [&](const KdNode& leaf) {
-            for (uint32_t i = leaf.firstReference(); i < leaf.firstReference() + leaf.references(); ++i)
-                if (testPrimitive(tree_.references[i], ray, sheared, tmax, counters, stop)) return true;
-            return false;
+            return testReferences(prims_, leafReferences(tree_, leaf), ray, sheared, tmax, counters, stop);
         });
     } else {
-        for (uint32_t prim : prims_.valid)
-            if (testPrimitive(prim, ray, sheared, tmax, counters, stop)) break;
+        testReferences(prims_, prims_.valid, ray, sheared, tmax, counters, stop);
     }
     return occluded;
 }

@@ -22,10 +22,6 @@ public:
     const KdTree& tree() const { return tree_; }
 
 private:
-    template <typename OnHit>
-    bool testPrimitive(uint32_t prim, const Ray& ray, const ShearedRay& sheared, float& tmax, QueryCounters& counters,
-                       OnHit&& onHit) const;
-
     KdTreeParameters parameters_;
     PrimitiveSet prims_;
     KdTree tree_;

@@ -1,7 +1,7 @@
 // A list of primitive references tested against a ray, as a cell or a leaf of a spatial
 // subdivision tests its references: each with its primitive's watertight test, counted in N_IT
 // by its kind; and the two queries along a walk over such cells in the ray's order. For the
-// structures that refer to one primitive from many places (grid, octree).
+// structures that refer to one primitive from many places (grid, octree, kd-tree).
 #pragma once
 
 #include <bvhlab/counters.h>
