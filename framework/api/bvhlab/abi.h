@@ -99,7 +99,7 @@ inline constexpr uint64_t kItaniumAbi = 0;
 
 // The ABI the calling translation unit sees, computed there once. Hidden, so that a plugin's call
 // always runs its own copy, never one the program exports. Every enumerator of a public enum and
-// every virtual function of a public class is listed here (tests/framework/test_abi.cpp checks).
+// every virtual function of a public class is listed here (tests/framework/api/test_abi.cpp checks).
 [[gnu::visibility("hidden")]] inline View<const AbiFigure> abiFigures() {
     static const AbiFigure figures[] = {
         {"Itanium C++ ABI", abi::kItaniumAbi},
