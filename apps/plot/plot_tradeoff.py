@@ -178,7 +178,8 @@ def main():
     def shown(value, width):
         return f"{value:{width}.2f}" if value is not None else f"{'n/a':>{width}}"
 
-    print(f"{'config':<12} {'gap mean %':>10} {'gap max %':>10} {'T_B/K16':>8} {'T_R prim/sweep':>14} "
+    relative_build = "T_B/" + (k16.removeprefix("sahbvh-") if k16 else "K16")
+    print(f"{'config':<12} {'gap mean %':>10} {'gap max %':>10} {relative_build:>8} {'T_R prim/sweep':>14} "
           f"{'image 1/embree':>14} {'image max/embree':>16}")
     for c in configs:
         gaps = [num(by[s, c]["sah_gap"]) for s in scenes if (s, c) in by and by[s, c]["sah_gap"]]
