@@ -9,9 +9,10 @@ cd "$(dirname "$0")"
 packages=(g++ cmake ninja-build pkg-config git
           libembree-dev libopenexr-dev libglm-dev libgtest-dev libtbb-dev libtinyobjloader-dev
           libstb-dev zlib1g-dev libcli11-dev nlohmann-json3-dev libfmt-dev
-          python3-matplotlib   # docs/plots/plot_tradeoff.py and docs/python.md, with /usr/bin/python3
+          python3-matplotlib   # bvhlab plot (apps/plot/) and docs/python.md, with /usr/bin/python3
           python3-dev pybind11-dev python3-numpy python3-pytest  # the Python module (docs/python.md)
-          slurmctld slurmd slurm-client munge)  # the SlurmCluster test (tests/slurm/with_local_slurm.sh)
+          slurmctld slurmd slurm-client munge   # the SlurmCluster test (tests/slurm/with_local_slurm.sh)
+          clang)  # a plugin built by clang++ (the ClangPluginLoads test, tests/package/check_plugin.sh)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

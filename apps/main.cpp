@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
     bvhlab::addSpdCommand(app);
     bvhlab::addCheckCommand(app);
     bvhlab::addKeysCommand(app);
+    bvhlab::addPlotCommand(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

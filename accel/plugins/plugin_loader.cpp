@@ -99,27 +99,63 @@ std::string abiFingerprint(View<const AbiFigure> figures) {
 }
 
 std::string abiMismatch(View<const AbiFigure> plugin) {
-    const View<const AbiFigure> own = kAbi;
+    const View<const AbiFigure> own = abiFigures();
     auto valueIn = [](View<const AbiFigure> figures, std::string_view what) -> std::optional<uint64_t> {
         for (const AbiFigure& f : figures)
             if (what == f.what) return f.value;
         return std::nullopt;
     };
-    auto shown = [](std::optional<uint64_t> v) { return v ? fmt::format("{}", *v) : std::string("none"); };
+    // The figures of the toolchain, each with its own cause; every other figure, and a toolchain
+    // figure the plugin lacks (its headers are older than that figure), comes from the headers.
+    const std::vector<std::string_view> toolchain = {"Itanium C++ ABI", "standard library", "standard library ABI"};
+    const std::optional<uint64_t> itanium = valueIn(plugin, toolchain[0]);
+    const std::optional<uint64_t> library = valueIn(plugin, toolchain[1]);
+    const std::optional<uint64_t> libraryAbi = valueIn(plugin, toolchain[2]);
+    auto libraryName = [](uint64_t library) {
+        return library == abi::kLibstdcxx ? "libstdc++" : library == abi::kLibcxx ? "libc++" : "another standard library";
+    };
+    std::vector<std::string> causes;
+    if (itanium && *itanium != abi::kItaniumAbi)
+        causes.push_back("it was not compiled for the Itanium C++ ABI, which bvhlab follows: build it with GCC or Clang");
+    if (library && *library != abi::kStandardLibrary)
+        causes.push_back(fmt::format("it was built with {}; bvhlab uses {}: build it with {}{}", libraryName(*library),
+                                     libraryName(abi::kStandardLibrary), libraryName(abi::kStandardLibrary),
+                                     *library == abi::kLibcxx ? " (without -stdlib=libc++)" : ""));
+    else if (libraryAbi && *libraryAbi != abi::kStandardLibraryAbi)
+        causes.push_back(abi::kStandardLibrary == abi::kLibstdcxx
+                             ? fmt::format("it was built with _GLIBCXX_USE_CXX11_ABI={}, bvhlab with {}: build it with "
+                                           "-D_GLIBCXX_USE_CXX11_ABI={}",
+                                           *libraryAbi, abi::kStandardLibraryAbi, abi::kStandardLibraryAbi)
+                             : fmt::format("it was built for the ABI version {} of {}, bvhlab for {}: build it for {}",
+                                           *libraryAbi, libraryName(abi::kStandardLibrary), abi::kStandardLibraryAbi,
+                                           abi::kStandardLibraryAbi));
+
+    // A type's figure is a hash: that it differs is all there is to say of it.
     std::vector<std::string> differences;
+    auto differ = [&](std::string_view what, std::optional<uint64_t> theirs, std::optional<uint64_t> ours) {
+        if (!theirs || !ours)
+            differences.push_back(fmt::format("{} is absent in {}", what, theirs ? "bvhlab" : "the plugin"));
+        else if (what.starts_with("type of "))
+            differences.push_back(fmt::format("the {} differs", what));
+        else if (!std::count(toolchain.begin(), toolchain.end(), what))
+            differences.push_back(fmt::format("{} is {} in the plugin, {} in bvhlab", what, *theirs, *ours));
+    };
     for (const AbiFigure& f : own)
         if (const std::optional<uint64_t> theirs = valueIn(plugin, f.what); theirs != f.value)
-            differences.push_back(fmt::format("{}: plugin {}, bvhlab {}", f.what, shown(theirs), f.value));
+            differ(f.what, theirs, f.value);
     for (const AbiFigure& f : plugin)
-        if (!valueIn(own, f.what)) differences.push_back(fmt::format("{}: plugin {}, bvhlab none", f.what, f.value));
-    if (differences.empty()) return "";
-    constexpr size_t kShown = 8;
-    const size_t more = differences.size() > kShown ? differences.size() - kShown : 0;
-    differences.resize(differences.size() - more);
-    return fmt::format("built against another ABI: plugin ABI {}, bvhlab ABI {}; they differ in {}{}. Rebuild the "
-                       "plugin against this bvhlab's headers (docs/plugins.md)",
-                       abiFingerprint(plugin), abiFingerprint(own), fmt::join(differences, "; "),
-                       more ? fmt::format(" and {} more", more) : "");
+        if (!valueIn(own, f.what)) differ(f.what, f.value, std::nullopt);
+    if (!differences.empty()) {
+        constexpr size_t kShown = 8;
+        const size_t more = differences.size() > kShown ? differences.size() - kShown : 0;
+        differences.resize(differences.size() - more);
+        causes.push_back(fmt::format("it was built against other headers ({}{}): rebuild it against this bvhlab's "
+                                     "include/bvhlab (docs/plugins.md)",
+                                     fmt::join(differences, "; "), more ? fmt::format("; and {} more", more) : ""));
+    }
+    if (causes.empty()) return "";
+    return fmt::format("built against another ABI (plugin ABI {}, bvhlab ABI {}): {}", abiFingerprint(plugin),
+                       abiFingerprint(own), fmt::join(causes, "; "));
 }
 
 OpenedPlugin openPlugin(const std::filesystem::path& file) {

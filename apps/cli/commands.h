@@ -9,6 +9,7 @@ void addRenderCommand(CLI::App& app);
 void addRaycastCommand(CLI::App& app);
 void addRaysCommand(CLI::App& app);
 void addKeysCommand(CLI::App& app);
+void addPlotCommand(CLI::App& app);
 void addBenchCommand(CLI::App& app);
 void addBatchCommand(CLI::App& app);
 void addStressCommand(CLI::App& app);

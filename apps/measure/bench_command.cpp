@@ -395,10 +395,12 @@ void addBenchCommand(CLI::App& app) {
                                                              options->passes)) {
                         const std::string reference = yardstickOf(row);
                         const nlohmann::json& ratio = ratiosTo(row, reference)["primary"];
-                        fmt::print(stderr, "  {} threads={} {} {}: build {:.1f} ms, primary {:.3f} us/query ({:.2f}x {})\n",
-                                   scene.name, threads, row["accel"].get<std::string>(), row["queries"].get<std::string>(),
-                                   row["build_ms"].get<double>(), row["primary"]["t_r_us"].get<double>(),
-                                   ratio.is_null() ? 0.0 : ratio.get<double>(), reference);
+                        if (Progress::defaultStyle() != Progress::Style::Quiet)  // a progress line: --quiet drops it
+                            fmt::print(stderr, "  {} threads={} {} {}: build {:.1f} ms, primary {:.3f} us/query ({:.2f}x {})\n",
+                                       scene.name, threads, row["accel"].get<std::string>(),
+                                       row["queries"].get<std::string>(), row["build_ms"].get<double>(),
+                                       row["primary"]["t_r_us"].get<double>(), ratio.is_null() ? 0.0 : ratio.get<double>(),
+                                       reference);
                         results["rows"].push_back(std::move(row));
                     }
                 }

@@ -228,6 +228,18 @@ TEST(Cli, BenchMeasuresInRoundsWithPairedRatios) {
     EXPECT_NE(r.output.find("embree-batch"), std::string::npos) << r.output;
 }
 
+// --quiet leaves the table and the file written, and drops the line per measured row.
+TEST(Cli, BenchQuietPrintsNoProgress) {
+    const auto env = scratchFile("tiny.env", "Camera::width 8\nCamera::height 8\n");
+    const auto out = cliScratchDir() / "bench-quiet.json";
+    const Result r = run("bench --quiet --scenes " + env.string() +
+                         " --accel sahbvh --queries single --threads 1 --builds 1 --passes 1 --out " + out.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("geometric means"), std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find("sahbvh single: build"), std::string::npos) << r.output;
+    EXPECT_TRUE(std::filesystem::exists(out));
+}
+
 // --queries single or batch alone measures that kind only (and its yardstick); a kind it does not
 // know is an error naming it.
 TEST(Cli, BenchQueriesChoosesTheKinds) {

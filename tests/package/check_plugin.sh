@@ -8,11 +8,14 @@
 #       `bvhlab check` on what it adds (a builder: NAME, NAME4 and NAME8)
 #   tests/package/check_plugin.sh add-subdirectory BUILD_DIR [EXAMPLE]  add_subdirectory(bvhlab)
 #       in another project, which builds the plugin; it must export bvhlab's three entry points
+#   tests/package/check_plugin.sh clang BUILD_DIR [EXAMPLE]    as out-of-tree, the plugin built by
+#       clang++ (with libstdc++, Debian's `clang`): the same C++ ABI, so bvhlab loads it, renders
+#       with it and checks it on the batch queries
 set -euo pipefail
 
 fail() { echo "check_plugin: $*" >&2; exit 1; }
 
-[ $# -eq 2 ] || [ $# -eq 3 ] || fail "usage: $0 out-of-tree|add-subdirectory BUILD_DIR [EXAMPLE]"
+[ $# -eq 2 ] || [ $# -eq 3 ] || fail "usage: $0 out-of-tree|add-subdirectory|clang BUILD_DIR [EXAMPLE]"
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/../.." && pwd)
 build=$(cd "$2" && pwd)
@@ -45,6 +48,18 @@ case "$1" in
         || fail "bvhlab check did not find $accelerator by name in BVHLAB_PLUGIN_PATH"
     done
     echo "the installed bvhlab loaded $plugin, rendered with $name and checked $accelerators"
+    ;;
+  clang)
+    command -v clang++ > /dev/null || fail "clang++ is not installed (Debian's clang, ./setup.sh installs it)"
+    plugin=$(CXX=clang++ BVHLAB_BUILD="$build" "$here/build_plugin_out_of_tree.sh" "$work/plugin" "$work")
+    bvhlab="$work/prefix/bin/bvhlab"
+    rendered=$("$bvhlab" render --plugin "$plugin" -DASDS::type="$name" -DCamera::width=16 -DCamera::height=12 \
+      --out "$work/render/image" 2>&1) || fail "the installed bvhlab could not render with the clang-built $name: $rendered"
+    compiler=$(/usr/bin/python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["provenance"]["plugins"][0]["compiler"])' \
+      "$work/render/image.json")
+    [[ "$compiler" = Clang* ]] || fail "$plugin was built by $compiler, not by clang++"
+    "$bvhlab" check --plugin "$plugin" --accel "$name" --checks batch || fail "bvhlab check failed on the clang-built $name"
+    echo "the installed bvhlab loaded $plugin, built by $compiler, rendered with $name and checked it"
     ;;
   add-subdirectory)
     cmake -S "$here/add_subdirectory" -B "$work/build" -G Ninja -DCMAKE_BUILD_TYPE=Release \

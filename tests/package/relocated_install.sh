@@ -44,6 +44,9 @@ bvhlab="$prefix/bin/bvhlab"
 "\$bvhlab" check --accel grid:Grid::density=2 --checks agreement,batch || fail "check --accel grid failed"
 "\$bvhlab" bench --scenes "$work/quad.obj" --accel sahbvh8,grid --builds 1 --passes 1 --out "$work/out/bench.json" \
   || fail "bench failed"
+if /usr/bin/python3 -c 'import matplotlib' 2>/dev/null; then  # bvhlab plot runs the scripts the prefix holds
+  "\$bvhlab" plot "$work/out/bench.json" >/dev/null && [ -s "$work/out/bench.png" ] || fail "bvhlab plot of the bench failed"
+fi
 "\$bvhlab" batch --scenes "$work/quad.obj" --accel grid,sahbvh8 -DCamera::width=16 -DCamera::height=16 \
   --out "$work/out/batch" >/dev/null || fail "batch failed"
 ls "$work/cache/bvhlab/scenes/"* >/dev/null 2>&1 || fail "the scene cache is not in \\\$XDG_CACHE_HOME/bvhlab/scenes"

@@ -1,12 +1,25 @@
-# cmake -DHEADERS=framework/api/bvhlab -DOUTPUT=DIR/bvhlab -P tests/plugins/change_abi.cmake:
-# copies the plugin API's headers into OUTPUT with a field added to Ray, the headers of another
-# ABI, for a plugin that bvhlab must refuse to load (tests/CMakeLists.txt, changed_abi.so).
+# cmake -DHEADERS=framework/api/bvhlab -DOUTPUT=DIR/bvhlab -DCHANGE=field|enum -P tests/plugins/change_abi.cmake:
+# copies the plugin API's headers into OUTPUT, changed: `field` adds a field to Ray, `enum` swaps
+# the values of KeyType::Int and KeyType::Float. The headers of another ABI, for plugins that
+# bvhlab must refuse to load (tests/CMakeLists.txt: changed_abi.so, swapped_enum.so).
 file(REMOVE_RECURSE ${OUTPUT})
 file(COPY ${HEADERS}/ DESTINATION ${OUTPUT})
-file(READ ${OUTPUT}/ray.h text)
-set(field "    float tmax = kInfinity;\n")
-string(REPLACE "${field}" "${field}    float time = 0.0f;\n" changed "${text}")
-if(changed STREQUAL text)
-  message(FATAL_ERROR "change_abi.cmake: no line '${field}' in ${HEADERS}/ray.h to add a field after")
+
+# Replaces `from` by `to` in OUTPUT/header, which must hold it.
+function(change header from to)
+  file(READ ${OUTPUT}/${header} text)
+  string(REPLACE "${from}" "${to}" changed "${text}")
+  if(changed STREQUAL text)
+    message(FATAL_ERROR "change_abi.cmake: no '${from}' in ${HEADERS}/${header} to change")
+  endif()
+  file(WRITE ${OUTPUT}/${header} "${changed}")
+endfunction()
+
+if(CHANGE STREQUAL "field")
+  change(ray.h "    float tmax = kInfinity;\n" "    float tmax = kInfinity;\n    float time = 0.0f;\n")
+elseif(CHANGE STREQUAL "enum")
+  change(settings.h "    Int,       // with an inclusive range\n    Float,     // with an inclusive range\n"
+                    "    Float,     // with an inclusive range\n    Int,       // with an inclusive range\n")
+else()
+  message(FATAL_ERROR "change_abi.cmake: CHANGE must be field or enum, not '${CHANGE}'")
 endif()
-file(WRITE ${OUTPUT}/ray.h "${changed}")

@@ -40,8 +40,9 @@
 #define BVHLAB_PLUGIN_EXPORT extern "C" __attribute__((visibility("default")))
 #define BVHLAB_PLUGIN(registrar)                                                                   \
     BVHLAB_PLUGIN_EXPORT const bvhlab::AbiFigure* bvhlab_plugin_abi(size_t* count) {                \
-        *count = sizeof(bvhlab::kAbi) / sizeof(bvhlab::kAbi[0]);                                    \
-        return bvhlab::kAbi;                                                                       \
+        const bvhlab::View<const bvhlab::AbiFigure> figures = bvhlab::abiFigures();               \
+        *count = figures.size();                                                                   \
+        return figures.data();                                                                     \
     }                                                                                              \
     BVHLAB_PLUGIN_EXPORT const bvhlab::PluginBuildInfo* bvhlab_plugin_build_info() {                \
         static constexpr bvhlab::PluginBuildInfo info{BVHLAB_PLUGIN_COMPILER, BVHLAB_PLUGIN_OPTIMIZED, \

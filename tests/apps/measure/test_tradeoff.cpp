@@ -182,7 +182,7 @@ TEST(Tradeoff, ByDefaultEveryStructureOfOursIsMeasured) {
 // `tradeoff --builders --quick`: a row per scene x builder in builders.csv, the ratios to
 // embree-medium are 1 for itself, Embree has no SAH or EPO and ours have both, the Pareto front
 // is not empty, the report has the rank correlations, a second run keeps every result, and
-// docs/plots/plot_builders.py draws from the folder.
+// `bvhlab plot` draws from the folder.
 TEST(Tradeoff, BuildersQuickRunWritesRowsAndResumes) {
     const fs::path dir = makeScenes();
     const std::string command =
@@ -233,19 +233,18 @@ TEST(Tradeoff, BuildersQuickRunWritesRowsAndResumes) {
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_TRUE(contains(r.output, "0 configurations measured, 30 kept")) << r.output;
 
-    // The plot script draws both charts from that folder (where Debian's matplotlib is installed).
+    // bvhlab plot draws both charts from that folder (where Debian's matplotlib is installed).
     if (std::system("/usr/bin/python3 -c 'import matplotlib' 2>/dev/null") != 0) return;
-    const std::string plot = "/usr/bin/python3 " + (fs::path(test::sourceTree()) / "docs" / "plots" / "plot_builders.py").string() +
-                             " --data " + out.string() + " > /dev/null 2>&1";
-    ASSERT_EQ(std::system(plot.c_str()), 0) << plot;
+    r = run("plot " + out.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
     for (const char* png : {"builders_pareto.png", "builders_pareto_scenes.png"})
         EXPECT_GT(fs::file_size(out / "plots" / png), 1000u) << png;
 }
 
-// The plot script draws from a tradeoff folder into its plots/ subfolder, which it creates, and
-// leaves the plots committed in docs/plots alone. Skipped where Debian's matplotlib is missing
-// (setup.sh installs it).
-TEST(TradeoffPlots, ScriptWritesIntoTheDataFolderNotDocs) {
+// bvhlab plot draws from a tradeoff folder into its plots/ subfolder, which it creates, and leaves
+// the plots committed in docs/plots alone. Skipped where Debian's matplotlib is missing (setup.sh
+// installs it).
+TEST(TradeoffPlots, PlotWritesIntoTheDataFolderNotDocs) {
     if (std::system("/usr/bin/python3 -c 'import matplotlib' 2>/dev/null") != 0)
         GTEST_SKIP() << "no python3-matplotlib for /usr/bin/python3";
     const fs::path docs = fs::path(test::sourceTree()) / "docs" / "plots";
@@ -254,9 +253,8 @@ TEST(TradeoffPlots, ScriptWritesIntoTheDataFolderNotDocs) {
     for (const char* csv : {"tradeoff.csv", "image_error.csv"})
         fs::copy_file(docs / csv, data / csv, fs::copy_options::overwrite_existing);
     const auto committed = fs::last_write_time(docs / "tradeoff_build_vs_gap.png");
-    const std::string command = "/usr/bin/python3 " + (docs / "plot_tradeoff.py").string() + " --data " +
-                                data.string() + " > /dev/null 2>&1";
-    ASSERT_EQ(std::system(command.c_str()), 0) << command;
+    const Result r = run("plot " + data.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
     for (const char* png : {"tradeoff_build_vs_gap.png", "tradeoff_time_to_image.png", "tradeoff_error_vs_time.png"})
         EXPECT_GT(fs::file_size(data / "plots" / png), 1000u) << png;
     EXPECT_EQ(fs::last_write_time(docs / "tradeoff_build_vs_gap.png"), committed);

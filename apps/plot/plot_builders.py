@@ -1,36 +1,21 @@
 #!/usr/bin/python3
 """Plots of `bvhlab tradeoff --builders` (docs/builders.md, "Builders side by side"), drawn from its CSV files.
 
-    /usr/bin/python3 docs/plots/plot_builders.py [--data out/builders] [--out DATA/plots]
+    bvhlab plot out/builders [--out DIR]      (runs /usr/bin/python3 apps/plot/plot_builders.py --data ... --out ...)
 
-Debian's python3-matplotlib; /usr/bin/python3 because a python3 earlier on PATH may not see it.
 The PNGs go to DATA/plots unless --out names another folder (created if missing). Writes
 builders_pareto.png (over the scenes: geometric means of the ratios to embree-medium, one panel
 per ray set) and builders_pareto_scenes.png (per scene, primary rays, absolute times). The Pareto
 fronts are the command's (the pareto_* columns), not recomputed here.
 """
-import argparse
-import csv
 import math
 import os
 
-import matplotlib
+from plot_common import arguments, num, out_folder, plain_log_axis, read_csv  # first: it sets matplotlib's backend
 
-matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-from matplotlib.ticker import FuncFormatter  # noqa: E402
 
 RAY_SETS = ["primary", "shadow", "incoherent"]
-PLAIN = FuncFormatter(lambda v, _: f"{v:g}")
-
-
-def read_csv(path):
-    with open(path, newline="") as f:
-        return list(csv.DictReader(f))
-
-
-def num(text):
-    return float(text) if text not in ("", None) else None
 
 
 def style(config):
@@ -64,8 +49,7 @@ def draw(ax, points, xlabel, ylabel, title):
     ax.set_xscale("log")
     ax.set_yscale("log")
     for axis in (ax.xaxis, ax.yaxis):
-        axis.set_major_formatter(PLAIN)
-        axis.set_minor_formatter(FuncFormatter(lambda v, _: f"{v:g}" if f"{v:.0e}"[0] in "25" else ""))
+        plain_log_axis(axis)
     ax.tick_params(which="minor", labelsize=6)
     ax.set_xlabel(xlabel)
     ax.set_ylabel(ylabel)
@@ -74,12 +58,8 @@ def draw(ax, points, xlabel, ylabel, title):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--data", default="out/builders", help="folder with builders.csv and builders_summary.csv")
-    parser.add_argument("--out", help="folder for the PNG files (default: DATA/plots; created if missing)")
-    args = parser.parse_args()
-    out = args.out or os.path.join(args.data, "plots")
-    os.makedirs(out, exist_ok=True)
+    args = arguments(__doc__.splitlines()[0], "folder with builders.csv and builders_summary.csv").parse_args()
+    out = out_folder(args)
 
     summary = read_csv(os.path.join(args.data, "builders_summary.csv"))
     fig, axes = plt.subplots(1, len(RAY_SETS), figsize=(5 * len(RAY_SETS), 4.5))

@@ -1,48 +1,23 @@
 #!/usr/bin/python3
 """Plots of `bvhlab tradeoff` (docs/accuracy.md, "Run time against error"), drawn from its CSV files.
 
-    /usr/bin/python3 docs/plots/plot_tradeoff.py [--data out/tradeoff] [--out DATA/plots] [--scenes sibenik,mount]
+    bvhlab plot out/tradeoff [--out DIR]      (runs /usr/bin/python3 apps/plot/plot_tradeoff.py --data ... --out ...)
 
-Debian's python3-matplotlib (setup.sh installs it); /usr/bin/python3 because a python3 earlier on
-PATH may not see it. The PNGs go to DATA/plots unless --out names another folder (created if
-missing); `--out docs/plots` refreshes the plots committed with the docs. Writes tradeoff_build_vs_gap.png, tradeoff_time_to_image.png
-and tradeoff_error_vs_time.png, and prints the numbers the reading in docs/accuracy.md quotes:
-the gap and relative build time per configuration, the Pareto front of build time against SAH
-cost, and the ray budgets at which a slower build pays off.
+The PNGs go to DATA/plots unless --out names another folder (created if missing); `--out
+docs/plots` refreshes the plots committed with the docs. Writes tradeoff_build_vs_gap.png,
+tradeoff_time_to_image.png and tradeoff_error_vs_time.png, and prints the numbers the reading in
+docs/accuracy.md quotes: the gap and relative build time per configuration, the Pareto front of
+build time against SAH cost, and the ray budgets at which a slower build pays off. A run without
+some of the configurations these compare (the K series of sahbvh, sweepbvh) plots what it has
+and prints n/a for the rest.
 """
-import argparse
-import csv
 import math
 import os
 from collections import defaultdict
 
-import matplotlib
+from plot_common import arguments, geo_mean, num, out_folder, plain_log_axis, read_csv  # first: it sets matplotlib's backend
 
-matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-from matplotlib.ticker import FuncFormatter  # noqa: E402
-
-PLAIN = FuncFormatter(lambda v, _: f"{v:g}")
-
-
-def plain_log_axis(axis):
-    """Log-scale tick labels as plain numbers (0.5, 2, 300), not powers of ten."""
-    axis.set_major_formatter(PLAIN)
-    axis.set_minor_formatter(FuncFormatter(lambda v, _: f"{v:g}" if f"{v:.0e}"[0] in "25" else ""))
-
-
-def read_csv(path):
-    with open(path, newline="") as f:
-        return list(csv.DictReader(f))
-
-
-def num(text):
-    return float(text) if text not in ("", None) else None
-
-
-def geo_mean(values):
-    values = [v for v in values if v is not None and v > 0]
-    return math.exp(sum(math.log(v) for v in values) / len(values)) if values else None
 
 
 def style(config):
@@ -55,17 +30,13 @@ def style(config):
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--data", default="out/tradeoff", help="folder with tradeoff.csv and image_error.csv")
-    parser.add_argument("--out", help="folder for the PNG files (default: DATA/plots; created if missing)")
+    parser = arguments(__doc__.splitlines()[0], "folder with tradeoff.csv and image_error.csv")
     parser.add_argument("--scenes", default="sibenik,mount", help="scenes of the error-against-time plot")
     parser.add_argument("--clock", choices=("cpu", "wall"), default="cpu",
                         help="process CPU time (default: what a loaded, shared machine cannot take away) or wall time")
     args = parser.parse_args()
     cpu = args.clock == "cpu"
-    if args.out is None:
-        args.out = os.path.join(args.data, "plots")
-    os.makedirs(args.out, exist_ok=True)
+    args.out = out_folder(args)
 
     def col(name):
         """The column of `name` (a wall-time column) for the chosen clock."""
@@ -85,7 +56,17 @@ def main():
     size = f'{rows[0]["series_width"]}x{rows[0]["series_height"]}'
     sah_configs = [c for c in configs if c != "embree"]
     binned = [c for c in configs if c.startswith("sahbvh-K")]
-    k16 = "sahbvh-K16" if "sahbvh-K16" in configs else binned[len(binned) // 2]
+    k16 = "sahbvh-K16" if "sahbvh-K16" in configs else binned[len(binned) // 2] if binned else None
+
+    def ratios(c, ref, column):
+        """c's column over ref's, in each scene where both have it."""
+        return [num(by[s, c][column]) / num(by[s, ref][column]) for s in scenes
+                if (s, c) in by and (s, ref) in by and num(by[s, c][column]) and num(by[s, ref][column])]
+
+    def gap_point(scene, c):
+        """(build time, SAH gap in %) of c in scene, None where it has no SAH gap (no sweepbvh to compare with)."""
+        x, gap = num(by[scene, c][col("build_ms")]), num(by[scene, c]["sah_gap"])
+        return None if x is None or gap is None else (x, 100 * gap)
 
     # (1) Build time against SAH gap, one panel per scene, and the summary over scenes.
     cols = 4
@@ -93,14 +74,14 @@ def main():
     fig, axes = plt.subplots((panels + cols - 1) // cols, cols, figsize=(4.0 * cols, 3.2 * ((panels + cols - 1) // cols)),
                              squeeze=False)
     for ax, scene in zip(axes.flat, scenes):
-        xs = [num(by[scene, c][col("build_ms")]) for c in binned if (scene, c) in by]
-        ys = [100 * num(by[scene, c]["sah_gap"]) for c in binned if (scene, c) in by]
-        ax.plot(xs, ys, "-", color="lightgrey", zorder=1)
+        series = [p for p in (gap_point(scene, c) for c in binned if (scene, c) in by) if p]
+        ax.plot([x for x, _ in series], [y for _, y in series], "-", color="lightgrey", zorder=1)
         for c in sah_configs:
-            if (scene, c) not in by:
+            point = gap_point(scene, c) if (scene, c) in by else None
+            if point is None:
                 continue
             colour, marker, label = style(c)
-            x, y = num(by[scene, c][col("build_ms")]), 100 * num(by[scene, c]["sah_gap"])
+            x, y = point
             ax.scatter([x], [y], color=colour, marker=marker, zorder=2, s=28)
             ax.annotate(label.replace("K=", ""), (x, y), textcoords="offset points", xytext=(3, 3), fontsize=7)
         ax.set_xscale("log")
@@ -110,15 +91,18 @@ def main():
         ax.axhline(0, color="black", lw=0.5)
     ax = axes.flat[len(scenes)]
     for c in sah_configs:
-        gaps = [num(by[s, c]["sah_gap"]) for s in scenes if (s, c) in by]
-        rel = geo_mean([num(by[s, c][col("build_ms")]) / num(by[s, k16][col("build_ms")]) for s in scenes if (s, c) in by and (s, k16) in by])
+        gaps = [num(by[s, c]["sah_gap"]) for s in scenes if (s, c) in by and by[s, c]["sah_gap"]]
+        rel = geo_mean(ratios(c, k16, col("build_ms"))) if k16 else None
+        if not gaps or rel is None:
+            continue
         colour, marker, label = style(c)
         ax.scatter([rel], [100 * sum(gaps) / len(gaps)], color=colour, marker=marker, s=36, label=label)
         ax.annotate(label.replace("K=", ""), (rel, 100 * sum(gaps) / len(gaps)), textcoords="offset points",
                     xytext=(3, 3), fontsize=7)
     ax.set_xscale("log")
     plain_log_axis(ax.xaxis)
-    ax.set_title("all scenes: mean gap vs geo-mean T_B / T_B(K=16)", fontsize=9)
+    ax.set_title(f"all scenes: mean gap vs geo-mean T_B / T_B({k16})" if k16 else
+                 "all scenes: no K series of sahbvh to compare build times with", fontsize=9)
     ax.grid(True, which="both", alpha=0.3)
     ax.axhline(0, color="black", lw=0.5)
     for extra in list(axes.flat)[panels:]:
@@ -138,13 +122,13 @@ def main():
     for i, (column, spp) in enumerate(((col("time_to_image_1spp_ms"), 1), (col("time_to_image_max_ms"), max_spp))):
         means, spreads = [], []
         for c in configs:
-            ratios = [num(by[s, c][column]) / num(by[s, "embree"][column]) for s in scenes if (s, c) in by and (s, "embree") in by]
-            means.append(geo_mean(ratios))
-            spreads.append(ratios)
+            to_embree = ratios(c, "embree", column)
+            means.append(geo_mean(to_embree) or math.nan)
+            spreads.append(to_embree)
         xs = [j + (i - 0.5) * width for j in range(len(configs))]
         ax.bar(xs, means, width, label=f"{spp} spp", color=["tab:blue", "tab:green"][i], alpha=0.8)
-        for x, ratios in zip(xs, spreads):
-            ax.scatter([x] * len(ratios), ratios, color="black", s=5, zorder=3)
+        for x, per_scene in zip(xs, spreads):
+            ax.scatter([x] * len(per_scene), per_scene, color="black", s=5, zorder=3)
     ax.axhline(1, color="tab:orange", lw=1)
     ax.set_yscale("log")
     plain_log_axis(ax.yaxis)
@@ -172,7 +156,7 @@ def main():
             ys = [num(e["rmse"]) for e in series]
             colour, marker, label = style(c)
             ax.plot(xs, ys, marker=marker, color=colour, label=label, ms=4, lw=1.2)
-        for e in series:
+        for e in series if (scene, "embree") in by else []:
             ax.annotate(e["spp"], (num(by[scene, "embree"][col("build_ms")]) / 1000 + num(e["render_cpu_ms_embree" if cpu else "render_ms_embree"]) / 1000,
                                    num(e["rmse"])), textcoords="offset points", xytext=(-4, -11), fontsize=7,
                         color="tab:orange")
@@ -191,22 +175,27 @@ def main():
     plt.close(fig)
 
     # The numbers the reading quotes.
-    print(f"{'config':<12} {'gap mean %':>10} {'gap max %':>10} {'T_B/K16':>8} {'T_R prim/sweep':>14} "
+    def shown(value, width):
+        return f"{value:{width}.2f}" if value is not None else f"{'n/a':>{width}}"
+
+    relative_build = "T_B/" + (k16.removeprefix("sahbvh-") if k16 else "K16")
+    print(f"{'config':<12} {'gap mean %':>10} {'gap max %':>10} {relative_build:>8} {'T_R prim/sweep':>14} "
           f"{'image 1/embree':>14} {'image max/embree':>16}")
     for c in configs:
         gaps = [num(by[s, c]["sah_gap"]) for s in scenes if (s, c) in by and by[s, c]["sah_gap"]]
-        rel = geo_mean([num(by[s, c][col("build_ms")]) / num(by[s, k16][col("build_ms")]) for s in scenes if (s, c) in by])
-        trp = geo_mean([num(by[s, c][col("t_r_primary_us")]) / num(by[s, "sweepbvh"][col("t_r_primary_us")]) for s in scenes if (s, c) in by])
-        i1 = geo_mean([num(by[s, c][col("time_to_image_1spp_ms")]) / num(by[s, "embree"][col("time_to_image_1spp_ms")]) for s in scenes if (s, c) in by])
-        im = geo_mean([num(by[s, c][col("time_to_image_max_ms")]) / num(by[s, "embree"][col("time_to_image_max_ms")]) for s in scenes if (s, c) in by])
+        rel = geo_mean(ratios(c, k16, col("build_ms"))) if k16 else None
+        trp = geo_mean(ratios(c, "sweepbvh", col("t_r_primary_us")))
+        i1 = geo_mean(ratios(c, "embree", col("time_to_image_1spp_ms")))
+        im = geo_mean(ratios(c, "embree", col("time_to_image_max_ms")))
         gap_text = f"{100 * sum(gaps) / len(gaps):10.2f} {100 * max(gaps):10.2f}" if gaps else f"{'n/a':>10} {'n/a':>10}"
-        print(f"{c:<12} {gap_text} {rel:8.2f} {trp:14.2f} {i1:14.2f} {im:16.2f}")
+        print(f"{c:<12} {gap_text} {shown(rel, 8)} {shown(trp, 14)} {shown(i1, 14)} {shown(im, 16)}")
 
     # Pareto front of (T_B, SAH) among our structures, per scene.
     front_count = defaultdict(int)
     print("\nPareto front of build time against SAH cost (our structures), per scene:")
     for s in scenes:
         points = [(num(by[s, c][col("build_ms")]), num(by[s, c]["sah"]), c) for c in sah_configs if (s, c) in by]
+        points = [(b, a, c) for (b, a, c) in points if b is not None and a is not None]
         front = [c for (b, a, c) in points
                  if not any(b2 <= b and a2 <= a and (b2 < b or a2 < a) for (b2, a2, _) in points)]
         for c in front:
@@ -224,6 +213,7 @@ def main():
     pairs = [("sweepbvh", k16), (k16, "tdbvh"), ("embree", k16)]
     if "sahbvh-K32" in configs and k16 != "sahbvh-K32":
         pairs.append(("sahbvh-K32", k16))
+    pairs = [(a, b) for a, b in pairs if a in configs and b in configs]
     for a, b in pairs:
         cells = []
         for s in scenes:
