@@ -296,7 +296,8 @@ void mergeShards(const std::vector<std::string>& dirs, const std::filesystem::pa
                            dir.string(), dir.string());
             seen[name] = dir.string();
             copyInto(dir / "jobs" / (name + ".json"), out / "jobs" / (name + ".json"));
-            for (const auto& [runName, run] : job.at("runs").items()) {
+            const json runs = job.value("runs", json::object());  // none for a failed job; kept alive for the loop
+            for (const auto& [runName, run] : runs.items()) {
                 const json images = run.value("images", json::object());  // kept alive for the loop
                 for (const auto& [kind, file] : images.items())
                     if (std::filesystem::exists(dir / file.get<std::string>()))

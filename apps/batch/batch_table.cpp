@@ -138,10 +138,12 @@ std::pair<std::vector<std::string>, std::vector<std::string>> settingsOf(const s
 // A scene's heat maps share one full scale when its jobs ran together; merged shards may not.
 std::vector<std::string> heatmapScaleWarnings(const std::vector<json>& jobs) {
     std::map<std::string, std::set<float>> scales;  // scene -> full scales of its heat maps
-    for (const json& job : jobs)
-        for (const auto& [name, run] : job.value("runs", json::object()).items())
+    for (const json& job : jobs) {
+        if (jobFailed(job)) continue;
+        for (const auto& [name, run] : job.at("runs").items())
             if (run.contains("heatmap") && run["heatmap"].contains("scale"))
                 scales[job.at("scene").get<std::string>()].insert(run["heatmap"]["scale"].get<float>());
+    }
     std::vector<std::string> warnings;
     for (const auto& [scene, set] : scales)
         if (set.size() > 1)
