@@ -2,7 +2,9 @@
 // the scene (through the scene cache), build once, render without and with shadows, write the
 // images and DIR/jobs/SCENE__ACCEL.json; then make the tables and the contact sheet from the
 // jobs of the folder's one batch (DIR/batch.json; a folder holding another batch is refused).
-// `--shard i/n` runs every n-th job; `--merge DIR...` joins the shards of one batch; `--slurm N`
+// Each job runs in a process of its own (apps/runtime/child_job.h): one that crashes, throws or
+// runs longer than --job-timeout is a failed job, with its reason in the tables, and the batch
+// goes on. `--shard i/n` runs every n-th job; `--merge DIR...` joins the shards of one batch; `--slurm N`
 // submits the batch to Slurm as N shards and their merge (slurm_submission.h).
 #include "accel/registry.h"
 #include "apps/batch/batch_settings.h"
@@ -14,6 +16,7 @@
 #include "apps/runtime/app_keys.h"
 #include "apps/runtime/atomic_write.h"
 #include "apps/runtime/build_accelerator.h"
+#include "apps/runtime/child_job.h"
 #include "apps/runtime/output_paths.h"
 #include "apps/runtime/progress.h"
 #include "apps/runtime/render_with_progress.h"
@@ -89,6 +92,8 @@ struct Options {
     bool fresh = false;  // delete the folder's batch first
     int slurm = 0;       // --slurm N: submit N shards and their merge; 0: run here
     std::string slurmArgs;
+    double jobTimeout = 0;  // seconds; 0: none
+    ChildJob child;         // set in the process that runs one job
 };
 
 // A job's render (and Embree build) threads: --threads, else its scene's Batch::threads (the
@@ -104,6 +109,18 @@ struct FinishedJob {
     int width = 0, height = 0;
     std::vector<float> steps[2];  // traversal steps without and with shadows
 };
+
+// What a job's process hands back: the job record and the steps for the scene's heat maps.
+json finishedJobJson(const FinishedJob& f) {
+    return {{"job", f.job}, {"has_counters", f.hasCounters}, {"width", f.width}, {"height", f.height},
+            {"steps", {f.steps[0], f.steps[1]}}};
+}
+
+FinishedJob finishedJobFromJson(const json& j) {
+    FinishedJob f{j.at("job"), j.at("has_counters").get<bool>(), j.at("width").get<int>(), j.at("height").get<int>(), {}};
+    for (const bool shadows : {false, true}) f.steps[shadows] = j.at("steps").at(shadows).get<std::vector<float>>();
+    return f;
+}
 
 // One job: build once, render without and with shadows, write images and the job file.
 FinishedJob runJob(const Options& options, const Scene& scene, const SceneLoadInfo& loadInfo, const Env& sceneEnv,
@@ -176,6 +193,24 @@ FinishedJob runJob(const Options& options, const Scene& scene, const SceneLoadIn
     writeFileAtomically(out / "jobs" / (name + ".json"), job.dump(2) + "\n");
     finished.job = std::move(job);
     return finished;
+}
+
+// The job file of a job that failed: what ran and why it left no results; the tables show it as a
+// failed row.
+json failedJobRecord(const SceneArgument& entry, const AccelConfig& config, const BatchSettings& batch, const json& order,
+                     const Shard& shard, const JobOutcome& outcome) {
+    return {{"format", "bvhlab-batch-job-1"},
+            {"job", batchJobName(entry.id, config.label)},
+            {"scene", entry.id},
+            {"settings", batch.scene(entry.id)->hash},
+            {"batch", batch.hash},
+            {"accel", config.label},
+            {"order", order},
+            {"shard", fmt::format("{}/{}", shard.index, shard.count)},
+            {"failed", outcome.failure()},
+            {"seconds", outcome.seconds},
+            {"run", runJson()},
+            {"provenance", provenanceJson()}};
 }
 
 // The scene's heat maps at one full scale, so that colours compare across its accelerators:
@@ -261,7 +296,8 @@ void mergeShards(const std::vector<std::string>& dirs, const std::filesystem::pa
                            dir.string(), dir.string());
             seen[name] = dir.string();
             copyInto(dir / "jobs" / (name + ".json"), out / "jobs" / (name + ".json"));
-            for (const auto& [runName, run] : job.at("runs").items()) {
+            const json runs = job.value("runs", json::object());  // none for a failed job; kept alive for the loop
+            for (const auto& [runName, run] : runs.items()) {
                 const json images = run.value("images", json::object());  // kept alive for the loop
                 for (const auto& [kind, file] : images.items())
                     if (std::filesystem::exists(dir / file.get<std::string>()))
@@ -305,18 +341,41 @@ BatchPlan planBatch(Options& options) {
     return plan;
 }
 
-// Runs this shard's jobs of the batch into `out`.
+// The jobs of the batch in table order (scene, then accelerator) that this shard runs: every n-th.
+std::vector<size_t> shardJobs(const BatchPlan& plan, const Shard& shard) {
+    std::vector<size_t> mine;
+    for (size_t j = 0; j < plan.scenes.size() * plan.accels.size(); ++j)
+        if (j % size_t(shard.count) == size_t(shard.index)) mine.push_back(j);
+    return mine;
+}
+
+// Job `job` of this shard (its index in table order), in the process of its own that runs it:
+// its scene loaded (through the scene cache), then runJob.
+json runJobHere(const Options& options, const BatchPlan& plan, const Shard& shard, const std::string& job) {
+    const std::vector<size_t> mine = shardJobs(plan, shard);
+    size_t j = 0;
+    const auto at = std::find(mine.begin(), mine.end(), parseNumber(job, j) ? j : SIZE_MAX);
+    if (at == mine.end()) throw InputError(fmt::format("{} {}: not a job of this shard", kChildJobOption, job));
+    const size_t s = j / plan.accels.size(), a = j % plan.accels.size();
+    const std::string jobLabel = fmt::format("[job {}/{}]", at - mine.begin() + 1, mine.size());
+    Progress progress;
+    progress.phase(fmt::format("{} {}: loading the scene", jobLabel, plan.scenes[s].id));
+    SceneLoadInfo info;
+    const Scene scene = loadSceneFor(plan.sceneEnvs[s], true, &info);
+    const json order = {{"scene", s}, {"accel", a}, {"job", j}, {"jobs", plan.scenes.size() * plan.accels.size()}};
+    return finishedJobJson(runJob(options, scene, info, plan.sceneEnvs[s], plan.scenes[s], plan.accels[a], plan.settings,
+                                  order, shard, progress, jobLabel));
+}
+
+// Runs this shard's jobs of the batch into `out`, each in a process of its own.
 void runJobs(const Options& options, const BatchPlan& plan, const Shard& shard, const std::filesystem::path& out) {
     const std::vector<SceneArgument>& scenes = plan.scenes;
     const std::vector<Env>& sceneEnvs = plan.sceneEnvs;
     const std::vector<AccelConfig>& accels = plan.accels;
     prepareFolder(out, plan.settings, options.fresh);
 
-    // Jobs in table order; this shard takes every n-th.
     const size_t totalJobs = scenes.size() * accels.size();
-    std::vector<size_t> mine;
-    for (size_t j = 0; j < totalJobs; ++j)
-        if (j % size_t(shard.count) == size_t(shard.index)) mine.push_back(j);
+    const std::vector<size_t> mine = shardJobs(plan, shard);
     fmt::print(stderr, "batch: {} scenes x {} accelerators = {} jobs{}; render threads ({}): {}; into {}\n",
                scenes.size(), accels.size(), totalJobs,
                shard.count > 1 ? fmt::format(", shard {}/{} runs {} of them", shard.index, shard.count, mine.size()) : "",
@@ -324,37 +383,39 @@ void runJobs(const Options& options, const BatchPlan& plan, const Shard& shard, 
                sceneEnvs.empty() ? 1 : renderThreads(options, sceneEnvs.front()), out.string());
 
     const auto start = Progress::Clock::now();
-    Progress progress;
-    size_t jobNumber = 0, scenesFromCache = 0, scenesParsed = 0;
+    size_t jobNumber = 0, scenesFromCache = 0, scenesParsed = 0, failed = 0;
     for (size_t s = 0; s < scenes.size(); ++s) {
-        std::vector<size_t> sceneJobs;
-        for (size_t j : mine)
-            if (j / accels.size() == s) sceneJobs.push_back(j);
-        if (sceneJobs.empty()) continue;
-        progress.phase(fmt::format("[job {}/{}] {}: loading the scene", jobNumber + 1, mine.size(), scenes[s].id));
-        SceneLoadInfo info;
-        const Scene scene = loadSceneFor(sceneEnvs[s], true, &info);
-        (info.fromCache ? scenesFromCache : scenesParsed) += 1;
         std::vector<FinishedJob> finished;
-        for (size_t j : sceneJobs) {
+        for (size_t j : mine) {
+            if (j / accels.size() != s) continue;
             const size_t a = j % accels.size();
-            const json order = {{"scene", s}, {"accel", a}, {"job", j}, {"jobs", totalJobs}};
             ++jobNumber;
-            finished.push_back(runJob(options, scene, info, sceneEnvs[s], scenes[s], accels[a], plan.settings, order,
-                                      shard, progress, fmt::format("[job {}/{}]", jobNumber, mine.size())));
+            const JobOutcome outcome = runJobInChild(std::to_string(j), options.jobTimeout);
+            if (outcome.passed()) {
+                finished.push_back(finishedJobFromJson(outcome.result));
+                (finished.back().job.value("scene_from_cache", false) ? scenesFromCache : scenesParsed) += 1;
+                continue;
+            }
+            ++failed;
+            fmt::print(stderr, "[job {}/{}] {} {}: failed: {}\n", jobNumber, mine.size(), scenes[s].id, accels[a].label,
+                       outcome.failure());
+            const json order = {{"scene", s}, {"accel", a}, {"job", j}, {"jobs", totalJobs}};
+            writeFileAtomically(out / "jobs" / (batchJobName(scenes[s].id, accels[a].label) + ".json"),
+                                failedJobRecord(scenes[s], accels[a], plan.settings, order, shard, outcome).dump(2) + "\n");
         }
-        if (sceneEnvs[s].get(keys::Output::heatmap))
+        if (sceneEnvs[s].get(keys::Output::heatmap) && !finished.empty())
             writeSceneHeatmaps(out, scenes[s].id, finished, sceneEnvs[s].get(keys::Output::heatmapScale));
     }
-    fmt::print(stderr, "batch: {} jobs in {}; scenes: {} read from the cache, {} parsed{}; {} builds, each "
+    fmt::print(stderr, "batch: {} jobs in {}{}; scene loads{}: {} read from the cache, {} parsed{}; {} builds, each "
                        "serving both renders\n",
                mine.size(),
                Progress::formatDuration(std::chrono::duration<double>(Progress::Clock::now() - start).count()),
+               failed ? fmt::format(", {} of them failed", failed) : "", failed ? " of the jobs that ran" : "",
                scenesFromCache, scenesParsed,
                scenesParsed && !sceneEnvs.empty() && !sceneEnvs.front().get(keys::Scene::cacheDir).empty()
                    ? fmt::format(" (and stored in {})", sceneEnvs.front().get(keys::Scene::cacheDir).string())
                    : "",
-               mine.size());
+               mine.size() - failed);
 }
 
 // The arguments that make a shard's batch this one: the same scenes, accelerators and env layers
@@ -400,7 +461,14 @@ void submitToSlurm(const Options& options, const BatchPlan& plan, const std::fil
     fmt::print("{}", slurmSubmissionSummary(batch, submitSlurmBatch(batch, sbatch)));
 }
 
-void runBatch(Options& options) {
+// Returns the number of failed jobs in the tables.
+size_t runBatch(Options& options) {
+    if (options.child.isChild()) {
+        const BatchPlan plan = planBatch(options);
+        const Shard shard = options.shardGiven ? parseShard(options.shard) : Shard{};
+        options.child.run([&] { return runJobHere(options, plan, shard, options.child.job); });
+        return 0;
+    }
     const std::filesystem::path out = prepareOutputFolder(options.out);
     if (!options.merge.empty()) {
         if (options.shardGiven) throw InputError("--merge and --shard do not go together");
@@ -411,7 +479,10 @@ void runBatch(Options& options) {
             throw InputError("--slurm and --shard do not go together (--slurm N makes the shards itself)");
         const Shard shard = options.shardGiven ? parseShard(options.shard) : Shard{};
         const BatchPlan plan = planBatch(options);
-        if (options.slurm) return submitToSlurm(options, plan, out);
+        if (options.slurm) {
+            submitToSlurm(options, plan, out);
+            return 0;
+        }
         runJobs(options, plan, shard, out);
     }
 
@@ -419,6 +490,8 @@ void runBatch(Options& options) {
     for (const std::string& warning : tables.warnings) fmt::print(stderr, "warning: {}\n", warning);
     fmt::print("{}", tables.markdown);
     fmt::print(stderr, "wrote {0}/results.{{md,csv,json}}, {0}/contact_sheet.png, {0}/images, {0}/jobs\n", out.string());
+    if (tables.failedJobs) fmt::print(stderr, "batch: {} failed jobs in the tables\n", tables.failedJobs);
+    return tables.failedJobs;
 }
 
 }  // namespace
@@ -450,10 +523,14 @@ void addBatchCommand(CLI::App& app) {
                         "sbatch options for the shards and the merge, e.g. \"--partition=short --time=01:00:00 "
                         "--account=lab\"")
         ->needs(slurm);
+    addJobTimeoutOption(*command, options->jobTimeout);
+    addChildJobOptions(*command, options->child);
     command->callback([options, shard] {
         options->shardGiven = shard->count() > 0;
-        const int code = runGuarded([&] { runBatch(*options); });
+        size_t failed = 0;
+        const int code = runGuarded([&] { failed = runBatch(*options); });
         if (code != 0) throw CLI::RuntimeError(code);
+        if (failed) throw CLI::RuntimeError(kSomeJobsFailedExitCode);
     });
 }
 

@@ -17,9 +17,10 @@ namespace {
 
 using nlohmann::json;
 
-// One line of the table: a render of a job, with its build's columns.
+// One line of the table: a render of a job, with its build's columns; or a job that failed.
 struct Row {
     std::string scene, accel;
+    std::string failed;  // why the job left no results (child_job.h's JobOutcome::failure()); empty if it ran
     bool shadows = false;
     json prims, leaves, nodes, sah, buildMs;  // of the build, shared by both renders
     json trUs, nIt, nTr, nQ, renderMs;          // over all queries of this render
@@ -48,10 +49,20 @@ json allQueries(const json& run) {
             {"n_tr", mean("n_tr")}};
 }
 
+bool jobFailed(const json& job) { return job.contains("failed"); }
+
+Row failedRow(const json& job) {
+    Row row;
+    row.scene = job.at("scene").get<std::string>();
+    row.accel = job.at("accel").get<std::string>();
+    row.failed = job.at("failed").get<std::string>();
+    return row;
+}
+
 Row makeRow(const json& job, bool shadows) {
     const json& run = job.at("runs").at(shadows ? "shadows" : "no_shadows");
     const json all = allQueries(run);
-    return {job.at("scene").get<std::string>(), job.at("accel").get<std::string>(), shadows,
+    return {job.at("scene").get<std::string>(), job.at("accel").get<std::string>(), "", shadows,
             run.at("prims"), run.at("leaves"), run.at("nodes"), run.at("sah"), run.at("build_ms"),
             all.at("t_r_us"), all.at("n_it"), all.at("n_tr"), all.at("queries"), run.at("render_ms")};
 }
@@ -90,6 +101,7 @@ std::pair<std::vector<std::string>, std::vector<std::string>> settingsOf(const s
     if (jobs.empty()) return {settings, warnings};
     std::map<std::string, std::set<std::string>> values;
     for (const json& job : jobs) {
+        if (jobFailed(job)) continue;
         const json env = job.value("env", json::object());  // kept alive for the loop
         for (const auto& [key, v] : env.items())
             if (!variesByJob(key)) values[key].insert(v.value("value", std::string()));
@@ -98,6 +110,7 @@ std::pair<std::vector<std::string>, std::vector<std::string>> settingsOf(const s
         if (set.size() > 1) warnings.push_back(fmt::format("jobs were run with different {}: {}", key, fmt::join(set, " / ")));
     std::set<std::string> commits, cpus, sizes;
     for (const json& job : jobs) {
+        if (jobFailed(job)) continue;
         commits.insert(job.value("provenance", json::object()).value("git_commit", std::string("?")));
         cpus.insert(job.value("provenance", json::object()).value("cpu", std::string("?")));
         const json& image = job.value("image", json::object());
@@ -125,10 +138,12 @@ std::pair<std::vector<std::string>, std::vector<std::string>> settingsOf(const s
 // A scene's heat maps share one full scale when its jobs ran together; merged shards may not.
 std::vector<std::string> heatmapScaleWarnings(const std::vector<json>& jobs) {
     std::map<std::string, std::set<float>> scales;  // scene -> full scales of its heat maps
-    for (const json& job : jobs)
+    for (const json& job : jobs) {
+        if (jobFailed(job)) continue;
         for (const auto& [name, run] : job.at("runs").items())
             if (run.contains("heatmap") && run["heatmap"].contains("scale"))
                 scales[job.at("scene").get<std::string>()].insert(run["heatmap"]["scale"].get<float>());
+    }
     std::vector<std::string> warnings;
     for (const auto& [scene, set] : scales)
         if (set.size() > 1)
@@ -164,7 +179,7 @@ std::vector<json> readBatchJobs(const std::filesystem::path& dir, const BatchSet
         try {
             json job = json::parse(readText(entry.path()));
             if (job.value("format", std::string()) != "bvhlab-batch-job-1") throw std::runtime_error("not a batch job file");
-            makeRow(job, false), makeRow(job, true);  // has what the tables need
+            if (!jobFailed(job)) makeRow(job, false), makeRow(job, true);  // has what the tables need
             const auto at = position(job);
             if (!at) throw std::runtime_error("a job of another batch (its scene, accelerator or settings are not this folder's)");
             jobs.emplace_back(*at, std::move(job));
@@ -185,7 +200,14 @@ BatchTables makeBatchTables(const std::vector<json>& jobs, size_t batchJobs) {
     for (const std::string& w : heatmapScaleWarnings(jobs)) t.warnings.push_back(w);
 
     std::vector<Row> rows;
-    for (const json& job : jobs) rows.push_back(makeRow(job, false)), rows.push_back(makeRow(job, true));
+    for (const json& job : jobs) {
+        if (jobFailed(job)) {
+            rows.push_back(failedRow(job));
+            ++t.failedJobs;
+        } else {
+            rows.push_back(makeRow(job, false)), rows.push_back(makeRow(job, true));
+        }
+    }
 
     // Markdown in the report's layout.
     std::set<std::string> scenes, accels;
@@ -203,6 +225,12 @@ BatchTables makeBatchTables(const std::vector<json>& jobs, size_t batchJobs) {
     md += "| scene | accel | | #Prims | #Leaves | #Nodes | SAH | T_B [ms] | T_R [µs] | N_IT | N_TR | N_Q | render [ms] |\n";
     md += "|:--|:--|:--|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
     for (const Row& r : rows) {
+        if (!r.failed.empty()) {
+            std::string reason;  // a '|' would end the cell
+            for (char c : r.failed) reason += c == '|' ? std::string("\\|") : std::string(1, c);
+            md += fmt::format("| {} | {} | failed: {} | | | | | | | | | | |\n", r.scene, r.accel, reason);
+            continue;
+        }
         if (!r.shadows)
             md += fmt::format("| {} | {} | | {} | {} | {} | {} | {} ", r.scene, r.accel, cell(r.prims, "{}"),
                               cell(r.leaves, "{}"), cell(r.nodes, "{}"), cell(r.sah, "{:.2f}"), cell(r.buildMs, "{:.1f}"));
@@ -216,10 +244,12 @@ BatchTables makeBatchTables(const std::vector<json>& jobs, size_t batchJobs) {
           "C_trav and C_isect as set. Render time: wall, build excluded. \"+ shadows\": the same build rendered "
           "with a shadow ray per light; T_R, N_IT and N_TR averaged over all its queries (primary and shadow "
           "together), N_Q counting them all (results.json keeps them apart). n/a: not available (Embree shows "
-          "no tree and counts nothing).\n\n";
-    md += fmt::format("Jobs: {}{} (one build each, serving both renders); the scene came from the scene cache in {} "
+          "no tree and counts nothing). failed: the job crashed, threw or ran out of time (--job-timeout), "
+          "and left no results.\n\n";
+    md += fmt::format("Jobs: {}{}{} (one build each, serving both renders); the scene came from the scene cache in {} "
                       "of them.",
-                      jobs.size(), jobs.size() < batchJobs ? fmt::format(" of the batch's {}", batchJobs) : "", fromCache);
+                      jobs.size(), jobs.size() < batchJobs ? fmt::format(" of the batch's {}", batchJobs) : "",
+                      t.failedJobs ? fmt::format(", {} of them failed", t.failedJobs) : "", fromCache);
     if (!jobs.empty()) {
         const json& p = jobs.front().value("provenance", json::object());
         md += fmt::format(" Commit {}, {}, {}.", p.value("git_commit", std::string("?")), p.value("cpu", std::string("?")),
@@ -228,23 +258,34 @@ BatchTables makeBatchTables(const std::vector<json>& jobs, size_t batchJobs) {
     md += "\n";
 
     // CSV: every column on both rows.
-    t.csv = "scene,accel,shadows,prims,leaves,nodes,sah,t_b_ms,t_r_us,n_it,n_tr,n_q,render_ms\n";
+    // CSV: every column on both rows; a failed job's one row has only its reason.
+    t.csv = "scene,accel,shadows,prims,leaves,nodes,sah,t_b_ms,t_r_us,n_it,n_tr,n_q,render_ms,failed\n";
     for (const Row& r : rows)
-        t.csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{}\n", csvText(r.scene), csvText(r.accel),
-                             r.shadows ? "true" : "false", csvCell(r.prims), csvCell(r.leaves), csvCell(r.nodes),
-                             csvCell(r.sah), csvCell(r.buildMs), csvCell(r.trUs), csvCell(r.nIt), csvCell(r.nTr),
-                             csvCell(r.nQ), csvCell(r.renderMs));
+        t.csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", csvText(r.scene), csvText(r.accel),
+                             r.failed.empty() ? (r.shadows ? "true" : "false") : "", csvCell(r.prims),
+                             csvCell(r.leaves), csvCell(r.nodes), csvCell(r.sah), csvCell(r.buildMs), csvCell(r.trUs),
+                             csvCell(r.nIt), csvCell(r.nTr), csvCell(r.nQ), csvCell(r.renderMs), csvText(r.failed));
 
     // JSON: the table's rows, and per job primary and shadow queries apart.
     json& j = t.json;
     j = {{"format", "bvhlab-batch-results-1"}, {"settings", settings}, {"warnings", t.warnings},
-         {"rows", json::array()}, {"jobs", json::array()}};
-    for (const Row& r : rows)
+         {"failed_jobs", t.failedJobs}, {"rows", json::array()}, {"jobs", json::array()}};
+    for (const Row& r : rows) {
+        if (!r.failed.empty()) {
+            j["rows"].push_back({{"scene", r.scene}, {"accel", r.accel}, {"failed", r.failed}});
+            continue;
+        }
         j["rows"].push_back({{"scene", r.scene}, {"accel", r.accel}, {"shadows", r.shadows}, {"prims", r.prims},
                              {"leaves", r.leaves}, {"nodes", r.nodes}, {"sah", r.sah}, {"t_b_ms", r.buildMs},
                              {"t_r_us", r.trUs}, {"n_it", r.nIt}, {"n_tr", r.nTr}, {"n_q", r.nQ},
                              {"render_ms", r.renderMs}});
+    }
     for (const json& job : jobs) {
+        if (jobFailed(job)) {
+            j["jobs"].push_back({{"job", job.at("job")}, {"scene", job.at("scene")}, {"accel", job.at("accel")},
+                                 {"failed", job.at("failed")}});
+            continue;
+        }
         json summary = {{"job", job.at("job")},
                         {"scene", job.at("scene")},
                         {"accel", job.at("accel")},
@@ -284,9 +325,11 @@ BatchTables writeBatchResults(const std::filesystem::path& dir) {
         if (sheet.empty() || scene != previousScene) sheet.emplace_back();
         previousScene = scene;
         for (const char* name : {"no_shadows", "shadows"}) {
-            const std::string png = job["runs"][name].value("images", json::object()).value("png", std::string());
+            const std::string png =
+                jobFailed(job) ? "" : job["runs"][name].value("images", json::object()).value("png", std::string());
             sheet.back().push_back({png.empty() ? std::filesystem::path() : dir / png,
-                                    fmt::format("{} {}{}", scene, accel, std::string(name) == "shadows" ? " +shadows" : "")});
+                                    fmt::format("{} {}{}{}", scene, accel, std::string(name) == "shadows" ? " +shadows" : "",
+                                                jobFailed(job) ? " (failed)" : "")});
         }
     }
     std::vector<std::string> settings;  // the few that fit in the title

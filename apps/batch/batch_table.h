@@ -25,11 +25,13 @@ struct BatchTables {
     std::string csv;        // results.csv
     nlohmann::json json;    // results.json
     std::vector<std::string> warnings;  // e.g. jobs run with different settings
+    size_t failedJobs = 0;              // jobs that crashed, threw or timed out: a row with the reason each
 };
 
 // Two rows per job: without shadows, and "+ shadows" with T_R, N_IT, N_TR averaged over all
 // queries of that render (primary and shadow together) and N_Q counting them all. The JSON
 // keeps primary and shadow apart.
+// A job that failed (its file holds "failed": the reason) is one row with the reason.
 // The title and the footer count the jobs shown, and the footer says when they are fewer than the
 // batch's `batchJobs` (a shard, an interrupted run).
 BatchTables makeBatchTables(const std::vector<nlohmann::json>& jobs, size_t batchJobs);

@@ -1,8 +1,9 @@
 // `bvhlab check --accel NAME`: the conformance suite (accel/verify/conformance.h) for one
 // accelerator, each check in a child process (apps/check/check_process.h) unless --in-process.
 // One line per check on stdout (PASS/WARN/FAIL/SKIP, counts, time) and the failures' rays under
-// it; exit 0 when every check passes (a warning included), 1 when one fails (a crash or an
-// exception included), 2 on bad input (an unknown accelerator or check, a bad env file or -D).
+// it; exit 0 when every check passes (a warning included), 1 when one fails (a crash, an exception
+// or a time-out, --job-timeout, included), 2 on bad input (an unknown accelerator or check, a bad
+// env file or -D).
 #include "accel/registry.h"
 #include "accel/verify/conformance.h"
 #include "apps/check/check_process.h"
@@ -30,7 +31,8 @@ struct CheckCommandOptions {
     std::string checks;  // empty: all
     std::string json;
     bool inProcess = false;
-    check::ChildCheck child;
+    double timeoutSeconds = 0;
+    ChildJob child;
 };
 
 std::string resultLine(const verify::CheckResult& r) {
@@ -81,8 +83,7 @@ int runChecks(CheckCommandOptions options) {
     // Named as registered: the checks look up what the structure promises by name.
     const verify::Subject subject{config.name, [&] { return createAccelerator(config.name, env); }};
     if (options.child.isChild()) {
-        options.child.reportFatalSignals();
-        options.child.writeResult(runCheckHere(options.child.check, subject));
+        options.child.run([&] { return check::toJson(runCheckHere(options.child.job, subject)); });
         return 0;
     }
     const std::filesystem::path json = options.json.empty() ? std::filesystem::path() : prepareOutputFile(options.json, "--json");
@@ -91,7 +92,7 @@ int runChecks(CheckCommandOptions options) {
     std::vector<std::string> warned;
     nlohmann::json results = nlohmann::json::array();
     for (const std::string& name : names) {
-        const verify::CheckResult r = options.inProcess ? runCheckHere(name, subject) : check::runCheckInChild(name);
+        const verify::CheckResult r = options.inProcess ? runCheckHere(name, subject) : check::runCheckInChild(name, options.timeoutSeconds);
         fmt::print("{}\n", resultLine(r));
         for (const std::string& e : r.examples) fmt::print("    {}\n", e);
         std::fflush(stdout);
@@ -130,9 +131,8 @@ void addCheckCommand(CLI::App& app) {
     command->add_flag("--in-process", options->inProcess,
                       "run the checks in this process, not each in a child process: a crash ends the run "
                       "(for a debugger)");
-    // An empty group hides them from --help: they are runCheckInChild's, not a user's.
-    command->add_option("--child-check", options->child.check, "run this check alone, as a child process")->group("");
-    command->add_option("--child-result", options->child.resultFile, "the file for the child's result")->group("");
+    addJobTimeoutOption(*command, options->timeoutSeconds);
+    addChildJobOptions(*command, options->child);
     command->callback([options] {
         int result = 0;
         bool badInput = false;

@@ -22,6 +22,20 @@ void addThreadsOption(CLI::App& command, EnvOptions& options) {
         ->check(CLI::Range(0, 1024));
 }
 
+void addChildJobOptions(CLI::App& command, ChildJob& job) {
+    // An empty group hides them from --help: they are runJobInChild's, not a user's.
+    command.add_option(kChildJobOption, job.job, "run this job alone, as a child process")->group("");
+    command.add_option(kChildResultOption, job.resultFile, "the file for the child's result")->group("");
+}
+
+void addJobTimeoutOption(CLI::App& command, double& seconds) {
+    seconds = kDefaultJobTimeoutSeconds;
+    command.add_option("--job-timeout", seconds,
+                       "seconds each job may run before it is killed and fails; 0 = no limit")
+        ->capture_default_str()
+        ->check(CLI::Range(0.0, 1e9));
+}
+
 std::string overrideWithoutEqualsHint(int argc, const char* const* argv) {
     for (int i = 1; i < argc; ++i) {
         const std::string_view arg = argv[i];

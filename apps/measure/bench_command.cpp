@@ -8,11 +8,16 @@
 // embree-robust go through our interface, as every structure of ours does; nothing and
 // nothing-guarded time a query that does nothing through it (nothing_accelerator.h), bare and
 // behind the guard of a plugin's structure: the floor under every row. A benchmark, not a test.
+// Each scene is a job in a process of its own (apps/runtime/child_job.h): a structure that
+// crashes, throws or runs past --job-timeout fails its scene's job (all its structures share the
+// rounds), a failed row with the reason, and the other scenes run.
 #include "accel/registry.h"
 #include "apps/cli/command_line.h"
 #include "apps/cli/commands.h"
 #include "apps/measure/nothing_accelerator.h"
 #include "apps/runtime/accel_config.h"
+#include "apps/runtime/build_watch.h"
+#include "apps/runtime/child_job.h"
 #include "apps/runtime/comma_list.h"
 #include "apps/runtime/output_paths.h"
 #include "apps/runtime/program_keys.h"
@@ -126,6 +131,7 @@ std::vector<nlohmann::json> measureRounds(const Scene& scene, const RaySets& ray
         for (Structure& k : structures) {
             k.accel.reset();  // the new structure replaces the old one, not beside it
             k.accel = createFor(k);
+            const BuildWatch watch(fmt::format("{} on {}", k.config.label, scene.name));
             arena.execute([&] { k.stats = timedBuild(*k.accel, scene.primitives()); });
             k.buildMs.push_back(k.stats.buildMs);
         }
@@ -261,13 +267,18 @@ std::string yardstickOf(const nlohmann::json& row) {
 // our interface); embree-batch's line ends with the API it kept per ray set.
 std::string benchTable(const nlohmann::json& results) {
     size_t accelWidth = 14;
-    for (const nlohmann::json& row : results["rows"]) accelWidth = std::max(accelWidth, row["accel"].get<std::string>().size());
+    for (const nlohmann::json& row : results["rows"])
+        if (!row.contains("failed")) accelWidth = std::max(accelWidth, row["accel"].get<std::string>().size());
     std::string out = fmt::format("{:<16} {:>3} {:<{}} {:<6} {:>9} {:>6} {:>8} {:>6} {:>6} {:>8} {:>6} {:>6} {:>8} {:>6} {:>6} "
                                   "{:>6} {:>6} {:>8} {:>7} {:>7}\n",
                                   "scene", "thr", "accel", accelWidth, "query", "T_B ms", "xE", "prim us", "xE", "xER", "shad us",
                                   "xE", "xER", "incoh us", "xE", "xER", "N_IT", "N_TR", "SAH", "EPO", "MB");
     std::map<std::string, std::vector<nlohmann::json>> byConfig;
     for (const nlohmann::json& row : results["rows"]) {
+        if (row.contains("failed")) {
+            out += fmt::format("{:<16} failed: {}\n", row["scene"].get<std::string>(), row["failed"].get<std::string>());
+            continue;
+        }
         const nlohmann::json& e = ratiosTo(row, yardstickOf(row));
         const nlohmann::json& er = ratiosTo(row, "embree-robust");
         out += fmt::format("{:<16} {:>3} {:<{}} {:<6} {:>9.1f} {:>6} {:>8.3f} {:>6} {:>6} {:>8.3f} {:>6} {:>6} "
@@ -324,6 +335,8 @@ void addBenchCommand(CLI::App& app) {
         std::string queries = "single,batch";
         int builds = 5, passes = 5;
         std::string out = "out/bench.json";
+        double jobTimeout = 0;
+        ChildJob child;
     };
     auto options = std::make_shared<Options>();
     CLI::App* command = app.add_subcommand("bench", "time builds and queries against Embree (medians, ratios)");
@@ -342,7 +355,10 @@ void addBenchCommand(CLI::App& app) {
     command->add_option("--builds", options->builds, "builds per structure (median)")->capture_default_str()->check(CLI::Range(1, 1000));
     command->add_option("--passes", options->passes, "passes over each ray set (median)")->capture_default_str()->check(CLI::Range(1, 1000));
     command->add_option("--out", options->out, "JSON results")->capture_default_str();
+    addJobTimeoutOption(*command, options->jobTimeout);
+    addChildJobOptions(*command, options->child);
     command->callback([options] {
+        size_t failed = 0;
         const int code = runGuarded([&] {
             std::vector<AccelConfig> configs = parseAccelConfigList(options->accels);
             for (const char* reference : {"embree", "embree:Embree::robust=true"})
@@ -372,14 +388,11 @@ void addBenchCommand(CLI::App& app) {
             }
             if (kinds.empty()) throw InputError("--queries: no kind of query given (single, batch)");
 
-            nlohmann::json results = {{"provenance", provenanceJson()},
-                                      {"builds", options->builds},
-                                      {"passes", options->passes},
-                                      {"rows", nlohmann::json::array()}};
             const std::vector<SceneArgument> scenes = expandSceneList(options->scenes, options->env);
-            const std::filesystem::path out = prepareOutputFile(options->out);
-            Progress progress;
-            for (size_t s = 0; s < scenes.size(); ++s) {
+            // The job of scene `s`, in its own process: every structure at every thread count.
+            const auto measureScene = [&](size_t s) {
+                nlohmann::json rows = nlohmann::json::array();
+                Progress progress;
                 const Env env = scenes[s].load(options->env);
                 const Scene scene = loadSceneFor(env);
                 const RaySets rays = [&] {
@@ -401,15 +414,42 @@ void addBenchCommand(CLI::App& app) {
                                        row["queries"].get<std::string>(), row["build_ms"].get<double>(),
                                        row["primary"]["t_r_us"].get<double>(), ratio.is_null() ? 0.0 : ratio.get<double>(),
                                        reference);
-                        results["rows"].push_back(std::move(row));
+                        rows.push_back(std::move(row));
                     }
                 }
+                return rows;
+            };
+            if (options->child.isChild()) {
+                size_t s = 0;
+                if (!parseNumber(options->child.job, s) || s >= scenes.size())
+                    throw InputError(fmt::format("{} {}: not a scene of this bench", kChildJobOption, options->child.job));
+                options->child.run([&] { return measureScene(s); });
+                return;
             }
+
+            nlohmann::json results = {{"provenance", provenanceJson()},
+                                      {"builds", options->builds},
+                                      {"passes", options->passes},
+                                      {"rows", nlohmann::json::array()}};
+            const std::filesystem::path out = prepareOutputFile(options->out);
+            for (size_t s = 0; s < scenes.size(); ++s) {
+                const JobOutcome outcome = runJobInChild(std::to_string(s), options->jobTimeout);
+                if (outcome.passed()) {
+                    for (const nlohmann::json& row : outcome.result) results["rows"].push_back(row);
+                    continue;
+                }
+                ++failed;
+                fmt::print(stderr, "[{}/{}] {}: failed: {}\n", s + 1, scenes.size(), scenes[s].id, outcome.failure());
+                results["rows"].push_back({{"scene", scenes[s].id}, {"failed", outcome.failure()}});
+            }
+            results["failed_jobs"] = failed;
             std::ofstream(out) << results.dump(2) << "\n";
             fmt::print("{}", benchTable(results));
             fmt::print(stderr, "wrote {}\n", out.string());
+            if (failed) fmt::print(stderr, "bench: {} of {} scenes failed\n", failed, scenes.size());
         });
         if (code != 0) throw CLI::RuntimeError(code);
+        if (failed) throw CLI::RuntimeError(kSomeJobsFailedExitCode);
     });
 }
 

@@ -1,6 +1,7 @@
 #include "apps/runtime/build_accelerator.h"
 
 #include "accel/registry.h"
+#include "apps/runtime/build_watch.h"
 #include "framework/core/timed_build.h"
 
 #include <fmt/core.h>
@@ -9,7 +10,10 @@ namespace bvhlab {
 
 BuiltAccelerator buildAccelerator(const Scene& scene, const Env& env) {
     BuiltAccelerator built{createAccelerator(env), {}};
-    built.stats = timedBuild(*built.accel, scene.primitives());
+    {
+        const BuildWatch watch(fmt::format("{} on {}", built.accel->name(), scene.name));
+        built.stats = timedBuild(*built.accel, scene.primitives());
+    }
     fmt::print(stderr, "{}: built over {} primitives in {:.1f} ms\n", built.accel->name(), built.stats.primitives,
                built.stats.buildMs);
     return built;

@@ -1,4 +1,5 @@
-// Building the accelerator an env chooses, timed, with a report on stderr.
+// Building the accelerator an env chooses, timed, with a report on stderr (and lines while a
+// build runs longer than 2 s: build_watch.h).
 #pragma once
 
 #include "framework/config/env.h"

@@ -1,7 +1,9 @@
 // `bvhlab spd SCENE.nff... --out DIR`: the SPD test (framework/render/spd_tracer.h) with each
 // chosen accelerator, beside Havran's published figures (apps/spd/havran_reference.h), an octree's
 // beside the column of his octree tables it was built as: DIR/spd.json, DIR/spd.md and an image
-// per scene and accelerator.
+// per scene and accelerator. Each scene x accelerator is a job in a process of its own
+// (apps/runtime/child_job.h): one that crashes, throws or runs past --job-timeout is a failed row
+// with its reason, and the others run.
 #include "apps/cli/commands.h"
 
 #include "accel/registry.h"
@@ -9,6 +11,8 @@
 #include "apps/runtime/accel_config.h"
 #include "apps/runtime/app_keys.h"
 #include "apps/runtime/atomic_write.h"
+#include "apps/runtime/build_watch.h"
+#include "apps/runtime/child_job.h"
 #include "apps/runtime/comma_list.h"
 #include "apps/runtime/output_paths.h"
 #include "apps/runtime/progress.h"
@@ -149,15 +153,18 @@ std::string markdown(const nlohmann::json& results) {
           "havran_stats_grids.txt and havran_stats_octrees.txt (1999).\n\n";
     for (const nlohmann::json& scene : results["scenes"]) {
         md += fmt::format("## {}\n\n", scene["scene"].get<std::string>());
-        const nlohmann::json& ours = scene["accels"][0]["invariants"];
+        // The invariants of the first structure that ran (they are the scene's, whichever traced it).
+        const auto ran = std::find_if(scene["accels"].begin(), scene["accels"].end(),
+                                      [](const nlohmann::json& a) { return !a.contains("failed"); });
+        const nlohmann::json ours = ran == scene["accels"].end() ? nlohmann::json() : (*ran)["invariants"];
         const nlohmann::json& havran = scene["havran"];
         md += "| invariant | bvhlab | Havran | difference |\n|---|---:|---:|---:|\n";
         for (const char* name : kHavranInvariants) {
             const bool known = havran.contains("invariants") && havran["invariants"].contains(name);
             const double theirs = known ? havran["invariants"][name].get<double>() : 0.0;
-            md += fmt::format("| {} | {} | {} | {} |\n", name, ours[name].get<uint64_t>(),
+            md += fmt::format("| {} | {} | {} | {} |\n", name, ours.is_null() ? "n/a" : fmt::format("{}", ours[name].get<uint64_t>()),
                               known ? fmt::format("{:.0f}", theirs) : "n/a",
-                              known ? percentDiff(ours[name].get<double>(), theirs) : "n/a");
+                              known && !ours.is_null() ? percentDiff(ours[name].get<double>(), theirs) : "n/a");
         }
         md += "\n| structure | N_IT per ray | N_TS per ray | T_B ms | trace ms |\n|---|---:|---:|---:|---:|\n";
         for (const char* kind : {"best_grid", "best_octree"}) {
@@ -166,6 +173,10 @@ std::string markdown(const nlohmann::json& results) {
                               havran[kind]["n_it"].get<double>(), havran[kind]["n_ts"].get<double>());
         }
         for (const nlohmann::json& a : scene["accels"]) {
+            if (a.contains("failed")) {
+                md += fmt::format("| {} | failed: {} | | | |\n", a["accel"].get<std::string>(), a["failed"].get<std::string>());
+                continue;
+            }
             const auto cell = [](const nlohmann::json& v) { return v.is_null() ? std::string("n/a") : fmt::format("{:.2f}", v.get<double>()); };
             md += fmt::format("| {} | {} | {} | {:.1f} | {:.0f} |\n", a["accel"].get<std::string>(), cell(a["n_it"]),
                               cell(a["n_ts"]), a["build_ms"].get<double>(), a["trace_ms"].get<double>());
@@ -183,6 +194,8 @@ void addSpdCommand(CLI::App& app) {
         std::vector<std::string> scenes;
         std::string accels;
         std::string out = "out/spd";
+        double jobTimeout = 0;
+        ChildJob child;
     };
     auto options = std::make_shared<Options>();
     CLI::App* command = app.add_subcommand(
@@ -195,9 +208,13 @@ void addSpdCommand(CLI::App& app) {
                         "comma-separated NAME or NAME:Key=value:... (default: ASDS::type); the first one's invariants "
                         "are compared with Havran's");
     command->add_option("--out", options->out, "output folder: spd.json, spd.md, SCENE.ACCEL.png")->capture_default_str();
+    addJobTimeoutOption(*command, options->jobTimeout);
+    addChildJobOptions(*command, options->child);
     command->callback([options] {
+        size_t failed = 0;
         const int code = runGuarded([&] {
-            const std::filesystem::path out = prepareOutputFolder(options->out);
+            const std::filesystem::path out =
+                options->child.isChild() ? std::filesystem::path(options->out) : prepareOutputFolder(options->out);
             std::vector<AccelConfig> configs = parseAccelConfigList(options->accels);
             nameAccelerators(configs, options->env);
             const Env base = chooseScene("", "", options->env).load(options->env);
@@ -211,15 +228,60 @@ void addSpdCommand(CLI::App& app) {
             nlohmann::json results = {{"provenance", provenanceJson()},
                                       {"rules", {{"max_depth", rules.maxDepth}}},
                                       {"scenes", nlohmann::json::array()}};
-            Progress progress;
-            for (const std::string& file : options->scenes) {
+            const auto sceneEnv = [&](size_t s) {
                 Env env = base;
-                env.set(keys::Scene::file, std::filesystem::absolute(file).string(), "bvhlab spd");
+                env.set(keys::Scene::file, std::filesystem::absolute(options->scenes[s]).string(), "bvhlab spd");
+                return env;
+            };
+            const auto twoSided = [&](const Scene& scene) {
+                const std::vector<std::string> names = splitCommaList(base.get(keys::Spd::twoSidedScenes));
+                return std::find(names.begin(), names.end(), scene.name) != names.end();
+            };
+            // One job, in a process of its own: structure `c` on scene `s`, built, traced, its image written.
+            const auto runJob = [&](size_t s, size_t c) {
+                const Env env = sceneEnv(s);
                 const Scene scene = loadSceneFor(env);
-                const std::vector<std::string> twoSided = splitCommaList(base.get(keys::Spd::twoSidedScenes));
-                rules.twoSided = std::find(twoSided.begin(), twoSided.end(), scene.name) != twoSided.end();
+                rules.twoSided = twoSided(scene);
+                const AccelConfig& config = configs[c];
+                Progress progress;
+                const Env accelEnv = accelConfigEnv(config, env);
+                progress.phase(fmt::format("{} {}: building", scene.name, config.label));
+                auto accel = createAccelerator(config.name, accelEnv);
+                const BuildStats build = [&] {
+                    const BuildWatch watch(fmt::format("{} on {}", config.label, scene.name));
+                    return timedBuild(*accel, scene.primitives());
+                }();
+                const uint64_t rows = uint64_t(scene.camera ? scene.camera->height + 1 : 0);
+                progress.phase(fmt::format("{} {}: tracing", scene.name, config.label), rows);
+                Framebuffer fb(scene.camera ? scene.camera->width : 1, scene.camera ? scene.camera->height : 1);
+                const SpdResult result = traceSpd(scene, *accel, rules, fb, [&](uint64_t rays) { progress.advance(1, rays); });
+                progress.finish();
+                writePng(out / fmt::format("{}.{}.png", scene.name, config.label), fb);
+                // The figures after the trace: a structure's per-ray figures (an octree's N_ETS)
+                // count the queries since its build.
+                BuildStats traced = build;
+                traced.figures = statisticsOf(*accel).figures;
+                nlohmann::json havranColumn;
+                if (const auto column = havranOctreeColumn(config, accelEnv); column && havran.count(scene.name))
+                    havranColumn = havranOctreeJson(havran.at(scene.name), column->first, column->second);
+                return accelJson(config.label, traced, result, accel->hasCounters(), std::move(havranColumn));
+            };
+            if (options->child.isChild()) {
+                const std::string& job = options->child.job;
+                const size_t slash = job.find('/');
+                size_t s = 0, c = 0;
+                if (slash == std::string::npos || !parseNumber(std::string_view(job).substr(0, slash), s) ||
+                    !parseNumber(std::string_view(job).substr(slash + 1), c) || s >= options->scenes.size() ||
+                    c >= configs.size())
+                    throw InputError(fmt::format("{} {}: not a job of this spd run", kChildJobOption, job));
+                options->child.run([&] { return runJob(s, c); });
+                return;
+            }
+
+            for (size_t s = 0; s < options->scenes.size(); ++s) {
+                const Scene scene = loadSceneFor(sceneEnv(s));
                 nlohmann::json sceneJson = {
-                    {"scene", scene.name}, {"two_sided", rules.twoSided}, {"accels", nlohmann::json::array()}};
+                    {"scene", scene.name}, {"two_sided", twoSided(scene)}, {"accels", nlohmann::json::array()}};
                 if (const auto it = havran.find(scene.name); it != havran.end()) {
                     const HavranScene& h = it->second;
                     sceneJson["havran"]["invariants"] = h.invariants;
@@ -228,37 +290,28 @@ void addSpdCommand(CLI::App& app) {
                 } else {
                     sceneJson["havran"] = nlohmann::json::object();
                 }
-                for (const AccelConfig& config : configs) {
-                    const Env accelEnv = accelConfigEnv(config, env);
-                    progress.phase(fmt::format("{} {}: building", scene.name, config.label));
-                    auto accel = createAccelerator(config.name, accelEnv);
-                    const BuildStats build = timedBuild(*accel, scene.primitives());
-                    const uint64_t rows = uint64_t(scene.camera ? scene.camera->height + 1 : 0);
-                    progress.phase(fmt::format("{} {}: tracing", scene.name, config.label), rows);
-                    Framebuffer fb(scene.camera ? scene.camera->width : 1, scene.camera ? scene.camera->height : 1);
-                    const SpdResult result =
-                        traceSpd(scene, *accel, rules, fb, [&](uint64_t rays) { progress.advance(1, rays); });
-                    progress.finish();
-                    writePng(out / fmt::format("{}.{}.png", scene.name, config.label), fb);
-                    // The figures after the trace: a structure's per-ray figures (an octree's N_ETS)
-                    // count the queries since its build.
-                    BuildStats traced = build;
-                    traced.figures = statisticsOf(*accel).figures;
-                    nlohmann::json havranColumn;
-                    if (const auto column = havranOctreeColumn(config, accelEnv); column && havran.count(scene.name))
-                        havranColumn = havranOctreeJson(havran.at(scene.name), column->first, column->second);
-                    sceneJson["accels"].push_back(
-                        accelJson(config.label, traced, result, accel->hasCounters(), std::move(havranColumn)));
+                for (size_t c = 0; c < configs.size(); ++c) {
+                    const JobOutcome outcome = runJobInChild(fmt::format("{}/{}", s, c), options->jobTimeout);
+                    if (outcome.passed()) {
+                        sceneJson["accels"].push_back(outcome.result);
+                        continue;
+                    }
+                    ++failed;
+                    fmt::print(stderr, "{} {}: failed: {}\n", scene.name, configs[c].label, outcome.failure());
+                    sceneJson["accels"].push_back({{"accel", configs[c].label}, {"failed", outcome.failure()}});
                 }
                 results["scenes"].push_back(sceneJson);
             }
+            results["failed_jobs"] = failed;
             writeFileAtomically(out / "spd.json", results.dump(2) + "\n");
             const std::string md = markdown(results);
             writeFileAtomically(out / "spd.md", md);
             fmt::print("{}", md);
             fmt::print(stderr, "wrote {}/spd.{{json,md}} and the images\n", out.string());
+            if (failed) fmt::print(stderr, "spd: {} failed jobs\n", failed);
         });
         if (code != 0) throw CLI::RuntimeError(code);
+        if (failed) throw CLI::RuntimeError(kSomeJobsFailedExitCode);
     });
 }
 

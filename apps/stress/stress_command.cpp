@@ -9,8 +9,11 @@
 //    lose its light to its own surface.
 //  - builders: 1e6 coincident triangles, 1e6 centres on one line, one huge triangle among 1e6
 //    tiny ones: build time, depth, and answers against naive.
-// Tables on stdout, JSON in --out, progress on stderr. Exit code 1 when one of our
-// accelerators (not Embree, which is reported only) fails a check.
+// Each part of each structure is a job in a process of its own (apps/runtime/child_job.h): one
+// that crashes, throws or runs past --job-timeout is a failed row with its reason, and the rest
+// goes on; a build at the edge that outlasts --builder-max-seconds fails its case and ends its job.
+// Tables on stdout, JSON in --out, progress on stderr. Exit code 3 when a job failed, else 1 when
+// one of our accelerators (not Embree, which is reported only) fails a check.
 #include "accel/registry.h"
 #include "accel/verify/closed_meshes.h"
 #include "accel/verify/conformance.h"
@@ -22,6 +25,9 @@
 #include "apps/cli/command_line.h"
 #include "apps/cli/commands.h"
 #include "apps/runtime/accel_config.h"
+#include "apps/runtime/atomic_write.h"
+#include "apps/runtime/build_watch.h"
+#include "apps/runtime/child_job.h"
 #include "apps/runtime/app_keys.h"
 #include "apps/runtime/comma_list.h"
 #include "apps/runtime/output_paths.h"
@@ -29,6 +35,7 @@
 #include "apps/runtime/scene_list.h"
 #include "framework/config/common_keys.h"
 #include "framework/core/error.h"
+#include "framework/core/parse_number.h"
 #include "framework/core/timed_build.h"
 #include "framework/render/camera.h"
 #include "framework/render/renderer.h"
@@ -39,11 +46,15 @@
 #include <nlohmann/json.hpp>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <fstream>
 #include <functional>
+#include <mutex>
 #include <sstream>
+#include <thread>
 
 namespace bvhlab {
 namespace {
@@ -69,7 +80,40 @@ struct StressOptions {
     int threads = 0;
     uint64_t seed = 1;
     std::string out = "out/stress.json";
+    double jobTimeout = 0;
+    ChildJob child;
 };
+
+// The parts, in the order they run.
+const char* const kParts[] = {"watertight", "sweep", "acne", "builders"};
+
+// Runs `body` on a thread of its own and waits for it at most `seconds`; false when it has not
+// returned by then (a build that never ends: the thread is left to the process's end).
+bool finishesWithin(double seconds, std::function<void()> body) {
+    struct State {
+        std::mutex mutex;
+        std::condition_variable done;
+        bool finished = false;
+        std::exception_ptr error;
+    };
+    auto state = std::make_shared<State>();
+    std::thread([state, body = std::move(body)] {
+        std::exception_ptr error;
+        try {
+            body();
+        } catch (...) {
+            error = std::current_exception();
+        }
+        const std::lock_guard lock(state->mutex);
+        state->finished = true;
+        state->error = error;
+        state->done.notify_all();
+    }).detach();
+    std::unique_lock lock(state->mutex);
+    if (!state->done.wait_for(lock, std::chrono::duration<double>(seconds), [&] { return state->finished; })) return false;
+    if (state->error) std::rethrow_exception(state->error);
+    return true;
+}
 
 class StressRun {
 public:
@@ -90,19 +134,83 @@ public:
                     {"failures", nlohmann::json::array()}};
     }
 
+    // Runs each wanted part of each structure as a job in a child process, then prints each
+    // part's table with the rows in the order of its cases, and the structures' order within one.
     void run() {
         const std::vector<std::string> parts = splitCommaList(options_.parts);
-        auto wanted = [&](const char* part) { return std::find(parts.begin(), parts.end(), part) != parts.end(); };
         for (const std::string& p : parts)
-            if (p != "watertight" && p != "sweep" && p != "acne" && p != "builders")
+            if (std::find(std::begin(kParts), std::end(kParts), p) == std::end(kParts))
                 throw InputError(fmt::format("--parts: unknown part '{}' (known: watertight, sweep, acne, builders)", p));
-        if (wanted("watertight")) watertight();
-        if (wanted("sweep")) sweep();
-        if (wanted("acne")) acne();
-        if (wanted("builders")) builders();
+        for (const char* part : kParts) {
+            if (std::find(parts.begin(), parts.end(), part) == parts.end()) continue;
+            fmt::print(stderr, "{}\n", partIntroduction(part));
+            struct Entry {
+                size_t caseIndex, config;
+                nlohmann::json row;
+                std::string line;
+            };
+            std::vector<Entry> entries;
+            std::string failedLines;
+            nlohmann::json failedRows = nlohmann::json::array();
+            for (size_t c = 0; c < configs_.size(); ++c) {
+                const AccelConfig& config = configs_[c];
+                if (config.name == "naive" && std::string(part) == "builders") continue;
+                const JobOutcome outcome = runJobInChild(fmt::format("{}/{}", part, c), options_.jobTimeout);
+                if (!outcome.passed()) {
+                    // A failed job fails the run, Embree's too: its part has no answer to report.
+                    ++failedJobs_;
+                    const std::string message = fmt::format("{}: {}: failed: {}", config.label, part, outcome.failure());
+                    fmt::print(stderr, "  FAIL {}\n", message);
+                    results_["failures"].push_back(message);
+                    failedLines += fmt::format("{}: failed: {}\n", config.label, outcome.failure());
+                    failedRows.push_back({{"accel", config.label}, {"failed", outcome.failure()}});
+                    continue;
+                }
+                for (const nlohmann::json& e : outcome.result.at("entries"))
+                    entries.push_back({e.at("case").get<size_t>(), c, e.at("row"), e.at("line").get<std::string>()});
+                for (const nlohmann::json& f : outcome.result.at("failures")) results_["failures"].push_back(f);
+                for (const nlohmann::json& skipped : outcome.result.at("skipped"))
+                    if (!results_.contains("skipped") || std::find(results_["skipped"].begin(), results_["skipped"].end(),
+                                                                   skipped) == results_["skipped"].end())
+                        results_["skipped"].push_back(skipped);
+            }
+            std::stable_sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
+                return std::pair(a.caseIndex, a.config) < std::pair(b.caseIndex, b.config);
+            });
+            nlohmann::json rows = nlohmann::json::array();
+            std::string table = partHeader(part);
+            for (Entry& e : entries) {
+                table += e.line;
+                rows.push_back(std::move(e.row));
+            }
+            for (nlohmann::json& row : failedRows) rows.push_back(std::move(row));
+            results_[part] = rows;
+            fmt::print("{}{}{}\n", partSection(part), table, failedLines);
+        }
+        results_["failed_jobs"] = failedJobs_;
+    }
+
+    // In a child process: job "PART/CONFIG" of run(), one part of one structure.
+    void runChildJob(const ChildJob& child) {
+        const size_t slash = child.job.find('/');
+        size_t c = 0;
+        const std::string part = child.job.substr(0, slash);
+        if (slash == std::string::npos || !parseNumber(std::string_view(child.job).substr(slash + 1), c) ||
+            c >= configs_.size() || std::find(std::begin(kParts), std::end(kParts), part) == std::end(kParts))
+            throw InputError(fmt::format("{} {}: not a job of this stress run", kChildJobOption, child.job));
+        configs_ = {configs_[c]};
+        child_ = &child;
+        child.run([&] {
+            if (part == "watertight") watertight();
+            if (part == "sweep") sweep();
+            if (part == "acne") acne();
+            if (part == "builders") builders();
+            return childResult();
+        });
     }
 
     const nlohmann::json& results() const { return results_; }
+    size_t failedJobs() const { return failedJobs_; }
     bool failed() const { return !results_["failures"].empty(); }
 
 private:
@@ -115,8 +223,65 @@ private:
     std::unique_ptr<Accelerator> build(const AccelConfig& config, const Scene& scene, BuildStats& stats) const {
         auto accel = createAccelerator(config.name, configured(config));
         tbb::task_arena arena(options_.threads > 0 ? options_.threads : tbb::task_arena::automatic);
+        const BuildWatch watch(fmt::format("{} on {}", config.label, scene.name));
         arena.execute([&] { stats = timedBuild(*accel, scene.primitives()); });
         return accel;
+    }
+
+    // What a child hands back: its rows with their case and table line, and what failed.
+    nlohmann::json childResult() const {
+        return {{"entries", entries_},
+                {"failures", results_["failures"]},
+                {"skipped", results_.value("skipped", nlohmann::json::array())}};
+    }
+
+    // A row of case `caseIndex` of the part (a mesh, a scale and offset, a plane, a scene at the
+    // edge) and its line in the part's table.
+    void add(size_t caseIndex, nlohmann::json row, std::string line) {
+        entries_.push_back({{"case", caseIndex}, {"row", std::move(row)}, {"line", std::move(line)}});
+    }
+
+    // The line on stderr before a part, the header of its table and the text above it.
+    std::string partIntroduction(const std::string& part) const {
+        if (part == "watertight")
+            return fmt::format("== watertightness: {} rays per mesh at interior edges and vertices", options_.rays);
+        if (part == "sweep") {
+            const Scene base = sweepBase();
+            return fmt::format("== scale/translation sweep on {} ({} triangles, size {:.3g}): {} scales x {} offsets, {} "
+                               "probes and {} rays toward triangles each",
+                               base.name, base.triangleCount(), glm::length(DVec3(base.bounds.diagonal())),
+                               sweepScales().size(), sweepOffsets().size(), options_.sweepRays, sweepRayCount());
+        }
+        if (part == "acne") return "== shadow acne: lit planes far from the origin, and grounds z = 0 lit from low";
+        return fmt::format("== builders at the edge: {} primitives", options_.builderPrims);
+    }
+    static std::string partHeader(const std::string& part) {
+        if (part == "watertight")
+            return fmt::format("{:<16} {:>8} {:<14} {:>9} {:>7} {:>11} {:>9} {:>11} {:>7} {:>9}\n", "mesh", "tris", "accel",
+                               "rays", "leaks", "per million", "any-hit", "per million", "batch", "batch any");
+        if (part == "sweep")
+            return fmt::format("{:<14} {:>7} {:<16} {:>8} {:>6} {:>9} {:>8} {:>10} {:>10}\n", "accel", "scale",
+                               "offset/size", "rays", "leaks", "prim diff", "t diff", "SAH", "SAH rel");
+        if (part == "acne")
+            return fmt::format("{:<22} {:<14} {:>8} {:>8} {:>14} {:>6}\n", "plane", "accel", "pixels", "on plane",
+                               "self-shadowed", "dark");
+        return fmt::format("{:<18} {:<14} {:>9} {:>10} {:>6} {:>9} {:>9} {:>9}\n", "scene", "accel", "prims", "build ms",
+                           "depth", "nodes", "max leaf", "vs naive");
+    }
+    static std::string partSection(const std::string& part) {
+        if (part == "watertight")
+            return "watertightness: rays aimed exactly at interior edges and vertices of closed meshes, tmax = 1.0001 x "
+                   "distance; a leak is a miss (closest hit), any-hit = isOccluded false; batch, batch any = the same "
+                   "through findNearestBatch and isOccludedBatch\n";
+        if (part == "sweep")
+            return fmt::format("scale/translation sweep: {} scaled, then moved by offset x its scaled size; leaks include "
+                               "any-hit; prim/t diff on rays moved with the scene; SAH rel = relative change from scale 1\n",
+                               sweepBase().name);
+        if (part == "acne")
+            return "shadow acne: planes whose centre is 1e4 (checked) and 1e6 (reported) from the origin, lit from the "
+                   "camera's side, and grounds z = 0 lit from 5 degrees (self-shadowing checked); self-shadowed = pixel "
+                   "darker with shadows than without; dark = not above the ambient term\n";
+        return "builders at the edge: build time, depth (< 64), and 256 rays toward triangles against naive\n";
     }
 
     void fail(const AccelConfig& config, const std::string& what) {
@@ -162,12 +327,9 @@ private:
     }
 
     void watertight() {
-        fmt::print(stderr, "== watertightness: {} rays per mesh at interior edges and vertices\n", options_.rays);
-        nlohmann::json rows = nlohmann::json::array();
-        std::string table = fmt::format("{:<16} {:>8} {:<14} {:>9} {:>7} {:>11} {:>9} {:>11} {:>7} {:>9}\n", "mesh", "tris",
-                                        "accel", "rays", "leaks", "per million", "any-hit", "per million", "batch",
-                                        "batch any");
+        size_t mesh = 0;
         for (const auto& make : meshes()) {
+            const size_t caseIndex = mesh++;
             const auto start = Clock::now();
             const std::optional<Scene> scene = make();
             if (!scene) {
@@ -195,11 +357,8 @@ private:
                     fail(config, fmt::format("{} leaks and {} any-hit leaks (batch queries: {} and {}) in {} rays through {}",
                                              leaks.leaks, leaks.occlusionLeaks, leaks.batchLeaks, leaks.batchOcclusionLeaks,
                                              leaks.rays, scene->name));
-                table += fmt::format("{:<16} {:>8} {:<14} {:>9} {:>7} {:>11.1f} {:>9} {:>11.1f} {:>7} {:>9}\n", scene->name,
-                                     scene->triangleCount(), config.label, leaks.rays, leaks.leaks, leaks.perMillion(),
-                                     leaks.occlusionLeaks, leaks.occlusionPerMillion(), leaks.batchLeaks,
-                                     leaks.batchOcclusionLeaks);
-                rows.push_back({{"mesh", scene->name},
+                add(caseIndex,
+                    {{"mesh", scene->name},
                                 {"triangles", scene->triangleCount()},
                                 {"closed", topology.closed()},
                                 {"topology", topology.summary()},
@@ -216,31 +375,26 @@ private:
                                 {"batch_leaks", leaks.batchLeaks},
                                 {"batch_any_hit_leaks", leaks.batchOcclusionLeaks},
                                 {"build_ms", stats.buildMs},
-                                {"examples", leaks.examples}});
+                                {"examples", leaks.examples}},
+                    fmt::format("{:<16} {:>8} {:<14} {:>9} {:>7} {:>11.1f} {:>9} {:>11.1f} {:>7} {:>9}\n", scene->name,
+                                scene->triangleCount(), config.label, leaks.rays, leaks.leaks, leaks.perMillion(),
+                                leaks.occlusionLeaks, leaks.occlusionPerMillion(), leaks.batchLeaks,
+                                leaks.batchOcclusionLeaks));
             }
         }
-        results_["watertight"] = rows;
-        const std::string section =
-            "watertightness: rays aimed exactly at interior edges and vertices of closed meshes, tmax = 1.0001 x "
-            "distance; a leak is a miss (closest hit), any-hit = isOccluded false; batch, batch any = the same through "
-            "findNearestBatch and isOccludedBatch\n";
-        fmt::print("{}{}\n", section, table);
     }
 
     // --- scale and translation --------------------------------------------------------------
 
+    static Scene sweepBase() { return makeClosedTrioScene(4, 16, 64, 32); }
+    size_t sweepRayCount() const { return std::max<size_t>(options_.sweepRays / 5, 1000); }
+
     void sweep() {
-        const Scene base = makeClosedTrioScene(4, 16, 64, 32);
+        const Scene base = sweepBase();
         const double size = glm::length(DVec3(base.bounds.diagonal()));
         const std::vector<double> scales = sweepScales();
         const std::vector<DVec3> offsets = sweepOffsets();
-        const std::vector<Ray> baseRays = raysTowardTriangles(base, std::max<size_t>(options_.sweepRays / 5, 1000), options_.seed);
-        fmt::print(stderr, "== scale/translation sweep on {} ({} triangles, size {:.3g}): {} scales x {} offsets, {} probes "
-                           "and {} rays toward triangles each\n",
-                   base.name, base.triangleCount(), size, scales.size(), offsets.size(), options_.sweepRays, baseRays.size());
-        nlohmann::json rows = nlohmann::json::array();
-        std::string table = fmt::format("{:<14} {:>7} {:<16} {:>8} {:>6} {:>9} {:>8} {:>10} {:>10}\n", "accel", "scale",
-                                        "offset/size", "rays", "leaks", "prim diff", "t diff", "SAH", "SAH rel");
+        const std::vector<Ray> baseRays = raysTowardTriangles(base, sweepRayCount(), options_.seed);
         // The base answers of every accelerator, then each scale and offset with its own probes.
         struct Baseline {
             const AccelConfig* config;
@@ -257,8 +411,10 @@ private:
             accel->findNearestBatch(baseRays, b.hits, counters, {});
             baselines.push_back(std::move(b));
         }
+        size_t caseIndex = 0;
         for (double scale : scales)
             for (const DVec3& offsetUnits : offsets) {
+                ++caseIndex;
                 const DVec3 offset = offsetUnits * size * scale;
                 const Scene scene = transformedScene(base, scale, offset);
                 ProbeOptions probeOptions;
@@ -291,11 +447,8 @@ private:
                     if (sahRel && std::abs(*sahRel) > sahScaleTolerance(scale))
                         fail(config, fmt::format("scale {:g}: SAH cost {:.6g} differs from {:.6g} at scale 1 by {:.2e}",
                                                  scale, stats.sah->cost, baseStats.sah->cost, *sahRel));
-                    table += fmt::format("{:<14} {:>7g} {:<16} {:>8} {:>6} {:>9} {:>8} {:>10} {:>10}\n", config.label, scale,
-                                         offsetLabel, leaks.rays, leaks.leaks + leaks.occlusionLeaks, primDiff, tDiff,
-                                         stats.sah ? fmt::format("{:.4f}", stats.sah->cost) : "n/a",
-                                         sahRel ? fmt::format("{:.1e}", *sahRel) : "");
-                    rows.push_back({{"accel", config.label},
+                    add(caseIndex,
+                        {{"accel", config.label},
                                     {"scale", scale},
                                     {"offset_in_sizes", {offsetUnits.x, offsetUnits.y, offsetUnits.z}},
                                     {"rays", leaks.rays},
@@ -305,27 +458,23 @@ private:
                                     {"other_primitive", primDiff},
                                     {"t_not_scaling", tDiff},
                                     {"sah", stats.sah ? nlohmann::json(stats.sah->cost) : nlohmann::json()},
-                                    {"sah_relative_to_scale_1", sahRel ? nlohmann::json(*sahRel) : nlohmann::json()}});
+                                    {"sah_relative_to_scale_1", sahRel ? nlohmann::json(*sahRel) : nlohmann::json()}},
+                        fmt::format("{:<14} {:>7g} {:<16} {:>8} {:>6} {:>9} {:>8} {:>10} {:>10}\n", config.label, scale,
+                                    offsetLabel, leaks.rays, leaks.leaks + leaks.occlusionLeaks, primDiff, tDiff,
+                                    stats.sah ? fmt::format("{:.4f}", stats.sah->cost) : "n/a",
+                                    sahRel ? fmt::format("{:.1e}", *sahRel) : ""));
                 }
             }
         for (const Baseline& b : baselines)
             fmt::print(stderr, "  {}: {} leaks, {} mismatches over the sweep\n", b.config->label, b.leaks, b.mismatches);
-        results_["sweep"] = rows;
-        const std::string section = fmt::format(
-            "scale/translation sweep: {} scaled, then moved by offset x its scaled size; leaks include any-hit; "
-            "prim/t diff on rays moved with the scene; SAH rel = relative change from scale 1\n",
-            base.name);
-        fmt::print("{}{}\n", section, table);
     }
 
     // --- shadow acne ------------------------------------------------------------------------
 
     void acne() {
-        fmt::print(stderr, "== shadow acne: lit planes far from the origin, and grounds z = 0 lit from low\n");
-        nlohmann::json rows = nlohmann::json::array();
-        std::string table = fmt::format("{:<22} {:<14} {:>8} {:>8} {:>14} {:>6}\n", "plane", "accel", "pixels", "on plane",
-                                        "self-shadowed", "dark");
+        size_t caseIndex = 0;
         for (const AcneCase& c : acneCases()) {
+            ++caseIndex;
             const Scene& scene = c.scene;
             for (const AccelConfig& config : configs_) {
                 if (config.name == "naive" && scene.triangleCount() > options_.naiveMaxTriangles) continue;
@@ -337,34 +486,28 @@ private:
                 if (c.mustPass && !check.passed(c.darkIsFault))
                     fail(config, fmt::format("{}: {} self-shadowed and {} dark of {} plane pixels ({} pixels)", scene.name,
                                              shadowed, dark, onPlane, pixels));
-                table += fmt::format("{:<22} {:<14} {:>8} {:>8} {:>14} {:>6}\n", scene.name, config.label, pixels, onPlane,
-                                     shadowed, dark);
-                rows.push_back({{"plane", scene.name},
-                                {"distance", c.distance},
-                                {"accel", config.label},
-                                {"pixels", pixels},
-                                {"on_plane", onPlane},
-                                {"self_shadowed", shadowed},
-                                {"dark", dark}});
+                add(caseIndex,
+                    {{"plane", scene.name},
+                     {"distance", c.distance},
+                     {"accel", config.label},
+                     {"pixels", pixels},
+                     {"on_plane", onPlane},
+                     {"self_shadowed", shadowed},
+                     {"dark", dark}},
+                    fmt::format("{:<22} {:<14} {:>8} {:>8} {:>14} {:>6}\n", scene.name, config.label, pixels, onPlane,
+                                shadowed, dark));
             }
         }
-        results_["acne"] = rows;
-        const std::string section =
-            "shadow acne: planes whose centre is 1e4 (checked) and 1e6 (reported) from the origin, lit from the camera's "
-            "side, and grounds z = 0 lit from 5 degrees (self-shadowing checked); self-shadowed = pixel darker with "
-            "shadows than without; dark = not above the ambient term\n";
-        fmt::print("{}{}\n", section, table);
     }
 
     // --- builders at the edge ----------------------------------------------------------------
 
+    // A build that has not ended after --builder-max-seconds fails its case; as it cannot be
+    // stopped, the job ends there with the rows it has (the structure's later cases do not run).
     void builders() {
-        const size_t n = options_.builderPrims;
-        fmt::print(stderr, "== builders at the edge: {} primitives\n", n);
-        nlohmann::json rows = nlohmann::json::array();
-        std::string table = fmt::format("{:<18} {:<14} {:>9} {:>10} {:>6} {:>9} {:>9} {:>9}\n", "scene", "accel", "prims",
-                                        "build ms", "depth", "nodes", "max leaf", "vs naive");
-        for (const NamedSceneFactory& factory : edgeBuildScenes(n, options_.seed)) {
+        size_t caseIndex = 0;
+        for (const NamedSceneFactory& factory : edgeBuildScenes(options_.builderPrims, options_.seed)) {
+            ++caseIndex;
             const Scene scene = factory.make();
             const std::vector<Ray> rays = raysTowardTriangles(scene, 256, options_.seed + 3);
             const std::vector<Hit> reference = naiveAnswers(scene, rays, options_.threads);
@@ -372,8 +515,20 @@ private:
                 if (config.name == "naive") continue;
                 fmt::print(stderr, "  {} {}: ", scene.name, config.label);
                 auto accel = createAccelerator(config.name, configured(config));
-                const EdgeBuildCheck check =
-                    checkEdgeBuild(*accel, scene, rays, reference, options_.builderMaxSeconds, options_.threads);
+                EdgeBuildCheck check;
+                const BuildWatch watch(fmt::format("{} on {}", config.label, scene.name));
+                if (!finishesWithin(options_.builderMaxSeconds, [&] {
+                        check = checkEdgeBuild(*accel, scene, rays, reference, options_.builderMaxSeconds, options_.threads);
+                    })) {
+                    const std::string late = fmt::format("the build did not end within {:g} s (--builder-max-seconds); "
+                                                         "its later cases were not run",
+                                                         options_.builderMaxSeconds);
+                    fmt::print(stderr, "{}\n", late);
+                    fail(config, fmt::format("{}: {}", scene.name, late));
+                    add(caseIndex, {{"scene", scene.name}, {"accel", config.label}, {"failed", late}},
+                        fmt::format("{:<18} {:<14} failed: {}\n", scene.name, config.label, late));
+                    child_->finish(childResult());
+                }
                 const BuildStats& stats = check.stats;
                 const size_t wrong = check.differ;
                 fmt::print(stderr, "built in {:.0f} ms, depth {}, {} of {} answers differ from naive\n", stats.buildMs,
@@ -383,10 +538,8 @@ private:
                 for (const std::string& problem : check.problems) fail(config, fmt::format("{}: {}", scene.name, problem));
                 if (wrong) fail(config, fmt::format("{}: {} of {} answers differ from naive", scene.name, wrong, rays.size()));
                 auto optional = [](const auto& v) { return v ? fmt::format("{}", *v) : std::string("n/a"); };
-                table += fmt::format("{:<18} {:<14} {:>9} {:>10.0f} {:>6} {:>9} {:>9} {:>9}\n", scene.name, config.label,
-                                     stats.primitives, stats.buildMs, optional(stats.maxDepth), optional(stats.nodes),
-                                     optional(stats.maxLeafPrimitives), fmt::format("{}/{}", wrong, rays.size()));
-                rows.push_back({{"scene", scene.name},
+                add(caseIndex,
+                    {{"scene", scene.name},
                                 {"accel", config.label},
                                 {"primitives", stats.primitives},
                                 {"build_ms", stats.buildMs},
@@ -394,18 +547,21 @@ private:
                                 {"nodes", stats.nodes ? nlohmann::json(*stats.nodes) : nlohmann::json()},
                                 {"max_leaf", stats.maxLeafPrimitives ? nlohmann::json(*stats.maxLeafPrimitives) : nlohmann::json()},
                                 {"rays", rays.size()},
-                                {"differ_from_naive", wrong}});
+                                {"differ_from_naive", wrong}},
+                    fmt::format("{:<18} {:<14} {:>9} {:>10.0f} {:>6} {:>9} {:>9} {:>9}\n", scene.name, config.label,
+                                stats.primitives, stats.buildMs, optional(stats.maxDepth), optional(stats.nodes),
+                                optional(stats.maxLeafPrimitives), fmt::format("{}/{}", wrong, rays.size())));
             }
         }
-        results_["builders"] = rows;
-        const std::string section = "builders at the edge: build time, depth (< 64), and 256 rays toward triangles against naive\n";
-        fmt::print("{}{}\n", section, table);
     }
 
     const StressOptions& options_;
     Env env_{programKeys()};
     std::vector<AccelConfig> configs_;
     nlohmann::json results_;
+    nlohmann::json entries_ = nlohmann::json::array();  // a child's rows (add())
+    const ChildJob* child_ = nullptr;                    // set in a child process
+    size_t failedJobs_ = 0;
 };
 
 }  // namespace
@@ -435,26 +591,30 @@ void addStressCommand(CLI::App& app) {
         ->check(CLI::Range(0, 1024));
     command->add_option("--seed", options->seed, "seed of every generated ray and scene")->capture_default_str();
     command->add_option("--out", options->out, "JSON results")->capture_default_str();
+    addJobTimeoutOption(*command, options->jobTimeout);
+    addChildJobOptions(*command, options->child);
     command->callback([options] {
-        bool failed = false;
+        int failedCode = 0;
         const int code = runGuarded([&] {
             const auto start = Clock::now();
             std::vector<AccelConfig> configs = parseAccelConfigList(options->accels);
             nameAccelerators(configs, options->env);
             StressRun run(*options, std::move(configs), options->env.load());
+            if (options->child.isChild()) return run.runChildJob(options->child);
             run.run();
             nlohmann::json results = run.results();
             results["seconds"] = secondsSince(start);
             const std::filesystem::path out = prepareOutputFile(options->out);
             std::ofstream(out) << results.dump(2) << "\n";
             for (const auto& f : results["failures"]) fmt::print("FAIL {}\n", f.get<std::string>());
-            fmt::print("{}\n", run.failed() ? fmt::format("stress: {} failures", results["failures"].size())
+            fmt::print("{}\n", run.failed() ? fmt::format("stress: {} failures{}", results["failures"].size(),
+                                                        run.failedJobs() ? fmt::format(" ({} jobs failed)", run.failedJobs()) : "")
                                             : std::string("stress: all checks passed (Embree's leaks are reported only)"));
             fmt::print(stderr, "wrote {} ({:.0f} s)\n", out.string(), secondsSince(start));
-            failed = run.failed();
+            failedCode = run.failedJobs() ? kSomeJobsFailedExitCode : run.failed() ? 1 : 0;
         });
         if (code != 0) throw CLI::RuntimeError(code);
-        if (failed) throw CLI::RuntimeError(1);
+        if (failedCode) throw CLI::RuntimeError(failedCode);
     });
 }
 

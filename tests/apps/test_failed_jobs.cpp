@@ -1,0 +1,159 @@
+// The commands that run jobs (a structure on a scene, a check) run each in a process of its own:
+// a crash, an exception or a time-out (--job-timeout) is a failed row with its reason in every
+// table and JSON the command writes, the other jobs run, and the exit code says that some failed
+// (3; check: 1, a failed check). A build that runs long says so on stderr.
+#include "tests/support/cli_run.h"
+#include "tests/support/scratch_dir.h"
+#include "tests/support/test_paths.h"
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <regex>
+
+namespace bvhlab::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A folder with a tiny mesh; commands run in it with their temporary files and scene cache in it
+// too, so that a test sees what a run leaves behind.
+struct JobWorkspace {
+    fs::path dir;
+    explicit JobWorkspace(const std::string& name) : dir(scratchDir("failed_jobs") / name) {
+        fs::remove_all(dir);
+        fs::create_directories(dir / "tmp");
+        std::ofstream(dir / "mesh.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 1\nv 0 0 1\n"
+                                           "f 1 2 3\nf 2 4 3\nf 1 5 2\nf 3 4 5\n";
+    }
+    // `bvhlab COMMAND ARGS` in the workspace, with the test plugins at hand; `then` follows in the shell.
+    Result run(const std::string& command, const std::string& args, const std::string& then = "") const {
+        const std::string plugins = testPlugins();
+        return runShell(fmt::format("cd {} && TMPDIR={}/tmp XDG_CACHE_HOME={}/cache {} {} {} --plugin {}/crashing.so "
+                                    "--plugin {}/throwing.so --plugin {}/hanging.so {}",
+                                    dir.string(), dir.string(), dir.string(), bvhlabProgram(), command, args, plugins,
+                                    plugins, plugins, then));
+    }
+    std::string read(const std::string& file) const {
+        std::ifstream in(dir / file);
+        return {std::istreambuf_iterator<char>(in), {}};
+    }
+    bool tmpIsEmpty() const { return fs::is_empty(dir / "tmp"); }
+};
+
+TEST(FailedJobs, BatchGivesAFailedRowPerCrashExceptionAndTimeOutAndTheOtherJobsRows) {
+    const JobWorkspace w("batch");
+    const Result r = w.run("batch", "--scenes mesh.obj --accel crashing,throwing,hanging,sahbvh --job-timeout 3 "
+                           "-DCamera::width=16 -DCamera::height=12 --out out");
+    EXPECT_EQ(r.exitCode, 3) << r.output;
+    EXPECT_NE(r.output.find("batch: 3 failed jobs in the tables"), std::string::npos) << r.output;
+
+    const std::string md = w.read("out/results.md");
+    EXPECT_TRUE(std::regex_search(md, std::regex(R"(\| mesh \| crashing \| failed: crashed: SIGSEGV \(Segmentation )"
+                                                 R"(fault\) in plugin .*crashing.so, accelerator 'crashing': findNearestBatch\(\) of 192 rays)")))
+        << md;
+    EXPECT_NE(md.find("| mesh | throwing | failed: plugin "), std::string::npos) << md;
+    EXPECT_NE(md.find("accelerator 'throwing': build() threw: no build today |"), std::string::npos) << md;
+    EXPECT_NE(md.find("| mesh | hanging | failed: timed out after 3 s |"), std::string::npos) << md;
+    EXPECT_NE(md.find("| mesh | sahbvh | | 4 |"), std::string::npos) << "the good job's rows:\n" << md;
+    EXPECT_NE(md.find("Jobs: 4, 3 of them failed"), std::string::npos) << md;
+
+    const std::string csv = w.read("out/results.csv");
+    EXPECT_NE(csv.find(",failed\n"), std::string::npos) << csv;
+    EXPECT_NE(csv.find("mesh,hanging" + std::string(12, ',') + "timed out after 3 s\n"), std::string::npos) << csv;
+    EXPECT_NE(csv.find("mesh,sahbvh,false,4,"), std::string::npos) << csv;
+
+    const nlohmann::json j = nlohmann::json::parse(w.read("out/results.json"));
+    EXPECT_EQ(j["failed_jobs"], 3);
+    ASSERT_EQ(j["jobs"].size(), 4u);
+    EXPECT_EQ(j["jobs"][2]["failed"], "timed out after 3 s");
+    EXPECT_FALSE(j["jobs"][3].contains("failed"));
+    EXPECT_TRUE(fs::exists(w.dir / "out/images/mesh__sahbvh.png"));
+    EXPECT_TRUE(w.tmpIsEmpty()) << "a job's result file is left behind";
+
+    // Merged, the failed jobs are the merge's too.
+    const Result merged = w.run("batch", "--merge out --out merged");
+    EXPECT_EQ(merged.exitCode, 3) << merged.output;
+    EXPECT_NE(w.read("merged/results.md").find("| mesh | hanging | failed: timed out after 3 s |"), std::string::npos);
+}
+
+TEST(FailedJobs, CheckFailsACheckThatRunsOutOfTimeAndLeavesNoFile) {
+    const JobWorkspace w("check");
+    const Result r = w.run("check", "--accel hanging --checks batch,watertight --job-timeout 1 --quiet");
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_TRUE(std::regex_search(r.output, std::regex("(^|\\n)FAIL batch .*1 failures .*\\(timed out after 1 s\\)"))) << r.output;
+    EXPECT_TRUE(std::regex_search(r.output, std::regex("(^|\\n)FAIL watertight .*\\(timed out after 1 s\\)"))) << r.output;
+    EXPECT_TRUE(w.tmpIsEmpty()) << "a check's result file is left behind";
+}
+
+TEST(FailedJobs, BenchWritesItsJsonWithAFailedRow) {
+    const JobWorkspace w("bench");
+    const Result r = w.run("bench", "--scenes mesh.obj --accel crashing --builds 1 --passes 1 --threads 1 --queries single "
+                                    "--out bench.json");
+    EXPECT_EQ(r.exitCode, 3) << r.output;
+    EXPECT_NE(r.output.find("mesh             failed: crashed: SIGSEGV (Segmentation fault) in plugin "), std::string::npos)
+        << r.output;
+    const nlohmann::json j = nlohmann::json::parse(w.read("bench.json"));
+    EXPECT_EQ(j["failed_jobs"], 1);
+    ASSERT_EQ(j["rows"].size(), 1u);
+    EXPECT_EQ(j["rows"][0]["scene"], "mesh");
+    EXPECT_NE(j["rows"][0]["failed"].get<std::string>().find("accelerator 'crashing'"), std::string::npos) << j.dump(2);
+}
+
+TEST(FailedJobs, StressEndsAHangingBuildAfterItsTimeAndGivesFailedRows) {
+    const JobWorkspace w("stress");
+    const Result r = w.run("stress", "--accel crashing,hanging,sahbvh --parts acne,builders --acne-pixels 8 "
+                                     "--builder-prims 1000 --builder-max-seconds 2 --job-timeout 3 --threads 1 "
+                                     "--out stress.json");
+    EXPECT_EQ(r.exitCode, 3) << r.output;
+    EXPECT_NE(r.output.find("hanging: failed: timed out after 3 s\n"), std::string::npos) << r.output;
+    EXPECT_TRUE(std::regex_search(r.output, std::regex("crashing: failed: crashed: SIGSEGV .*accelerator 'crashing'")))
+        << r.output;
+    EXPECT_TRUE(std::regex_search(r.output, std::regex("hanging +failed: the build did not end within 2 s")))
+        << r.output;
+    const nlohmann::json j = nlohmann::json::parse(w.read("stress.json"));
+    EXPECT_EQ(j["failed_jobs"], 3);  // crashing in both parts, hanging's acne
+    size_t sahbvhRows = 0, failedRows = 0;
+    for (const char* part : {"acne", "builders"})
+        for (const nlohmann::json& row : j[part]) {
+            sahbvhRows += row["accel"] == "sahbvh";
+            failedRows += row.contains("failed");
+        }
+    EXPECT_EQ(sahbvhRows, 6u + 3u) << "every case of the good structure ran";
+    EXPECT_EQ(failedRows, 4u);  // and hanging's first build at the edge
+    EXPECT_TRUE(w.tmpIsEmpty()) << "a job's result file is left behind";
+}
+
+TEST(FailedJobs, SpdGivesAFailedRowAndTheOtherStructuresRows) {
+    const JobWorkspace w("spd");
+    std::ofstream(w.dir / "balls.nff") << "v\nfrom 0 -6 3\nat 0 0 0\nup 0 0 1\nangle 40\nhither 1\nresolution 8 8\n"
+                                          "l 4 -3 6\nf 1 0.75 0.33 0.8 0 100000 0 1\n"
+                                          "p 3\n4 4 -0.5\n-4 4 -0.5\n0 -4 -0.5\ns 0 0 0.5 1\n";
+    std::ofstream(w.dir / "havran_stats_grids.txt") << "Invariants\n balls gears lattice mount\nPrimaryRay[-] 64 64 64 64\n";
+    std::ofstream(w.dir / "havran_stats_octrees.txt") << "BALLS\n N_IT 19.0\n N_TS 11.0\n";
+    const Result r = w.run("spd", "balls.nff --accel crashing,sahbvh -DSpd::reference=. --out spd --quiet");
+    EXPECT_EQ(r.exitCode, 3) << r.output;
+    const std::string md = w.read("spd/spd.md");
+    EXPECT_NE(md.find("| crashing | failed: crashed: SIGSEGV (Segmentation fault) in plugin "), std::string::npos) << md;
+    EXPECT_TRUE(std::regex_search(md, std::regex(R"(\| sahbvh \| [0-9.]+ \| [0-9.]+ \|)"))) << md;
+    EXPECT_NE(md.find("| PrimaryRay | 81 | 64 |"), std::string::npos) << "the invariants of the structure that ran:\n" << md;
+    const nlohmann::json j = nlohmann::json::parse(w.read("spd/spd.json"));
+    EXPECT_EQ(j["failed_jobs"], 1);
+    EXPECT_TRUE(j["scenes"][0]["accels"][0].contains("failed"));
+    EXPECT_EQ(j["scenes"][0]["accels"][1]["accel"], "sahbvh");
+}
+
+TEST(FailedJobs, ABuildThatRunsLongSaysSo) {
+    const JobWorkspace w("render");
+    // render has no time-out: a user sees the build running, and ends it.
+    const Result r = w.run("render", "--scene mesh.obj -DASDS::type=hanging --out out/render",
+                           "& pid=$!; sleep 4; kill -9 $pid; wait $pid; true");
+    EXPECT_NE(r.output.find("hanging on mesh: still building after 2s"), std::string::npos) << r.output;
+}
+
+}  // namespace
+}  // namespace bvhlab::test
