@@ -157,7 +157,7 @@ void addTradeoffCommand(CLI::App& app) {
                 const std::filesystem::path sceneDir = dir / id;
                 std::vector<AccelConfig> pending;
                 for (const AccelConfig& config : configs) {
-                    const std::filesystem::path file = sceneDir / (config.label + ".json");
+                    const std::filesystem::path file = sceneDir / (labelAsFileName(config.label) + ".json");
                     if (options->resume && std::filesystem::exists(file) && storedMatches(file, fingerprint)) ++kept;
                     else pending.push_back(config);
                 }
@@ -172,7 +172,7 @@ void addTradeoffCommand(CLI::App& app) {
                     json result = measure();
                     result["fingerprint"] = fingerprint;
                     result["measure_s"] = std::chrono::duration<double>(Clock::now() - configStart).count();
-                    writeFileAtomically(sceneDir / (config.label + ".json"), result.dump(2) + "\n");
+                    writeFileAtomically(sceneDir / (labelAsFileName(config.label) + ".json"), result.dump(2) + "\n");
                     ++measured;
                     return result;
                 };

@@ -239,7 +239,7 @@ void addSpdCommand(CLI::App& app) {
                     const SpdResult result =
                         traceSpd(scene, *accel, rules, fb, [&](uint64_t rays) { progress.advance(1, rays); });
                     progress.finish();
-                    writePng(out / fmt::format("{}.{}.png", scene.name, config.label), fb);
+                    writePng(out / fmt::format("{}.{}.png", scene.name, labelAsFileName(config.label)), fb);
                     // The figures after the trace: a structure's per-ray figures (an octree's N_ETS)
                     // count the queries since its build.
                     BuildStats traced = build;
