@@ -36,7 +36,7 @@ BuildersScene prepareBuildersScene(const std::string& id, const Env& sceneEnv, c
     BuildersScene b;
     b.id = id;
     b.env = tradeoffSceneEnv(sceneEnv, settings, settings.raySize, settings.raySize);
-    b.scene = loadSceneFor(b.env, /*useCache=*/true);
+    b.scene = loadSceneFor(b.env);
     b.rays = sceneRaySets(b.scene, b.env, *referenceEmbree(b.scene, b.env));
     return b;
 }

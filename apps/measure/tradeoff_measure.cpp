@@ -148,7 +148,7 @@ TradeoffScene prepareTradeoffScene(const std::string& id, const Env& sceneEnv, c
     TradeoffScene t;
     t.id = id;
     t.env = tradeoffSceneEnv(sceneEnv, settings, settings.raySize, settings.raySize);
-    t.scene = loadSceneFor(t.env, /*useCache=*/true);
+    t.scene = loadSceneFor(t.env);
     // Embree answers the rays every configuration answers and renders the images every
     // configuration must reproduce.
     const std::unique_ptr<Accelerator> embree = referenceEmbree(t.scene, t.env);
