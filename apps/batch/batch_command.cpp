@@ -288,14 +288,8 @@ BatchPlan planBatch(Options& options) {
     plan.accels = parseBatchAccelerators(options.accels, options.env);
     plan.scenes = expandSceneList(options.scenes, options.env);
     for (const SceneArgument& scene : plan.scenes) {
-        const std::filesystem::path file = scene.envFile.empty() ? scene.sceneFile : scene.envFile;
         plan.sceneEnvs.push_back(scene.load(options.env));
-        const Env& env = plan.sceneEnvs.back();
-        if (!env.get(keys::Scene::file).empty()) {
-            const std::filesystem::path scenePath = env.get(keys::Scene::dir) / env.get(keys::Scene::file);
-            if (!std::filesystem::exists(scenePath))
-                throw InputError(fmt::format("{}: scene file {} does not exist", file.string(), scenePath.string()));
-        }
+        sceneFileOf(plan.sceneEnvs.back());  // throws, naming the key to set, when the file is not there
     }
     std::vector<std::pair<std::string, Env>> idsAndEnvs;
     for (size_t s = 0; s < plan.scenes.size(); ++s) idsAndEnvs.emplace_back(plan.scenes[s].id, plan.sceneEnvs[s]);

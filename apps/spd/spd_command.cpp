@@ -12,11 +12,13 @@
 #include "apps/runtime/comma_list.h"
 #include "apps/runtime/output_paths.h"
 #include "apps/runtime/progress.h"
+#include "apps/runtime/run_record.h"
 #include "apps/runtime/scene_choice.h"
 #include "apps/runtime/scene_loading.h"
 #include "apps/spd/havran_reference.h"
 #include "framework/config/common_keys.h"
 #include "framework/core/accelerator.h"
+#include "framework/core/error.h"
 #include "framework/core/parse_number.h"
 #include "framework/core/timed_build.h"
 #include "framework/io/image_io.h"
@@ -203,12 +205,18 @@ void addSpdCommand(CLI::App& app) {
             const Env base = chooseScene("", "", options->env).load(options->env);
             if (configs.empty()) configs = parseAccelConfigList(base.get(keys::ASDS::type));
             checkAccelConfigs(configs, base);
-            const auto havran = readHavranReference(base.get(keys::Spd::reference));
+            const std::filesystem::path reference = base.get(keys::Spd::reference);
+            if (!std::filesystem::is_directory(reference))
+                throw InputError(fmt::format("Havran's statistics (havran_stats_grids.txt, havran_stats_octrees.txt): "
+                                             "no folder {}; {}",
+                                             reference.string(), base.howToSet(keys::Spd::reference)));
+            const auto havran = readHavranReference(reference);
             SpdRules rules;
             rules.maxDepth = base.get(keys::Spd::maxDepth);
             rules.threads = base.get(keys::SetRayTracing::threads);
 
             nlohmann::json results = {{"provenance", provenanceJson()},
+                                      {"run", runJson()},
                                       {"rules", {{"max_depth", rules.maxDepth}}},
                                       {"scenes", nlohmann::json::array()}};
             Progress progress;
