@@ -423,7 +423,7 @@ void addBatchCommand(CLI::App& app) {
         "batch", "render every scene with every chosen accelerator, without and with shadows: tables, images, contact sheet");
     addEnvOptions(*command, options->env);
     addThreadsOption(*command, options->env);
-    command->add_option("--scenes", options->scenes, "scene env files, .list files or scene files (default env/scenes.list)");
+    addScenesOption(*command, options->scenes, "", "env/scenes.list");
     command->add_option("--accel", options->accels, "comma-separated accelerators")
         ->capture_default_str()
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);

@@ -22,6 +22,14 @@ void addThreadsOption(CLI::App& command, EnvOptions& options) {
         ->check(CLI::Range(0, 1024));
 }
 
+void addScenesOption(CLI::App& command, std::vector<std::string>& scenes, const std::string& others,
+                     const std::string& byDefault) {
+    command.add_option("--scenes", scenes,
+                       others + "scene env files, .list files, scene files (here or in Scene::dir) or scenes' names "
+                                "(teapots for env/scenes/teapots.env); repeatable or comma-separated (default: " +
+                           byDefault + ")");
+}
+
 std::string overrideWithoutEqualsHint(int argc, const char* const* argv) {
     for (int i = 1; i < argc; ++i) {
         const std::string_view arg = argv[i];

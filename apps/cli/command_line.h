@@ -8,6 +8,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace bvhlab {
 
@@ -15,6 +16,11 @@ namespace bvhlab {
 void addEnvOptions(CLI::App& command, EnvOptions& options);
 // Adds --threads N (0 = all hardware threads), setting SetRayTracing::threads.
 void addThreadsOption(CLI::App& command, EnvOptions& options);
+// Adds --scenes as batch, bench, tradeoff and stress take it (expandSceneList, apps/runtime/
+// scene_list.h): repeatable, each a comma-separated list. `others` names what else this command
+// takes, `byDefault` what it goes over without one.
+void addScenesOption(CLI::App& command, std::vector<std::string>& scenes, const std::string& others,
+                     const std::string& byDefault);
 
 // For a command line that CLI11 refused with a word left over: if that word is the value of a
 // -D written without '=' (`-DASDS::type grid`), what to write instead; else empty.

@@ -18,6 +18,7 @@
 #include "apps/runtime/program_keys.h"
 #include "apps/runtime/progress.h"
 #include "apps/runtime/ray_sets.h"
+#include "apps/runtime/run_record.h"
 #include "apps/runtime/scene_list.h"
 #include "apps/runtime/scene_loading.h"
 #include "apps/runtime/timing.h"
@@ -328,7 +329,7 @@ void addBenchCommand(CLI::App& app) {
     auto options = std::make_shared<Options>();
     CLI::App* command = app.add_subcommand("bench", "time builds and queries against Embree (medians, ratios)");
     addEnvOptions(*command, options->env);
-    command->add_option("--scenes", options->scenes, "scene env files, .list files or scene files (default env/scenes.list)");
+    addScenesOption(*command, options->scenes, "", "env/scenes.list");
     command->add_option("--accel", options->accels,
                         "comma-separated NAME or NAME:Key=value:... (embree, embree-robust, embree-bare, embree-batch, "
                         "nothing and nothing-guarded are always added)")
@@ -403,6 +404,7 @@ void addBenchCommand(CLI::App& app) {
                     }
                 }
             }
+            results["run"] = runJson();
             std::ofstream(out) << results.dump(2) << "\n";
             fmt::print("{}", benchTable(results));
             fmt::print(stderr, "wrote {}\n", out.string());

@@ -81,8 +81,7 @@ void addTradeoffCommand(CLI::App& app) {
         "tradeoff", "run time against error: build time vs SAH gap, T_R, time to image, image error, mismatches vs Embree");
     addEnvOptions(*command, options->env);
     TradeoffSettings& s = options->settings;
-    command->add_option("--scenes", options->scenes,
-                        "scene env files, .list files or scene files (default env/scenes.list; --quick: munich and sibenik)");
+    addScenesOption(*command, options->scenes, "", "env/scenes.list; --quick: munich and sibenik");
     command->add_option("--out", options->out, "folder of the results: DIR/<scene>/<config>.json, tradeoff.csv, "
                                                "image_error.csv, tradeoff.md (--builders: builders.csv, "
                                                "builders_summary.csv, builders.md); default out/tradeoff, out/builders");

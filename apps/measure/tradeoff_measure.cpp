@@ -3,6 +3,7 @@
 #include "accel/registry.h"
 #include "apps/measure/tradeoff.h"
 #include "apps/runtime/atomic_write.h"
+#include "apps/runtime/run_record.h"
 #include "apps/runtime/scene_loading.h"
 #include "apps/runtime/timing.h"
 #include "framework/config/common_keys.h"
@@ -296,7 +297,8 @@ json measureTradeoffConfig(const TradeoffScene& t, const AccelConfig& config, co
                    {"series_height", t.seriesCamera.height},
                    {"series", series},
                    {"same_image_1spp", sameImage},
-                   {"provenance", provenanceJson()}};
+                   {"provenance", provenanceJson()},
+                   {"run", runJson()}};
     result.update(buildStatsJson(stats));
     return result;
 }
