@@ -1,6 +1,7 @@
 // `bvhlab keys`: prints every env key and accelerator as Markdown (docs/env-keys.md), the plugins
-// of the plugin folders' included, with the value env/global.env gives it; with --env, -D or --no-global-env, the configuration they
-// resolve to instead: every key, its value, where the value came from and its default.
+// of the plugin folders' included, with the value env/global.env gives it; with --env, -D or
+// --no-global-env, the configuration they resolve to instead: every key, its value, where the
+// value came from and its default.
 #include "accel/registry.h"
 #include "apps/cli/command_line.h"
 #include "apps/cli/commands.h"
