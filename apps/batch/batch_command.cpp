@@ -324,14 +324,8 @@ BatchPlan planBatch(Options& options) {
     plan.accels = parseBatchAccelerators(options.accels, options.env);
     plan.scenes = expandSceneList(options.scenes, options.env);
     for (const SceneArgument& scene : plan.scenes) {
-        const std::filesystem::path file = scene.envFile.empty() ? scene.sceneFile : scene.envFile;
         plan.sceneEnvs.push_back(scene.load(options.env));
-        const Env& env = plan.sceneEnvs.back();
-        if (!env.get(keys::Scene::file).empty()) {
-            const std::filesystem::path scenePath = env.get(keys::Scene::dir) / env.get(keys::Scene::file);
-            if (!std::filesystem::exists(scenePath))
-                throw InputError(fmt::format("{}: scene file {} does not exist", file.string(), scenePath.string()));
-        }
+        sceneFileOf(plan.sceneEnvs.back());  // throws, naming the key to set, when the file is not there
     }
     std::vector<std::pair<std::string, Env>> idsAndEnvs;
     for (size_t s = 0; s < plan.scenes.size(); ++s) idsAndEnvs.emplace_back(plan.scenes[s].id, plan.sceneEnvs[s]);
@@ -502,7 +496,7 @@ void addBatchCommand(CLI::App& app) {
         "batch", "render every scene with every chosen accelerator, without and with shadows: tables, images, contact sheet");
     addEnvOptions(*command, options->env);
     addThreadsOption(*command, options->env);
-    command->add_option("--scenes", options->scenes, "scene env files, .list files or scene files (default env/scenes.list)");
+    addScenesOption(*command, options->scenes, "", "env/scenes.list");
     command->add_option("--accel", options->accels, "comma-separated accelerators")
         ->capture_default_str()
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);

@@ -1,6 +1,7 @@
 #include "apps/batch/batch_table.h"
 
 #include "apps/batch/contact_sheet.h"
+#include "apps/runtime/output_paths.h"
 #include "framework/core/error.h"
 
 #include <fmt/core.h>
@@ -160,7 +161,9 @@ std::string readText(const std::filesystem::path& file) {
 
 }  // namespace
 
-std::string batchJobName(const std::string& scene, const std::string& accel) { return scene + "__" + accel; }
+std::string batchJobName(const std::string& scene, const std::string& accel) {
+    return labelAsFileName(scene) + "__" + labelAsFileName(accel);
+}
 
 std::vector<json> readBatchJobs(const std::filesystem::path& dir, const BatchSettings& settings) {
     // Table position of a job of this batch; none for another batch's.

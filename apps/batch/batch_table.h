@@ -13,7 +13,7 @@
 
 namespace bvhlab {
 
-// Names of the job file and images: SCENE__ACCEL.
+// Names of the job file and images: SCENE__ACCEL, each as labelAsFileName makes it.
 std::string batchJobName(const std::string& scene, const std::string& accel);
 
 // The jobs of the batch `settings` in DIR/jobs, in table order (scene list order, then accelerator

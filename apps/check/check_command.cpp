@@ -15,6 +15,8 @@
 #include "apps/runtime/comma_list.h"
 #include "apps/runtime/output_paths.h"
 #include "apps/runtime/progress.h"
+#include "apps/runtime/run_record.h"
+#include "framework/config/common_keys.h"
 #include "framework/core/error.h"
 #include "framework/report/provenance.h"
 
@@ -43,12 +45,13 @@ std::string resultLine(const verify::CheckResult& r) {
     return line;
 }
 
-// Runs a check here, its progress on stderr. A check that throws (a plugin's exception, which
-// the guard names) fails with the message as its example.
-verify::CheckResult runCheckHere(const std::string& name, const verify::Subject& subject) {
+// Runs a check here on `threads` (0: all hardware threads), its progress on stderr. A check that
+// throws (a plugin's exception, which the guard names) fails with the message as its example.
+verify::CheckResult runCheckHere(const std::string& name, const verify::Subject& subject, int threads) {
     Progress progress;
     progress.phase(fmt::format("check {}: {}", subject.name, name));
     verify::CheckOptions options;
+    options.threads = threads;
     uint64_t lastDone = 0;
     options.progress = [&](uint64_t done, uint64_t /*total*/) {
         if (done > lastDone) progress.advance(done - lastDone);
@@ -82,8 +85,9 @@ int runChecks(CheckCommandOptions options) {
     for (const std::string& name : names) verify::findCheck(name);
     // Named as registered: the checks look up what the structure promises by name.
     const verify::Subject subject{config.name, [&] { return createAccelerator(config.name, env); }};
+    const int threads = env.get(keys::SetRayTracing::threads);
     if (options.child.isChild()) {
-        options.child.run([&] { return check::toJson(runCheckHere(options.child.job, subject)); });
+        options.child.run([&] { return check::toJson(runCheckHere(options.child.job, subject, threads)); });
         return 0;
     }
     const std::filesystem::path json = options.json.empty() ? std::filesystem::path() : prepareOutputFile(options.json, "--json");
@@ -92,7 +96,8 @@ int runChecks(CheckCommandOptions options) {
     std::vector<std::string> warned;
     nlohmann::json results = nlohmann::json::array();
     for (const std::string& name : names) {
-        const verify::CheckResult r = options.inProcess ? runCheckHere(name, subject) : check::runCheckInChild(name, options.timeoutSeconds);
+        const verify::CheckResult r = options.inProcess ? runCheckHere(name, subject, threads)
+                                                        : check::runCheckInChild(name, options.timeoutSeconds);
         fmt::print("{}\n", resultLine(r));
         for (const std::string& e : r.examples) fmt::print("    {}\n", e);
         std::fflush(stdout);
@@ -107,7 +112,8 @@ int runChecks(CheckCommandOptions options) {
                                     {"passed", !failed},
                                     {"checks", results},
                                     {"env", env.toJson()},
-                                    {"provenance", provenanceJson()}};
+                                    {"provenance", provenanceJson()},
+                                    {"run", runJson()}};
         writeFileAtomically(json, out.dump(2) + "\n");
     }
     return failed ? 1 : 0;
@@ -122,6 +128,7 @@ void addCheckCommand(CLI::App& app) {
                  "mixed primitives, degenerate triangles, watertightness, builds at the edge, cost against sahbvh "
                  "(docs/accuracy.md)");
     addEnvOptions(*command, options->env);
+    addThreadsOption(*command, options->env);
     command->add_option("--accel", options->accel,
                         "the accelerator to check, NAME or NAME:Key=value:... (`bvhlab keys` lists them)")
         ->required();

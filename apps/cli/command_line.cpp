@@ -36,6 +36,14 @@ void addJobTimeoutOption(CLI::App& command, double& seconds) {
         ->check(CLI::Range(0.0, 1e9));
 }
 
+void addScenesOption(CLI::App& command, std::vector<std::string>& scenes, const std::string& others,
+                     const std::string& byDefault) {
+    command.add_option("--scenes", scenes,
+                       others + "scene env files, .list files, scene files (here or in Scene::dir) or scenes' names "
+                                "(teapots for env/scenes/teapots.env); repeatable or comma-separated (default: " +
+                           byDefault + ")");
+}
+
 std::string overrideWithoutEqualsHint(int argc, const char* const* argv) {
     for (int i = 1; i < argc; ++i) {
         const std::string_view arg = argv[i];

@@ -9,6 +9,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace bvhlab {
 
@@ -16,6 +17,11 @@ namespace bvhlab {
 void addEnvOptions(CLI::App& command, EnvOptions& options);
 // Adds --threads N (0 = all hardware threads), setting SetRayTracing::threads.
 void addThreadsOption(CLI::App& command, EnvOptions& options);
+// Adds --scenes as batch, bench, tradeoff and stress take it (expandSceneList, apps/runtime/
+// scene_list.h): repeatable, each a comma-separated list. `others` names what else this command
+// takes, `byDefault` what it goes over without one.
+void addScenesOption(CLI::App& command, std::vector<std::string>& scenes, const std::string& others,
+                     const std::string& byDefault);
 
 // Adds the hidden options that make the program a child running one job (apps/runtime/child_job.h).
 void addChildJobOptions(CLI::App& command, ChildJob& job);

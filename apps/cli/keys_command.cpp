@@ -1,9 +1,11 @@
-// `bvhlab keys`: prints every env key and accelerator as Markdown (docs/env-keys.md), with the
-// value env/global.env gives it; with --env, -D or --no-global-env, the configuration they
-// resolve to instead: every key, its value, where the value came from and its default.
+// `bvhlab keys`: prints every env key and accelerator as Markdown (docs/env-keys.md), the plugins
+// of the plugin folders' included, with the value env/global.env gives it; with --env, -D or
+// --no-global-env, the configuration they resolve to instead: every key, its value, where the
+// value came from and its default.
 #include "accel/registry.h"
 #include "apps/cli/command_line.h"
 #include "apps/cli/commands.h"
+#include "apps/runtime/plugins.h"
 #include "apps/runtime/program_keys.h"
 
 #include <fmt/core.h>
@@ -21,6 +23,7 @@ void addKeysCommand(CLI::App& app) {
         const bool resolve = command->count("--env") + command->count("-D") + command->count("--no-global-env") > 0;
         const int code = runGuarded([&] {
             const Env env = options->load();
+            loadPluginsOfFolders();  // listed as the commands would find them by name
             if (!resolve) {
                 fmt::print("{}", envKeysMarkdown(env));
                 return;

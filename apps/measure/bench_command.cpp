@@ -23,6 +23,7 @@
 #include "apps/runtime/program_keys.h"
 #include "apps/runtime/progress.h"
 #include "apps/runtime/ray_sets.h"
+#include "apps/runtime/run_record.h"
 #include "apps/runtime/scene_list.h"
 #include "apps/runtime/scene_loading.h"
 #include "apps/runtime/timing.h"
@@ -341,7 +342,7 @@ void addBenchCommand(CLI::App& app) {
     auto options = std::make_shared<Options>();
     CLI::App* command = app.add_subcommand("bench", "time builds and queries against Embree (medians, ratios)");
     addEnvOptions(*command, options->env);
-    command->add_option("--scenes", options->scenes, "scene env files, .list files or scene files (default env/scenes.list)");
+    addScenesOption(*command, options->scenes, "", "env/scenes.list");
     command->add_option("--accel", options->accels,
                         "comma-separated NAME or NAME:Key=value:... (embree, embree-robust, embree-bare, embree-batch, "
                         "nothing and nothing-guarded are always added)")
@@ -428,6 +429,7 @@ void addBenchCommand(CLI::App& app) {
             }
 
             nlohmann::json results = {{"provenance", provenanceJson()},
+                                      {"run", runJson()},
                                       {"builds", options->builds},
                                       {"passes", options->passes},
                                       {"rows", nlohmann::json::array()}};

@@ -1,5 +1,6 @@
 // `bvhlab tradeoff --builders`: the configurations, one scene's rays and one configuration's figures.
 #include "apps/measure/builders.h"
+#include "apps/runtime/run_record.h"
 #include "apps/runtime/scene_loading.h"
 #include "apps/runtime/timing.h"
 #include "framework/report/build_stats_json.h"
@@ -36,7 +37,7 @@ BuildersScene prepareBuildersScene(const std::string& id, const Env& sceneEnv, c
     BuildersScene b;
     b.id = id;
     b.env = tradeoffSceneEnv(sceneEnv, settings, settings.raySize, settings.raySize);
-    b.scene = loadSceneFor(b.env, /*useCache=*/true);
+    b.scene = loadSceneFor(b.env);
     b.rays = sceneRaySets(b.scene, b.env, *referenceEmbree(b.scene, b.env));
     return b;
 }
@@ -63,7 +64,8 @@ json measureBuilderConfig(const BuildersScene& b, const AccelConfig& config, con
                    {"build_ms_all", buildMs},
                    {"build_cpu_ms", median(buildCpuMs)},
                    {"build_cpu_ms_all", buildCpuMs},
-                   {"provenance", provenanceJson()}};
+                   {"provenance", provenanceJson()},
+                   {"run", runJson()}};
     result.update(buildStatsJson(stats, {.mean = "avg_leaf", .largest = "max_leaf"}));
     // Through the batch calls, as the builders' figures have always been measured.
     for (size_t s = 0; s < std::size(kBuilderRaySets); ++s) {

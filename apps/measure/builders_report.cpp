@@ -3,6 +3,7 @@
 #include "apps/measure/builders.h"
 #include "apps/measure/rank_statistics.h"
 #include "apps/runtime/atomic_write.h"
+#include "apps/runtime/output_paths.h"
 
 #include <fmt/core.h>
 
@@ -70,7 +71,7 @@ std::string writeBuildersReport(const std::filesystem::path& dir, const std::vec
     std::map<std::string, std::map<std::string, Row>> rows;  // scene -> label -> row
     for (const std::string& scene : sceneIds)
         for (const AccelConfig& config : configs) {
-            const std::filesystem::path file = dir / scene / (config.label + ".json");
+            const std::filesystem::path file = dir / scene / (labelAsFileName(config.label) + ".json");
             if (!std::filesystem::exists(file)) continue;
             std::ifstream in(file);
             Row& row = rows[scene][config.label];

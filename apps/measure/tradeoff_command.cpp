@@ -81,8 +81,7 @@ void addTradeoffCommand(CLI::App& app) {
         "tradeoff", "run time against error: build time vs SAH gap, T_R, time to image, image error, mismatches vs Embree");
     addEnvOptions(*command, options->env);
     TradeoffSettings& s = options->settings;
-    command->add_option("--scenes", options->scenes,
-                        "scene env files, .list files or scene files (default env/scenes.list; --quick: munich and sibenik)");
+    addScenesOption(*command, options->scenes, "", "env/scenes.list; --quick: munich and sibenik");
     command->add_option("--out", options->out, "folder of the results: DIR/<scene>/<config>.json, tradeoff.csv, "
                                                "image_error.csv, tradeoff.md (--builders: builders.csv, "
                                                "builders_summary.csv, builders.md); default out/tradeoff, out/builders");
@@ -157,7 +156,7 @@ void addTradeoffCommand(CLI::App& app) {
                 const std::filesystem::path sceneDir = dir / id;
                 std::vector<AccelConfig> pending;
                 for (const AccelConfig& config : configs) {
-                    const std::filesystem::path file = sceneDir / (config.label + ".json");
+                    const std::filesystem::path file = sceneDir / (labelAsFileName(config.label) + ".json");
                     if (options->resume && std::filesystem::exists(file) && storedMatches(file, fingerprint)) ++kept;
                     else pending.push_back(config);
                 }
@@ -172,7 +171,7 @@ void addTradeoffCommand(CLI::App& app) {
                     json result = measure();
                     result["fingerprint"] = fingerprint;
                     result["measure_s"] = std::chrono::duration<double>(Clock::now() - configStart).count();
-                    writeFileAtomically(sceneDir / (config.label + ".json"), result.dump(2) + "\n");
+                    writeFileAtomically(sceneDir / (labelAsFileName(config.label) + ".json"), result.dump(2) + "\n");
                     ++measured;
                     return result;
                 };

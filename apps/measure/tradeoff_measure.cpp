@@ -3,6 +3,7 @@
 #include "accel/registry.h"
 #include "apps/measure/tradeoff.h"
 #include "apps/runtime/atomic_write.h"
+#include "apps/runtime/run_record.h"
 #include "apps/runtime/scene_loading.h"
 #include "apps/runtime/timing.h"
 #include "framework/config/common_keys.h"
@@ -148,7 +149,7 @@ TradeoffScene prepareTradeoffScene(const std::string& id, const Env& sceneEnv, c
     TradeoffScene t;
     t.id = id;
     t.env = tradeoffSceneEnv(sceneEnv, settings, settings.raySize, settings.raySize);
-    t.scene = loadSceneFor(t.env, /*useCache=*/true);
+    t.scene = loadSceneFor(t.env);
     // Embree answers the rays every configuration answers and renders the images every
     // configuration must reproduce.
     const std::unique_ptr<Accelerator> embree = referenceEmbree(t.scene, t.env);
@@ -296,7 +297,8 @@ json measureTradeoffConfig(const TradeoffScene& t, const AccelConfig& config, co
                    {"series_height", t.seriesCamera.height},
                    {"series", series},
                    {"same_image_1spp", sameImage},
-                   {"provenance", provenanceJson()}};
+                   {"provenance", provenanceJson()},
+                   {"run", runJson()}};
     result.update(buildStatsJson(stats));
     return result;
 }

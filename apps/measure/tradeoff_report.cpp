@@ -2,6 +2,7 @@
 // files alone (so a resumed run reports everything measured so far).
 #include "apps/measure/tradeoff.h"
 #include "apps/runtime/atomic_write.h"
+#include "apps/runtime/output_paths.h"
 
 #include <fmt/core.h>
 
@@ -61,7 +62,7 @@ std::string writeTradeoffReport(const std::filesystem::path& dir, const std::vec
     std::map<std::string, std::map<std::string, Row>> rows;
     for (const std::string& scene : sceneIds)
         for (const AccelConfig& config : configs) {
-            const std::filesystem::path file = dir / scene / (config.label + ".json");
+            const std::filesystem::path file = dir / scene / (labelAsFileName(config.label) + ".json");
             if (!std::filesystem::exists(file)) continue;
             std::ifstream in(file);
             rows[scene][config.label].stored = json::parse(in);

@@ -10,7 +10,25 @@
 
 namespace py = pybind11;
 
+namespace {
+
+// The module's arrays are NumPy's: without it the import fails saying so and how to get it,
+// rather than pybind11's "initialization failed".
+void requireNumPy() {
+    try {
+        py::module_::import("numpy");
+    } catch (py::error_already_set& missing) {
+        const std::string python = py::str(py::module_::import("sys").attr("executable"));
+        throw std::runtime_error(
+            "bvhlab needs NumPy, which this Python (" + python + ") cannot import (" + missing.what() +
+            "): install Debian's python3-numpy and use /usr/bin/python3, or `pip install numpy` for this Python");
+    }
+}
+
+}  // namespace
+
 PYBIND11_MODULE(bvhlab, m) {
+    requireNumPy();
     m.doc() = "bvhlab: load scenes, build any acceleration structure, trace NumPy arrays of rays";
     // A crash inside a plugin names the plugin, the call and its ray before Python dies of it.
     bvhlab::installFatalSignalReport();

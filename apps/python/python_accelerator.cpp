@@ -157,6 +157,7 @@ void bindAccelerator(py::module_& m) {
     m.def(
         "accelerators",
         [] {
+            loadPluginsOfFolders();  // listed as build() would find them by name
             py::list list;
             for (const AcceleratorInfo& info : acceleratorInfos()) {
                 py::dict entry;
@@ -168,7 +169,8 @@ void bindAccelerator(py::module_& m) {
             }
             return list;
         },
-        "Every accelerator: {name, description, keys, plugin} (plugin: its file, empty for bvhlab's own).");
+        "Every accelerator, those of the plugins in the plugin folders (BVHLAB_PLUGIN_PATH, bvhlab's own) included: "
+        "{name, description, keys, plugin} (plugin: its file, empty for those built into bvhlab).");
 
     m.def(
         "load_plugin",

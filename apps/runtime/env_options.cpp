@@ -53,7 +53,13 @@ void EnvOptions::loadPlugins(const std::vector<std::string>& layerFiles) const {
     std::string type, typeOrigin;
     for (const auto& [line, baseDir] : assignments) {
         if (line.name == keys::ASDS::plugins.name())
-            for (const std::string& file : splitCommaList(line.text)) loadPlugin(baseDir / file);
+            for (const std::string& file : splitCommaList(line.text)) {
+                std::error_code ec;
+                if (!std::filesystem::is_regular_file(baseDir / file, ec))
+                    throw InputError(fmt::format("{}: ASDS::plugins: no plugin file {}", line.origin,
+                                                 (baseDir / file).lexically_normal().string()));
+                loadPlugin(baseDir / file);
+            }
         if (line.name == keys::ASDS::type.name() && !line.text.empty()) std::tie(type, typeOrigin) = std::pair(line.text, line.origin);
     }
     for (const std::string& name : accelerators) loadPluginFor(name);  // unknown: the command says so

@@ -4,6 +4,8 @@
 
 #include <fmt/core.h>
 
+#include <cctype>
+
 namespace bvhlab {
 
 std::filesystem::path prepareOutputFile(const std::string& path, const std::string& option) {
@@ -23,6 +25,15 @@ std::filesystem::path prepareOutputFolder(const std::string& path, const std::st
         throw InputError(fmt::format("{} {}: is a file, not a folder", option, path));
     std::filesystem::create_directories(folder);
     return folder;
+}
+
+std::string labelAsFileName(const std::string& label) {
+    std::string name = label;
+    for (char& c : name) {
+        const bool safe = std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '-' || c == '+';
+        if (!safe) c = c == '=' ? '-' : '_';
+    }
+    return name;
 }
 
 }  // namespace bvhlab

@@ -155,13 +155,36 @@ bool loadPluginFor(const std::string& accelerator) {
     if (accelerator.empty() || accelerator.find('/') != std::string::npos) return false;
     for (const std::string& file : pluginFilesFor(accelerator))
         for (const std::filesystem::path& folder : pluginFolders()) {
-            const std::filesystem::path path = folder / file;
+            const std::filesystem::path path = folder / file, shipped = bundledPluginFolder() / file;
             std::error_code ec;
             if (!std::filesystem::is_regular_file(path, ec)) continue;
+            // A user's file named as one bvhlab ships would replace it unseen: only --plugin may.
+            if (std::filesystem::is_regular_file(shipped, ec) && !std::filesystem::equivalent(path, shipped, ec))
+                throw InputError(fmt::format("{} (on BVHLAB_PLUGIN_PATH) has the name of a plugin bvhlab ships, {}: "
+                                             "which one '{}' means is not clear. Rename yours, or load it with "
+                                             "--plugin {} (or ASDS::plugins) to use it instead of bvhlab's",
+                                             path.string(), shipped.string(), accelerator, path.string()));
             loadPlugin(path);
             return findAccelerator(accelerator) != nullptr;
         }
     return false;
+}
+
+void loadPluginsOfFolders() {
+    for (const std::filesystem::path& folder : pluginFolders()) {
+        std::error_code ec;
+        std::vector<std::filesystem::path> files;
+        for (const auto& entry : std::filesystem::directory_iterator(folder, ec))
+            if (entry.path().extension() == ".so") files.push_back(entry.path());
+        std::sort(files.begin(), files.end());
+        for (const std::filesystem::path& file : files) {
+            try {
+                loadPluginFor(file.stem().string());
+            } catch (const InputError& notLoaded) {
+                fmt::print(stderr, "warning: {} is not listed: {}\n", file.string(), notLoaded.what());
+            }
+        }
+    }
 }
 
 }  // namespace bvhlab

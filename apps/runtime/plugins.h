@@ -38,8 +38,14 @@ std::vector<std::filesystem::path> pluginFolders();
 
 // If `accelerator` is not known, loads `accelerator`.so from the first plugin folder holding
 // one, or for NAME4 and NAME8 (a builder's wide layouts) NAME.so. False when it is still unknown
-// (the caller then reports it with unknownAcceleratorMessage).
+// (the caller then reports it with unknownAcceleratorMessage). Throws InputError naming both
+// files when the one found on BVHLAB_PLUGIN_PATH has the name of one bvhlab ships.
 bool loadPluginFor(const std::string& accelerator);
+
+// Loads every NAME.so of the plugin folders as loadPluginFor(NAME) finds it, so that a listing
+// (`bvhlab keys`, bvhlab.accelerators()) shows what the commands would load by name. One that
+// does not load is left out with a warning on stderr saying why.
+void loadPluginsOfFolders();
 
 // Why `accelerator` is unknown after loadPluginFor: the folders searched, what a file of its name
 // found there adds instead, and the names that are known.

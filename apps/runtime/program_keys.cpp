@@ -86,7 +86,9 @@ std::string envKeysMarkdown(const Env& globalEnv) {
         "when installed), and `$XDG_CACHE_HOME` is the user's cache folder (`~/.cache` when unset).\n"
         "Every run reads the data folder's env/global.env first (unless `--no-global-env`): the value\n"
         "it gives a key is the one that runs, unless a later layer sets it. `bvhlab keys --env FILE\n"
-        "-DKey=value` prints the values a run with those layers would use, and where each comes from.\n\n"
+        "-DKey=value` prints the values a run with those layers would use, and where each comes from.\n"
+        "The plugins bvhlab ships (grid, octree, kdtree) are listed with their keys; `bvhlab keys` also\n"
+        "lists those on `BVHLAB_PLUGIN_PATH` (docs/plugins.md, \"Loading\").\n\n"
         "| key | type | default | env/global.env | meaning |\n|---|---|---|---|---|\n";
     const nlohmann::json values = globalEnv.toJson();
     for (const auto& [name, key] : programKeys().keys()) {
@@ -102,9 +104,16 @@ std::string envKeysMarkdown(const Env& globalEnv) {
                           key.description);
     }
     md += "\n# Accelerators (`ASDS::type`)\n\n| name | what it is | keys it reads |\n|---|---|---|\n";
+    // A plugin bvhlab ships by its name, as every checkout and prefix holds it; another by its path.
+    auto pluginOf = [](const std::filesystem::path& file) {
+        std::error_code ec;
+        return std::filesystem::equivalent(file.parent_path(), bundledPluginFolder(), ec)
+                   ? fmt::format(" (plugin `{}`, shipped with bvhlab)", file.filename().string())
+                   : fmt::format(" (plugin `{}`)", file.string());
+    };
     for (const AcceleratorInfo& info : acceleratorInfos())
         md += fmt::format("| `{}` | {}{} | {} |\n", info.name, info.description,
-                          info.plugin.empty() ? "" : fmt::format(" (plugin `{}`)", info.plugin),
+                          info.plugin.empty() ? "" : pluginOf(info.plugin),
                           info.envKeys.empty() ? "none" : fmt::format("`{}`", fmt::join(info.envKeys, "`, `")));
     return md;
 }

@@ -17,7 +17,8 @@ const EnvRegistry& programKeys();
 void registerPluginKeys(const std::string& plugin, const std::vector<EnvKey>& keys);
 
 // docs/env-keys.md: every key (type, default, the value env/global.env gives it, meaning) and
-// every accelerator with the keys it reads. `globalEnv` is an Env with env/global.env loaded.
+// every accelerator with the keys it reads, those of the plugins loaded included (a plugin bvhlab
+// ships named by its file name, another by its path). `globalEnv` is an Env with env/global.env loaded.
 // `bvhlab keys` prints it; a test keeps the committed file equal to it.
 std::string envKeysMarkdown(const Env& globalEnv);
 

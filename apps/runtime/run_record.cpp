@@ -5,14 +5,17 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <chrono>
 #include <ctime>
+#include <vector>
 
 namespace bvhlab {
 namespace {
 
 std::string commandLine;
 std::string started;
+std::vector<std::string> warnings;
 
 }  // namespace
 
@@ -30,7 +33,12 @@ void recordRun(int argc, char** argv) {
     started = text;
 }
 
-nlohmann::json runJson() { return {{"command_line", commandLine}, {"started", started}}; }
+void warnOfRun(const std::string& warning) {
+    fmt::print(stderr, "warning: {}\n", warning);
+    if (std::find(warnings.begin(), warnings.end(), warning) == warnings.end()) warnings.push_back(warning);
+}
+
+nlohmann::json runJson() { return {{"command_line", commandLine}, {"started", started}, {"warnings", warnings}}; }
 
 nlohmann::json sceneFileJson(const Scene& scene) {
     if (scene.source.empty()) return {{"file", nullptr}, {"embedded", true}};

@@ -11,9 +11,14 @@
 
 namespace bvhlab {
 
-// The env file under env/scenes/ whose Scene::file is `sceneFile` (the same file on disk), or
-// empty: so a scene named by its file is seen from its own camera with its own lights.
+// The env file under env/scenes/ whose Scene::file has the name of `sceneFile` (a10.obj for
+// /anywhere/a10.obj or a10.obj.gz), or empty: so a scene named by its file is seen from its own
+// camera with its own lights wherever the file lives. Of several such env files, the one whose
+// Scene::dir holds this very file; else throws InputError naming them.
 std::filesystem::path sceneEnvFor(const std::filesystem::path& sceneFile, const EnvOptions& options);
+
+// Says on stderr and in the run's JSON (warnOfRun) that `sceneFile` has no scene env file.
+void warnOfMissingSceneEnv(const std::filesystem::path& sceneFile);
 
 // What `--scene X [--scene-env F]` names. X is a scene file, or NAME for env/scenes/NAME.env.
 struct SceneChoice {

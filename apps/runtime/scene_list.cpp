@@ -20,12 +20,29 @@ std::vector<SceneArgument> expandSceneList(const std::vector<std::string>& argum
         for (const std::string& item : splitCommaList(argument)) items.push_back(item);
     if (items.empty()) items.push_back(dataFile("env/scenes.list").string());
 
-    std::vector<std::filesystem::path> files;  // env and scene files, lists expanded
+    std::vector<SceneArgument> scenes;
+    auto add = [&](SceneArgument scene, const std::string& given) {
+        if (std::any_of(scenes.begin(), scenes.end(), [&](const SceneArgument& s) { return s.id == scene.id; }))
+            throw InputError(fmt::format("--scenes: two scenes are named '{}' ({}): jobs and rows are named by the "
+                                         "file's stem",
+                                         scene.id, given));
+        scenes.push_back(std::move(scene));
+    };
     for (const std::filesystem::path item : items) {
-        if (item.extension() != ".list") {
+        if (item.extension() == ".env") {
             if (!std::filesystem::is_regular_file(item))
                 throw InputError(fmt::format("--scenes {}: no such file", item.string()));
-            files.push_back(item);
+            add({item.stem().string(), item, {}}, item.string());
+            continue;
+        }
+        if (item.extension() != ".list") {
+            // A scene file (here or in Scene::dir) or a scene's name, as --scene takes them.
+            const SceneChoice choice = chooseScene(item.string(), "", options);
+            // munich.ply.gz and munich.ply are both "munich".
+            std::filesystem::path stem = choice.sceneFile.filename();
+            while (stem.has_extension()) stem = stem.stem();
+            add({choice.sceneFile.empty() ? item.string() : stem.string(), choice.envFile, choice.sceneFile},
+                item.string());
             continue;
         }
         std::ifstream in(item);
@@ -38,28 +55,8 @@ std::vector<SceneArgument> expandSceneList(const std::vector<std::string>& argum
             if (line.empty()) continue;
             const std::filesystem::path file = item.parent_path() / line;
             if (!std::filesystem::exists(file)) throw inputError(item, lineNo, "no such env file: " + file.string());
-            files.push_back(file);
+            add({file.stem().string(), file, {}}, file.string());
         }
-    }
-
-    std::vector<SceneArgument> scenes;
-    for (const std::filesystem::path& file : files) {
-        SceneArgument scene;
-        if (file.extension() == ".env") {
-            scene.envFile = file;
-        } else {
-            scene.sceneFile = file;
-            scene.envFile = sceneEnvFor(file, options);
-        }
-        // munich.ply.gz and munich.ply are both "munich"; an env file is named as it is.
-        std::filesystem::path stem = file.filename();
-        while (stem.has_extension()) stem = stem.stem();
-        scene.id = file.extension() == ".env" ? file.stem().string() : stem.string();
-        if (std::any_of(scenes.begin(), scenes.end(), [&](const SceneArgument& s) { return s.id == scene.id; }))
-            throw InputError(fmt::format("--scenes: two scenes are named '{}' ({}): jobs and rows are named by the "
-                                         "file's stem",
-                                         scene.id, file.string()));
-        scenes.push_back(scene);
     }
     return scenes;
 }

@@ -1,6 +1,7 @@
 #include "apps/runtime/scene_loading.h"
 
 #include "apps/runtime/app_keys.h"
+#include "framework/core/error.h"
 #include "framework/scene/procedural.h"
 #include "framework/scene/scene_cache.h"
 #include "framework/scene/scene_loader.h"
@@ -12,11 +13,21 @@
 
 namespace bvhlab {
 
-Scene loadSceneFor(const Env& env, bool useCache, SceneLoadInfo* info) {
+std::filesystem::path sceneFileOf(const Env& env) {
+    const std::filesystem::path file = env.get(keys::Scene::file);
+    if (file.empty()) return {};
     // Relative to Scene::dir; an absolute Scene::file (as --scene sets it) stays as it is.
-    const std::filesystem::path path = env.get(keys::Scene::file).empty()
-                                           ? std::filesystem::path()
-                                           : env.get(keys::Scene::dir) / env.get(keys::Scene::file);
+    const std::filesystem::path path = env.get(keys::Scene::dir) / file;
+    std::error_code ec;
+    if (file.is_relative() && !std::filesystem::exists(path, ec))
+        throw InputError(fmt::format("scene file {} (Scene::file, from {}): no such file {}; {}", file.string(),
+                                     env.origin(keys::Scene::file.name()), path.string(),
+                                     env.howToSet(keys::Scene::dir)));
+    return path;
+}
+
+Scene loadSceneFor(const Env& env, bool useCache, SceneLoadInfo* info) {
+    const std::filesystem::path path = sceneFileOf(env);
     const std::filesystem::path cacheDir = useCache ? env.get(keys::Scene::cacheDir) : std::filesystem::path();
     SceneLoadInfo loaded;
     const auto start = std::chrono::steady_clock::now();

@@ -15,10 +15,15 @@ struct SceneLoadInfo {
     double ms = 0.0;                  // load time (hashing, reading or parsing, finalize)
 };
 
+// The file Scene::file names, in Scene::dir unless absolute; empty for the embedded scene.
+// Throws InputError naming the file and how to set Scene::dir when a relative one is not there.
+std::filesystem::path sceneFileOf(const Env& env);
+
 // The scene of Scene::file (in Scene::dir; --scene sets it absolute), else the embedded default; load problems
 // (degenerate primitives, NFF spheres and cones, warnings) are reported on stderr. With `useCache`
 // a scene file is read from / stored into the binary cache in Scene::cacheDir (empty = no cache; see
-// framework/scene/scene_cache.h); `bvhlab batch` uses it, render, raycast and bench parse every time.
+// framework/scene/scene_cache.h); only `bvhlab batch` uses it (docs/batch.md), every other
+// command parses its scenes each time and writes nothing outside its outputs.
 Scene loadSceneFor(const Env& env, bool useCache = false, SceneLoadInfo* info = nullptr);
 
 }  // namespace bvhlab

@@ -49,7 +49,9 @@ std::string lower(std::string s) {
 
 std::vector<std::string> readLines(const std::filesystem::path& file) {
     std::ifstream in(file);
-    if (!in) throw inputError(file, 0, "cannot open Havran's statistics (Spd::reference names their folder)");
+    if (!in)
+        throw inputError(file, 0, "cannot open Havran's statistics (Spd::reference names their folder: -DSpd::reference=... "
+                                  "or a line 'Spd::reference ...' in an env file)");
     std::vector<std::string> lines;
     for (std::string line; std::getline(in, line);) lines.push_back(line);
     return lines;

@@ -16,11 +16,13 @@
 #include "apps/runtime/comma_list.h"
 #include "apps/runtime/output_paths.h"
 #include "apps/runtime/progress.h"
+#include "apps/runtime/run_record.h"
 #include "apps/runtime/scene_choice.h"
 #include "apps/runtime/scene_loading.h"
 #include "apps/spd/havran_reference.h"
 #include "framework/config/common_keys.h"
 #include "framework/core/accelerator.h"
+#include "framework/core/error.h"
 #include "framework/core/parse_number.h"
 #include "framework/core/timed_build.h"
 #include "framework/io/image_io.h"
@@ -220,12 +222,18 @@ void addSpdCommand(CLI::App& app) {
             const Env base = chooseScene("", "", options->env).load(options->env);
             if (configs.empty()) configs = parseAccelConfigList(base.get(keys::ASDS::type));
             checkAccelConfigs(configs, base);
-            const auto havran = readHavranReference(base.get(keys::Spd::reference));
+            const std::filesystem::path reference = base.get(keys::Spd::reference);
+            if (!std::filesystem::is_directory(reference))
+                throw InputError(fmt::format("Havran's statistics (havran_stats_grids.txt, havran_stats_octrees.txt): "
+                                             "no folder {}; {}",
+                                             reference.string(), base.howToSet(keys::Spd::reference)));
+            const auto havran = readHavranReference(reference);
             SpdRules rules;
             rules.maxDepth = base.get(keys::Spd::maxDepth);
             rules.threads = base.get(keys::SetRayTracing::threads);
 
             nlohmann::json results = {{"provenance", provenanceJson()},
+                                      {"run", runJson()},
                                       {"rules", {{"max_depth", rules.maxDepth}}},
                                       {"scenes", nlohmann::json::array()}};
             const auto sceneEnv = [&](size_t s) {
@@ -256,7 +264,7 @@ void addSpdCommand(CLI::App& app) {
                 Framebuffer fb(scene.camera ? scene.camera->width : 1, scene.camera ? scene.camera->height : 1);
                 const SpdResult result = traceSpd(scene, *accel, rules, fb, [&](uint64_t rays) { progress.advance(1, rays); });
                 progress.finish();
-                writePng(out / fmt::format("{}.{}.png", scene.name, config.label), fb);
+                writePng(out / fmt::format("{}.{}.png", scene.name, labelAsFileName(config.label)), fb);
                 // The figures after the trace: a structure's per-ray figures (an octree's N_ETS)
                 // count the queries since its build.
                 BuildStats traced = build;

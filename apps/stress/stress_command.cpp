@@ -32,7 +32,9 @@
 #include "apps/runtime/comma_list.h"
 #include "apps/runtime/output_paths.h"
 #include "apps/runtime/program_keys.h"
+#include "apps/runtime/run_record.h"
 #include "apps/runtime/scene_list.h"
+#include "apps/runtime/scene_loading.h"
 #include "framework/config/common_keys.h"
 #include "framework/core/error.h"
 #include "framework/core/parse_number.h"
@@ -43,6 +45,7 @@
 #include "framework/scene/scene_loader.h"
 
 #include <fmt/core.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 #include <tbb/task_arena.h>
 
@@ -70,7 +73,7 @@ struct StressOptions {
     size_t rays = 1000000;
     // naive (judged by the oracle), every structure of ours, and Embree (reported, not failed).
     std::string accels = fmt::format("naive,{},embree,embree:Embree::robust=true", ourAccelerators());
-    std::string scenes = "icosphere,cube,torus,igea.ply,a10.obj";
+    std::vector<std::string> scenes = {"icosphere", "cube", "torus", "igea.ply", "a10.obj"};
     std::string parts = "watertight,sweep,acne,builders";
     size_t sweepRays = 100000;
     size_t builderPrims = 1000000;
@@ -299,30 +302,26 @@ private:
     // The meshes --scenes names: generated families (small and large variants), or files.
     std::vector<std::function<std::optional<Scene>()>> meshes() const {
         std::vector<std::function<std::optional<Scene>()>> list;
-        for (const std::string& name : splitCommaList(options_.scenes)) {
-            const std::vector<std::function<Scene()>> family = closedMeshFamily(name);
-            if (!family.empty()) {
+        for (const std::string& argument : options_.scenes)
+            for (const std::string& name : splitCommaList(argument)) {
+                const std::vector<std::function<Scene()>> family = closedMeshFamily(name);
                 for (const auto& make : family) list.push_back([make]() -> std::optional<Scene> { return make(); });
-            } else if (name.ends_with(".env") || name.ends_with(".list")) {
-                for (const SceneArgument& scene : expandSceneList({name}, options_.env)) {
-                    const Env env = scene.load(options_.env);
-                    const std::filesystem::path path = env.get(keys::Scene::dir) / env.get(keys::Scene::file);
-                    list.push_back([path]() -> std::optional<Scene> { return loadScene(path); });
-                }
-            } else {
-                const std::filesystem::path given(name);
-                const std::filesystem::path path = given.is_absolute() || std::filesystem::exists(given)
-                                                       ? given
-                                                       : env_.get(keys::Scene::dir) / given;
-                list.push_back([path]() -> std::optional<Scene> {
-                    if (!std::filesystem::exists(path)) {
-                        fmt::print(stderr, "skipping {}: not found (set -DScene::dir=...)\n", path.string());
+                if (!family.empty()) continue;
+                // What the other commands' --scenes take; one that is not there is skipped, said why.
+                std::vector<std::filesystem::path> files;
+                try {
+                    for (const SceneArgument& scene : expandSceneList({name}, options_.env))
+                        files.push_back(sceneFileOf(scene.load(options_.env)));
+                } catch (const InputError& missing) {
+                    list.push_back([why = std::string(missing.what())]() -> std::optional<Scene> {
+                        fmt::print(stderr, "skipping: {}\n", why);
                         return std::nullopt;
-                    }
-                    return loadScene(path);
-                });
+                    });
+                    continue;
+                }
+                for (const std::filesystem::path& file : files)
+                    list.push_back([file]() -> std::optional<Scene> { return loadScene(file); });
             }
-        }
         return list;
     }
 
@@ -573,10 +572,8 @@ void addStressCommand(CLI::App& app) {
     addEnvOptions(*command, options->env);
     command->add_option("--rays", options->rays, "watertightness probes per mesh")->capture_default_str();
     command->add_option("--accel", options->accels, "comma-separated NAME or NAME:Key=value:...")->capture_default_str();
-    command->add_option("--scenes", options->scenes,
-                        "comma-separated meshes: icosphere, cube, torus (generated, small and large), scene files "
-                        "(relative to Scene::dir unless they exist as given), scene env files or .list files")
-        ->capture_default_str();
+    addScenesOption(*command, options->scenes, "meshes icosphere, cube, torus (generated, small and large), ",
+                    fmt::format("{}; one that is not there is skipped", fmt::join(options->scenes, ",")));
     command->add_option("--parts", options->parts, "comma-separated parts to run")->capture_default_str();
     command->add_option("--sweep-rays", options->sweepRays, "probes per scale/offset of the sweep")->capture_default_str();
     command->add_option("--builder-prims", options->builderPrims, "primitives of the builders' edge cases")->capture_default_str();
@@ -604,6 +601,7 @@ void addStressCommand(CLI::App& app) {
             run.run();
             nlohmann::json results = run.results();
             results["seconds"] = secondsSince(start);
+            results["run"] = runJson();
             const std::filesystem::path out = prepareOutputFile(options->out);
             std::ofstream(out) << results.dump(2) << "\n";
             for (const auto& f : results["failures"]) fmt::print("FAIL {}\n", f.get<std::string>());

@@ -272,6 +272,18 @@ bool Env::isExplicit(const std::string& key) const {
     return it != values_.end() && it->second.origin != "default";
 }
 
+std::string Env::origin(std::string_view key) const {
+    const auto it = values_.find(std::string(key));
+    return it != values_.end() ? it->second.origin : "default";
+}
+
+std::string Env::howToSet(const PathKey& key) const {
+    const std::string text = get(key).string(), from = origin(key.name());
+    return fmt::format("{} is {} ({}; set it with -D{}=... or a line '{} ...' in an env file)", key.name(),
+                       text.empty() ? "empty" : text, from == "default" ? "its default" : "from " + from, key.name(),
+                       key.name());
+}
+
 nlohmann::json Env::toJson() const {
     nlohmann::json j = nlohmann::json::object();
     for (const auto& [name, key] : registry_->keys()) {

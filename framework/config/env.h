@@ -75,6 +75,11 @@ public:
     template <KeyType Type>
     bool isExplicit(const Key<Type>& key) const { return isExplicit(std::string(key.name())); }
     bool isExplicit(const std::string& name) const;
+    // Where a key's value came from: "default", "FILE:LINE", "-DSection::key", "--scene", ...
+    std::string origin(std::string_view key) const;
+    // For an error about the path a key gives: "Scene::dir is /p/scenes (its default; set it with
+    // -DScene::dir=... or a line `Scene::dir ...` in an env file)", or "(from FILE:LINE; ...)".
+    std::string howToSet(const PathKey& key) const;
 
     const EnvRegistry& registry() const { return *registry_; }
     // Every key with its resolved value and where it came from.

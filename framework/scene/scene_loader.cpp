@@ -74,9 +74,12 @@ std::string readFileBytes(const std::filesystem::path& file) {
     throw inputError(file, 0, fmt::format("cannot read: {}", message));
 }
 
+std::filesystem::path uncompressedName(const std::filesystem::path& file) {
+    return lowercaseExtension(file) == ".gz" ? file.stem() : file.filename();
+}
+
 Scene loadScene(const std::filesystem::path& file) {
-    std::filesystem::path uncompressed = file;  // the name without .gz
-    if (lowercaseExtension(file) == ".gz") uncompressed = file.stem();
+    const std::filesystem::path uncompressed = uncompressedName(file);
     const std::string ext = lowercaseExtension(uncompressed);
     const auto format = std::find_if(std::begin(kSceneFormats), std::end(kSceneFormats),
                                      [&](const SceneFormat& f) { return ext == f.extension; });

@@ -8,6 +8,9 @@ namespace bvhlab {
 
 Scene loadScene(const std::filesystem::path& file);
 
+// The file's name as loadScene reads it: without its folder and a trailing .gz (a10.obj.gz -> a10.obj).
+std::filesystem::path uncompressedName(const std::filesystem::path& file);
+
 // Throws InputError naming the file when a loaded, finalized scene has nothing to render (no
 // primitives, all degenerate, or all of a kind we do not render). loadScene calls it; so does
 // the scene cache on a hit. Scenes built in code may be empty on purpose and are not checked.

@@ -36,6 +36,17 @@ TEST(CheckCommand, PassingChecksPrintALineEachAndExitZero) {
     EXPECT_GT(j["checks"][0]["cases"].get<int>(), 1000);
 }
 
+// --threads, as on every subcommand that traces: the checks' builds and probes run on that many.
+TEST(CheckCommand, TakesThreads) {
+    const auto json = bvhlab::test::scratchDir("check") / "threads.json";
+    const Result r = run("check --accel sahbvh --checks batch --threads 1 --quiet --json " + json.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    std::ifstream in(json);
+    const nlohmann::json j = nlohmann::json::parse(in);
+    EXPECT_EQ(j["env"]["SetRayTracing::threads"]["value"], "1");
+    EXPECT_EQ(j["env"]["SetRayTracing::threads"]["from"], "--threads");
+}
+
 // A structure given with keys is checked by the rules of its name: sahbvh8's batches are packets.
 TEST(CheckCommand, AStructureWithKeysIsCheckedAsItsName) {
     const Result r = run("check --accel sahbvh8:BVH::bins=8 --checks batch --quiet");

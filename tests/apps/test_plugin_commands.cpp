@@ -84,6 +84,9 @@ TEST(PluginCommands, EveryCommandTakesAPluginFoundByNameWithItsKeys) {
                           kSmall));
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("grid:Grid::density=3"), std::string::npos) << r.output;
+    // A label in a file name has no ':' or '=' (labelAsFileName).
+    EXPECT_TRUE(fs::exists(w.dir / "batch" / "jobs" / "mesh__grid_Grid__density-3.json"));
+    EXPECT_TRUE(fs::exists(w.dir / "tradeoff" / "mesh" / "grid_Grid__density-3.json"));
 
     const fs::path python = fs::path(bvhlabProgram()).parent_path() / "python";
     if (!fs::exists(python)) return;  // a build without the module (the sanitizer's)

@@ -165,6 +165,50 @@ TEST(Plugins, AnEnvFileLoadsPluginsRelativeToItsFolder) {
     EXPECT_NE(r.output.find("accelerator 'throwing': build() threw"), std::string::npos) << r.output;
 }
 
+TEST(Plugins, AMissingPluginOfAnEnvFileNamesTheFileAndLine) {
+    const auto dir = scratchDir("plugins_env_missing");
+    std::ofstream(dir / "plugin.env") << "# a plugin that is not there\nASDS::plugins no_such_plugin.so\n";
+    const Result r = render("--env " + (dir / "plugin.env").string());
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find((dir / "plugin.env").string() + ":2: ASDS::plugins: no plugin file " +
+                            (dir / "no_such_plugin.so").string()),
+              std::string::npos)
+        << r.output;
+}
+
+// As the commands would find them by name: the plugins bvhlab ships, and those on BVHLAB_PLUGIN_PATH
+// (a file that does not load is left out with a warning).
+TEST(Plugins, KeysListsTheShippedPluginsAndThoseOnThePluginPath) {
+    Result r = run("keys");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    for (const std::string name : {"grid", "octree", "kdtree"}) {
+        const size_t row = r.output.find("| `" + name + "` | ");
+        ASSERT_NE(row, std::string::npos) << name << "\n" << r.output;
+        EXPECT_NE(r.output.find("(plugin `" + name + ".so`, shipped with bvhlab)", row), std::string::npos) << name;
+    }
+    r = runShell("BVHLAB_PLUGIN_PATH=" + kPlugins + " " + test::bvhlabProgram() + " keys");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("| `crashing` | "), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("(plugin `" + kCrashing + "`)"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("| `grid` | "), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("warning: " + kPlugins + "/older_api.so is not listed: "), std::string::npos) << r.output;
+}
+
+// A file on BVHLAB_PLUGIN_PATH named as a shipped plugin does not replace it unseen.
+TEST(Plugins, APluginOnThePathNamedAsAShippedOneIsRefusedNamingBoth) {
+    const auto dir = scratchDir("plugins_named_as_shipped");
+    std::filesystem::copy_file(kThrowing, dir / "grid.so", std::filesystem::copy_options::overwrite_existing);
+    const Result r = runShell("BVHLAB_PLUGIN_PATH=" + dir.string() + " " + test::bvhlabProgram() +
+                              " render -DASDS::type=grid -DCamera::width=16 -DCamera::height=12 --out " +
+                              (dir / "image").string());
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find((dir / "grid.so").string() + " (on BVHLAB_PLUGIN_PATH) has the name of a plugin bvhlab "
+                            "ships, "),
+              std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("plugins/grid.so: which one 'grid' means is not clear"), std::string::npos) << r.output;
+}
+
 TEST(Plugins, KeysListsAPluginsAcceleratorsAndKeysWithItsFile) {
     const Result r = run("keys --plugin " + kThrowing);
     ASSERT_EQ(r.exitCode, 0) << r.output;

@@ -194,5 +194,20 @@ TEST(SpdCommand, AnOctreeBesideHavransColumnOfItsMethodAndDepth) {
     EXPECT_NE(text.find("| octree:Octree::maxDepth=4 | "), std::string::npos) << text;
 }
 
+// Havran's tables not where Spd::reference points (an installed bvhlab's default): an error that
+// names the folder and the key to set, before any scene is read.
+TEST(SpdCommand, MissingReferenceNamesTheKeyToSet) {
+    const fs::path dir = test::scratchDir("spd_no_reference"), nowhere = dir / "nowhere";
+    const auto r = run("spd " + (dir / "none.nff").string() + " --out " + (dir / "out").string() +
+                       " -DSpd::reference=" + nowhere.string());
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("Havran's statistics (havran_stats_grids.txt, havran_stats_octrees.txt): no folder " +
+                            nowhere.string() + "; Spd::reference is " + nowhere.string() +
+                            " (from -DSpd::reference; set it with -DSpd::reference=... or a line 'Spd::reference "
+                            "...' in an env file)"),
+              std::string::npos)
+        << r.output;
+}
+
 }  // namespace
 }  // namespace bvhlab

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include <fstream>
+#include <set>
 
 namespace bvhlab {
 namespace {
@@ -45,6 +46,33 @@ TEST(StressCommand, WritesTablesAndJson) {
     const test::Result bad = test::run("stress --accel nosuch --out " + out.string());
     EXPECT_EQ(bad.exitCode, 1) << bad.output;
     EXPECT_NE(bad.output.find("unknown accelerator 'nosuch'"), std::string::npos) << bad.output;
+}
+
+// --scenes takes what the other commands' --scenes take, repeatable or comma-separated, beside
+// the generated meshes; a scene that is not there is skipped, naming the key to set.
+TEST(StressCommand, ScenesAreTakenAsTheOtherCommandsTakeThem) {
+    const auto dir = test::scratchDir("stress_scenes");
+    std::ofstream(dir / "tetra.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+    const auto out = dir / "stress.json";
+    const test::Result r =
+        test::run("stress --rays 500 --scenes cube --scenes " + (dir / "tetra.obj").string() +
+                  ",teapots --parts watertight --accel sahbvh --threads 1 -DScene::dir=" + (dir / "nowhere").string() +
+                  " --out " + out.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    // teapots, a scene's name, is found (env/scenes/teapots.env) but its file is not in Scene::dir.
+    EXPECT_NE(r.output.find("skipping: scene file teapots.obj (Scene::file, from "), std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("Scene::dir is " + (dir / "nowhere").string() + " (from -DScene::dir; set it with"),
+              std::string::npos)
+        << r.output;
+    std::ifstream in(out);
+    const nlohmann::json j = nlohmann::json::parse(in);
+    std::set<std::string> meshes;
+    for (const auto& row : j["watertight"]) meshes.insert(row["mesh"].get<std::string>());
+    EXPECT_EQ(meshes, (std::set<std::string>{"cube4", "cube64", "tetra"}));
+    // tetra.obj has no scene env: said in the JSON as on stderr.
+    ASSERT_EQ(j["run"]["warnings"].size(), 1u) << j["run"].dump();
+    EXPECT_NE(j["run"]["warnings"][0].get<std::string>().find("tetra.obj: no scene env file in"), std::string::npos);
 }
 
 }  // namespace

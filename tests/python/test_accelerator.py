@@ -17,6 +17,13 @@ def test_accelerators_listed():
     assert all(a["description"] for a in names.values())
 
 
+def test_accelerators_list_the_plugins_bvhlab_ships():
+    names = {a["name"]: a for a in bvhlab.accelerators()}
+    for plugin in ("grid", "octree", "kdtree"):
+        assert plugin in names, sorted(names)
+        assert names[plugin]["plugin"].endswith(f"/{plugin}.so"), names[plugin]
+
+
 @pytest.mark.parametrize("name", OURS)
 def test_quad_hits(quad_scene, name):
     accel = bvhlab.build(quad_scene, name)

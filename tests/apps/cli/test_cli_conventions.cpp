@@ -176,7 +176,8 @@ TEST(CliConventions, SceneEnvGivesTheCamera) {
 
     r = run("render --scene no_such_scene --out " + out.string());
     EXPECT_EQ(r.exitCode, 1);
-    EXPECT_NE(r.output.find("no_such_scene: no such file here or in Scene::dir ("), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("no_such_scene: no such file here or in Scene::dir, and"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("Scene::dir is "), std::string::npos) << r.output;  // and how to set it
     EXPECT_NE(r.output.find("and no scene env file env/scenes/no_such_scene.env"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("munich"), std::string::npos) << r.output;  // the names there are
 }
@@ -246,6 +247,61 @@ TEST(CliConventions, ScenesTakeSceneFiles) {
     const nlohmann::json j = readJson(out);
     ASSERT_FALSE(j["rows"].empty());
     EXPECT_EQ(j["rows"][0]["scene"], "quad");
+}
+
+// A scene file takes the env file that names a file of its name, wherever it lives (a copy, an
+// installed bvhlab's Scene::dir elsewhere), compressed or not: a10.obj is seen as a10.env says.
+TEST(CliConventions, SceneFileFindsItsEnvByItsName) {
+    for (const std::string name : {"a10.obj", "a10.obj.gz"}) {
+        SCOPED_TRACE(name);
+        const fs::path dir = tempDir() / ("copy_of_" + name);
+        fs::create_directories(dir);
+        // gzopen reads a file that is not gzip as it is: a plain OBJ under the .gz name will do.
+        std::ofstream(dir / name) << "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n";
+        const fs::path out = dir / "render";
+        const Result r = run("render --scene " + (dir / name).string() + kTiny + "--out " + out.string());
+        ASSERT_EQ(r.exitCode, 0) << r.output;
+        const std::string a10Env = (fs::path(test::sourceTree()) / "env" / "scenes" / "a10.env").string();
+        EXPECT_NE(r.output.find("scene env: " + a10Env), std::string::npos) << r.output;
+        const nlohmann::json j = readJson(out.string() + ".json");
+        EXPECT_EQ(j["env"]["Camera::from"]["value"], "14 -13 8");
+        EXPECT_EQ(j["env"]["Camera::from"]["from"], a10Env + ":3");
+        EXPECT_TRUE(j["run"]["warnings"].empty()) << j["run"].dump();
+    }
+}
+
+// A scene file no env file names is seen with the default camera and lights, and the run says so
+// on stderr and in its JSON.
+TEST(CliConventions, SceneFileWithoutSceneEnvIsSaid) {
+    const fs::path scene = quadScene(), out = tempDir() / "no_scene_env";
+    const Result r = run("render --scene " + scene.string() + kTiny + "--out " + out.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const std::string said = scene.string() + ": no scene env file in ";
+    EXPECT_NE(r.output.find("warning: " + said), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("a view framing the scene and one light above the camera"), std::string::npos) << r.output;
+    const nlohmann::json warnings = readJson(out.string() + ".json")["run"]["warnings"];
+    ASSERT_EQ(warnings.size(), 1u) << warnings.dump();
+    EXPECT_EQ(warnings[0].get<std::string>().rfind(said, 0), 0u) << warnings.dump();
+}
+
+// --scenes takes a scene's name as --scene does (teapots for env/scenes/teapots.env), in every
+// command; a scene file missing under Scene::dir names the key to set, in every command.
+TEST(CliConventions, ScenesTakeNamesAndAMissingSceneNamesTheKey) {
+    const std::string nowhere = (tempDir() / "nowhere").string();
+    const std::string hint = "Scene::dir is " + nowhere + " (from -DScene::dir; set it with -DScene::dir=... or a "
+                             "line 'Scene::dir ...' in an env file)";
+    const std::string teapotsEnv = (fs::path(test::sourceTree()) / "env" / "scenes" / "teapots.env").string();
+    for (const std::string command : {"render --scene teapots", "bench --scenes teapots", "batch --scenes teapots",
+                                      "tradeoff --quick --scenes teapots", "rays --scene teapots"}) {
+        SCOPED_TRACE(command);
+        const std::string out = (tempDir() / "teapots" / command.substr(0, command.find(' '))).string();
+        const Result r = run(command + " -DScene::dir=" + nowhere + " --out " + out);
+        EXPECT_EQ(r.exitCode, 1) << r.output;
+        EXPECT_NE(r.output.find("scene file teapots.obj (Scene::file, from " + teapotsEnv + ":2): no such file " +
+                                nowhere + "/teapots.obj; " + hint),
+                  std::string::npos)
+            << r.output;
+    }
 }
 
 // Nothing traced is n/a, not zero: shadows off leaves the shadow row without figures.

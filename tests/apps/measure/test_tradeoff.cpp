@@ -152,6 +152,14 @@ TEST(Tradeoff, QuickRunWritesRowsAndResumes) {
     EXPECT_TRUE(contains(r.output, "12 configurations measured, 0 kept")) << r.output;
 }
 
+// Only batch uses the scene cache (docs/batch.md): tradeoff writes nothing outside --out.
+TEST(Tradeoff, WritesNoSceneCache) {
+    const fs::path dir = makeScenes();
+    const Result r = run(args(dir, "--accel tdbvh --bins 4 -DScene::cacheDir=" + (dir / "cache").string()));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_FALSE(fs::exists(dir / "cache")) << r.output;
+}
+
 TEST(Tradeoff, BadBinsAreAnError) {
     const Result r = run("tradeoff --quick --bins 4,1 --out " + (test::scratchDir("tradeoff_bad")).string());
     EXPECT_EQ(r.exitCode, 1) << r.output;
