@@ -2,6 +2,7 @@
 
 #include "apps/batch/contact_sheet.h"
 #include "apps/runtime/output_paths.h"
+#include "apps/runtime/table_text.h"
 #include "framework/core/error.h"
 
 #include <fmt/core.h>
@@ -80,13 +81,6 @@ std::string csvCell(const json& v) {
     if (v.is_null()) return "";
     if (v.is_number_integer() || v.is_number_unsigned()) return fmt::format("{}", v.get<uint64_t>());
     return fmt::format("{}", v.get<double>());
-}
-
-std::string csvText(const std::string& s) {
-    if (s.find_first_of(",\"\n") == std::string::npos) return s;
-    std::string quoted = "\"";
-    for (char c : s) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
-    return quoted + "\"";
 }
 
 // Keys that may differ between jobs of one batch: what scene, view, accelerator, output.
@@ -229,9 +223,7 @@ BatchTables makeBatchTables(const std::vector<json>& jobs, size_t batchJobs) {
     md += "|:--|:--|:--|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
     for (const Row& r : rows) {
         if (!r.failed.empty()) {
-            std::string reason;  // a '|' would end the cell
-            for (char c : r.failed) reason += c == '|' ? std::string("\\|") : std::string(1, c);
-            md += fmt::format("| {} | {} | failed: {} | | | | | | | | | | |\n", r.scene, r.accel, reason);
+            md += fmt::format("| {} | {} | failed: {} | | | | | | | | | | |\n", r.scene, r.accel, markdownText(r.failed));
             continue;
         }
         if (!r.shadows)

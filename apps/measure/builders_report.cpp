@@ -1,6 +1,7 @@
 // `bvhlab tradeoff --builders`: builders.csv, builders_summary.csv and builders.md, made from the
 // per-configuration JSON files alone (so a resumed run reports everything measured so far).
 #include "apps/measure/builders.h"
+#include "apps/measure/failed_config.h"
 #include "apps/measure/rank_statistics.h"
 #include "apps/runtime/atomic_write.h"
 #include "apps/runtime/output_paths.h"
@@ -69,13 +70,19 @@ std::string writeBuildersReport(const std::filesystem::path& dir, const std::vec
                                 const std::vector<AccelConfig>& configs, const TradeoffSettings& settings) {
     const TimeKeys keys(settings.threads);
     std::map<std::string, std::map<std::string, Row>> rows;  // scene -> label -> row
+    std::map<std::string, std::map<std::string, json>> failures;  // scene -> label -> its failure
     for (const std::string& scene : sceneIds)
         for (const AccelConfig& config : configs) {
             const std::filesystem::path file = dir / scene / (labelAsFileName(config.label) + ".json");
             if (!std::filesystem::exists(file)) continue;
             std::ifstream in(file);
+            json stored = json::parse(in);
+            if (isFailedConfig(stored)) {
+                failures[scene][config.label] = std::move(stored);
+                continue;
+            }
             Row& row = rows[scene][config.label];
-            row.stored = json::parse(in);
+            row.stored = std::move(stored);
             row.build = number(row.stored[keys.build]);
             row.sah = number(row.stored["sah"]);
             row.epo = number(row.stored["epo"]);
@@ -106,12 +113,17 @@ std::string writeBuildersReport(const std::filesystem::path& dir, const std::vec
         csv += fmt::format(",{0}_rays,t_r_{0}_us,t_r_{0}_cpu_us,n_it_{0},n_tr_{0},ratio_embree_medium_{0},"
                            "ratio_embree_high_{0},ratio_embree_bare_{0},pareto_{0}",
                            set);
-    csv += "\n";
+    csv += ",failed\n";
+    const std::string csvHeader = csv;
     auto cell = [](const json& v, int digits) {
         return v.is_number_float() ? fixed(v.get<double>(), digits) : v.is_number() ? std::to_string(v.get<long long>()) : "";
     };
     for (const std::string& scene : sceneIds)
         for (const AccelConfig& config : configs) {
+            if (failures[scene].count(config.label)) {
+                csv += failedConfigCsvRow(failures[scene][config.label], csvHeader);
+                continue;
+            }
             if (!rows[scene].count(config.label)) continue;
             const Row& r = rows[scene][config.label];
             const json& j = r.stored;
@@ -125,7 +137,7 @@ std::string writeBuildersReport(const std::filesystem::path& dir, const std::vec
                                    cell(t["t_r_cpu_us"], 5), cell(t["n_it"], 3), cell(t["n_tr"], 3), fixed(r.toBaseline[s], 4),
                                    fixed(r.toHigh[s], 4), fixed(r.toBare[s], 4), r.pareto[s] ? 1 : 0);
             }
-            csv += "\n";
+            csv += ",\n";  // not failed
         }
     writeFileAtomically(dir / "builders.csv", csv);
 
@@ -189,6 +201,10 @@ std::string writeBuildersReport(const std::filesystem::path& dir, const std::vec
           "| Pareto |\n|---|---|---:|---:|---:|---:|---:|---|---|---|---|---|\n";
     for (const std::string& scene : sceneIds)
         for (const AccelConfig& config : configs) {
+            if (failures[scene].count(config.label)) {
+                md += failedConfigMarkdownRow(failures[scene][config.label], 12);
+                continue;
+            }
             if (!rows[scene].count(config.label)) continue;
             const Row& r = rows[scene][config.label];
             md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", scene, config.label,

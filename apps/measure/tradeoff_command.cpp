@@ -2,13 +2,18 @@
 // against error for tdbvh, sahbvh with K bins, sweepbvh and embree (see apps/measure/tradeoff.h), or
 // with --builders every builder against Embree's three qualities (apps/measure/builders.h). Results are kept
 // per configuration in DIR/<scene>/<config>.json; a run skips those already measured with the
-// same settings, so an interrupted run resumes where it stopped.
+// same settings, so an interrupted run resumes where it stopped. Each configuration of a scene is
+// measured in a process of its own (apps/runtime/child_job.h): one that crashes, throws or runs
+// past --job-timeout is stored as a failed result with its reason, which the tables show and the
+// next run measures again, and the others go on.
 #include "apps/cli/command_line.h"
 #include "apps/cli/commands.h"
 #include "apps/measure/builders.h"
+#include "apps/measure/failed_config.h"
 #include "apps/measure/tradeoff.h"
 #include "apps/runtime/app_keys.h"
 #include "apps/runtime/atomic_write.h"
+#include "apps/runtime/child_job.h"
 #include "apps/runtime/comma_list.h"
 #include "apps/runtime/output_paths.h"
 #include "apps/runtime/progress.h"
@@ -20,6 +25,7 @@
 #include <fmt/core.h>
 #include <tbb/info.h>
 
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <sstream>
@@ -62,6 +68,24 @@ bool storedMatches(const std::filesystem::path& file, const json& fingerprint) {
     }
 }
 
+// The job of a child process, "S:C": configuration C of scene S (indices into the run's lists),
+// measured against the scene's inputs prepared here again, the reference image read from the
+// scene's folder, where the parent left it. Returns the configuration's result.
+json measureConfigJob(const std::string& job, const std::vector<SceneArgument>& scenes,
+                      const std::vector<AccelConfig>& configs, const EnvOptions& envOptions,
+                      const TradeoffSettings& settings, const std::filesystem::path& dir) {
+    size_t s = 0, c = 0;
+    const size_t colon = job.find(':');
+    if (colon == std::string::npos || !parseNumber(job.substr(0, colon), s) || !parseNumber(job.substr(colon + 1), c) ||
+        s >= scenes.size() || c >= configs.size())
+        throw InputError(fmt::format("{} {}: not a configuration of a scene of this tradeoff", kChildJobOption, job));
+    const std::string& id = scenes[s].id;
+    const Env sceneEnv = scenes[s].load(envOptions);
+    if (settings.builders) return measureBuilderConfig(prepareBuildersScene(id, sceneEnv, settings), configs[c], settings);
+    const json fingerprint = fingerprintOf(settings, tradeoffSceneEnv(sceneEnv, settings, settings.raySize, settings.raySize));
+    return measureTradeoffConfig(prepareTradeoffScene(id, sceneEnv, settings, dir / id, fingerprint), configs[c], settings);
+}
+
 
 }  // namespace
 
@@ -75,6 +99,8 @@ void addTradeoffCommand(CLI::App& app) {
         std::string bins = "2,4,8,16,32,64,128";
         std::string accels;  // empty: all of ours
         TradeoffSettings settings;
+        double jobTimeout = 0;
+        ChildJob child;
     };
     auto options = std::make_shared<Options>();
     CLI::App* command = app.add_subcommand(
@@ -111,8 +137,11 @@ void addTradeoffCommand(CLI::App& app) {
     command->add_option("--passes", s.passes, "passes over each ray set (median)")->capture_default_str()->check(CLI::Range(1, 100));
     command->add_option("--threads", s.threads, "threads of every timed build, trace and render; 0 = all hardware threads")
         ->capture_default_str()->check(CLI::Range(0, 1024));
+    addJobTimeoutOption(*command, options->jobTimeout);
+    addChildJobOptions(*command, options->child);
 
     command->callback([options, command] {
+        size_t failed = 0;
         const int code = runGuarded([&] {
             const auto start = Clock::now();
             TradeoffSettings settings = options->settings;
@@ -143,6 +172,11 @@ void addTradeoffCommand(CLI::App& app) {
             const std::vector<SceneArgument> scenes = expandSceneList(sceneArgs, options->env);
             const std::string out = !options->out.empty() ? options->out : settings.builders ? "out/builders" : "out/tradeoff";
             const std::filesystem::path dir = prepareOutputFolder(out);
+            if (options->child.isChild()) {
+                options->child.run(
+                    [&] { return measureConfigJob(options->child.job, scenes, configs, options->env, settings, dir); });
+                return;
+            }
 
             std::vector<std::string> ids;
             size_t kept = 0, measured = 0;
@@ -165,14 +199,21 @@ void addTradeoffCommand(CLI::App& app) {
                 if (pending.empty()) continue;  // not even loaded
 
                 std::filesystem::create_directories(sceneDir);
-                // Measures one configuration and stores its result at once (what a resumed run keeps).
-                auto measureAndStore = [&](const AccelConfig& config, auto measure) {
-                    const auto configStart = Clock::now();
-                    json result = measure();
-                    result["fingerprint"] = fingerprint;
-                    result["measure_s"] = std::chrono::duration<double>(Clock::now() - configStart).count();
+                // Measures one configuration in a child process and stores its result at once (what a
+                // resumed run keeps), or its failure (what it measures again).
+                auto measureAndStore = [&](const AccelConfig& config) {
+                    const auto c = std::find_if(configs.begin(), configs.end(),
+                                                [&](const AccelConfig& each) { return each.label == config.label; });
+                    const JobOutcome outcome = runJobInChild(fmt::format("{}:{}", i, c - configs.begin()), options->jobTimeout);
+                    json result = outcome.passed() ? outcome.result : failedConfigResult(id, config, outcome.failure());
+                    if (outcome.passed()) result["fingerprint"] = fingerprint;
+                    result["measure_s"] = outcome.seconds;
                     writeFileAtomically(sceneDir / (labelAsFileName(config.label) + ".json"), result.dump(2) + "\n");
                     ++measured;
+                    if (!outcome.passed()) {
+                        ++failed;
+                        fmt::print(stderr, "  {} {}: failed: {}\n", id, config.label, outcome.failure());
+                    }
                     return result;
                 };
                 auto eta = [&] {
@@ -181,13 +222,19 @@ void addTradeoffCommand(CLI::App& app) {
                     return fmt::format("{}, {} left, ETA {}", Progress::formatDuration(elapsed), left,
                                        Progress::formatDuration(elapsed / double(measured) * double(left)));
                 };
+                // The scene is prepared here once, so that a scene that cannot be loaded is said once and
+                // the reference image is rendered once (each job reads it), then let go while the jobs
+                // prepare it again in their processes.
                 if (settings.builders) {
-                    const BuildersScene scene = prepareBuildersScene(id, sceneEnv, settings);
-                    fmt::print(stderr, "  {}: {} triangles, {} primary, {} shadow and {} incoherent rays\n", id,
-                               scene.scene.triangleCount(), scene.rays.primary.size(), scene.rays.shadow.size(),
-                               scene.rays.incoherent.size());
+                    {
+                        const BuildersScene scene = prepareBuildersScene(id, sceneEnv, settings);
+                        fmt::print(stderr, "  {}: {} triangles, {} primary, {} shadow and {} incoherent rays\n", id,
+                                   scene.scene.triangleCount(), scene.rays.primary.size(), scene.rays.shadow.size(),
+                                   scene.rays.incoherent.size());
+                    }
                     for (const AccelConfig& config : pending) {
-                        const json result = measureAndStore(config, [&] { return measureBuilderConfig(scene, config, settings); });
+                        const json result = measureAndStore(config);
+                        if (isFailedConfig(result)) continue;
                         fmt::print(stderr, "  {} {}: T_B {:.1f} ms, T_R {:.3f}/{:.3f}/{:.3f} us (CPU) ({})\n", id,
                                    config.label, result["build_ms"].get<double>(),
                                    result["primary"]["t_r_cpu_us"].get<double>(), result["shadow"]["t_r_cpu_us"].get<double>(),
@@ -195,12 +242,15 @@ void addTradeoffCommand(CLI::App& app) {
                     }
                     continue;
                 }
-                const TradeoffScene scene = prepareTradeoffScene(id, sceneEnv, settings, sceneDir, fingerprint);
-                fmt::print(stderr, "  {}: {} triangles, {} primary and {} shadow rays, images {}x{}\n", id,
-                           scene.scene.triangleCount(), scene.rays.primary.size(), scene.rays.shadow.size(),
-                           scene.seriesCamera.width, scene.seriesCamera.height);
+                {
+                    const TradeoffScene scene = prepareTradeoffScene(id, sceneEnv, settings, sceneDir, fingerprint);
+                    fmt::print(stderr, "  {}: {} triangles, {} primary and {} shadow rays, images {}x{}\n", id,
+                               scene.scene.triangleCount(), scene.rays.primary.size(), scene.rays.shadow.size(),
+                               scene.seriesCamera.width, scene.seriesCamera.height);
+                }
                 for (const AccelConfig& config : pending) {
-                    const json result = measureAndStore(config, [&] { return measureTradeoffConfig(scene, config, settings); });
+                    const json result = measureAndStore(config);
+                    if (isFailedConfig(result)) continue;
                     fmt::print(stderr,
                                "  {} {}: T_B {:.1f} ms, SAH {}, T_R {:.3f}/{:.3f} us, image {} spp {:.0f} ms (CPU; wall "
                                "{:.0f} ms), mismatches {}/{} ({})\n",
@@ -219,8 +269,10 @@ void addTradeoffCommand(CLI::App& app) {
             fmt::print(stderr, "tradeoff: {} configurations measured, {} kept from an earlier run, in {}; wrote {}\n",
                        measured, kept, Progress::formatDuration(std::chrono::duration<double>(Clock::now() - start).count()),
                        (dir / (settings.builders ? "builders.csv" : "tradeoff.csv")).string());
+            if (failed) fmt::print(stderr, "tradeoff: {} of {} configurations measured failed\n", failed, measured);
         });
         if (code != 0) throw CLI::RuntimeError(code);
+        if (failed) throw CLI::RuntimeError(kSomeJobsFailedExitCode);
     });
 }
 

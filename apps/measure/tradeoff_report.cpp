@@ -1,5 +1,6 @@
 // `bvhlab tradeoff`: the CSV files and Markdown tables, made from the per-configuration JSON
 // files alone (so a resumed run reports everything measured so far).
+#include "apps/measure/failed_config.h"
 #include "apps/measure/tradeoff.h"
 #include "apps/runtime/atomic_write.h"
 #include "apps/runtime/output_paths.h"
@@ -60,12 +61,15 @@ std::string writeTradeoffReport(const std::filesystem::path& dir, const std::vec
                                 const std::vector<AccelConfig>& configs, const TradeoffSettings& settings) {
     // scene -> config label -> row
     std::map<std::string, std::map<std::string, Row>> rows;
+    std::map<std::string, std::map<std::string, json>> failures;  // scene -> config label -> its failure
     for (const std::string& scene : sceneIds)
         for (const AccelConfig& config : configs) {
             const std::filesystem::path file = dir / scene / (labelAsFileName(config.label) + ".json");
             if (!std::filesystem::exists(file)) continue;
             std::ifstream in(file);
-            rows[scene][config.label].stored = json::parse(in);
+            json stored = json::parse(in);
+            if (isFailedConfig(stored)) failures[scene][config.label] = std::move(stored);
+            else rows[scene][config.label].stored = std::move(stored);
         }
     for (auto& [scene, byConfig] : rows) {
         const json sweep = byConfig.count("sweepbvh") ? byConfig["sweepbvh"].at("sah") : json();
@@ -84,9 +88,14 @@ std::string writeTradeoffReport(const std::filesystem::path& dir, const std::vec
         "t_r_primary_us,t_r_primary_cpu_us,n_it_primary,n_tr_primary,shadow_rays,t_r_shadow_us,t_r_shadow_cpu_us,"
         "n_it_shadow,n_tr_shadow,series_width,series_height,max_spp,render_1spp_ms,render_max_ms,render_1spp_cpu_ms,"
         "render_max_cpu_ms,time_to_image_1spp_ms,time_to_image_max_ms,time_to_image_1spp_cpu_ms,"
-        "time_to_image_max_cpu_ms,mismatches_primary,mismatches_shadow,pixels_differing_1spp\n";
+        "time_to_image_max_cpu_ms,mismatches_primary,mismatches_shadow,pixels_differing_1spp,failed\n";
+    const std::string csvHeader = csv;
     for (const std::string& scene : sceneIds)
         for (const AccelConfig& config : configs) {
+            if (failures[scene].count(config.label)) {
+                csv += failedConfigCsvRow(failures[scene][config.label], csvHeader);
+                continue;
+            }
             if (!rows[scene].count(config.label)) continue;
             const Row& r = rows[scene][config.label];
             const json& p = r.stored["primary"];
@@ -104,7 +113,7 @@ std::string writeTradeoffReport(const std::filesystem::path& dir, const std::vec
                 cell(r.series(0, "time_to_image_ms"), "{:.3f}"), cell(r.lastSeries("time_to_image_ms"), "{:.3f}"),
                 cell(r.series(0, "time_to_image_cpu_ms"), "{:.3f}"), cell(r.lastSeries("time_to_image_cpu_ms"), "{:.3f}"),
                 cell(p["mismatches"]), cell(s["mismatches"]),
-                cell(r.stored["same_image_1spp"].value("pixels_differing", json()))};
+                cell(r.stored["same_image_1spp"].value("pixels_differing", json())), ""};
             for (size_t i = 0; i < cells.size(); ++i) csv += (i ? "," : "") + cells[i];
             csv += '\n';
         }
@@ -155,6 +164,10 @@ std::string writeTradeoffReport(const std::filesystem::path& dir, const std::vec
     md += "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const std::string& scene : sceneIds)
         for (const AccelConfig& config : configs) {
+            if (failures[scene].count(config.label)) {
+                md += failedConfigMarkdownRow(failures[scene][config.label], 10);
+                continue;
+            }
             if (!rows[scene].count(config.label)) continue;
             const Row& r = rows[scene][config.label];
             md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} / {} |\n", scene, config.label,

@@ -11,7 +11,7 @@ fronts are the command's (the pareto_* columns), not recomputed here.
 import math
 import os
 
-from plot_common import arguments, num, out_folder, plain_log_axis, read_csv  # first: it sets matplotlib's backend
+from plot_common import arguments, measured_rows, num, out_folder, plain_log_axis, read_csv  # first: it sets matplotlib's backend
 
 import matplotlib.pyplot as plt  # noqa: E402
 
@@ -75,7 +75,7 @@ def main():
     fig.savefig(os.path.join(out, "builders_pareto.png"), dpi=110)
     plt.close(fig)
 
-    rows = read_csv(os.path.join(args.data, "builders.csv"))
+    rows = measured_rows(os.path.join(args.data, "builders.csv"))
     scene_ids = list(dict.fromkeys(r["scene"] for r in rows))
     one_thread = all(r["threads"] == "1" for r in rows)
     # T_B: wall time around build(), as the command's tables.

@@ -33,6 +33,16 @@ def read_csv(path):
         return list(csv.DictReader(f))
 
 
+def measured_rows(path):
+    """The rows of a tradeoff's CSV file whose configuration was measured: a failed one (it crashed,
+    threw or ran out of time; its reason in the column "failed") has no figures to draw. Ends the
+    script with a message when no row is left."""
+    rows = [r for r in read_csv(path) if not r.get("failed")]
+    if not rows:
+        raise SystemExit(f"{path}: no configuration was measured (every row failed); nothing to plot")
+    return rows
+
+
 def num(text):
     """A cell as a number; an empty cell (not measured, n/a) as None."""
     return float(text) if text not in ("", None) else None

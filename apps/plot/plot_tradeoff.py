@@ -15,7 +15,7 @@ import math
 import os
 from collections import defaultdict
 
-from plot_common import arguments, geo_mean, num, out_folder, plain_log_axis, read_csv  # first: it sets matplotlib's backend
+from plot_common import arguments, geo_mean, measured_rows, num, out_folder, plain_log_axis, read_csv  # first: it sets matplotlib's backend
 
 import matplotlib.pyplot as plt  # noqa: E402
 
@@ -47,7 +47,7 @@ def main():
                 return name[: -len(suffix)] + "_cpu" + suffix
         return name
 
-    rows = read_csv(os.path.join(args.data, "tradeoff.csv"))
+    rows = measured_rows(os.path.join(args.data, "tradeoff.csv"))
     errors = read_csv(os.path.join(args.data, "image_error.csv"))
     scenes = list(dict.fromkeys(r["scene"] for r in rows))
     configs = list(dict.fromkeys(r["config"] for r in rows))
@@ -86,7 +86,8 @@ def main():
             ax.annotate(label.replace("K=", ""), (x, y), textcoords="offset points", xytext=(3, 3), fontsize=7)
         ax.set_xscale("log")
         plain_log_axis(ax.xaxis)
-        ax.set_title(f'{scene} ({int(by[scene, configs[0]]["prims"]):,} tris)', fontsize=9)
+        prims = next(r["prims"] for r in rows if r["scene"] == scene)
+        ax.set_title(f'{scene} ({int(prims):,} tris)', fontsize=9)
         ax.grid(True, which="both", alpha=0.3)
         ax.axhline(0, color="black", lw=0.5)
     ax = axes.flat[len(scenes)]

@@ -10,6 +10,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -145,6 +147,96 @@ TEST(FailedJobs, SpdGivesAFailedRowAndTheOtherStructuresRows) {
     EXPECT_EQ(j["failed_jobs"], 1);
     EXPECT_TRUE(j["scenes"][0]["accels"][0].contains("failed"));
     EXPECT_EQ(j["scenes"][0]["accels"][1]["accel"], "sahbvh");
+}
+
+// tradeoff: each configuration of a scene is a job; a failed one is a row of its own in the CSV
+// and Markdown, left out of every figure, and measured again by the next run.
+// The line of `text` that starts with `start`, without its end.
+std::string lineOf(const std::string& text, const std::string& start) {
+    const size_t at = text.find("\n" + start);
+    return at == std::string::npos ? "" : text.substr(at + 1, text.find('\n', at + 1) - at - 1);
+}
+
+// How many commas follow the accel column in every row of a CSV file (its header's less the two
+// before it): a failed row has only them between its accel and its reason.
+size_t commasAfterAccel(const std::string& csv) {
+    return size_t(std::count(csv.begin(), csv.begin() + csv.find('\n'), ',') - 2);
+}
+
+// `bvhlab plot DIR` draws the configurations measured and passes over the failed ones (where
+// Debian's matplotlib is at hand).
+void expectPlotsOf(const JobWorkspace& w, const std::string& folder) {
+    if (std::system("/usr/bin/python3 -c 'import matplotlib' 2>/dev/null") != 0) return;
+    const Result plot = runShell(fmt::format("cd {} && {} plot {}", w.dir.string(), bvhlabProgram(), folder));
+    EXPECT_EQ(plot.exitCode, 0) << plot.output;
+}
+
+TEST(FailedJobs, TradeoffGivesFailedRowsAndMeasuresThemAgainOnTheNextRun) {
+    const JobWorkspace w("tradeoff");
+    const std::string args = "--quick --scenes mesh.obj --accel crashing,hanging,sahbvh --bins 4 --size 8 --ray-size 8 "
+                             "--max-spp 2 --reference-spp 2 --builds 1 --passes 1 --job-timeout 2 --out out";
+    const Result r = w.run("tradeoff", args);
+    EXPECT_EQ(r.exitCode, 3) << r.output;
+    EXPECT_NE(r.output.find("tradeoff: 2 of 4 configurations measured failed"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("  mesh hanging: failed: timed out after 2 s\n"), std::string::npos) << r.output;
+
+    const std::string md = w.read("out/tradeoff.md");
+    EXPECT_TRUE(std::regex_search(md, std::regex(R"(\| mesh \| crashing \| failed: crashed: SIGSEGV \(Segmentation )"
+                                                 R"(fault\) in plugin .*crashing.so, accelerator 'crashing': )")))
+        << md;
+    EXPECT_NE(md.find("| mesh | hanging | failed: timed out after 2 s | | | | | | | |\n"), std::string::npos) << md;
+    EXPECT_NE(md.find("| mesh | sahbvh-K4 | "), std::string::npos) << md;
+    EXPECT_NE(md.find("| embree | 1 | "), std::string::npos) << "the summary counts the scenes measured:\n" << md;
+    EXPECT_EQ(md.find("\n| hanging | "), std::string::npos) << "a failed configuration has no summary row:\n" << md;
+
+    const std::string csv = w.read("out/tradeoff.csv");
+    EXPECT_NE(csv.find(",pixels_differing_1spp,failed\n"), std::string::npos) << csv;
+    EXPECT_EQ(lineOf(csv, "mesh,hanging,hanging,"),
+              "mesh,hanging,hanging" + std::string(commasAfterAccel(csv), ',') + "timed out after 2 s")
+        << csv;
+    EXPECT_NE(lineOf(csv, "mesh,crashing,crashing,").find(",\"crashed: SIGSEGV"), std::string::npos) << csv;
+    EXPECT_NE(csv.find("mesh,sahbvh-K4,sahbvh,4,4,1,"), std::string::npos) << csv;
+    const nlohmann::json stored = nlohmann::json::parse(w.read("out/mesh/hanging.json"));
+    EXPECT_EQ(stored["failed"], "timed out after 2 s");
+    EXPECT_TRUE(w.tmpIsEmpty()) << "a job's result file is left behind";
+    expectPlotsOf(w, "out");
+
+    // The next run keeps what was measured and measures the failed ones again.
+    const Result again = w.run("tradeoff", args);
+    EXPECT_EQ(again.exitCode, 3) << again.output;
+    EXPECT_NE(again.output.find("2 configurations measured, 2 kept from an earlier run"), std::string::npos) << again.output;
+    EXPECT_NE(again.output.find("  mesh hanging: failed: timed out after 2 s\n"), std::string::npos) << again.output;
+}
+
+TEST(FailedJobs, TradeoffBuildersGivesFailedRowsBesideTheParetoFrontAndCorrelations) {
+    const JobWorkspace w("builders");
+    // Forty overlapping triangles: trees whose EPO is not 0, which the rank correlations need.
+    std::ofstream soup(w.dir / "soup.obj");
+    for (int t = 0; t < 40; ++t)
+        soup << fmt::format("v {} {} {}\nv {} {} {}\nv {} {} {}\n", t % 7 * 0.6, t % 5 * 0.7, t % 3 * 0.9, t % 7 * 0.6 + 1.1,
+                            t % 5 * 0.7 + 0.3, t % 3 * 0.9 - 0.4, t % 7 * 0.6 - 0.2, t % 5 * 0.7 + 1.2, t % 3 * 0.9 + 0.5);
+    for (int t = 0; t < 40; ++t) soup << fmt::format("f {} {} {}\n", 3 * t + 1, 3 * t + 2, 3 * t + 3);
+    soup.close();
+    const Result r = w.run("tradeoff", "--builders --quick --scenes soup.obj --accel crashing,hanging,sahbvh,sweepbvh "
+                                       "--ray-size 8 --builds 1 --passes 1 --job-timeout 2 --out out");
+    EXPECT_EQ(r.exitCode, 3) << r.output;
+    EXPECT_NE(r.output.find("tradeoff: 2 of 8 configurations measured failed"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("  soup hanging: failed: timed out after 2 s\n"), std::string::npos) << r.output;
+
+    const std::string md = w.read("out/builders.md");
+    EXPECT_NE(md.find("| soup | hanging | failed: timed out after 2 s | | | | | | | | | |\n"), std::string::npos) << md;
+    EXPECT_NE(md.find("| soup | crashing | failed: crashed: SIGSEGV"), std::string::npos) << md;
+    EXPECT_NE(md.find("| soup | embree-medium | "), std::string::npos) << md;
+    EXPECT_TRUE(std::regex_search(md, std::regex(R"(\| soup \| binary \| 3 \| [-+][0-9.]+ / )")))
+        << "the rank correlation of the three builders measured:\n" << md;
+
+    const std::string csv = w.read("out/builders.csv");
+    EXPECT_NE(csv.find(",pareto_incoherent,failed\n"), std::string::npos) << csv;
+    EXPECT_EQ(lineOf(csv, "soup,hanging,hanging,"),
+              "soup,hanging,hanging" + std::string(commasAfterAccel(csv), ',') + "timed out after 2 s")
+        << csv;
+    EXPECT_EQ(w.read("out/builders_summary.csv").find("hanging"), std::string::npos) << "no summary of a failed one";
+    expectPlotsOf(w, "out");
 }
 
 TEST(FailedJobs, ABuildThatRunsLongSaysSo) {
