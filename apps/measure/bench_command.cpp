@@ -390,6 +390,8 @@ void addBenchCommand(CLI::App& app) {
             if (kinds.empty()) throw InputError("--queries: no kind of query given (single, batch)");
 
             const std::vector<SceneArgument> scenes = expandSceneList(options->scenes, options->env);
+            // Every scene file looked for up front: a typo in the last one fails now, not as its job.
+            for (const SceneArgument& scene : scenes) sceneFileOf(scene.load(options->env));
             // The job of scene `s`, in its own process: every structure at every thread count.
             const auto measureScene = [&](size_t s) {
                 nlohmann::json rows = nlohmann::json::array();
