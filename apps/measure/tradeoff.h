@@ -74,7 +74,7 @@ std::unique_ptr<Accelerator> referenceEmbree(const Scene& scene, const Env& env)
 // renders the reference image or reads it from DIR/<id>/reference.exr when it was made with
 // the same settings.
 TradeoffScene prepareTradeoffScene(const std::string& id, const Env& sceneEnv, const TradeoffSettings& settings,
-                                   const std::filesystem::path& sceneDir, const nlohmann::json& fingerprint);
+                                   const std::filesystem::path& sceneDir, const nlohmann::json& referenceKey);
 
 // The builds of one configuration: up to settings.builds, fewer once they have taken
 // buildBudgetMs; the last structure is kept for the traces.

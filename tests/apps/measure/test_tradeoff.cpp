@@ -3,12 +3,15 @@
 // scene x configuration and per scene x sample count, sweepbvh's gap to itself is 0, no
 // structure disagrees with Embree on the same rays, the image error falls with the sample
 // count and is the same for every structure; a second run keeps every result, a missing one is
-// measured again, and so is everything when the settings change or with --fresh.
+// measured again, and so is everything when the settings change or with --fresh; a rebuilt
+// plugin is measured again.
 #include "accel/registry.h"
 #include "accel/verify/generated_scenes.h"
 #include "apps/measure/builders.h"
 #include "apps/measure/tradeoff.h"
+#include "tests/support/batch_scenes.h"
 #include "tests/support/cli_run.h"
+#include "tests/support/scan_plugin.h"
 #include "tests/support/scratch_dir.h"
 #include "tests/support/test_paths.h"
 
@@ -260,4 +263,30 @@ TEST(TradeoffPlots, ScriptWritesIntoTheDataFolderNotDocs) {
     for (const char* png : {"tradeoff_build_vs_gap.png", "tradeoff_time_to_image.png", "tradeoff_error_vs_time.png"})
         EXPECT_GT(fs::file_size(data / "plots" / png), 1000u) << png;
     EXPECT_EQ(fs::last_write_time(docs / "tradeoff_build_vs_gap.png"), committed);
+}
+
+// A rebuilt plugin (the scan plugin's two builds, copied in turn to one path) is measured again,
+// Embree's result kept; so is a changed key of the plugin's.
+TEST(TradeoffResume, ARebuiltPluginIsMeasuredAgain) {
+    const fs::path dir = test::makeScenes("resume_tradeoff");
+    const fs::path plugin = test::installScan(dir, 1);
+    const std::string args = "tradeoff --quick --scenes " + (dir / "first.env").string() +
+                             " --accel scan --size 8 --ray-size 8 --max-spp 2 --reference-spp 2 --builds 1 "
+                             "--passes 1 -DScene::cacheDir= --plugin " +
+                             plugin.string() + " --out " + (dir / "out").string();
+    Result r = run(args);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(contains(r.output, "2 configurations measured, 0 kept")) << r.output;
+
+    test::installScan(dir, 2);
+    r = run(args);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(contains(r.output, "tradeoff: 1 configurations kept from an earlier run (same result key); 1 to "
+                                   "measure: 1 because plugin crc32: "))
+        << r.output;
+    EXPECT_TRUE(contains(r.output, "1 configurations measured, 1 kept")) << r.output;
+
+    r = run(args + " -DScan::passes=2");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(contains(r.output, "1 because structure Scan::passes: 1 -> 2")) << r.output;
 }
