@@ -2,9 +2,12 @@
 // files alone (so a resumed run reports everything measured so far).
 #include "apps/measure/tradeoff.h"
 #include "apps/runtime/atomic_write.h"
+#include "apps/runtime/result_key.h"
 
 #include <fmt/core.h>
+#include <fmt/ranges.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -36,6 +39,27 @@ json geoMean(const std::vector<json>& values) {
     for (const json& v : values)
         if (v.is_number() && v.get<double>() > 0) logSum += std::log(v.get<double>()), ++n;
     return n ? json(std::exp(logSum / n)) : json();
+}
+
+// A Markdown table of `rows` under `headers` (with their alignments, "---" or "---:"), without the
+// columns that are n/a in every row: a run without sweepbvh has no gap, one without sahbvh no
+// build ratio, and a column of n/a would only push the measured ones apart.
+std::string markdownTable(const std::vector<std::string>& headers, const std::vector<std::string>& alignments,
+                          const std::vector<std::vector<std::string>>& rows) {
+    std::vector<size_t> kept;
+    for (size_t c = 0; c < headers.size(); ++c)
+        if (rows.empty() || std::any_of(rows.begin(), rows.end(), [&](const auto& row) { return row[c] != "n/a"; }))
+            kept.push_back(c);
+    auto line = [&](const std::vector<std::string>& cells) {
+        std::string text = "|";
+        for (size_t c : kept) text += " " + cells[c] + " |";
+        return text + "\n";
+    };
+    std::string table = line(headers) + "|";
+    for (size_t c : kept) table += alignments[c] + "|";
+    table += "\n";
+    for (const std::vector<std::string>& row : rows) table += line(row);
+    return table;
 }
 
 // One row of tradeoff.csv: the stored JSON flattened, with the gap to sweepbvh.
@@ -148,32 +172,42 @@ std::string writeTradeoffReport(const std::filesystem::path& dir, const std::vec
         settings.threads, settings.builds, settings.buildBudgetMs * 1e-3, settings.passes,
         settings.raySize > 0 ? fmt::format("{}x{}", settings.raySize, settings.raySize) : std::string("scene-sized"), w, w,
         maxSpp, settings.referenceSpp);
-    md += fmt::format("| scene | config | T_B [ms] | SAH | gap [%] | T_R primary [µs] | T_R shadow [µs] | image 1 spp [ms] "
-                      "| image {} spp [ms] | mismatches primary / shadow |\n",
-                      maxSpp);
-    md += "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    std::vector<std::vector<std::string>> sceneRows;
     for (const std::string& scene : sceneIds)
         for (const AccelConfig& config : configs) {
             if (!rows[scene].count(config.label)) continue;
             const Row& r = rows[scene][config.label];
-            md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} / {} |\n", scene, config.label,
-                              shown(r.at("build_cpu_ms"), "{:.1f}"), shown(r.at("sah"), "{:.2f}"),
-                              r.gap.is_null() ? "n/a" : fmt::format("{:+.2f}", 100.0 * r.gap.get<double>()),
-                              shown(r.stored["primary"]["t_r_cpu_us"], "{:.3f}"), shown(r.stored["shadow"]["t_r_cpu_us"], "{:.3f}"),
-                              shown(r.series(0, "time_to_image_cpu_ms"), "{:.0f}"), shown(r.lastSeries("time_to_image_cpu_ms"), "{:.0f}"),
-                              cell(r.stored["primary"]["mismatches"]), cell(r.stored["shadow"]["mismatches"]));
+            sceneRows.push_back({scene, config.label, shown(r.at("build_cpu_ms"), "{:.1f}"), shown(r.at("sah"), "{:.2f}"),
+                                 r.gap.is_null() ? "n/a" : fmt::format("{:+.2f}", 100.0 * r.gap.get<double>()),
+                                 shown(r.stored["primary"]["t_r_cpu_us"], "{:.3f}"),
+                                 shown(r.stored["shadow"]["t_r_cpu_us"], "{:.3f}"),
+                                 shown(r.series(0, "time_to_image_cpu_ms"), "{:.0f}"),
+                                 shown(r.lastSeries("time_to_image_cpu_ms"), "{:.0f}"),
+                                 fmt::format("{} / {}", cell(r.stored["primary"]["mismatches"]),
+                                             cell(r.stored["shadow"]["mismatches"]))});
         }
+    md += markdownTable({"scene", "config", "T_B [ms]", "SAH", "gap [%]", "T_R primary [µs]", "T_R shadow [µs]",
+                         "image 1 spp [ms]", fmt::format("image {} spp [ms]", maxSpp), "mismatches primary / shadow"},
+                        {"---", "---", "---:", "---:", "---:", "---:", "---:", "---:", "---:", "---:"}, sceneRows);
+
+    // What each configuration is: its own settings, its plugin (result_key.h).
+    md += "\nStructures, with their own settings:\n\n";
+    for (const AccelConfig& config : configs)
+        for (const std::string& scene : sceneIds)
+            if (rows[scene].count(config.label)) {
+                const json key = rows[scene][config.label].stored.value("result_key", json::object());
+                md += fmt::format("- `{}`: {}\n", config.label,
+                                  key.contains("structure") ? describeStructure(key["structure"]) : "not recorded");
+                break;
+            }
 
     // The summary: gaps averaged; times as geometric means of per-scene ratios.
     std::string k16 = "sahbvh-K16";
     if (std::none_of(configs.begin(), configs.end(), [&](const AccelConfig& c) { return c.label == k16; }))
         for (const AccelConfig& c : configs)
             if (c.name == "sahbvh") { k16 = c.label; break; }
-    md += fmt::format("\nOver the scenes measured (gaps: mean and max; times: geometric mean of the per-scene ratios):\n\n"
-                      "| config | scenes | gap mean [%] | gap max [%] | T_B / T_B({}) | T_R primary / sweepbvh | "
-                      "T_R shadow / sweepbvh | image 1 spp / embree | image {} spp / embree | mismatches |\n"
-                      "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n",
-                      k16, maxSpp);
+    md += "\nOver the scenes measured (gaps: mean and max; times: geometric mean of the per-scene ratios):\n\n";
+    std::vector<std::vector<std::string>> summaryRows;
     for (const AccelConfig& config : configs) {
         std::vector<json> build, trp, trs, img1, imgMax;
         double gapSum = 0.0, gapMax = -INFINITY;
@@ -197,12 +231,16 @@ std::string writeTradeoffReport(const std::filesystem::path& dir, const std::vec
             mismatches += r.stored["primary"].value("mismatches", 0LL) + r.stored["shadow"].value("mismatches", 0LL);
         }
         if (!scenes) continue;
-        md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", config.label, scenes,
-                          gaps ? fmt::format("{:+.2f}", 100.0 * gapSum / gaps) : "n/a",
-                          gaps ? fmt::format("{:+.2f}", 100.0 * gapMax) : "n/a", shown(geoMean(build), "{:.2f}"),
-                          shown(geoMean(trp), "{:.2f}"), shown(geoMean(trs), "{:.2f}"), shown(geoMean(img1), "{:.2f}"),
-                          shown(geoMean(imgMax), "{:.2f}"), mismatches);
+        summaryRows.push_back({config.label, std::to_string(scenes),
+                               gaps ? fmt::format("{:+.2f}", 100.0 * gapSum / gaps) : "n/a",
+                               gaps ? fmt::format("{:+.2f}", 100.0 * gapMax) : "n/a", shown(geoMean(build), "{:.2f}"),
+                               shown(geoMean(trp), "{:.2f}"), shown(geoMean(trs), "{:.2f}"), shown(geoMean(img1), "{:.2f}"),
+                               shown(geoMean(imgMax), "{:.2f}"), std::to_string(mismatches)});
     }
+    md += markdownTable({"config", "scenes", "gap mean [%]", "gap max [%]", fmt::format("T_B / T_B({})", k16),
+                         "T_R primary / sweepbvh", "T_R shadow / sweepbvh", "image 1 spp / embree",
+                         fmt::format("image {} spp / embree", maxSpp), "mismatches"},
+                        {"---", "---:", "---:", "---:", "---:", "---:", "---:", "---:", "---:", "---:"}, summaryRows);
 
     md += "\nImage error against the reference: PSNR [dB] per samples per pixel (the same for every structure; "
           "largest RMSE spread over structures in the last column)\n\n| scene |";
