@@ -11,6 +11,7 @@
 #include "apps/measure/tradeoff.h"
 #include "tests/support/batch_scenes.h"
 #include "tests/support/cli_run.h"
+#include "tests/support/json_file.h"
 #include "tests/support/scan_plugin.h"
 #include "tests/support/scratch_dir.h"
 #include "tests/support/test_paths.h"
@@ -266,7 +267,8 @@ TEST(TradeoffPlots, ScriptWritesIntoTheDataFolderNotDocs) {
 }
 
 // A rebuilt plugin (the scan plugin's two builds, copied in turn to one path) is measured again,
-// Embree's result kept; so is a changed key of the plugin's.
+// Embree's result kept; so is a changed key of the plugin's. The tables say what scan is and
+// leave out the columns it has no figure in.
 TEST(TradeoffResume, ARebuiltPluginIsMeasuredAgain) {
     const fs::path dir = test::makeScenes("resume_tradeoff");
     const fs::path plugin = test::installScan(dir, 1);
@@ -277,6 +279,11 @@ TEST(TradeoffResume, ARebuiltPluginIsMeasuredAgain) {
     Result r = run(args);
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_TRUE(contains(r.output, "2 configurations measured, 0 kept")) << r.output;
+    // The tables: what scan is, and no column that is n/a in every row (no sweepbvh: no gap; no SAH).
+    const std::string md = test::readText(dir / "out" / "tradeoff.md");
+    EXPECT_TRUE(contains(md, "- `scan`: Scan::passes=1; plugin scan.so, CRC-32 ")) << md;
+    EXPECT_TRUE(contains(md, "| scene | config | T_B [ms] | T_R primary [µs] |")) << md;
+    EXPECT_FALSE(contains(md, "gap [%]") || contains(md, "gap mean")) << md;
 
     test::installScan(dir, 2);
     r = run(args);
