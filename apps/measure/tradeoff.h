@@ -100,6 +100,12 @@ struct ImageError {
 };
 ImageError imageError(const std::vector<Vec3>& image, const std::vector<Vec3>& reference);
 
+// "Structures, with their own settings:" and a line per configuration measured into
+// DIR/<scene>/<config>.json: its own settings and its plugin, as its result key records them
+// (result_key.h: describeStructure).
+std::string structuresMeasured(const std::filesystem::path& dir, const std::vector<std::string>& sceneIds,
+                               const std::vector<AccelConfig>& configs);
+
 // Reads DIR/<scene>/<config>.json for every scene and configuration (missing ones are left
 // out), writes DIR/tradeoff.csv, DIR/image_error.csv and DIR/tradeoff.md, and returns the
 // Markdown.

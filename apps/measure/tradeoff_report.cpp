@@ -79,6 +79,22 @@ struct Row {
 
 }  // namespace
 
+std::string structuresMeasured(const std::filesystem::path& dir, const std::vector<std::string>& sceneIds,
+                               const std::vector<AccelConfig>& configs) {
+    std::string md = "\nStructures, with their own settings:\n\n";
+    for (const AccelConfig& config : configs)
+        for (const std::string& scene : sceneIds) {
+            const std::filesystem::path file = dir / scene / (config.label + ".json");
+            if (!std::filesystem::exists(file)) continue;
+            std::ifstream in(file);
+            const json key = json::parse(in).value("result_key", json::object());
+            md += fmt::format("- `{}`: {}\n", config.label,
+                              key.contains("structure") ? describeStructure(key["structure"]) : "not recorded");
+            break;
+        }
+    return md;
+}
+
 std::string writeTradeoffReport(const std::filesystem::path& dir, const std::vector<std::string>& sceneIds,
                                 const std::vector<AccelConfig>& configs, const TradeoffSettings& settings) {
     // scene -> config label -> row
@@ -190,16 +206,7 @@ std::string writeTradeoffReport(const std::filesystem::path& dir, const std::vec
                          "image 1 spp [ms]", fmt::format("image {} spp [ms]", maxSpp), "mismatches primary / shadow"},
                         {"---", "---", "---:", "---:", "---:", "---:", "---:", "---:", "---:", "---:"}, sceneRows);
 
-    // What each configuration is: its own settings, its plugin (result_key.h).
-    md += "\nStructures, with their own settings:\n\n";
-    for (const AccelConfig& config : configs)
-        for (const std::string& scene : sceneIds)
-            if (rows[scene].count(config.label)) {
-                const json key = rows[scene][config.label].stored.value("result_key", json::object());
-                md += fmt::format("- `{}`: {}\n", config.label,
-                                  key.contains("structure") ? describeStructure(key["structure"]) : "not recorded");
-                break;
-            }
+    md += structuresMeasured(dir, sceneIds, configs);
 
     // The summary: gaps averaged; times as geometric means of per-scene ratios.
     std::string k16 = "sahbvh-K16";
