@@ -70,18 +70,17 @@ void checkAccelConfigs(const std::vector<AccelConfig>& configs, const Env& base,
         fmt::print(stderr, "warning: {}\n", warning);
 }
 
-namespace {
-
-// The accelerators that read `key`.
-std::vector<std::string> readersOf(const std::string& key) {
+std::vector<std::string> acceleratorsReading(const std::string& key) {
     std::vector<std::string> readers;
     for (const AcceleratorInfo& info : acceleratorInfos())
         if (std::find(info.envKeys.begin(), info.envKeys.end(), key) != info.envKeys.end()) readers.push_back(info.name);
     return readers;
 }
 
+namespace {
+
 bool reads(const std::string& accelerator, const std::string& key) {
-    const std::vector<std::string> readers = readersOf(key);
+    const std::vector<std::string> readers = acceleratorsReading(key);
     return std::find(readers.begin(), readers.end(), accelerator) != readers.end();
 }
 
@@ -94,7 +93,7 @@ std::vector<std::string> unreadKeyWarnings(const std::vector<AccelConfig>& confi
         if (std::find(chosen.begin(), chosen.end(), config.name) == chosen.end()) chosen.push_back(config.name);
     const nlohmann::json values = base.toJson();
     for (const auto& [key, entry] : values.items()) {
-        if (!entry.at("from").get<std::string>().starts_with("-D") || readersOf(key).empty()) continue;
+        if (!entry.at("from").get<std::string>().starts_with("-D") || acceleratorsReading(key).empty()) continue;
         if (std::none_of(chosen.begin(), chosen.end(), [&](const std::string& name) { return reads(name, key); }))
             warnings.push_back(fmt::format("{} is read by none of the chosen structures ({}); it is ignored", key,
                                            fmt::join(chosen, ", ")));
@@ -102,7 +101,7 @@ std::vector<std::string> unreadKeyWarnings(const std::vector<AccelConfig>& confi
     for (const AccelConfig& config : configs)
         for (const std::string& o : config.overrides) {
             const std::string key = o.substr(0, o.find('='));
-            if (!readersOf(key).empty() && !reads(config.name, key))
+            if (!acceleratorsReading(key).empty() && !reads(config.name, key))
                 warnings.push_back(fmt::format("{} {}: {} is not read by {}; it is ignored", option, typed(config), key,
                                                config.name));
         }

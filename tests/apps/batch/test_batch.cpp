@@ -376,6 +376,10 @@ TEST(Batch, TablesSayWhatRan) {
     EXPECT_EQ(csv[1][13], "false");
     const nlohmann::json rows = readJson(dir / "out" / "results.json")["rows"];
     EXPECT_EQ(rows[0]["structure"]["plugin"]["file"], "scan.so");
+    // Nor is it part of the batch's settings: another value is the same batch, its jobs kept.
+    r = run(args + " --accel scan -DBVH::maxLeaf=5");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("batch: 2 jobs kept from an earlier run"), std::string::npos) << r.output;
 
     // With a structure that reads it, the key is shown for that structure alone.
     r = run(args + " --accel scan,sahbvh --fresh");
