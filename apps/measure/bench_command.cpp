@@ -454,6 +454,9 @@ void addBenchCommand(CLI::App& app) {
                                    row["build_ms"].get<double>(), row["primary"]["t_r_us"].get<double>(),
                                    ratio.is_null() ? 0.0 : ratio.get<double>(), reference);
                         row["scene_id"] = scenes[s].id;
+                        // What ran: the structure with its own settings and plugin (none for Embree's own APIs
+                        // and the nothing rows, which are no structure of --accel).
+                        row["structure"] = keys[s]["structures"].value(row["accel"].get<std::string>(), nlohmann::json());
                         results["rows"].push_back(std::move(row));
                     }
                 }

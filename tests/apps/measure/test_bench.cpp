@@ -55,6 +55,8 @@ TEST(Bench, APluginsRowsLeadAndRerunsKeepWholeScenes) {
     const nlohmann::json first = readBench(out);
     ASSERT_EQ(first["scenes"].size(), 2u);
     EXPECT_EQ(rowsOf(first, "first"), 6u);
+    EXPECT_EQ(first["rows"][0]["structure"]["keys"]["Scan::passes"], "1");
+    EXPECT_EQ(first["rows"][0]["structure"]["plugin"]["file"], "scan.so");
 
     // The same again: every scene kept; with --reference-rows the table shows them all.
     r = run(args + " --reference-rows");
