@@ -1,6 +1,7 @@
 #include "apps/runtime/result_key.h"
 
 #include "accel/registry.h"
+#include "apps/runtime/accel_config.h"
 #include "apps/runtime/app_keys.h"
 #include "apps/runtime/plugins.h"
 #include "framework/report/provenance.h"
@@ -37,13 +38,6 @@ std::set<std::filesystem::path> mappedLibraries(std::initializer_list<std::strin
             if (name.starts_with(prefix) && name.find(".so") != std::string::npos) files.insert(file);
     }
     return files;
-}
-
-// Keys that some accelerator reads: they belong to the structures that read them, not the scene.
-std::set<std::string> acceleratorKeys() {
-    std::set<std::string> names;
-    for (const AcceleratorInfo& info : acceleratorInfos()) names.insert(info.envKeys.begin(), info.envKeys.end());
-    return names;
 }
 
 // The checksums of a scene file, read once per process (a tradeoff asks for every configuration).
@@ -114,11 +108,11 @@ std::string describeStructure(const json& structure) {
 }
 
 json sceneKey(const Env& env) {
-    const std::set<std::string> structures = acceleratorKeys();
+    // A key that some accelerator reads belongs to the structures that read it, not the scene.
     json settings = json::object();
     const json values = env.toJson();
     for (const auto& [name, entry] : values.items())
-        if (!structures.contains(name) && !changesNoFigure(name) && !name.starts_with("ASDS::") &&
+        if (acceleratorsReading(name).empty() && !changesNoFigure(name) && !name.starts_with("ASDS::") &&
             name != keys::Scene::dir.name() && name != keys::Scene::file.name())
             settings[name] = entry.at("value");
     const std::string file = env.get(keys::Scene::file);
