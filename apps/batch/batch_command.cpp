@@ -4,9 +4,11 @@
 // jobs of the folder's one batch (DIR/batch.json; a folder holding another batch is refused).
 // Each job runs in a process of its own (apps/runtime/child_job.h): one that crashes, throws or
 // runs longer than --job-timeout is a failed job, with its reason in the tables, and the batch
-// goes on. `--shard i/n` runs every n-th job; `--merge DIR...` joins the shards of one batch; `--slurm N`
-// submits the batch to Slurm as N shards and their merge (slurm_submission.h).
+// goes on. A rerun keeps each job finished with the result key it would be run with
+// (batch_resume.h). `--shard i/n` runs every n-th job; `--merge DIR...` joins the shards of one
+// batch; `--slurm N` submits the batch to Slurm as N shards and their merge (slurm_submission.h).
 #include "accel/registry.h"
+#include "apps/batch/batch_resume.h"
 #include "apps/batch/batch_settings.h"
 #include "apps/batch/batch_table.h"
 #include "apps/batch/slurm_submission.h"
@@ -20,6 +22,7 @@
 #include "apps/runtime/output_paths.h"
 #include "apps/runtime/progress.h"
 #include "apps/runtime/render_with_progress.h"
+#include "apps/runtime/result_key.h"
 #include "apps/runtime/run_record.h"
 #include "apps/runtime/scene_list.h"
 #include "apps/runtime/scene_loading.h"
@@ -102,6 +105,20 @@ int renderThreads(const Options& options, const Env& sceneEnv) {
     return options.env.threads >= 0 ? options.env.threads : sceneEnv.get(keys::Batch::threads);
 }
 
+// The env a job runs with: its scene's, its accelerator's overrides, ASDS::type and the render threads.
+Env jobEnv(const Options& options, const Env& sceneEnv, const AccelConfig& config) {
+    Env env = accelConfigEnv(config, sceneEnv);
+    env.set(keys::ASDS::type, config.name, "bvhlab batch --accel");
+    env.set(keys::SetRayTracing::threads, std::to_string(renderThreads(options, env)),
+            options.env.threads >= 0 ? "--threads" : "Batch::threads");
+    return env;
+}
+
+// What a job's result depends on (result_key.h): batch renders without and with shadows.
+nlohmann::json jobResultKey(const AccelConfig& config, const Env& env) {
+    return resultKey(config.name, env, {{"command", "batch"}, {"renders", {"no_shadows", "shadows"}}});
+}
+
 // A job's framebuffer step counts, kept until the scene's heat maps are drawn at one scale.
 struct FinishedJob {
     nlohmann::json job;
@@ -131,10 +148,8 @@ FinishedJob runJob(const Options& options, const Scene& scene, const SceneLoadIn
     const std::string name = batchJobName(entry.id, accel);
     const std::string label = fmt::format("{} {} {}", jobLabel, entry.id, accel);
 
-    Env env = accelConfigEnv(config, sceneEnv);
-    env.set(keys::ASDS::type, config.name, "bvhlab batch --accel");
-    const int threads = renderThreads(options, env);
-    env.set(keys::SetRayTracing::threads, std::to_string(threads), options.env.threads >= 0 ? "--threads" : "Batch::threads");
+    const Env env = jobEnv(options, sceneEnv, config);
+    const int threads = env.get(keys::SetRayTracing::threads);
 
     progress.phase(label + ": building");
     tbb::task_arena arena(threads > 0 ? threads : tbb::info::default_concurrency());
@@ -188,6 +203,7 @@ FinishedJob runJob(const Options& options, const Scene& scene, const SceneLoadIn
                 {"image", {{"width", camera.width()}, {"height", camera.height()}, {"samples", settings.samples}}},
                 {"runs", runs},
                 {"env", env.toJson()},
+                {"result_key", jobResultKey(config, env)},
                 {"run", runJson()},
                 {"provenance", provenanceJson()}};
     writeFileAtomically(out / "jobs" / (name + ".json"), job.dump(2) + "\n");
@@ -214,11 +230,12 @@ json failedJobRecord(const SceneArgument& entry, const AccelConfig& config, cons
 }
 
 // The scene's heat maps at one full scale, so that colours compare across its accelerators:
-// Output::heatmapScale when set, else the largest 99th percentile of its renders in this run
-// (every accelerator with counters, without and with shadows). A structure without counters gets
-// none. Then the job files are written again with the heat maps' records.
+// Output::heatmapScale when set, else that of its jobs kept from an earlier run (batch_resume.h),
+// else the largest 99th percentile of its renders in this run (every accelerator with counters,
+// without and with shadows). A structure without counters gets none. Then the job files are
+// written again with the heat maps' records.
 void writeSceneHeatmaps(const std::filesystem::path& out, const std::string& sceneId, std::vector<FinishedJob>& jobs,
-                        float fixedScale) {
+                        float fixedScale, const std::optional<HeatmapScale>& keptScale) {
     float largest = 1.0f;
     std::vector<std::string> counted, uncounted;
     for (const FinishedJob& f : jobs) {
@@ -226,9 +243,12 @@ void writeSceneHeatmaps(const std::filesystem::path& out, const std::string& sce
         if (f.hasCounters)
             for (const std::vector<float>& steps : f.steps) largest = std::max(largest, heatmapPercentile99(steps));
     }
-    const HeatmapScale scale = chooseHeatmapScale(
-        fixedScale, largest,
-        fmt::format("largest 99th percentile of the scene's renders in this run: {}", fmt::join(counted, ", ")));
+    const HeatmapScale scale =
+        fixedScale <= 0 && keptScale
+            ? *keptScale
+            : chooseHeatmapScale(fixedScale, largest,
+                                 fmt::format("largest 99th percentile of the scene's renders in this run: {}",
+                                             fmt::join(counted, ", ")));
     for (FinishedJob& f : jobs) {
         const std::string name = f.job.at("job").get<std::string>(), accel = f.job.at("accel").get<std::string>();
         for (const bool shadows : {false, true}) {
@@ -376,12 +396,27 @@ void runJobs(const Options& options, const BatchPlan& plan, const Shard& shard, 
                options.env.threads >= 0 ? "--threads" : "Batch::threads",
                sceneEnvs.empty() ? 1 : renderThreads(options, sceneEnvs.front()), out.string());
 
+    // Each job's result key first: a rerun keeps the finished jobs of this key (batch_resume.h).
+    ResumeCount resume;
+    std::vector<std::vector<size_t>> toRun(scenes.size());
+    std::vector<std::vector<json>> kept(scenes.size());
+    for (size_t j : mine) {
+        const size_t s = j / accels.size(), a = j % accels.size();
+        const std::string name = batchJobName(scenes[s].id, accels[a].label);
+        const Env env = jobEnv(options, sceneEnvs[s], accels[a]);
+        const StoredResult stored = options.fresh ? StoredResult{false, "of --fresh"}
+                                                  : checkFinishedJob(out, name, jobResultKey(accels[a], env), env);
+        resume.add(stored);
+        if (stored.keep) kept[s].push_back(json::parse(std::ifstream(out / "jobs" / (name + ".json"))));
+        else toRun[s].push_back(j);
+    }
+    fmt::print(stderr, "batch: {}\n", resume.summary("jobs", "run"));
+
     const auto start = Progress::Clock::now();
     size_t jobNumber = 0, scenesFromCache = 0, scenesParsed = 0, failed = 0;
     for (size_t s = 0; s < scenes.size(); ++s) {
         std::vector<FinishedJob> finished;
-        for (size_t j : mine) {
-            if (j / accels.size() != s) continue;
+        for (size_t j : toRun[s]) {
             const size_t a = j % accels.size();
             ++jobNumber;
             const JobOutcome outcome = runJobInChild(std::to_string(j), options.jobTimeout);
@@ -391,25 +426,26 @@ void runJobs(const Options& options, const BatchPlan& plan, const Shard& shard, 
                 continue;
             }
             ++failed;
-            fmt::print(stderr, "[job {}/{}] {} {}: failed: {}\n", jobNumber, mine.size(), scenes[s].id, accels[a].label,
+            fmt::print(stderr, "[job {}/{}] {} {}: failed: {}\n", jobNumber, resume.toMeasure(), scenes[s].id, accels[a].label,
                        outcome.failure());
             const json order = {{"scene", s}, {"accel", a}, {"job", j}, {"jobs", totalJobs}};
             writeFileAtomically(out / "jobs" / (batchJobName(scenes[s].id, accels[a].label) + ".json"),
                                 failedJobRecord(scenes[s], accels[a], plan.settings, order, shard, outcome).dump(2) + "\n");
         }
         if (sceneEnvs[s].get(keys::Output::heatmap) && !finished.empty())
-            writeSceneHeatmaps(out, scenes[s].id, finished, sceneEnvs[s].get(keys::Output::heatmapScale));
+            writeSceneHeatmaps(out, scenes[s].id, finished, sceneEnvs[s].get(keys::Output::heatmapScale),
+                               keptHeatmapScale(kept[s]));
     }
     fmt::print(stderr, "batch: {} jobs in {}{}; scene loads{}: {} read from the cache, {} parsed{}; {} builds, each "
                        "serving both renders\n",
-               mine.size(),
+               jobNumber,
                Progress::formatDuration(std::chrono::duration<double>(Progress::Clock::now() - start).count()),
                failed ? fmt::format(", {} of them failed", failed) : "", failed ? " of the jobs that ran" : "",
                scenesFromCache, scenesParsed,
                scenesParsed && !sceneEnvs.empty() && !sceneEnvs.front().get(keys::Scene::cacheDir).empty()
                    ? fmt::format(" (and stored in {})", sceneEnvs.front().get(keys::Scene::cacheDir).string())
                    : "",
-               mine.size() - failed);
+               jobNumber - failed);
 }
 
 // The arguments that make a shard's batch this one: the same scenes, accelerators and env layers
@@ -507,7 +543,8 @@ void addBatchCommand(CLI::App& app) {
                                              "i/n: run every n-th job starting at job i (0-based, as $SLURM_ARRAY_TASK_ID)");
     command->add_option("--merge", options->merge, "join the jobs of these batch output folders into --out and make its tables");
     command->add_flag("--fresh", options->fresh,
-                      "first delete the batch --out holds (jobs/, images/, tables): needed when its settings differ");
+                      "first delete the batch --out holds (jobs/, images/, tables): needed when its settings differ; "
+                      "without it a rerun keeps the jobs finished with the same result key");
     CLI::Option* slurm =
         command->add_option("--slurm", options->slurm,
                             "N: run nothing here; submit the batch to Slurm (sbatch) as an array of N shards and a "

@@ -1,6 +1,7 @@
 #include "apps/batch/batch_settings.h"
 
 #include "accel/registry.h"
+#include "apps/runtime/accel_config.h"
 #include "apps/runtime/app_keys.h"
 #include "apps/runtime/atomic_write.h"
 #include "framework/core/error.h"
@@ -21,10 +22,16 @@ using nlohmann::json;
 
 constexpr const char* kFormat = "bvhlab-batch-settings-1";
 
-// Keys that change no figure of a job, or that batch sets per job (see makeBatchSettings).
-bool outsideTheSettings(const std::string& key) {
-    return changesNoFigure(key) || key == keys::ASDS::type.name() || key == keys::SetRayTracing::shadows.name() ||
-           key == keys::SetRayTracing::threads.name();
+// Keys that change no figure of a job, or that batch sets per job, or that only structures read
+// and none of `accels` does (see makeBatchSettings).
+bool outsideTheSettings(const std::string& key, const std::vector<std::string>& accels) {
+    if (changesNoFigure(key) || key == keys::ASDS::type.name() || key == keys::SetRayTracing::shadows.name() ||
+        key == keys::SetRayTracing::threads.name())
+        return true;
+    const std::vector<std::string> readers = acceleratorsReading(key);
+    return !readers.empty() && std::none_of(accels.begin(), accels.end(), [&](const std::string& label) {
+        return std::find(readers.begin(), readers.end(), parseAccelConfig(label).name) != readers.end();
+    });
 }
 
 // 64-bit FNV-1a of `text`, as 16 hex digits: a name for settings, not a guard against forgery.
@@ -68,7 +75,7 @@ BatchSettings makeBatchSettings(const std::vector<std::pair<std::string, Env>>& 
         BatchSettings::Scene scene{id, {}, {}};
         const json values = env.toJson();  // kept alive for the loop
         for (const auto& [key, v] : values.items())
-            if (!outsideTheSettings(key)) scene.env[key] = v.at("value").get<std::string>();
+            if (!outsideTheSettings(key, accels)) scene.env[key] = v.at("value").get<std::string>();
         s.scenes.push_back(std::move(scene));
     }
     computeHashes(s);

@@ -34,7 +34,8 @@ struct BatchSettings {
 // The settings of a batch of `scenes` (id, resolved env as the jobs start from) x `accels`. Left
 // out of the env, as they do not change a figure or are set per job: origins, Output::* (which
 // images are written and how a heat map is scaled), Scene::cacheDir, ASDS::type (--accel),
-// SetRayTracing::shadows (both renders are made) and SetRayTracing::threads (Batch::threads is kept).
+// SetRayTracing::shadows (both renders are made), SetRayTracing::threads (Batch::threads is kept),
+// and the keys that only structures read, none of `accels` (BVH::* in a batch of Embree and a plugin).
 BatchSettings makeBatchSettings(const std::vector<std::pair<std::string, Env>>& scenes,
                                 const std::vector<std::string>& accels);
 

@@ -2,6 +2,7 @@
 
 #include "apps/batch/contact_sheet.h"
 #include "apps/runtime/output_paths.h"
+#include "apps/runtime/result_key.h"
 #include "apps/runtime/table_text.h"
 #include "framework/core/error.h"
 
@@ -22,6 +23,7 @@ using nlohmann::json;
 // One line of the table: a render of a job, with its build's columns; or a job that failed.
 struct Row {
     std::string scene, accel;
+    json structure;      // the structure part of the job's result key (result_key.h): what ran
     std::string failed;  // why the job left no results (child_job.h's JobOutcome::failure()); empty if it ran
     bool shadows = false;
     json prims, leaves, nodes, sah, buildMs;  // of the build, shared by both renders
@@ -64,8 +66,9 @@ Row failedRow(const json& job) {
 Row makeRow(const json& job, bool shadows) {
     const json& run = job.at("runs").at(shadows ? "shadows" : "no_shadows");
     const json all = allQueries(run);
-    return {job.at("scene").get<std::string>(), job.at("accel").get<std::string>(), "", shadows,
-            run.at("prims"), run.at("leaves"), run.at("nodes"), run.at("sah"), run.at("build_ms"),
+    return {job.at("scene").get<std::string>(), job.at("accel").get<std::string>(),
+            job.value("result_key", json::object()).value("structure", json()), "", shadows, run.at("prims"),
+            run.at("leaves"), run.at("nodes"), run.at("sah"), run.at("build_ms"),
             all.at("t_r_us"), all.at("n_it"), all.at("n_tr"), all.at("queries"), run.at("render_ms")};
 }
 
@@ -124,9 +127,6 @@ std::pair<std::vector<std::string>, std::vector<std::string>> settingsOf(const s
     show("SetRayTracing::threads", "threads");
     show("SetRayTracing::cntSamples", "samples");
     show("SetRayTracing::depthLimit", "depthLimit");
-    for (const char* key : {"BVH::bins", "BVH::maxLeaf", "BVH::leafCap", "BVH::sahTermination", "BVH::cTraversal",
-                            "BVH::cIntersect", "BVH::tdbvhSplit", "Embree::quality"})
-        show(key, key);
     return {settings, warnings};
 }
 
@@ -146,6 +146,33 @@ std::vector<std::string> heatmapScaleWarnings(const std::vector<json>& jobs) {
                                            "different shards; set Output::heatmapScale for one scale",
                                            scene, fmt::join(set, ", ")));
     return warnings;
+}
+
+// Whether the structure of a row is a plugin's compiled without optimisation.
+bool unoptimised(const json& structure) {
+    return structure.is_object() && structure.at("plugin").is_object() && !structure["plugin"].at("optimized").get<bool>();
+}
+
+// Each accelerator of the table with its own settings and its plugin, a line each ("- `scan`:
+// Scan::passes=1; plugin scan.so, CRC-32 1a2b3c4d"); one per scene where its scenes' differ.
+std::vector<std::string> structureLines(const std::vector<json>& jobs) {
+    std::vector<std::pair<std::string, std::vector<std::pair<std::string, std::vector<std::string>>>>> byAccel;
+    for (const json& job : jobs) {
+        const std::string accel = job.at("accel").get<std::string>(), scene = job.at("scene").get<std::string>();
+        const json structure = job.value("result_key", json::object()).value("structure", json());
+        const std::string text = structure.is_null() ? "not recorded (a job of an older bvhlab)" : describeStructure(structure);
+        auto it = std::find_if(byAccel.begin(), byAccel.end(), [&](const auto& a) { return a.first == accel; });
+        if (it == byAccel.end()) it = byAccel.insert(byAccel.end(), {accel, {}});
+        auto same = std::find_if(it->second.begin(), it->second.end(), [&](const auto& d) { return d.first == text; });
+        if (same == it->second.end()) it->second.push_back({text, {scene}});
+        else same->second.push_back(scene);
+    }
+    std::vector<std::string> lines;
+    for (const auto& [accel, descriptions] : byAccel)
+        for (const auto& [text, scenes] : descriptions)
+            lines.push_back(descriptions.size() == 1 ? fmt::format("- `{}`: {}", accel, text)
+                                                     : fmt::format("- `{}` ({}): {}", accel, fmt::join(scenes, ", "), text));
+    return lines;
 }
 
 std::string readText(const std::filesystem::path& file) {
@@ -218,6 +245,7 @@ BatchTables makeBatchTables(const std::vector<json>& jobs, size_t batchJobs) {
     md += fmt::format("# bvhlab batch: {} scenes x {} accelerators, without and with shadows\n\n", scenes.size(),
                       accels.size());
     md += fmt::format("Settings: {}.\n\n", fmt::join(settings, ", "));
+    md += fmt::format("Structures, with their own settings:\n{}\n\n", fmt::join(structureLines(jobs), "\n"));
     for (const std::string& w : t.warnings) md += fmt::format("**Warning:** {}.\n\n", w);
     md += "| scene | accel | | #Prims | #Leaves | #Nodes | SAH | T_B [ms] | T_R [µs] | N_IT | N_TR | N_Q | render [ms] |\n";
     md += "|:--|:--|:--|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
@@ -227,7 +255,8 @@ BatchTables makeBatchTables(const std::vector<json>& jobs, size_t batchJobs) {
             continue;
         }
         if (!r.shadows)
-            md += fmt::format("| {} | {} | | {} | {} | {} | {} | {} ", r.scene, r.accel, cell(r.prims, "{}"),
+            md += fmt::format("| {} | {}{} | | {} | {} | {} | {} | {} ", r.scene, r.accel,
+                              unoptimised(r.structure) ? " (unoptimised)" : "", cell(r.prims, "{}"),
                               cell(r.leaves, "{}"), cell(r.nodes, "{}"), cell(r.sah, "{:.2f}"), cell(r.buildMs, "{:.1f}"));
         else
             md += "| | | + shadows | | | | | ";
@@ -253,13 +282,27 @@ BatchTables makeBatchTables(const std::vector<json>& jobs, size_t batchJobs) {
     md += "\n";
 
     // CSV: every column on both rows.
-    // CSV: every column on both rows; a failed job's one row has only its reason.
-    t.csv = "scene,accel,shadows,prims,leaves,nodes,sah,t_b_ms,t_r_us,n_it,n_tr,n_q,render_ms,failed\n";
-    for (const Row& r : rows)
-        t.csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", csvText(r.scene), csvText(r.accel),
+    // CSV: every column on both rows; a failed job's one row has only its reason. The structure's
+    // own settings as KEY=value;KEY=value, its plugin's file, CRC-32 and whether it was optimised
+    // (empty for bvhlab's own).
+    t.csv = "scene,accel,shadows,prims,leaves,nodes,sah,t_b_ms,t_r_us,n_it,n_tr,n_q,render_ms,settings,plugin,"
+            "plugin_crc32,plugin_optimized,failed\n";
+    for (const Row& r : rows) {
+        std::vector<std::string> settings;
+        const json plugin = r.structure.is_object() ? r.structure.at("plugin") : json();
+        if (r.structure.is_object())
+            for (const auto& [key, value] : r.structure.at("keys").items())
+                settings.push_back(key + "=" + value.get<std::string>());
+        t.csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", csvText(r.scene), csvText(r.accel),
                              r.failed.empty() ? (r.shadows ? "true" : "false") : "", csvCell(r.prims),
                              csvCell(r.leaves), csvCell(r.nodes), csvCell(r.sah), csvCell(r.buildMs), csvCell(r.trUs),
-                             csvCell(r.nIt), csvCell(r.nTr), csvCell(r.nQ), csvCell(r.renderMs), csvText(r.failed));
+                             csvCell(r.nIt), csvCell(r.nTr), csvCell(r.nQ), csvCell(r.renderMs),
+                             csvText(fmt::format("{}", fmt::join(settings, ";"))),
+                             plugin.is_null() ? "" : csvText(plugin.at("file").get<std::string>()),
+                             plugin.is_null() ? "" : plugin.at("crc32").get<std::string>(),
+                             plugin.is_null() ? "" : plugin.at("optimized").get<bool>() ? "true" : "false",
+                             csvText(r.failed));
+    }
 
     // JSON: the table's rows, and per job primary and shadow queries apart.
     json& j = t.json;
@@ -273,7 +316,7 @@ BatchTables makeBatchTables(const std::vector<json>& jobs, size_t batchJobs) {
         j["rows"].push_back({{"scene", r.scene}, {"accel", r.accel}, {"shadows", r.shadows}, {"prims", r.prims},
                              {"leaves", r.leaves}, {"nodes", r.nodes}, {"sah", r.sah}, {"t_b_ms", r.buildMs},
                              {"t_r_us", r.trUs}, {"n_it", r.nIt}, {"n_tr", r.nTr}, {"n_q", r.nQ},
-                             {"render_ms", r.renderMs}});
+                             {"render_ms", r.renderMs}, {"structure", r.structure}});
     }
     for (const json& job : jobs) {
         if (jobFailed(job)) {
@@ -329,7 +372,7 @@ BatchTables writeBatchResults(const std::filesystem::path& dir) {
     }
     std::vector<std::string> settings;  // the few that fit in the title
     for (const std::string& s : t.json["settings"].get<std::vector<std::string>>())
-        for (const char* key : {"image", "threads", "maxLeaf", "sahTermination"})
+        for (const char* key : {"image", "threads"})
             if (s.find(key) != std::string::npos) settings.push_back(s);
     writeContactSheet(dir / "contact_sheet.png", sheet,
                       fmt::format("bvhlab batch: {} scenes x {}; {}", sheet.size(), fmt::join(accels, ", "),

@@ -30,9 +30,13 @@ std::string shardsScript(const SlurmBatch& b, const std::filesystem::path& scrip
 # runs jobs I, I+{n}, I+2*{n}, ... into shards/I and, only when that succeeds, leaves
 # slurm/shard-I.done, which merge.sbatch checks. Submitted with
 #   sbatch --parsable {args}{script}
-# One shard again: sbatch --array=I {args}{script}, then merge.sbatch after it.
+# One shard again: sbatch --array=I {args}{script}, then merge.sbatch after it. A shard that is
+# requeued (preempted, or its node failed) runs the same command again, which keeps the jobs it
+# finished and runs the rest; its log goes on after the first attempt's lines.
 #SBATCH --job-name=bvhlab-shard
 #SBATCH --array=0-{last}
+#SBATCH --requeue
+#SBATCH --open-mode=append
 {cpus}#SBATCH --output={log}
 out={out}
 shard=$SLURM_ARRAY_TASK_ID

@@ -14,8 +14,10 @@
 #include "accel/registry.h"
 #include "apps/cli/command_line.h"
 #include "apps/cli/commands.h"
+#include "apps/measure/bench_resume.h"
 #include "apps/measure/nothing_accelerator.h"
 #include "apps/runtime/accel_config.h"
+#include "apps/runtime/atomic_write.h"
 #include "apps/runtime/build_watch.h"
 #include "apps/runtime/child_job.h"
 #include "apps/runtime/comma_list.h"
@@ -36,13 +38,13 @@
 #include "framework/report/provenance.h"
 
 #include <fmt/core.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 #include <tbb/info.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <chrono>
-#include <fstream>
 #include <map>
 #include <sstream>
 
@@ -265,11 +267,16 @@ std::string yardstickOf(const nlohmann::json& row) {
 // One line per scene x threads x structure x kind of query, then the geometric means of the
 // ratios. xE is the ratio to the row's yardstick (embree-bare for single rows, embree-batch for
 // batch rows: Embree as its users call it), xER to embree-robust asked the same way (through
-// our interface); embree-batch's line ends with the API it kept per ray set.
-std::string benchTable(const nlohmann::json& results) {
+// our interface); embree-batch's line ends with the API it kept per ray set. Only the rows of the
+// structures in `shown` (what --accel chose, so that one plugin's comparison is not buried under
+// the reference rows), then what each of them is: its own settings, its plugin.
+std::string benchTable(const nlohmann::json& results, const std::vector<std::string>& shown) {
+    const auto isShown = [&](const nlohmann::json& row) {
+        return row.contains("accel") && std::find(shown.begin(), shown.end(), row["accel"].get<std::string>()) != shown.end();
+    };
     size_t accelWidth = 14;
     for (const nlohmann::json& row : results["rows"])
-        if (!row.contains("failed")) accelWidth = std::max(accelWidth, row["accel"].get<std::string>().size());
+        if (isShown(row)) accelWidth = std::max(accelWidth, row["accel"].get<std::string>().size());
     std::string out = fmt::format("{:<16} {:>3} {:<{}} {:<6} {:>9} {:>6} {:>8} {:>6} {:>6} {:>8} {:>6} {:>6} {:>8} {:>6} {:>6} "
                                   "{:>6} {:>6} {:>8} {:>7} {:>7}\n",
                                   "scene", "thr", "accel", accelWidth, "query", "T_B ms", "xE", "prim us", "xE", "xER", "shad us",
@@ -280,6 +287,7 @@ std::string benchTable(const nlohmann::json& results) {
             out += fmt::format("{:<16} failed: {}\n", row["scene"].get<std::string>(), row["failed"].get<std::string>());
             continue;
         }
+        if (!isShown(row)) continue;
         const nlohmann::json& e = ratiosTo(row, yardstickOf(row));
         const nlohmann::json& er = ratiosTo(row, "embree-robust");
         out += fmt::format("{:<16} {:>3} {:<{}} {:<6} {:>9.1f} {:>6} {:>8.3f} {:>6} {:>6} {:>8.3f} {:>6} {:>6} "
@@ -322,6 +330,18 @@ std::string benchTable(const nlohmann::json& results) {
         }
         out += "\n";
     }
+    if (results["scenes"].empty()) return out;
+    out += "\nstructures, with their own settings:\n";
+    const nlohmann::json& structures = results["scenes"].front()["result_key"]["structures"];
+    for (const std::string& label : shown)
+        if (structures.contains(label)) out += fmt::format("  {}: {}\n", label, describeStructure(structures[label]));
+    std::vector<std::string> hidden;
+    for (const nlohmann::json& row : results["rows"])
+        if (row.contains("accel") && !isShown(row) && std::find(hidden.begin(), hidden.end(), row["accel"]) == hidden.end())
+            hidden.push_back(row["accel"].get<std::string>());
+    if (!hidden.empty())
+        out += fmt::format("the reference rows ({}) are in the JSON; --reference-rows shows them here\n",
+                           fmt::join(hidden, ", "));
     return out;
 }
 
@@ -336,6 +356,8 @@ void addBenchCommand(CLI::App& app) {
         std::string queries = "single,batch";
         int builds = 5, passes = 5;
         std::string out = "out/bench.json";
+        bool fresh = false;
+        bool referenceRows = false;
         double jobTimeout = 0;
         ChildJob child;
     };
@@ -356,6 +378,12 @@ void addBenchCommand(CLI::App& app) {
     command->add_option("--builds", options->builds, "builds per structure (median)")->capture_default_str()->check(CLI::Range(1, 1000));
     command->add_option("--passes", options->passes, "passes over each ray set (median)")->capture_default_str()->check(CLI::Range(1, 1000));
     command->add_option("--out", options->out, "JSON results")->capture_default_str();
+    command->add_flag("--reference-rows", options->referenceRows,
+                      "show the reference rows in the table too (those --accel did not choose: Embree through our "
+                      "interface and its own, the nothing rows); the JSON always has them");
+    command->add_flag("--fresh", options->fresh,
+                      "measure every scene again; without it, a scene whose rows --out holds with the same result key "
+                      "(program, structures and their plugins, scene, rounds) is kept as a whole");
     addJobTimeoutOption(*command, options->jobTimeout);
     addChildJobOptions(*command, options->child);
     command->callback([options] {
@@ -434,21 +462,59 @@ void addBenchCommand(CLI::App& app) {
                                       {"run", runJson()},
                                       {"builds", options->builds},
                                       {"passes", options->passes},
+                                      {"scenes", nlohmann::json::array()},
                                       {"rows", nlohmann::json::array()}};
             const std::filesystem::path out = prepareOutputFile(options->out);
+
+            // Each scene's result key first (bench_resume.h): the scenes --out holds with it are kept.
+            nlohmann::json measurement = {{"command", "bench"}, {"builds", options->builds}, {"passes", options->passes},
+                                          {"threads", threadCounts}, {"queries", nlohmann::json::array()}};
+            for (QueryKind kind : kinds) measurement["queries"].push_back(toString(kind));
+            const EarlierBench earlier(options->fresh ? std::filesystem::path() : out);
+            std::vector<nlohmann::json> keys;
+            std::vector<bool> keep;
+            ResumeCount resume;
+            for (const SceneArgument& scene : scenes) {
+                keys.push_back(benchSceneKey(configs, scene.load(options->env), measurement));
+                const StoredResult stored = options->fresh ? StoredResult{false, "of --fresh"} : earlier.check(scene.id, keys.back());
+                resume.add(stored);
+                keep.push_back(stored.keep);
+            }
+            fmt::print(stderr, "bench: {}\n", resume.summary("scenes", "measure"));
+
             for (size_t s = 0; s < scenes.size(); ++s) {
-                const JobOutcome outcome = runJobInChild(std::to_string(s), options->jobTimeout);
-                if (outcome.passed()) {
-                    for (const nlohmann::json& row : outcome.result) results["rows"].push_back(row);
+                if (keep[s]) {
+                    results["scenes"].push_back(earlier.scene(scenes[s].id));
+                    for (nlohmann::json& row : earlier.rows(scenes[s].id)) results["rows"].push_back(std::move(row));
                     continue;
                 }
-                ++failed;
-                fmt::print(stderr, "[{}/{}] {}: failed: {}\n", s + 1, scenes.size(), scenes[s].id, outcome.failure());
-                results["rows"].push_back({{"scene", scenes[s].id}, {"failed", outcome.failure()}});
+                const JobOutcome outcome = runJobInChild(std::to_string(s), options->jobTimeout);
+                if (outcome.passed()) {
+                    for (nlohmann::json row : outcome.result) {
+                        row["scene_id"] = scenes[s].id;
+                        // What ran: the structure with its own settings and plugin (none for Embree's own
+                        // APIs and the nothing rows, which are no structure of --accel).
+                        row["structure"] = keys[s]["structures"].value(row["accel"].get<std::string>(), nlohmann::json());
+                        results["rows"].push_back(std::move(row));
+                    }
+                    const std::string name = outcome.result.empty() ? scenes[s].id : outcome.result[0]["scene"].get<std::string>();
+                    results["scenes"].push_back({{"id", scenes[s].id}, {"name", name}, {"result_key", keys[s]}});
+                } else {
+                    ++failed;
+                    fmt::print(stderr, "[{}/{}] {}: failed: {}\n", s + 1, scenes.size(), scenes[s].id, outcome.failure());
+                    results["rows"].push_back({{"scene", scenes[s].id}, {"scene_id", scenes[s].id}, {"failed", outcome.failure()}});
+                }
+                // Written after each scene, so that an interrupted bench keeps the scenes it finished.
+                writeFileAtomically(out, results.dump(2) + "\n");
             }
             results["failed_jobs"] = failed;
-            std::ofstream(out) << results.dump(2) << "\n";
-            fmt::print("{}", benchTable(results));
+            writeFileAtomically(out, results.dump(2) + "\n");
+            std::vector<std::string> shown;
+            for (const AccelConfig& config : parseAccelConfigList(options->accels)) shown.push_back(config.label);
+            if (options->referenceRows)
+                for (const nlohmann::json& row : results["rows"])
+                    if (!row.contains("failed")) shown.push_back(row["accel"].get<std::string>());
+            fmt::print("{}", benchTable(results, shown));
             fmt::print(stderr, "wrote {}\n", out.string());
             if (failed) fmt::print(stderr, "bench: {} of {} scenes failed\n", failed, scenes.size());
         });

@@ -214,6 +214,8 @@ std::string writeBuildersReport(const std::filesystem::path& dir, const std::vec
                               marks(r.pareto));
         }
 
+    md += structuresMeasured(dir, sceneIds, configs);
+
     md += "\nOver the scenes measured (geometric means of the per-scene ratios; Pareto over these means):\n\n"
           "| config | scenes | T_B / medium | T_R / medium p / s / i | T_R / high | T_R / bare | Pareto |\n"
           "|---|---:|---:|---|---|---|---|\n";

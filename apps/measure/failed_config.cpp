@@ -3,6 +3,7 @@
 #include "apps/runtime/table_text.h"
 
 #include <fmt/core.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 
@@ -25,11 +26,15 @@ std::string failedConfigCsvRow(const json& stored, const std::string& header) {
     return row + csvText(stored.at("failed").get<std::string>()) + "\n";
 }
 
+std::vector<std::string> failedConfigCells(const json& stored, size_t columns) {
+    std::vector<std::string> cells = {stored.at("scene").get<std::string>(), stored.at("config").get<std::string>(),
+                                      "failed: " + markdownText(stored.at("failed").get<std::string>())};
+    cells.resize(std::max(columns, cells.size()), "n/a");
+    return cells;
+}
+
 std::string failedConfigMarkdownRow(const json& stored, size_t columns) {
-    std::string row = fmt::format("| {} | {} | failed: {} |", stored.at("scene").get<std::string>(),
-                                  stored.at("config").get<std::string>(), markdownText(stored.at("failed").get<std::string>()));
-    for (size_t c = 3; c < columns; ++c) row += " |";
-    return row + "\n";
+    return fmt::format("| {} |\n", fmt::join(failedConfigCells(stored, columns), " | "));
 }
 
 }  // namespace bvhlab

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include <string>
+#include <vector>
 
 namespace bvhlab {
 
@@ -21,8 +22,11 @@ bool isFailedConfig(const nlohmann::json& stored);
 // accel, its last one "failed"): those three, empty cells, the reason last.
 std::string failedConfigCsvRow(const nlohmann::json& stored, const std::string& header);
 
-// Its row of a Markdown table of `columns` columns, the first two scene and config:
-// "| scene | config | failed: REASON |" and empty cells.
+// Its cells in a Markdown table of `columns` columns, the first two scene and config: those two,
+// "failed: REASON", then "n/a".
+std::vector<std::string> failedConfigCells(const nlohmann::json& stored, size_t columns);
+
+// The same cells as one Markdown row.
 std::string failedConfigMarkdownRow(const nlohmann::json& stored, size_t columns);
 
 }  // namespace bvhlab

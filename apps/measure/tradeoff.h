@@ -74,7 +74,7 @@ std::unique_ptr<Accelerator> referenceEmbree(const Scene& scene, const Env& env)
 // renders the reference image or reads it from DIR/<id>/reference.exr when it was made with
 // the same settings.
 TradeoffScene prepareTradeoffScene(const std::string& id, const Env& sceneEnv, const TradeoffSettings& settings,
-                                   const std::filesystem::path& sceneDir, const nlohmann::json& fingerprint);
+                                   const std::filesystem::path& sceneDir, const nlohmann::json& referenceKey);
 
 // The builds of one configuration: up to settings.builds, fewer once they have taken
 // buildBudgetMs; the last structure is kept for the traces.
@@ -99,6 +99,12 @@ struct ImageError {
     size_t pixelsDiffering = 0;  // any channel differs by more than 1e-6
 };
 ImageError imageError(const std::vector<Vec3>& image, const std::vector<Vec3>& reference);
+
+// "Structures, with their own settings:" and a line per configuration measured into
+// DIR/<scene>/<config>.json: its own settings and its plugin, as its result key records them
+// (result_key.h: describeStructure).
+std::string structuresMeasured(const std::filesystem::path& dir, const std::vector<std::string>& sceneIds,
+                               const std::vector<AccelConfig>& configs);
 
 // Reads DIR/<scene>/<config>.json for every scene and configuration (missing ones are left
 // out), writes DIR/tradeoff.csv, DIR/image_error.csv and DIR/tradeoff.md, and returns the

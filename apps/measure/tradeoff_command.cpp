@@ -1,8 +1,9 @@
 // `bvhlab tradeoff [--scenes ...] [--out DIR] [--quick] [--builders] [--resume | --fresh]`: run time
 // against error for tdbvh, sahbvh with K bins, sweepbvh and embree (see apps/measure/tradeoff.h), or
 // with --builders every builder against Embree's three qualities (apps/measure/builders.h). Results are kept
-// per configuration in DIR/<scene>/<config>.json; a run skips those already measured with the
-// same settings, so an interrupted run resumes where it stopped. Each configuration of a scene is
+// per configuration in DIR/<scene>/<config>.json with their result key (result_key.h); a run keeps
+// those whose key is this run's, so an interrupted run resumes where it stopped, and measures
+// again those of a changed program, plugin, setting or scene. Each configuration of a scene is
 // measured in a process of its own (apps/runtime/child_job.h): one that crashes, throws or runs
 // past --job-timeout is stored as a failed result with its reason, which the tables show and the
 // next run measures again, and the others go on.
@@ -17,6 +18,7 @@
 #include "apps/runtime/comma_list.h"
 #include "apps/runtime/output_paths.h"
 #include "apps/runtime/progress.h"
+#include "apps/runtime/result_key.h"
 #include "apps/runtime/scene_list.h"
 #include "framework/config/install_paths.h"
 #include "framework/core/error.h"
@@ -27,8 +29,7 @@
 
 #include <algorithm>
 #include <chrono>
-#include <fstream>
-#include <sstream>
+#include <map>
 
 namespace bvhlab {
 namespace {
@@ -48,24 +49,9 @@ std::vector<int> parseBins(const std::string& text) {
     return bins;
 }
 
-// What a stored result must match to be reused: the settings and the scene's resolved env
-// (values only; output switches and the cache folder do not change a measurement).
-json fingerprintOf(const TradeoffSettings& settings, const Env& env) {
-    json values = json::object();
-    const json resolved = env.toJson();
-    for (const auto& [key, entry] : resolved.items())
-        if (!changesNoFigure(key) && !key.starts_with("Batch::"))
-            values[key] = entry["value"];
-    return {{"settings", settings.toJson()}, {"env", values}};
-}
-
-bool storedMatches(const std::filesystem::path& file, const json& fingerprint) {
-    try {
-        std::ifstream in(file);
-        return json::parse(in).at("fingerprint") == fingerprint;
-    } catch (const std::exception&) {
-        return false;  // unreadable (e.g. written by an older version): measure again
-    }
+// The key of a scene's reference image (Embree's), which the scene's folder keeps for its jobs.
+json referenceKeyOf(const Env& sceneEnv, const TradeoffSettings& settings) {
+    return resultKey("embree", tradeoffSceneEnv(sceneEnv, settings, settings.raySize, settings.raySize), settings.toJson());
 }
 
 // The job of a child process, "S:C": configuration C of scene S (indices into the run's lists),
@@ -82,10 +68,9 @@ json measureConfigJob(const std::string& job, const std::vector<SceneArgument>& 
     const std::string& id = scenes[s].id;
     const Env sceneEnv = scenes[s].load(envOptions);
     if (settings.builders) return measureBuilderConfig(prepareBuildersScene(id, sceneEnv, settings), configs[c], settings);
-    const json fingerprint = fingerprintOf(settings, tradeoffSceneEnv(sceneEnv, settings, settings.raySize, settings.raySize));
-    return measureTradeoffConfig(prepareTradeoffScene(id, sceneEnv, settings, dir / id, fingerprint), configs[c], settings);
+    return measureTradeoffConfig(prepareTradeoffScene(id, sceneEnv, settings, dir / id, referenceKeyOf(sceneEnv, settings)),
+                                 configs[c], settings);
 }
-
 
 }  // namespace
 
@@ -178,22 +163,43 @@ void addTradeoffCommand(CLI::App& app) {
                 return;
             }
 
+            // Each configuration's result key first: what is kept, what is measured and why, said before
+            // the first measurement.
+            struct ScenePlan {
+                Env sceneEnv;
+                json referenceKey;                        // of Embree's reference image
+                std::map<std::string, json> resultKeys;  // by label
+                std::vector<AccelConfig> pending;
+            };
+            std::vector<ScenePlan> plans;
+            ResumeCount resume;
+            for (const SceneArgument& scene : scenes) {
+                ScenePlan plan{scene.load(options->env), {}, {}, {}};
+                const Env tradeoffEnv = tradeoffSceneEnv(plan.sceneEnv, settings, settings.raySize, settings.raySize);
+                for (const AccelConfig& config : configs) {
+                    const json key = plan.resultKeys[config.label] =
+                        resultKey(config.name, accelConfigEnv(config, tradeoffEnv), settings.toJson());
+                    const StoredResult stored = options->resume ? checkStoredResult(dir / scene.id / (labelAsFileName(config.label) + ".json"), key)
+                                                                : StoredResult{false, "of --fresh"};
+                    resume.add(stored);
+                    if (!stored.keep) plan.pending.push_back(config);
+                }
+                plan.referenceKey = referenceKeyOf(plan.sceneEnv, settings);
+                plans.push_back(std::move(plan));
+            }
+            fmt::print(stderr, "tradeoff: {}\n", resume.summary("configurations", "measure"));
+
             std::vector<std::string> ids;
-            size_t kept = 0, measured = 0;
+            size_t measured = 0;
             const size_t total = scenes.size() * configs.size();
             Progress progress;
             for (size_t i = 0; i < scenes.size(); ++i) {
                 const std::string& id = scenes[i].id;
                 ids.push_back(id);
-                const Env sceneEnv = scenes[i].load(options->env);
-                const json fingerprint = fingerprintOf(settings, tradeoffSceneEnv(sceneEnv, settings, settings.raySize, settings.raySize));
+                const Env& sceneEnv = plans[i].sceneEnv;
+                const std::map<std::string, json>& resultKeys = plans[i].resultKeys;
+                const std::vector<AccelConfig>& pending = plans[i].pending;
                 const std::filesystem::path sceneDir = dir / id;
-                std::vector<AccelConfig> pending;
-                for (const AccelConfig& config : configs) {
-                    const std::filesystem::path file = sceneDir / (labelAsFileName(config.label) + ".json");
-                    if (options->resume && std::filesystem::exists(file) && storedMatches(file, fingerprint)) ++kept;
-                    else pending.push_back(config);
-                }
                 progress.phase(fmt::format("[scene {}/{}] {}: {} of {} configurations to measure", i + 1, scenes.size(),
                                            id, pending.size(), configs.size()));
                 if (pending.empty()) continue;  // not even loaded
@@ -206,7 +212,7 @@ void addTradeoffCommand(CLI::App& app) {
                                                 [&](const AccelConfig& each) { return each.label == config.label; });
                     const JobOutcome outcome = runJobInChild(fmt::format("{}:{}", i, c - configs.begin()), options->jobTimeout);
                     json result = outcome.passed() ? outcome.result : failedConfigResult(id, config, outcome.failure());
-                    if (outcome.passed()) result["fingerprint"] = fingerprint;
+                    if (outcome.passed()) result["result_key"] = resultKeys.at(config.label);
                     result["measure_s"] = outcome.seconds;
                     writeFileAtomically(sceneDir / (labelAsFileName(config.label) + ".json"), result.dump(2) + "\n");
                     ++measured;
@@ -218,7 +224,7 @@ void addTradeoffCommand(CLI::App& app) {
                 };
                 auto eta = [&] {
                     const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
-                    const size_t left = total - kept - measured;
+                    const size_t left = total - resume.kept() - measured;
                     return fmt::format("{}, {} left, ETA {}", Progress::formatDuration(elapsed), left,
                                        Progress::formatDuration(elapsed / double(measured) * double(left)));
                 };
@@ -243,7 +249,7 @@ void addTradeoffCommand(CLI::App& app) {
                     continue;
                 }
                 {
-                    const TradeoffScene scene = prepareTradeoffScene(id, sceneEnv, settings, sceneDir, fingerprint);
+                    const TradeoffScene scene = prepareTradeoffScene(id, sceneEnv, settings, sceneDir, plans[i].referenceKey);
                     fmt::print(stderr, "  {}: {} triangles, {} primary and {} shadow rays, images {}x{}\n", id,
                                scene.scene.triangleCount(), scene.rays.primary.size(), scene.rays.shadow.size(),
                                scene.seriesCamera.width, scene.seriesCamera.height);
@@ -267,7 +273,7 @@ void addTradeoffCommand(CLI::App& app) {
                                                      : writeTradeoffReport(dir, ids, configs, settings);
             fmt::print("{}", md);
             fmt::print(stderr, "tradeoff: {} configurations measured, {} kept from an earlier run, in {}; wrote {}\n",
-                       measured, kept, Progress::formatDuration(std::chrono::duration<double>(Clock::now() - start).count()),
+                       measured, resume.kept(), Progress::formatDuration(std::chrono::duration<double>(Clock::now() - start).count()),
                        (dir / (settings.builders ? "builders.csv" : "tradeoff.csv")).string());
             if (failed) fmt::print(stderr, "tradeoff: {} of {} configurations measured failed\n", failed, measured);
         });

@@ -145,7 +145,7 @@ std::unique_ptr<Accelerator> referenceEmbree(const Scene& scene, const Env& env)
 }
 
 TradeoffScene prepareTradeoffScene(const std::string& id, const Env& sceneEnv, const TradeoffSettings& settings,
-                                   const std::filesystem::path& sceneDir, const json& fingerprint) {
+                                   const std::filesystem::path& sceneDir, const json& referenceKey) {
     TradeoffScene t;
     t.id = id;
     t.env = tradeoffSceneEnv(sceneEnv, settings, settings.raySize, settings.raySize);
@@ -176,7 +176,7 @@ TradeoffScene prepareTradeoffScene(const std::string& id, const Env& sceneEnv, c
     if (std::filesystem::exists(info) && std::filesystem::exists(base.string() + ".exr")) {
         try {
             std::ifstream in(info);
-            if (json::parse(in).at("fingerprint") == fingerprint) {
+            if (json::parse(in).at("result_key") == referenceKey) {
                 t.referenceImage = readImage(base.string() + ".exr", w, h);
                 fmt::print(stderr, "  {}: reference image read from {}.exr\n", id, base.string());
             }
@@ -196,7 +196,7 @@ TradeoffScene prepareTradeoffScene(const std::string& id, const Env& sceneEnv, c
                                        {"height", h},
                                        {"samples", settings.referenceSpp},
                                        {"render_ms", ms},
-                                       {"fingerprint", fingerprint}}
+                                       {"result_key", referenceKey}}
                                           .dump(2) + "\n");
         fmt::print(stderr, "  {}: reference image ({}x{}, {} spp, Embree) rendered in {:.1f} s\n", id, w, h,
                    settings.referenceSpp, ms * 1e-3);

@@ -4,9 +4,12 @@
 #include "apps/measure/tradeoff.h"
 #include "apps/runtime/atomic_write.h"
 #include "apps/runtime/output_paths.h"
+#include "apps/runtime/result_key.h"
 
 #include <fmt/core.h>
+#include <fmt/ranges.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -40,6 +43,27 @@ json geoMean(const std::vector<json>& values) {
     return n ? json(std::exp(logSum / n)) : json();
 }
 
+// A Markdown table of `rows` under `headers` (with their alignments, "---" or "---:"), without the
+// columns that are n/a in every row: a run without sweepbvh has no gap, one without sahbvh no
+// build ratio, and a column of n/a would only push the measured ones apart.
+std::string markdownTable(const std::vector<std::string>& headers, const std::vector<std::string>& alignments,
+                          const std::vector<std::vector<std::string>>& rows) {
+    std::vector<size_t> kept;
+    for (size_t c = 0; c < headers.size(); ++c)
+        if (rows.empty() || std::any_of(rows.begin(), rows.end(), [&](const auto& row) { return row[c] != "n/a"; }))
+            kept.push_back(c);
+    auto line = [&](const std::vector<std::string>& cells) {
+        std::string text = "|";
+        for (size_t c : kept) text += " " + cells[c] + " |";
+        return text + "\n";
+    };
+    std::string table = line(headers) + "|";
+    for (size_t c : kept) table += alignments[c] + "|";
+    table += "\n";
+    for (const std::vector<std::string>& row : rows) table += line(row);
+    return table;
+}
+
 // One row of tradeoff.csv: the stored JSON flattened, with the gap to sweepbvh.
 struct Row {
     json stored;
@@ -56,6 +80,22 @@ struct Row {
 };
 
 }  // namespace
+
+std::string structuresMeasured(const std::filesystem::path& dir, const std::vector<std::string>& sceneIds,
+                               const std::vector<AccelConfig>& configs) {
+    std::string md = "\nStructures, with their own settings:\n\n";
+    for (const AccelConfig& config : configs)
+        for (const std::string& scene : sceneIds) {
+            const std::filesystem::path file = dir / scene / (config.label + ".json");
+            if (!std::filesystem::exists(file)) continue;
+            std::ifstream in(file);
+            const json key = json::parse(in).value("result_key", json::object());
+            md += fmt::format("- `{}`: {}\n", config.label,
+                              key.contains("structure") ? describeStructure(key["structure"]) : "not recorded");
+            break;
+        }
+    return md;
+}
 
 std::string writeTradeoffReport(const std::filesystem::path& dir, const std::vector<std::string>& sceneIds,
                                 const std::vector<AccelConfig>& configs, const TradeoffSettings& settings) {
@@ -158,36 +198,37 @@ std::string writeTradeoffReport(const std::filesystem::path& dir, const std::vec
         settings.threads, settings.builds, settings.buildBudgetMs * 1e-3, settings.passes,
         settings.raySize > 0 ? fmt::format("{}x{}", settings.raySize, settings.raySize) : std::string("scene-sized"), w, w,
         maxSpp, settings.referenceSpp);
-    md += fmt::format("| scene | config | T_B [ms] | SAH | gap [%] | T_R primary [µs] | T_R shadow [µs] | image 1 spp [ms] "
-                      "| image {} spp [ms] | mismatches primary / shadow |\n",
-                      maxSpp);
-    md += "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    std::vector<std::vector<std::string>> sceneRows;
     for (const std::string& scene : sceneIds)
         for (const AccelConfig& config : configs) {
             if (failures[scene].count(config.label)) {
-                md += failedConfigMarkdownRow(failures[scene][config.label], 10);
+                sceneRows.push_back(failedConfigCells(failures[scene][config.label], 10));
                 continue;
             }
             if (!rows[scene].count(config.label)) continue;
             const Row& r = rows[scene][config.label];
-            md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} / {} |\n", scene, config.label,
-                              shown(r.at("build_cpu_ms"), "{:.1f}"), shown(r.at("sah"), "{:.2f}"),
-                              r.gap.is_null() ? "n/a" : fmt::format("{:+.2f}", 100.0 * r.gap.get<double>()),
-                              shown(r.stored["primary"]["t_r_cpu_us"], "{:.3f}"), shown(r.stored["shadow"]["t_r_cpu_us"], "{:.3f}"),
-                              shown(r.series(0, "time_to_image_cpu_ms"), "{:.0f}"), shown(r.lastSeries("time_to_image_cpu_ms"), "{:.0f}"),
-                              cell(r.stored["primary"]["mismatches"]), cell(r.stored["shadow"]["mismatches"]));
+            sceneRows.push_back({scene, config.label, shown(r.at("build_cpu_ms"), "{:.1f}"), shown(r.at("sah"), "{:.2f}"),
+                                 r.gap.is_null() ? "n/a" : fmt::format("{:+.2f}", 100.0 * r.gap.get<double>()),
+                                 shown(r.stored["primary"]["t_r_cpu_us"], "{:.3f}"),
+                                 shown(r.stored["shadow"]["t_r_cpu_us"], "{:.3f}"),
+                                 shown(r.series(0, "time_to_image_cpu_ms"), "{:.0f}"),
+                                 shown(r.lastSeries("time_to_image_cpu_ms"), "{:.0f}"),
+                                 fmt::format("{} / {}", cell(r.stored["primary"]["mismatches"]),
+                                             cell(r.stored["shadow"]["mismatches"]))});
         }
+    md += markdownTable({"scene", "config", "T_B [ms]", "SAH", "gap [%]", "T_R primary [µs]", "T_R shadow [µs]",
+                         "image 1 spp [ms]", fmt::format("image {} spp [ms]", maxSpp), "mismatches primary / shadow"},
+                        {"---", "---", "---:", "---:", "---:", "---:", "---:", "---:", "---:", "---:"}, sceneRows);
+
+    md += structuresMeasured(dir, sceneIds, configs);
 
     // The summary: gaps averaged; times as geometric means of per-scene ratios.
     std::string k16 = "sahbvh-K16";
     if (std::none_of(configs.begin(), configs.end(), [&](const AccelConfig& c) { return c.label == k16; }))
         for (const AccelConfig& c : configs)
             if (c.name == "sahbvh") { k16 = c.label; break; }
-    md += fmt::format("\nOver the scenes measured (gaps: mean and max; times: geometric mean of the per-scene ratios):\n\n"
-                      "| config | scenes | gap mean [%] | gap max [%] | T_B / T_B({}) | T_R primary / sweepbvh | "
-                      "T_R shadow / sweepbvh | image 1 spp / embree | image {} spp / embree | mismatches |\n"
-                      "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n",
-                      k16, maxSpp);
+    md += "\nOver the scenes measured (gaps: mean and max; times: geometric mean of the per-scene ratios):\n\n";
+    std::vector<std::vector<std::string>> summaryRows;
     for (const AccelConfig& config : configs) {
         std::vector<json> build, trp, trs, img1, imgMax;
         double gapSum = 0.0, gapMax = -INFINITY;
@@ -211,12 +252,16 @@ std::string writeTradeoffReport(const std::filesystem::path& dir, const std::vec
             mismatches += r.stored["primary"].value("mismatches", 0LL) + r.stored["shadow"].value("mismatches", 0LL);
         }
         if (!scenes) continue;
-        md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", config.label, scenes,
-                          gaps ? fmt::format("{:+.2f}", 100.0 * gapSum / gaps) : "n/a",
-                          gaps ? fmt::format("{:+.2f}", 100.0 * gapMax) : "n/a", shown(geoMean(build), "{:.2f}"),
-                          shown(geoMean(trp), "{:.2f}"), shown(geoMean(trs), "{:.2f}"), shown(geoMean(img1), "{:.2f}"),
-                          shown(geoMean(imgMax), "{:.2f}"), mismatches);
+        summaryRows.push_back({config.label, std::to_string(scenes),
+                               gaps ? fmt::format("{:+.2f}", 100.0 * gapSum / gaps) : "n/a",
+                               gaps ? fmt::format("{:+.2f}", 100.0 * gapMax) : "n/a", shown(geoMean(build), "{:.2f}"),
+                               shown(geoMean(trp), "{:.2f}"), shown(geoMean(trs), "{:.2f}"), shown(geoMean(img1), "{:.2f}"),
+                               shown(geoMean(imgMax), "{:.2f}"), std::to_string(mismatches)});
     }
+    md += markdownTable({"config", "scenes", "gap mean [%]", "gap max [%]", fmt::format("T_B / T_B({})", k16),
+                         "T_R primary / sweepbvh", "T_R shadow / sweepbvh", "image 1 spp / embree",
+                         fmt::format("image {} spp / embree", maxSpp), "mismatches"},
+                        {"---", "---:", "---:", "---:", "---:", "---:", "---:", "---:", "---:", "---:"}, summaryRows);
 
     md += "\nImage error against the reference: PSNR [dB] per samples per pixel (the same for every structure; "
           "largest RMSE spread over structures in the last column)\n\n| scene |";

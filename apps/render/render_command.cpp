@@ -3,6 +3,7 @@
 
 #include "accel/registry.h"
 #include "apps/cli/command_line.h"
+#include "apps/runtime/accel_config.h"
 #include "apps/runtime/app_keys.h"
 #include "apps/runtime/build_accelerator.h"
 #include "apps/runtime/output_paths.h"
@@ -44,6 +45,8 @@ void addRenderCommand(CLI::App& app) {
         const int code = runGuarded([&] {
             const SceneChoice choice = chooseScene(options->scene, options->sceneEnv, options->env);
             const Env env = choice.load(options->env);
+            for (const std::string& warning : unreadKeyWarnings({parseAccelConfig(env.get(keys::ASDS::type))}, env))
+                fmt::print(stderr, "warning: {}\n", warning);
             const std::filesystem::path out = prepareOutputFile(options->out);
             if (!choice.envFile.empty()) fmt::print(stderr, "scene env: {}\n", choice.envFile.string());
 

@@ -7,6 +7,7 @@
 #include "framework/core/error.h"
 
 #include <fmt/ranges.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 
@@ -65,6 +66,46 @@ void checkAccelConfigs(const std::vector<AccelConfig>& configs, const Env& base,
             checkKeyIsNotAnUnloadedPlugins(o.substr(0, o.find('=')), fmt::format("{} {}", option, typed(config)));
         accelConfigEnv(config, base, option);
     }
+    for (const std::string& warning : unreadKeyWarnings(configs, base, option))
+        fmt::print(stderr, "warning: {}\n", warning);
+}
+
+std::vector<std::string> acceleratorsReading(const std::string& key) {
+    std::vector<std::string> readers;
+    for (const AcceleratorInfo& info : acceleratorInfos())
+        if (std::find(info.envKeys.begin(), info.envKeys.end(), key) != info.envKeys.end()) readers.push_back(info.name);
+    return readers;
+}
+
+namespace {
+
+bool reads(const std::string& accelerator, const std::string& key) {
+    const std::vector<std::string> readers = acceleratorsReading(key);
+    return std::find(readers.begin(), readers.end(), accelerator) != readers.end();
+}
+
+}  // namespace
+
+std::vector<std::string> unreadKeyWarnings(const std::vector<AccelConfig>& configs, const Env& base,
+                                           const std::string& option) {
+    std::vector<std::string> chosen, warnings;
+    for (const AccelConfig& config : configs)
+        if (std::find(chosen.begin(), chosen.end(), config.name) == chosen.end()) chosen.push_back(config.name);
+    const nlohmann::json values = base.toJson();
+    for (const auto& [key, entry] : values.items()) {
+        if (!entry.at("from").get<std::string>().starts_with("-D") || acceleratorsReading(key).empty()) continue;
+        if (std::none_of(chosen.begin(), chosen.end(), [&](const std::string& name) { return reads(name, key); }))
+            warnings.push_back(fmt::format("{} is read by none of the chosen structures ({}); it is ignored", key,
+                                           fmt::join(chosen, ", ")));
+    }
+    for (const AccelConfig& config : configs)
+        for (const std::string& o : config.overrides) {
+            const std::string key = o.substr(0, o.find('='));
+            if (!acceleratorsReading(key).empty() && !reads(config.name, key))
+                warnings.push_back(fmt::format("{} {}: {} is not read by {}; it is ignored", option, typed(config), key,
+                                               config.name));
+        }
+    return warnings;
 }
 
 }  // namespace bvhlab

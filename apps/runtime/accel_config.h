@@ -38,7 +38,18 @@ Env accelConfigEnv(const AccelConfig& config, const Env& base, const std::string
 
 // Checks every config before any work (a subcommand calls it first): a registered accelerator
 // (its plugin loaded by name if need be), overrides that accelConfigEnv takes. Throws InputError
-// naming the option and the config.
+// naming the option and the config. Warns on stderr of the keys that change nothing
+// (unreadKeyWarnings).
 void checkAccelConfigs(const std::vector<AccelConfig>& configs, const Env& base, const std::string& option = "--accel");
+
+// The accelerators that read `key` (AcceleratorInfo::envKeys); none for a key of the framework's
+// or a command's.
+std::vector<std::string> acceleratorsReading(const std::string& key);
+
+// A key that only structures read, set where it reaches none that reads it: a -D key in `base`
+// that none of the configs' accelerators reads ("BVH::maxLeaf is read by none of the chosen
+// structures (scan); it is ignored"), and a config's own key that its accelerator does not read.
+std::vector<std::string> unreadKeyWarnings(const std::vector<AccelConfig>& configs, const Env& base,
+                                           const std::string& option = "--accel");
 
 }  // namespace bvhlab

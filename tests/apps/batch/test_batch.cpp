@@ -3,11 +3,14 @@
 // of one run (timings aside); a corrupt cache entry is ignored; bad --shard values are errors;
 // a folder holds one batch (another is refused, the same one resumed), and its tables count and
 // order what they show; a scene's heat maps share one scale; two shards racing on one scene
-// through a shared cache holding a half-written entry each get the whole scene.
+// through a shared cache holding a half-written entry each get the whole scene; the tables say
+// what ran (each structure's own settings, its plugin, an unoptimised mark) and a -D key that no
+// chosen structure reads is a warning.
 #include "framework/io/image_io.h"
 #include "tests/support/batch_results.h"
 #include "tests/support/batch_scenes.h"
 #include "tests/support/cli_run.h"
+#include "tests/support/scan_plugin.h"
 #include "tests/support/text_count.h"
 #include "tests/support/test_paths.h"
 
@@ -60,7 +63,8 @@ TEST(Batch, RunWritesTablesImagesAndContactSheet) {
     const auto csv = csvWithoutTimings(out / "results.csv");
     ASSERT_EQ(csv.size(), 9u);
     EXPECT_EQ(csv[0], (std::vector<std::string>{"scene", "accel", "shadows", "prims", "leaves", "nodes", "sah", "n_it",
-                                                "n_tr", "n_q", "failed"}));
+                                                "n_tr", "n_q", "settings", "plugin", "plugin_crc32",
+                                                "plugin_optimized", "failed"}));
     EXPECT_EQ(csv[1][0], "first");
     EXPECT_EQ(csv[1][2], "false");
     EXPECT_EQ(csv[2][2], "true");
@@ -351,4 +355,41 @@ TEST(Batch, HeatmapsOfASceneShareOneScale) {
     const nlohmann::json job = readJson(dir / "fixed" / "jobs" / "second__sahbvh.json");
     EXPECT_EQ(job["runs"]["shadows"]["heatmap"]["scale"], 30.0);
     EXPECT_EQ(job["runs"]["shadows"]["heatmap"]["scale_from"], "Output::heatmapScale");
+}
+
+TEST(Batch, TablesSayWhatRan) {
+    const fs::path dir = makeScenes("what_ran");
+    const fs::path plugin = test::installScan(dir, 1);
+    fs::copy_file(test::testPlugins() + "/scan-unoptimised/scan.so", plugin, fs::copy_options::overwrite_existing);
+    const std::string args = "batch --scenes " + (dir / "scenes.list").string() + " --plugin " + plugin.string() +
+                             " -DScene::cacheDir= -DBVH::maxLeaf=3 --out " + (dir / "out").string();
+    // A key no chosen structure reads is said, naming the key and the structures.
+    Result r = run(args + " --accel scan");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("warning: BVH::maxLeaf is read by none of the chosen structures (scan); it is ignored"),
+              std::string::npos) << r.output;
+    std::string md = readText(dir / "out" / "results.md");
+    EXPECT_EQ(md.find("BVH::"), std::string::npos) << md;
+    EXPECT_NE(md.find("- `scan`: Scan::passes=1; plugin scan.so, CRC-32 "), std::string::npos) << md;
+    EXPECT_NE(md.find(", unoptimised\n"), std::string::npos) << md;
+    EXPECT_NE(md.find("| first | scan (unoptimised) |"), std::string::npos) << md;
+    const auto csv = csvWithoutTimings(dir / "out" / "results.csv");
+    EXPECT_EQ(csv[1][10], "Scan::passes=1");
+    EXPECT_EQ(csv[1][11], "scan.so");
+    EXPECT_EQ(csv[1][13], "false");
+    const nlohmann::json rows = readJson(dir / "out" / "results.json")["rows"];
+    EXPECT_EQ(rows[0]["structure"]["plugin"]["file"], "scan.so");
+    // Nor is it part of the batch's settings: another value is the same batch, its jobs kept.
+    r = run(args + " --accel scan -DBVH::maxLeaf=5");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("batch: 2 jobs kept from an earlier run"), std::string::npos) << r.output;
+
+    // With a structure that reads it, the key is shown for that structure alone.
+    r = run(args + " --accel scan,sahbvh --fresh");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_EQ(r.output.find("is read by none"), std::string::npos) << r.output;
+    md = readText(dir / "out" / "results.md");
+    EXPECT_NE(md.find("- `sahbvh`: "), std::string::npos) << md;
+    EXPECT_NE(md.find("BVH::maxLeaf=3"), std::string::npos) << md;
+    EXPECT_NE(md.find("- `scan`: Scan::passes=1; plugin"), std::string::npos) << md;
 }

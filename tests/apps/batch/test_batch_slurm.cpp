@@ -1,8 +1,8 @@
 // `bvhlab batch --slurm N` without a cluster: a stand-in sbatch on PATH records its arguments and
 // answers job ids; the scripts it was given are then run by bash as Slurm runs them (each shard
 // with its SLURM_ARRAY_TASK_ID, then the merge). The merged tables are one run's; a shard that did
-// not finish fails the merge, which names its log and merges nothing; without sbatch nothing is
-// written. test_slurm_cluster.cpp submits to a real Slurm.
+// not finish fails the merge, which names its log and merges nothing; a requeued shard keeps the
+// jobs it finished; without sbatch nothing is written. test_slurm_cluster.cpp submits to a real Slurm.
 #include "tests/support/batch_results.h"
 #include "tests/support/batch_scenes.h"
 #include "tests/support/cli_run.h"
@@ -127,6 +127,26 @@ TEST(BatchSlurm, AShardThatDidNotFinishFailsTheMergeNamingItsLog) {
     EXPECT_EQ(merged.output.find("shard 0/3"), std::string::npos) << merged.output;
     EXPECT_FALSE(fs::exists(out / "results.md"));
     EXPECT_TRUE(fs::is_empty(out / "jobs"));
+}
+
+// A shard that Slurm requeues (preempted, or its node failed) runs its command again, which keeps
+// the jobs it finished and runs the rest; its log goes on.
+TEST(BatchSlurm, ARequeuedShardKeepsTheJobsItFinished) {
+    const fs::path dir = makeScenes("slurm_requeued");
+    const fs::path sbatch = standInSbatch(dir, "bin"), out = dir / "out";
+    ASSERT_EQ(runWithPath(sbatch.string() + ":/usr/bin:/bin", batchArgs(dir, "out") + " --slurm 2").exitCode, 0);
+    const fs::path script = out / "slurm" / "shards.sbatch";
+    for (const char* what : {"#SBATCH --requeue\n", "#SBATCH --open-mode=append\n"})
+        EXPECT_NE(readText(script).find(what), std::string::npos) << what;
+    ASSERT_EQ(runAsSlurm(script, 0).exitCode, 0);
+    // Preempted in its second job (jobs 0 and 2 are shard 0's: first naive, second naive).
+    fs::remove(out / "shards" / "0" / "jobs" / "second__naive.json");
+    const Result requeued = runAsSlurm(script, 0);
+    ASSERT_EQ(requeued.exitCode, 0) << requeued.output;
+    EXPECT_NE(requeued.output.find("batch: 1 jobs kept from an earlier run (same result key); 1 to run: 1 new"),
+              std::string::npos) << requeued.output;
+    EXPECT_NE(requeued.output.find("[job 1/1] second naive"), std::string::npos) << requeued.output;
+    EXPECT_TRUE(fs::exists(out / "slurm" / "shard-0.done"));
 }
 
 TEST(BatchSlurm, WithoutSbatchOnPathItSaysSoAndWritesNothing) {

@@ -3,12 +3,16 @@
 // scene x configuration and per scene x sample count, sweepbvh's gap to itself is 0, no
 // structure disagrees with Embree on the same rays, the image error falls with the sample
 // count and is the same for every structure; a second run keeps every result, a missing one is
-// measured again, and so is everything when the settings change or with --fresh.
+// measured again, and so is everything when the settings change or with --fresh; a rebuilt
+// plugin is measured again.
 #include "accel/registry.h"
 #include "accel/verify/generated_scenes.h"
 #include "apps/measure/builders.h"
 #include "apps/measure/tradeoff.h"
+#include "tests/support/batch_scenes.h"
 #include "tests/support/cli_run.h"
+#include "tests/support/json_file.h"
+#include "tests/support/scan_plugin.h"
 #include "tests/support/scratch_dir.h"
 #include "tests/support/test_paths.h"
 
@@ -199,6 +203,9 @@ TEST(Tradeoff, BuildersQuickRunWritesRowsAndResumes) {
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_TRUE(contains(r.output, "30 configurations measured, 0 kept")) << r.output;
     EXPECT_TRUE(contains(r.output, "Spearman")) << r.output;
+    // What each configuration is: our builders with their BVH:: keys, Embree's qualities with Embree's.
+    EXPECT_TRUE(contains(r.output, "- `sbvh`: BVH::allAxes=false, BVH::bins=16")) << r.output;
+    EXPECT_TRUE(contains(r.output, "- `embree-high`: Embree::quality=high, Embree::robust=false")) << r.output;
     const fs::path out = dir / "out";
     const std::vector<std::string> configs = {
         "sahbvh",           "sahbvh8",           "sbvh",          "sbvh8",           "ploc",
@@ -266,4 +273,36 @@ TEST(TradeoffPlots, PlotWritesIntoTheDataFolderNotDocs) {
     for (const char* png : {"tradeoff_build_vs_gap.png", "tradeoff_time_to_image.png", "tradeoff_error_vs_time.png"})
         EXPECT_GT(fs::file_size(data / "plots" / png), 1000u) << png;
     EXPECT_EQ(fs::last_write_time(docs / "tradeoff_build_vs_gap.png"), committed);
+}
+
+// A rebuilt plugin (the scan plugin's two builds, copied in turn to one path) is measured again,
+// Embree's result kept; so is a changed key of the plugin's. The tables say what scan is and
+// leave out the columns it has no figure in.
+TEST(TradeoffResume, ARebuiltPluginIsMeasuredAgain) {
+    const fs::path dir = test::makeScenes("resume_tradeoff");
+    const fs::path plugin = test::installScan(dir, 1);
+    const std::string args = "tradeoff --quick --scenes " + (dir / "first.env").string() +
+                             " --accel scan --size 8 --ray-size 8 --max-spp 2 --reference-spp 2 --builds 1 "
+                             "--passes 1 -DScene::cacheDir= --plugin " +
+                             plugin.string() + " --out " + (dir / "out").string();
+    Result r = run(args);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(contains(r.output, "2 configurations measured, 0 kept")) << r.output;
+    // The tables: what scan is, and no column that is n/a in every row (no sweepbvh: no gap; no SAH).
+    const std::string md = test::readText(dir / "out" / "tradeoff.md");
+    EXPECT_TRUE(contains(md, "- `scan`: Scan::passes=1; plugin scan.so, CRC-32 ")) << md;
+    EXPECT_TRUE(contains(md, "| scene | config | T_B [ms] | T_R primary [µs] |")) << md;
+    EXPECT_FALSE(contains(md, "gap [%]") || contains(md, "gap mean")) << md;
+
+    test::installScan(dir, 2);
+    r = run(args);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(contains(r.output, "tradeoff: 1 configurations kept from an earlier run (same result key); 1 to "
+                                   "measure: 1 because plugin crc32: "))
+        << r.output;
+    EXPECT_TRUE(contains(r.output, "1 configurations measured, 1 kept")) << r.output;
+
+    r = run(args + " -DScan::passes=2");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(contains(r.output, "1 because structure Scan::passes: 1 -> 2")) << r.output;
 }
