@@ -363,15 +363,18 @@ std::vector<size_t> shardJobs(const BatchPlan& plan, const Shard& shard) {
     return mine;
 }
 
-// Job `job` of this shard (its index in table order), in the process of its own that runs it:
-// its scene loaded (through the scene cache), then runJob.
+// Job `job` of this shard, "J N/T" (its index J in table order; the N-th of the T jobs this run
+// runs, as its progress names it), in the process of its own that runs it: its scene loaded
+// (through the scene cache), then runJob.
 json runJobHere(const Options& options, const BatchPlan& plan, const Shard& shard, const std::string& job) {
     const std::vector<size_t> mine = shardJobs(plan, shard);
+    const size_t space = job.find(' ');
     size_t j = 0;
-    const auto at = std::find(mine.begin(), mine.end(), parseNumber(job, j) ? j : SIZE_MAX);
-    if (at == mine.end()) throw InputError(fmt::format("{} {}: not a job of this shard", kChildJobOption, job));
+    if (space == std::string::npos || !parseNumber(std::string_view(job).substr(0, space), j) ||
+        std::find(mine.begin(), mine.end(), j) == mine.end())
+        throw InputError(fmt::format("{} {}: not a job of this shard", kChildJobOption, job));
     const size_t s = j / plan.accels.size(), a = j % plan.accels.size();
-    const std::string jobLabel = fmt::format("[job {}/{}]", at - mine.begin() + 1, mine.size());
+    const std::string jobLabel = fmt::format("[job {}]", job.substr(space + 1));
     Progress progress;
     progress.phase(fmt::format("{} {}: loading the scene", jobLabel, plan.scenes[s].id));
     SceneLoadInfo info;
@@ -419,7 +422,8 @@ void runJobs(const Options& options, const BatchPlan& plan, const Shard& shard, 
         for (size_t j : toRun[s]) {
             const size_t a = j % accels.size();
             ++jobNumber;
-            const JobOutcome outcome = runJobInChild(std::to_string(j), options.jobTimeout);
+            const JobOutcome outcome =
+                runJobInChild(fmt::format("{} {}/{}", j, jobNumber, resume.toMeasure()), options.jobTimeout);
             if (outcome.passed()) {
                 finished.push_back(finishedJobFromJson(outcome.result));
                 (finished.back().job.value("scene_from_cache", false) ? scenesFromCache : scenesParsed) += 1;

@@ -3,7 +3,6 @@
 #include "apps/runtime/table_text.h"
 
 #include <fmt/core.h>
-#include <fmt/ranges.h>
 
 #include <algorithm>
 
@@ -26,15 +25,17 @@ std::string failedConfigCsvRow(const json& stored, const std::string& header) {
     return row + csvText(stored.at("failed").get<std::string>()) + "\n";
 }
 
-std::vector<std::string> failedConfigCells(const json& stored, size_t columns) {
+std::vector<std::string> failedConfigCells(const json& stored, size_t columns, const std::string& filler) {
     std::vector<std::string> cells = {stored.at("scene").get<std::string>(), stored.at("config").get<std::string>(),
                                       "failed: " + markdownText(stored.at("failed").get<std::string>())};
-    cells.resize(std::max(columns, cells.size()), "n/a");
+    cells.resize(std::max(columns, cells.size()), filler);
     return cells;
 }
 
 std::string failedConfigMarkdownRow(const json& stored, size_t columns) {
-    return fmt::format("| {} |\n", fmt::join(failedConfigCells(stored, columns), " | "));
+    std::string row = "|";
+    for (const std::string& cell : failedConfigCells(stored, columns, "")) row += cell.empty() ? " |" : " " + cell + " |";
+    return row + "\n";
 }
 
 }  // namespace bvhlab

@@ -23,10 +23,10 @@ bool isFailedConfig(const nlohmann::json& stored);
 std::string failedConfigCsvRow(const nlohmann::json& stored, const std::string& header);
 
 // Its cells in a Markdown table of `columns` columns, the first two scene and config: those two,
-// "failed: REASON", then "n/a".
-std::vector<std::string> failedConfigCells(const nlohmann::json& stored, size_t columns);
+// "failed: REASON", then `filler` ("n/a" where a table leaves out the columns n/a in every row).
+std::vector<std::string> failedConfigCells(const nlohmann::json& stored, size_t columns, const std::string& filler);
 
-// The same cells as one Markdown row.
+// The same as one Markdown row, the other cells empty: "| scene | config | failed: REASON | | |".
 std::string failedConfigMarkdownRow(const nlohmann::json& stored, size_t columns);
 
 }  // namespace bvhlab

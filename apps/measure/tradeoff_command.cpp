@@ -104,8 +104,8 @@ void addTradeoffCommand(CLI::App& app) {
                       "CI subset: munich and sibenik, 200x200, K 4,16,64, up to 16 spp, reference 64 spp, 2 passes "
                       "(--builders: the same scenes, rays and passes)");
     command->add_flag("--resume,!--fresh", options->resume,
-                      "keep results already in DIR that were measured with the same settings (default); --fresh "
-                      "measures everything again");
+                      "keep results already in DIR whose result key is this run's (program, structure with its settings "
+                      "and plugin, scene, measurement settings; the default); --fresh measures everything again");
     command->add_option("--accel", options->accels,
                         "comma-separated NAME or NAME:Key=value:... to measure (default: every structure of ours; a "
                         "bare sahbvh is the K series; Embree is always added as the yardstick)");

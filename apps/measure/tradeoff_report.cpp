@@ -202,7 +202,7 @@ std::string writeTradeoffReport(const std::filesystem::path& dir, const std::vec
     for (const std::string& scene : sceneIds)
         for (const AccelConfig& config : configs) {
             if (failures[scene].count(config.label)) {
-                sceneRows.push_back(failedConfigCells(failures[scene][config.label], 10));
+                sceneRows.push_back(failedConfigCells(failures[scene][config.label], 10, "n/a"));
                 continue;
             }
             if (!rows[scene].count(config.label)) continue;

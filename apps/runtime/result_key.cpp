@@ -4,6 +4,7 @@
 #include "apps/runtime/accel_config.h"
 #include "apps/runtime/app_keys.h"
 #include "apps/runtime/plugins.h"
+#include "apps/runtime/scene_loading.h"
 #include "framework/report/provenance.h"
 #include "framework/scene/scene_cache.h"
 
@@ -115,8 +116,8 @@ json sceneKey(const Env& env) {
         if (acceleratorsReading(name).empty() && !changesNoFigure(name) && !name.starts_with("ASDS::") &&
             name != keys::Scene::dir.name() && name != keys::Scene::file.name())
             settings[name] = entry.at("value");
-    const std::string file = env.get(keys::Scene::file);
-    return {{"file", file.empty() ? json("embedded") : sceneFileContent(env.get(keys::Scene::dir) / file)},
+    const std::filesystem::path file = sceneFileOf(env);  // says which key to set when it is not there
+    return {{"file", file.empty() ? json("embedded") : sceneFileContent(file)},
             {"settings", settings}};
 }
 

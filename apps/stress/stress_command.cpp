@@ -144,6 +144,9 @@ public:
         for (const std::string& p : parts)
             if (std::find(std::begin(kParts), std::end(kParts), p) == std::end(kParts))
                 throw InputError(fmt::format("--parts: unknown part '{}' (known: watertight, sweep, acne, builders)", p));
+        // --scenes looked at here once, not only in the jobs' processes: what is said of them (a
+        // scene file without a scene env) goes into this run's JSON.
+        if (std::find(parts.begin(), parts.end(), "watertight") != parts.end()) meshes();
         for (const char* part : kParts) {
             if (std::find(parts.begin(), parts.end(), part) == parts.end()) continue;
             fmt::print(stderr, "{}\n", partIntroduction(part));
