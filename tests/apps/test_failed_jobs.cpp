@@ -22,6 +22,16 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// Under AddressSanitizer (tests/sanitize.sh) every process starts and runs several times slower:
+// the time-outs that the jobs which must pass run under grow alike.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr int kSlowdown = 4;
+#else
+constexpr int kSlowdown = 1;
+#endif
+// "timed out after N s" of a --job-timeout of `seconds` x kSlowdown.
+std::string timedOut(int seconds) { return fmt::format("timed out after {} s", seconds * kSlowdown); }
+
 // A folder with a tiny mesh; commands run in it with their temporary files and scene cache in it
 // too, so that a test sees what a run leaves behind.
 struct JobWorkspace {
@@ -49,8 +59,8 @@ struct JobWorkspace {
 
 TEST(FailedJobs, BatchGivesAFailedRowPerCrashExceptionAndTimeOutAndTheOtherJobsRows) {
     const JobWorkspace w("batch");
-    const Result r = w.run("batch", "--scenes mesh.obj --accel crashing,throwing,hanging,sahbvh --job-timeout 3 "
-                           "-DCamera::width=16 -DCamera::height=12 --out out");
+    const Result r = w.run("batch", fmt::format("--scenes mesh.obj --accel crashing,throwing,hanging,sahbvh --job-timeout {} "
+                           "-DCamera::width=16 -DCamera::height=12 --out out", 3 * kSlowdown));
     EXPECT_EQ(r.exitCode, 3) << r.output;
     EXPECT_NE(r.output.find("batch: 3 failed jobs in the tables"), std::string::npos) << r.output;
 
@@ -60,19 +70,19 @@ TEST(FailedJobs, BatchGivesAFailedRowPerCrashExceptionAndTimeOutAndTheOtherJobsR
         << md;
     EXPECT_NE(md.find("| mesh | throwing | failed: plugin "), std::string::npos) << md;
     EXPECT_NE(md.find("accelerator 'throwing': build() threw: no build today |"), std::string::npos) << md;
-    EXPECT_NE(md.find("| mesh | hanging | failed: timed out after 3 s |"), std::string::npos) << md;
+    EXPECT_NE(md.find("| mesh | hanging | failed: " + timedOut(3) + " |"), std::string::npos) << md;
     EXPECT_NE(md.find("| mesh | sahbvh | | 4 |"), std::string::npos) << "the good job's rows:\n" << md;
     EXPECT_NE(md.find("Jobs: 4, 3 of them failed"), std::string::npos) << md;
 
     const std::string csv = w.read("out/results.csv");
     EXPECT_NE(csv.find(",failed\n"), std::string::npos) << csv;
-    EXPECT_NE(csv.find("mesh,hanging" + std::string(16, ',') + "timed out after 3 s\n"), std::string::npos) << csv;
+    EXPECT_NE(csv.find("mesh,hanging" + std::string(16, ',') + timedOut(3) + "\n"), std::string::npos) << csv;
     EXPECT_NE(csv.find("mesh,sahbvh,false,4,"), std::string::npos) << csv;
 
     const nlohmann::json j = nlohmann::json::parse(w.read("out/results.json"));
     EXPECT_EQ(j["failed_jobs"], 3);
     ASSERT_EQ(j["jobs"].size(), 4u);
-    EXPECT_EQ(j["jobs"][2]["failed"], "timed out after 3 s");
+    EXPECT_EQ(j["jobs"][2]["failed"], timedOut(3));
     EXPECT_FALSE(j["jobs"][3].contains("failed"));
     EXPECT_TRUE(fs::exists(w.dir / "out/images/mesh__sahbvh.png"));
     EXPECT_TRUE(w.tmpIsEmpty()) << "a job's result file is left behind";
@@ -80,7 +90,7 @@ TEST(FailedJobs, BatchGivesAFailedRowPerCrashExceptionAndTimeOutAndTheOtherJobsR
     // Merged, the failed jobs are the merge's too.
     const Result merged = w.run("batch", "--merge out --out merged");
     EXPECT_EQ(merged.exitCode, 3) << merged.output;
-    EXPECT_NE(w.read("merged/results.md").find("| mesh | hanging | failed: timed out after 3 s |"), std::string::npos);
+    EXPECT_NE(w.read("merged/results.md").find("| mesh | hanging | failed: " + timedOut(3) + " |"), std::string::npos);
 }
 
 TEST(FailedJobs, CheckFailsACheckThatRunsOutOfTimeAndLeavesNoFile) {
@@ -108,14 +118,14 @@ TEST(FailedJobs, BenchWritesItsJsonWithAFailedRow) {
 
 TEST(FailedJobs, StressEndsAHangingBuildAfterItsTimeAndGivesFailedRows) {
     const JobWorkspace w("stress");
-    const Result r = w.run("stress", "--accel crashing,hanging,sahbvh --parts acne,builders --acne-pixels 8 "
-                                     "--builder-prims 1000 --builder-max-seconds 2 --job-timeout 3 --threads 1 "
-                                     "--out stress.json");
+    const Result r = w.run("stress", fmt::format("--accel crashing,hanging,sahbvh --parts acne,builders --acne-pixels 8 "
+                                     "--builder-prims 1000 --builder-max-seconds {} --job-timeout {} --threads 1 "
+                                                 "--out stress.json", 2 * kSlowdown, 3 * kSlowdown));
     EXPECT_EQ(r.exitCode, 3) << r.output;
-    EXPECT_NE(r.output.find("hanging: failed: timed out after 3 s\n"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("hanging: failed: " + timedOut(3) + "\n"), std::string::npos) << r.output;
     EXPECT_TRUE(std::regex_search(r.output, std::regex("crashing: failed: crashed: SIGSEGV .*accelerator 'crashing'")))
         << r.output;
-    EXPECT_TRUE(std::regex_search(r.output, std::regex("hanging +failed: the build did not end within 2 s")))
+    EXPECT_TRUE(std::regex_search(r.output, std::regex(fmt::format("hanging +failed: the build did not end within {} s", 2 * kSlowdown))))
         << r.output;
     const nlohmann::json j = nlohmann::json::parse(w.read("stress.json"));
     EXPECT_EQ(j["failed_jobs"], 3);  // crashing in both parts, hanging's acne
@@ -174,17 +184,18 @@ void expectPlotsOf(const JobWorkspace& w, const std::string& folder) {
 TEST(FailedJobs, TradeoffGivesFailedRowsAndMeasuresThemAgainOnTheNextRun) {
     const JobWorkspace w("tradeoff");
     const std::string args = "--quick --scenes mesh.obj --accel crashing,hanging,sahbvh --bins 4 --size 8 --ray-size 8 "
-                             "--max-spp 2 --reference-spp 2 --builds 1 --passes 1 --job-timeout 2 --out out";
+                             "--max-spp 2 --reference-spp 2 --builds 1 --passes 1 --out out --job-timeout " +
+                             std::to_string(2 * kSlowdown);
     const Result r = w.run("tradeoff", args);
     EXPECT_EQ(r.exitCode, 3) << r.output;
     EXPECT_NE(r.output.find("tradeoff: 2 of 4 configurations measured failed"), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find("  mesh hanging: failed: timed out after 2 s\n"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("  mesh hanging: failed: " + timedOut(2) + "\n"), std::string::npos) << r.output;
 
     const std::string md = w.read("out/tradeoff.md");
     EXPECT_TRUE(std::regex_search(md, std::regex(R"(\| mesh \| crashing \| failed: crashed: SIGSEGV \(Segmentation )"
                                                  R"(fault\) in plugin .*crashing.so, accelerator 'crashing': )")))
         << md;
-    EXPECT_NE(md.find("| mesh | hanging | failed: timed out after 2 s | n/a | n/a | n/a | n/a | n/a | n/a |\n"), std::string::npos) << md;
+    EXPECT_NE(md.find("| mesh | hanging | failed: " + timedOut(2) + " | n/a | n/a | n/a | n/a | n/a | n/a |\n"), std::string::npos) << md;
     EXPECT_NE(md.find("| mesh | sahbvh-K4 | "), std::string::npos) << md;
     EXPECT_NE(md.find("| embree | 1 | "), std::string::npos) << "the summary counts the scenes measured:\n" << md;
     EXPECT_EQ(md.find("\n| hanging | "), std::string::npos) << "a failed configuration has no summary row:\n" << md;
@@ -192,12 +203,12 @@ TEST(FailedJobs, TradeoffGivesFailedRowsAndMeasuresThemAgainOnTheNextRun) {
     const std::string csv = w.read("out/tradeoff.csv");
     EXPECT_NE(csv.find(",pixels_differing_1spp,failed\n"), std::string::npos) << csv;
     EXPECT_EQ(lineOf(csv, "mesh,hanging,hanging,"),
-              "mesh,hanging,hanging" + std::string(commasAfterAccel(csv), ',') + "timed out after 2 s")
+              "mesh,hanging,hanging" + std::string(commasAfterAccel(csv), ',') + timedOut(2))
         << csv;
     EXPECT_NE(lineOf(csv, "mesh,crashing,crashing,").find(",\"crashed: SIGSEGV"), std::string::npos) << csv;
     EXPECT_NE(csv.find("mesh,sahbvh-K4,sahbvh,4,4,1,"), std::string::npos) << csv;
     const nlohmann::json stored = nlohmann::json::parse(w.read("out/mesh/hanging.json"));
-    EXPECT_EQ(stored["failed"], "timed out after 2 s");
+    EXPECT_EQ(stored["failed"], timedOut(2));
     EXPECT_TRUE(w.tmpIsEmpty()) << "a job's result file is left behind";
     expectPlotsOf(w, "out");
 
@@ -205,7 +216,7 @@ TEST(FailedJobs, TradeoffGivesFailedRowsAndMeasuresThemAgainOnTheNextRun) {
     const Result again = w.run("tradeoff", args);
     EXPECT_EQ(again.exitCode, 3) << again.output;
     EXPECT_NE(again.output.find("2 configurations measured, 2 kept from an earlier run"), std::string::npos) << again.output;
-    EXPECT_NE(again.output.find("  mesh hanging: failed: timed out after 2 s\n"), std::string::npos) << again.output;
+    EXPECT_NE(again.output.find("  mesh hanging: failed: " + timedOut(2) + "\n"), std::string::npos) << again.output;
 }
 
 TEST(FailedJobs, TradeoffBuildersGivesFailedRowsBesideTheParetoFrontAndCorrelations) {
@@ -217,14 +228,14 @@ TEST(FailedJobs, TradeoffBuildersGivesFailedRowsBesideTheParetoFrontAndCorrelati
                             t % 5 * 0.7 + 0.3, t % 3 * 0.9 - 0.4, t % 7 * 0.6 - 0.2, t % 5 * 0.7 + 1.2, t % 3 * 0.9 + 0.5);
     for (int t = 0; t < 40; ++t) soup << fmt::format("f {} {} {}\n", 3 * t + 1, 3 * t + 2, 3 * t + 3);
     soup.close();
-    const Result r = w.run("tradeoff", "--builders --quick --scenes soup.obj --accel crashing,hanging,sahbvh,sweepbvh "
-                                       "--ray-size 8 --builds 1 --passes 1 --job-timeout 2 --out out");
+    const Result r = w.run("tradeoff", fmt::format("--builders --quick --scenes soup.obj --accel crashing,hanging,sahbvh,sweepbvh "
+                                                   "--ray-size 8 --builds 1 --passes 1 --job-timeout {} --out out", 2 * kSlowdown));
     EXPECT_EQ(r.exitCode, 3) << r.output;
     EXPECT_NE(r.output.find("tradeoff: 2 of 8 configurations measured failed"), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find("  soup hanging: failed: timed out after 2 s\n"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("  soup hanging: failed: " + timedOut(2) + "\n"), std::string::npos) << r.output;
 
     const std::string md = w.read("out/builders.md");
-    EXPECT_NE(md.find("| soup | hanging | failed: timed out after 2 s | | | | | | | | | |\n"), std::string::npos) << md;
+    EXPECT_NE(md.find("| soup | hanging | failed: " + timedOut(2) + " | | | | | | | | | |\n"), std::string::npos) << md;
     EXPECT_NE(md.find("| soup | crashing | failed: crashed: SIGSEGV"), std::string::npos) << md;
     EXPECT_NE(md.find("| soup | embree-medium | "), std::string::npos) << md;
     EXPECT_TRUE(std::regex_search(md, std::regex(R"(\| soup \| binary \| 3 \| [-+][0-9.]+ / )")))
@@ -233,7 +244,7 @@ TEST(FailedJobs, TradeoffBuildersGivesFailedRowsBesideTheParetoFrontAndCorrelati
     const std::string csv = w.read("out/builders.csv");
     EXPECT_NE(csv.find(",pareto_incoherent,failed\n"), std::string::npos) << csv;
     EXPECT_EQ(lineOf(csv, "soup,hanging,hanging,"),
-              "soup,hanging,hanging" + std::string(commasAfterAccel(csv), ',') + "timed out after 2 s")
+              "soup,hanging,hanging" + std::string(commasAfterAccel(csv), ',') + timedOut(2))
         << csv;
     EXPECT_EQ(w.read("out/builders_summary.csv").find("hanging"), std::string::npos) << "no summary of a failed one";
     expectPlotsOf(w, "out");
@@ -243,7 +254,7 @@ TEST(FailedJobs, ABuildThatRunsLongSaysSo) {
     const JobWorkspace w("render");
     // render has no time-out: a user sees the build running, and ends it.
     const Result r = w.run("render", "--scene mesh.obj -DASDS::type=hanging --out out/render",
-                           "& pid=$!; sleep 4; kill -9 $pid; wait $pid; true");
+                           fmt::format("& pid=$!; sleep {}; kill -9 $pid; wait $pid; true", 2 + 2 * kSlowdown));
     EXPECT_NE(r.output.find("hanging on mesh: still building after 2s"), std::string::npos) << r.output;
 }
 
