@@ -211,10 +211,10 @@ FinishedJob runJob(const Options& options, const Scene& scene, const SceneLoadIn
     return finished;
 }
 
-// The job file of a job that failed: what ran and why it left no results; the tables show it as a
-// failed row.
+// The job file of a job that failed: what ran (its result key, which a rerun does not keep: the
+// job failed) and why it left no results; the tables show it as a failed row.
 json failedJobRecord(const SceneArgument& entry, const AccelConfig& config, const BatchSettings& batch, const json& order,
-                     const Shard& shard, const JobOutcome& outcome) {
+                     const Shard& shard, const json& resultKey, const JobOutcome& outcome) {
     return {{"format", "bvhlab-batch-job-1"},
             {"job", batchJobName(entry.id, config.label)},
             {"scene", entry.id},
@@ -224,6 +224,7 @@ json failedJobRecord(const SceneArgument& entry, const AccelConfig& config, cons
             {"order", order},
             {"shard", fmt::format("{}/{}", shard.index, shard.count)},
             {"failed", outcome.failure()},
+            {"result_key", resultKey},
             {"seconds", outcome.seconds},
             {"run", runJson()},
             {"provenance", provenanceJson()}};
@@ -434,7 +435,9 @@ void runJobs(const Options& options, const BatchPlan& plan, const Shard& shard, 
                        outcome.failure());
             const json order = {{"scene", s}, {"accel", a}, {"job", j}, {"jobs", totalJobs}};
             writeFileAtomically(out / "jobs" / (batchJobName(scenes[s].id, accels[a].label) + ".json"),
-                                failedJobRecord(scenes[s], accels[a], plan.settings, order, shard, outcome).dump(2) + "\n");
+                                failedJobRecord(scenes[s], accels[a], plan.settings, order, shard,
+                                                jobResultKey(accels[a], jobEnv(options, sceneEnvs[s], accels[a])), outcome)
+                                    .dump(2) + "\n");
         }
         if (sceneEnvs[s].get(keys::Output::heatmap) && !finished.empty())
             writeSceneHeatmaps(out, scenes[s].id, finished, sceneEnvs[s].get(keys::Output::heatmapScale),

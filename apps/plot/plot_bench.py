@@ -22,7 +22,11 @@ REFERENCE_ROWS = {"embree", "embree-robust", "nothing", "nothing-guarded", "embr
 def main():
     args = arguments(__doc__.splitlines()[0], "the JSON file bvhlab bench wrote").parse_args()
     with open(args.data) as f:
-        rows = json.load(f)["rows"]
+        # A failed scene's row ({"scene", "failed"}: its job crashed, threw or ran out of time) has
+        # no figures to draw.
+        rows = [r for r in json.load(f)["rows"] if "failed" not in r]
+    if not rows:
+        raise SystemExit(f"{args.data}: no scene was measured (every one failed); nothing to plot")
     out = args.out or os.path.dirname(os.path.abspath(args.data))
     os.makedirs(out, exist_ok=True)
     scenes = list(dict.fromkeys(r["scene"] for r in rows))

@@ -1,5 +1,6 @@
 #include "apps/runtime/run_record.h"
 
+#include "apps/runtime/child_job.h"
 #include "apps/runtime/shell_word.h"
 #include "framework/scene/scene_cache.h"
 
@@ -16,12 +17,16 @@ namespace {
 std::string commandLine;
 std::string started;
 std::vector<std::string> warnings;
+// This process runs one job of its parent's command (child_job.h): the parent read the same
+// arguments first and has said their warnings.
+bool childJob = false;
 
 }  // namespace
 
 void recordRun(int argc, char** argv) {
     commandLine.clear();
     for (int i = 0; i < argc; ++i) {
+        if (std::string_view(argv[i]) == kChildJobOption) childJob = true;
         if (i > 0) commandLine += ' ';
         commandLine += shellWord(argv[i]);
     }
@@ -34,7 +39,7 @@ void recordRun(int argc, char** argv) {
 }
 
 void warnOfRun(const std::string& warning) {
-    fmt::print(stderr, "warning: {}\n", warning);
+    if (!childJob) fmt::print(stderr, "warning: {}\n", warning);
     if (std::find(warnings.begin(), warnings.end(), warning) == warnings.end()) warnings.push_back(warning);
 }
 

@@ -11,8 +11,9 @@ namespace bvhlab {
 // Called once by main: the command line and the start time.
 void recordRun(int argc, char** argv);
 
-// Prints "warning: `warning`" on stderr and keeps it for runJson(): what a run did that its
-// results do not show, such as a scene seen without its scene env.
+// Prints "warning: `warning`" on stderr (not in a job's child process, whose parent has said it)
+// and keeps it for runJson(): what a run did that its results do not show, such as a scene seen
+// without its scene env.
 void warnOfRun(const std::string& warning);
 
 // {"command_line": "bvhlab render ...", "started": "2026-12-01T20:33:00Z", "warnings": [...]}

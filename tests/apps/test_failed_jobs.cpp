@@ -5,6 +5,7 @@
 #include "tests/support/cli_run.h"
 #include "tests/support/scratch_dir.h"
 #include "tests/support/test_paths.h"
+#include "tests/support/text_count.h"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -63,6 +64,8 @@ TEST(FailedJobs, BatchGivesAFailedRowPerCrashExceptionAndTimeOutAndTheOtherJobsR
                            "-DCamera::width=16 -DCamera::height=12 --out out", 3 * kSlowdown));
     EXPECT_EQ(r.exitCode, 3) << r.output;
     EXPECT_NE(r.output.find("batch: 3 failed jobs in the tables"), std::string::npos) << r.output;
+    // mesh.obj has no scene env: said once, by the batch, not again by each job's process.
+    EXPECT_EQ(occurrences(r.output, "mesh.obj: no scene env file in"), 1u) << r.output;
 
     const std::string md = w.read("out/results.md");
     EXPECT_TRUE(std::regex_search(md, std::regex(R"(\| mesh \| crashing \| failed: crashed: SIGSEGV \(Segmentation )"
@@ -71,6 +74,10 @@ TEST(FailedJobs, BatchGivesAFailedRowPerCrashExceptionAndTimeOutAndTheOtherJobsR
     EXPECT_NE(md.find("| mesh | throwing | failed: plugin "), std::string::npos) << md;
     EXPECT_NE(md.find("accelerator 'throwing': build() threw: no build today |"), std::string::npos) << md;
     EXPECT_NE(md.find("| mesh | hanging | failed: " + timedOut(3) + " |"), std::string::npos) << md;
+    // What ran, for the failed jobs too: their structures with their plugins.
+    EXPECT_NE(md.find("- `hanging`: "), std::string::npos) << md;
+    EXPECT_NE(md.find("plugin hanging.so, CRC-32 "), std::string::npos) << md;
+    EXPECT_EQ(md.find("not recorded"), std::string::npos) << md;
     EXPECT_NE(md.find("| mesh | sahbvh | | 4 |"), std::string::npos) << "the good job's rows:\n" << md;
     EXPECT_NE(md.find("Jobs: 4, 3 of them failed"), std::string::npos) << md;
 

@@ -6,6 +6,7 @@
 #include "tests/support/test_paths.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <cstdlib>
 #include <filesystem>
@@ -35,6 +36,15 @@ TEST(Plot, DrawsABenchJsonFile) {
     r = run("plot " + (dir / "bench.json").string() + " --out " + (dir / "plots").string());
     ASSERT_EQ(r.exitCode, 0) << r.output;
     expectPng(dir / "plots" / "bench.png");
+
+    // A failed scene's row (its job crashed, threw or ran out of time) has nothing to draw.
+    std::ifstream in(dir / "bench.json");
+    nlohmann::json bench = nlohmann::json::parse(in);
+    bench["rows"].push_back({{"scene", "crashed"}, {"failed", "crashed: SIGSEGV"}});
+    std::ofstream(dir / "failed.json") << bench.dump();
+    r = run("plot " + (dir / "failed.json").string() + " --out " + (dir / "plots").string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    expectPng(dir / "plots" / "failed.png");
 }
 
 // Both ratios the tradeoff plot divides by are missing: sahbvh-K16 and sweepbvh. Two scenes of
