@@ -116,7 +116,7 @@ void BvhAccelerator<Layout>::findNearestBatch(View<const Ray> rays, View<Hit> hi
                                               View<RayCost> costs) const {
     if (quadrics_.empty()) [[likely]]
         return kernels_.forCounters(counters, !costs.empty())
-            .findNearestBatch(tree_, rays, hits, counters, costs, traversal_.packetFallback);
+            .findNearestBatch(tree_, rays, hits, counters, costs, traversal_, RayCoherence::Coherent);
     Accelerator::findNearestBatch(rays, hits, counters, costs);
 }
 
@@ -125,7 +125,7 @@ void BvhAccelerator<Layout>::isOccludedBatch(View<const Ray> rays, View<uint8_t>
                                              QueryCounters& counters, View<RayCost> costs) const {
     if (quadrics_.empty()) [[likely]]
         return kernels_.forCounters(counters, !costs.empty())
-            .isOccludedBatch(tree_, rays, occluded, counters, costs, traversal_.packetFallback);
+            .isOccludedBatch(tree_, rays, occluded, counters, costs, traversal_, RayCoherence::Coherent);
     Accelerator::isOccludedBatch(rays, occluded, counters, costs);
 }
 

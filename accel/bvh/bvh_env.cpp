@@ -28,6 +28,11 @@ const BvhKeys& bvhCommonKeys() {
              for (Isa i : {Isa::Auto, Isa::Scalar, Isa::Avx2, Isa::Avx512})
                  if (v == isaName(i)) s.traversal.isa = i;
          }},
+        {batchTraversal,
+         [](BvhSettings& s, const std::string& v) {
+             for (BatchTraversal p : {BatchTraversal::Auto, BatchTraversal::Packets, BatchTraversal::Single})
+                 if (v == batchTraversalName(p)) s.traversal.batchTraversal = p;
+         }},
     };
     return bound;
 }

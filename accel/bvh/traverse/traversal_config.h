@@ -8,6 +8,11 @@ namespace bvhlab {
 // best the CPU runs.
 enum class Isa { Auto, Scalar, Avx2, Avx512 };
 
+// BVH::batchTraversal: how the wide layouts trace a batch. Auto follows the batch's coherence
+// hint; the others force one path whatever the hint, so that paths can be timed against each
+// other as contenders in one run. Every path answers bit for bit alike.
+enum class BatchTraversal { Auto, Packets, Single };
+
 struct TraversalConfig {
     // BVH::robust. true: the watertight triangle test and the conservative box test (box_test.h);
     // false: Moeller-Trumbore and plain boxes (not watertight), only to measure what
@@ -19,6 +24,8 @@ struct TraversalConfig {
     int packetFallback = 2;
     // BVH::isa.
     Isa isa = Isa::Auto;
+    // BVH::batchTraversal.
+    BatchTraversal batchTraversal = BatchTraversal::Auto;
 };
 
 }  // namespace bvhlab

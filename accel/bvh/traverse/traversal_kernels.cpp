@@ -16,6 +16,15 @@ const char* isaName(Isa isa) {
     return "?";
 }
 
+const char* batchTraversalName(BatchTraversal path) {
+    switch (path) {
+    case BatchTraversal::Auto: return "auto";
+    case BatchTraversal::Packets: return "packets";
+    case BatchTraversal::Single: return "single";
+    }
+    return "?";
+}
+
 int isaVectorBits(Isa isa) {
     switch (isa) {
     case Isa::Auto: return 0;

@@ -31,11 +31,14 @@ struct TraversalKernels {
     struct Queries {
         bool (*findNearest)(const Tree& tree, const Ray& ray, Hit& hit, QueryCounters& counters);
         bool (*isOccluded)(const Tree& tree, const Ray& ray, QueryCounters& counters);
-        // packetFallback: BVH::packetFallback, for the wide layouts' packets (packet_traversal.h).
+        // `config` chooses the wide layouts' batch path (BVH::batchTraversal, with `coherence`
+        // when Auto) and its settings.
         void (*findNearestBatch)(const Tree& tree, std::span<const Ray> rays, std::span<Hit> hits,
-                                 QueryCounters& counters, std::span<RayCost> costs, int packetFallback);
+                                 QueryCounters& counters, std::span<RayCost> costs, const TraversalConfig& config,
+                                 RayCoherence coherence);
         void (*isOccludedBatch)(const Tree& tree, std::span<const Ray> rays, std::span<uint8_t> occluded,
-                                QueryCounters& counters, std::span<RayCost> costs, int packetFallback);
+                                QueryCounters& counters, std::span<RayCost> costs, const TraversalConfig& config,
+                                RayCoherence coherence);
     };
     Isa isa;
     Queries counting;
@@ -58,6 +61,8 @@ bool cpuRuns(Isa isa);
 Isa bestIsa();
 // "scalar", "avx2", "avx512" ("auto" for Auto): BVH::isa's values.
 const char* isaName(Isa isa);
+// "auto", "packets", "single": BVH::batchTraversal's values.
+const char* batchTraversalName(BatchTraversal path);
 // The widest vectors the kernels of `isa` use, in bits: 128 (SSE2), 256, 512 (0 for Auto).
 int isaVectorBits(Isa isa);
 

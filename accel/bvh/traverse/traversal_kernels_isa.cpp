@@ -27,25 +27,37 @@ bool isOccludedKernel(const Tree& tree, const Ray& ray, QueryCounters& counters)
     return runQuery<AnyHitQuery, Robust, Counting>(tree, ray, counters).occluded;
 }
 
-// Hands each ray's query and work to answer(i, query, work): the wide layouts trace the rays in
-// packets (packet_traversal.h), the binary one ray by ray.
+// The path a batch takes on a wide layout: BVH::batchTraversal, or for Auto the hint's.
+BatchTraversal batchPath(const TraversalConfig& config, RayCoherence) {
+    return config.batchTraversal != BatchTraversal::Auto ? config.batchTraversal : BatchTraversal::Packets;
+}
+
+// Hands each ray's query and work to answer(i, query, work): the wide layouts trace the rays by
+// the batch's path (packets: packet_traversal.h), the binary one ray by ray.
 template <typename Query, bool Robust, bool Counting, typename Tree, typename Answer>
-void traceRange(const Tree& tree, std::span<const Ray> rays, int packetFallback, Answer&& answer) {
-    if constexpr (std::is_same_v<Tree, BinaryBvh>) {
+void traceRange(const Tree& tree, std::span<const Ray> rays, const TraversalConfig& config, RayCoherence coherence,
+                Answer&& answer) {
+    const auto oneByOne = [&] {
         for (size_t i = 0; i < rays.size(); ++i) {
             QueryCounters work;
             const Query query = runQuery<Query, Robust, Counting>(tree, rays[i], work);
             answer(i, query, work);
         }
+    };
+    if constexpr (std::is_same_v<Tree, BinaryBvh>) {
+        oneByOne();
     } else {
-        traceAsPackets<Counting, Query, Robust>(tree, rays, packetFallback, answer);
+        switch (batchPath(config, coherence)) {
+        case BatchTraversal::Single: oneByOne(); break;
+        default: traceAsPackets<Counting, Query, Robust>(tree, rays, config.packetFallback, answer); break;
+        }
     }
 }
 
 template <typename Tree, bool Robust, bool Counting>
 void findNearestRange(const Tree& tree, std::span<const Ray> rays, std::span<Hit> hits, QueryCounters& counters,
-                      std::span<RayCost> costs, int packetFallback) {
-    traceRange<ClosestHitQuery, Robust, Counting>(tree, rays, packetFallback,
+                      std::span<RayCost> costs, const TraversalConfig& config, RayCoherence coherence) {
+    traceRange<ClosestHitQuery, Robust, Counting>(tree, rays, config, coherence,
                                                   [&](size_t i, const ClosestHitQuery& query, const QueryCounters& work) {
                                                       counters += work;
                                                       Hit hit;
@@ -57,8 +69,8 @@ void findNearestRange(const Tree& tree, std::span<const Ray> rays, std::span<Hit
 
 template <typename Tree, bool Robust, bool Counting>
 void isOccludedRange(const Tree& tree, std::span<const Ray> rays, std::span<uint8_t> occluded, QueryCounters& counters,
-                     std::span<RayCost> costs, int packetFallback) {
-    traceRange<AnyHitQuery, Robust, Counting>(tree, rays, packetFallback,
+                     std::span<RayCost> costs, const TraversalConfig& config, RayCoherence coherence) {
+    traceRange<AnyHitQuery, Robust, Counting>(tree, rays, config, coherence,
                                               [&](size_t i, const AnyHitQuery& query, const QueryCounters& work) {
                                                   counters += work;
                                                   occluded[i] = query.occluded ? 1 : 0;

@@ -7,6 +7,13 @@ namespace bvhlab {
 
 inline constexpr uint32_t kInvalidPrimitive = 0xFFFFFFFFu;
 
+// What the caller of a batch query knows of its rays. Coherent: neighbours in the batch start
+// close together and point alike (a camera's rays row by row, the shadow rays of a tile towards
+// one light), so they can share a walk through the tree as a packet; incoherent: any rays
+// (bounces, ambient occlusion). A hint only: a structure may ignore it, and answers never
+// depend on it.
+enum class RayCoherence : uint32_t { Incoherent, Coherent };
+
 // Directions need not be unit length: t is measured in multiples of dir.
 struct Ray {
     Vec3 org{0.0f};
