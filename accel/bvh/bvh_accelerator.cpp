@@ -113,20 +113,21 @@ bool BvhAccelerator<Layout>::isOccluded(const Ray& ray, QueryCounters& counters)
 
 template <typename Layout>
 void BvhAccelerator<Layout>::findNearestBatch(View<const Ray> rays, View<Hit> hits, QueryCounters& counters,
-                                              View<RayCost> costs) const {
+                                              View<RayCost> costs, RayCoherence coherence) const {
     if (quadrics_.empty()) [[likely]]
         return kernels_.forCounters(counters, !costs.empty())
-            .findNearestBatch(tree_, rays, hits, counters, costs, traversal_, RayCoherence::Coherent);
-    Accelerator::findNearestBatch(rays, hits, counters, costs);
+            .findNearestBatch(tree_, rays, hits, counters, costs, traversal_, coherence);
+    Accelerator::findNearestBatch(rays, hits, counters, costs, coherence);
 }
 
 template <typename Layout>
 void BvhAccelerator<Layout>::isOccludedBatch(View<const Ray> rays, View<uint8_t> occluded,
-                                             QueryCounters& counters, View<RayCost> costs) const {
+                                             QueryCounters& counters, View<RayCost> costs,
+                                             RayCoherence coherence) const {
     if (quadrics_.empty()) [[likely]]
         return kernels_.forCounters(counters, !costs.empty())
-            .isOccludedBatch(tree_, rays, occluded, counters, costs, traversal_, RayCoherence::Coherent);
-    Accelerator::isOccludedBatch(rays, occluded, counters, costs);
+            .isOccludedBatch(tree_, rays, occluded, counters, costs, traversal_, coherence);
+    Accelerator::isOccludedBatch(rays, occluded, counters, costs, coherence);
 }
 
 template <typename Layout>

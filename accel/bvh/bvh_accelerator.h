@@ -40,10 +40,10 @@ public:
     bool isOccluded(const Ray& ray, QueryCounters& counters) const override;
     // Without quadrics a batch is the kernel's batch call (packets on the wide layouts); with
     // them, ray by ray (the interface's default loop).
-    void findNearestBatch(View<const Ray> rays, View<Hit> hits, QueryCounters& counters,
-                          View<RayCost> costs) const override;
-    void isOccludedBatch(View<const Ray> rays, View<uint8_t> occluded, QueryCounters& counters,
-                         View<RayCost> costs) const override;
+    void findNearestBatch(View<const Ray> rays, View<Hit> hits, QueryCounters& counters, View<RayCost> costs,
+                          RayCoherence coherence) const override;
+    void isOccludedBatch(View<const Ray> rays, View<uint8_t> occluded, QueryCounters& counters, View<RayCost> costs,
+                         RayCoherence coherence) const override;
 
     const Layout& bvh() const { return tree_; }
 

@@ -452,26 +452,17 @@ namespace {
 // Rays converted per stream call: on the stack, so a batch allocates nothing.
 constexpr size_t kStreamChunk = 256;
 
-// Embree's hint for a stream: coherent when the rays start at one point (a pinhole camera's),
-// which traces them as packets. Measured (bvhlab bench, 1 thread, four scenes): primary rays
-// 0.55x the bare rtcIntersect1 loop with the hint, 1.1x without; the incoherent any-hit rays,
-// hinted coherent, 1.7x.
-RTCIntersectContextFlags streamFlags(std::span<const Ray> rays, std::span<const size_t> chunk) {
-    const Vec3& first = rays[chunk[0]].org;
-    for (size_t i : chunk)
-        if (rays[i].org != first) return RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
-    return RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-}
-
 // Streams `rays` to Embree a chunk at a time: a ray Embree cannot take as it is goes to
 // single(i), the single-ray call, which counts it; the others are converted by
 // convert(ray, rtcRay), traced by trace(context, chunk, n) and answered by answer(i, rtcRay),
-// each answer written once.
+// each answer written once. The batch's coherence hint becomes the context's flag.
 template <typename RtcRay, typename Single, typename Convert, typename Trace, typename Answer>
-void streamInChunks(bool haveScene, View<const Ray> rays, QueryCounters& counters, Single&& single,
-                    Convert&& convert, Trace&& trace, Answer&& answer) {
+void streamInChunks(bool haveScene, View<const Ray> rays, RayCoherence coherence, QueryCounters& counters,
+                    Single&& single, Convert&& convert, Trace&& trace, Answer&& answer) {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
+    context.flags = coherence == RayCoherence::Coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT
+                                                        : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
     RtcRay chunk[kStreamChunk];
     size_t index[kStreamChunk];
     for (size_t next = 0; next < rays.size();) {
@@ -486,7 +477,6 @@ void streamInChunks(bool haveScene, View<const Ray> rays, QueryCounters& counter
         }
         if (n == 0) continue;
         counters.queries += n;
-        context.flags = streamFlags(rays, {index, n});
         trace(&context, chunk, n);
         for (size_t k = 0; k < n; ++k) answer(index[k], chunk[k]);
     }
@@ -495,10 +485,10 @@ void streamInChunks(bool haveScene, View<const Ray> rays, QueryCounters& counter
 }  // namespace
 
 void EmbreeAccelerator::findNearestBatch(View<const Ray> rays, View<Hit> hits, QueryCounters& counters,
-                                         View<RayCost> costs) const {
+                                         View<RayCost> costs, RayCoherence coherence) const {
     std::fill(costs.begin(), costs.end(), RayCost{});
     streamInChunks<RTCRayHit>(
-        bool(scene_), rays, counters,
+        bool(scene_), rays, coherence, counters,
         [&](size_t i) {
             Hit hit;
             findNearest(rays[i], hit, counters);
@@ -515,10 +505,11 @@ void EmbreeAccelerator::findNearestBatch(View<const Ray> rays, View<Hit> hits, Q
 }
 
 void EmbreeAccelerator::isOccludedBatch(View<const Ray> rays, View<uint8_t> occluded,
-                                        QueryCounters& counters, View<RayCost> costs) const {
+                                        QueryCounters& counters, View<RayCost> costs,
+                                        RayCoherence coherence) const {
     std::fill(costs.begin(), costs.end(), RayCost{});
     streamInChunks<RTCRay>(
-        bool(scene_), rays, counters, [&](size_t i) { occluded[i] = isOccluded(rays[i], counters) ? 1 : 0; },
+        bool(scene_), rays, coherence, counters, [&](size_t i) { occluded[i] = isOccluded(rays[i], counters) ? 1 : 0; },
         [](const Ray& ray, RTCRay& rtc) { toRtc(Segment{ray.org, ray.tmin, ray.tmax, 0.0f}, ray.dir, rtc); },
         [&](RTCIntersectContext* context, RTCRay* chunk, size_t n) {
             rtcOccluded1M(scene_.get(), context, chunk, unsigned(n), sizeof(RTCRay));

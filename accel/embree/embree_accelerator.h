@@ -78,10 +78,10 @@ public:
     // Through Embree's stream API (rtcIntersect1M / rtcOccluded1M) in chunks converted on the
     // stack; a ray Embree cannot take as it is (negative tmin, coordinates beyond its range)
     // takes the single-ray path. `costs` are zero: Embree does not count.
-    void findNearestBatch(View<const Ray> rays, View<Hit> hits, QueryCounters& counters,
-                          View<RayCost> costs) const override;
-    void isOccludedBatch(View<const Ray> rays, View<uint8_t> occluded, QueryCounters& counters,
-                         View<RayCost> costs) const override;
+    void findNearestBatch(View<const Ray> rays, View<Hit> hits, QueryCounters& counters, View<RayCost> costs,
+                          RayCoherence coherence) const override;
+    void isOccludedBatch(View<const Ray> rays, View<uint8_t> occluded, QueryCounters& counters, View<RayCost> costs,
+                         RayCoherence coherence) const override;
     bool hasCounters() const override { return false; }
     // Rays with tmin >= 0 and coordinates within Embree's range, as RTCRayHit; see the .cpp.
     // The bare loop: prepareRays(rays, "single", false).
@@ -91,8 +91,8 @@ public:
     // "packet16" where the device says it traces such packets natively.
     std::vector<std::string> batchApis() const override;
     std::unique_ptr<NativeRayBatch> prepareBatchApi(const std::vector<Ray>& rays, std::string_view api,
-                                                    bool coherent) const override {
-        return prepareRays(rays, api, coherent);
+                                                    RayCoherence coherence) const override {
+        return prepareRays(rays, api, coherence == RayCoherence::Coherent);
     }
     // The rays prepared for `api`, "single" or one of batchApis() (else std::invalid_argument),
     // refused as prepareNativeBatch refuses them; `coherent` sets

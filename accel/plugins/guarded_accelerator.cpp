@@ -26,13 +26,15 @@ public:
     bool isOccluded(const Ray& ray, QueryCounters& counters) const override {
         return guard(running("isOccluded()", &ray, 1), [&] { return inner_->isOccluded(ray, counters); });
     }
-    void findNearestBatch(View<const Ray> rays, View<Hit> hits, QueryCounters& counters,
-                          View<RayCost> costs) const override {
-        guard(running("findNearestBatch()", rays), [&] { inner_->findNearestBatch(rays, hits, counters, costs); });
+    void findNearestBatch(View<const Ray> rays, View<Hit> hits, QueryCounters& counters, View<RayCost> costs,
+                          RayCoherence coherence) const override {
+        guard(running("findNearestBatch()", rays),
+              [&] { inner_->findNearestBatch(rays, hits, counters, costs, coherence); });
     }
-    void isOccludedBatch(View<const Ray> rays, View<uint8_t> occluded, QueryCounters& counters,
-                         View<RayCost> costs) const override {
-        guard(running("isOccludedBatch()", rays), [&] { inner_->isOccludedBatch(rays, occluded, counters, costs); });
+    void isOccludedBatch(View<const Ray> rays, View<uint8_t> occluded, QueryCounters& counters, View<RayCost> costs,
+                         RayCoherence coherence) const override {
+        guard(running("isOccludedBatch()", rays),
+              [&] { inner_->isOccludedBatch(rays, occluded, counters, costs, coherence); });
     }
     bool hasCounters() const override {
         return guard(running("hasCounters()"), [&] { return inner_->hasCounters(); });

@@ -163,52 +163,59 @@ CheckResult batch(const Subject& subject, const CheckOptions& options) {
     std::vector<Ray> rays = makeBatchRays();
     rays.resize(std::min(rays.size(), scaled(rays.size(), options)));
 
-    QueryCounters single, batched, singleOcc, batchedOcc;
+    QueryCounters single, singleOcc;
     std::vector<Hit> expected(rays.size());
     std::vector<uint8_t> expectedOcc(rays.size());
     for (size_t i = 0; i < rays.size(); ++i) {
         accel->findNearest(rays[i], expected[i], single);
         expectedOcc[i] = accel->isOccluded(rays[i], singleOcc);
     }
-    std::vector<Hit> hits(rays.size(), Hit{1.0f, 5, 0.5f, 0.5f});  // overwritten, misses included
-    std::vector<uint8_t> occluded(rays.size(), 2);
-    std::vector<RayCost> costs(rays.size()), occCosts(rays.size());
-    // In uneven pieces: a batch of any length, one ray or none included.
-    for (size_t begin = 0, step = 0; begin < rays.size(); ++step) {
-        const size_t n = std::min(rays.size() - begin, step % 4 == 0 ? size_t(1) : step % 4 == 1 ? 0 : 333 * step);
-        const auto part = std::span(rays).subspan(begin, n);
-        accel->findNearestBatch(part, std::span(hits).subspan(begin, n), batched, std::span(costs).subspan(begin, n));
-        accel->isOccludedBatch(part, std::span(occluded).subspan(begin, n), batchedOcc, std::span(occCosts).subspan(begin, n));
-        begin += n;
-    }
     const bool exact = batchIsBitExact(subject.name);
-    for (size_t i = 0; i < rays.size(); ++i) {
-        ++result.cases;
-        std::string problem;
-        if (!(exact ? bitEqual(hits[i], expected[i]) : hitsAgree(hits[i], expected[i])))
-            problem = fmt::format("findNearestBatch {}; findNearest {}{}", describe(hits[i]), describe(expected[i]),
-                                  exact ? " (must be bit for bit)" : "");
-        else if (occluded[i] != expectedOcc[i])
-            problem = fmt::format("isOccludedBatch {}; isOccluded {}", int(occluded[i]), int(expectedOcc[i]));
-        if (problem.empty()) continue;
-        ++result.failures;
-        addExample(result, options, scene.name, fmt::format("ray #{} {}: {}", i, describe(rays[i]), problem));
-    }
-    const auto counterProblem = [&](const std::string& what) {
-        ++result.failures;
-        addExample(result, options, scene.name, what);
-    };
     const auto same = batchTracesPackets(subject.name) ? sameQueries : sameCounters;
-    if (!same(batched, single))
-        counterProblem(fmt::format("findNearestBatch counted {}; findNearest {}", describeCounters(batched), describeCounters(single)));
-    if (!same(batchedOcc, singleOcc))
-        counterProblem(fmt::format("isOccludedBatch counted {}; isOccluded {}", describeCounters(batchedOcc), describeCounters(singleOcc)));
-    for (const auto& [list, total, what] : {std::tuple{&costs, &batched, "findNearestBatch"}, std::tuple{&occCosts, &batchedOcc, "isOccludedBatch"}}) {
-        uint64_t tests = 0, steps = 0;
-        for (const RayCost& c : *list) tests += c.intersectionTests, steps += c.traversalSteps;
-        if (tests != total->intersectionTests || steps != total->traversalSteps)
-            counterProblem(fmt::format("{}: per-ray costs add up to N_IT {}, N_TR {}; its counters {}", what, tests, steps,
-                                       describeCounters(*total)));
+    // Under either hint: a structure may take another path for each, and answers may not differ.
+    for (const RayCoherence coherence : {RayCoherence::Incoherent, RayCoherence::Coherent}) {
+        const char* hint = coherence == RayCoherence::Coherent ? "coherent" : "incoherent";
+        QueryCounters batched, batchedOcc;
+        std::vector<Hit> hits(rays.size(), Hit{1.0f, 5, 0.5f, 0.5f});  // overwritten, misses included
+        std::vector<uint8_t> occluded(rays.size(), 2);
+        std::vector<RayCost> costs(rays.size()), occCosts(rays.size());
+        // In uneven pieces: a batch of any length, one ray or none included.
+        for (size_t begin = 0, step = 0; begin < rays.size(); ++step) {
+            const size_t n = std::min(rays.size() - begin, step % 4 == 0 ? size_t(1) : step % 4 == 1 ? 0 : 333 * step);
+            const auto part = std::span(rays).subspan(begin, n);
+            accel->findNearestBatch(part, std::span(hits).subspan(begin, n), batched, std::span(costs).subspan(begin, n),
+                                   coherence);
+            accel->isOccludedBatch(part, std::span(occluded).subspan(begin, n), batchedOcc,
+                                  std::span(occCosts).subspan(begin, n), coherence);
+            begin += n;
+        }
+        for (size_t i = 0; i < rays.size(); ++i) {
+            ++result.cases;
+            std::string problem;
+            if (!(exact ? bitEqual(hits[i], expected[i]) : hitsAgree(hits[i], expected[i])))
+                problem = fmt::format("findNearestBatch {}; findNearest {}{}", describe(hits[i]), describe(expected[i]),
+                                      exact ? " (must be bit for bit)" : "");
+            else if (occluded[i] != expectedOcc[i])
+                problem = fmt::format("isOccludedBatch {}; isOccluded {}", int(occluded[i]), int(expectedOcc[i]));
+            if (problem.empty()) continue;
+            ++result.failures;
+            addExample(result, options, scene.name, fmt::format("{} ray #{} {}: {}", hint, i, describe(rays[i]), problem));
+        }
+        const auto counterProblem = [&](const std::string& what) {
+            ++result.failures;
+            addExample(result, options, scene.name, what);
+        };
+        if (!same(batched, single))
+            counterProblem(fmt::format("{} findNearestBatch counted {}; findNearest {}", hint, describeCounters(batched), describeCounters(single)));
+        if (!same(batchedOcc, singleOcc))
+            counterProblem(fmt::format("{} isOccludedBatch counted {}; isOccluded {}", hint, describeCounters(batchedOcc), describeCounters(singleOcc)));
+        for (const auto& [list, total, what] : {std::tuple{&costs, &batched, "findNearestBatch"}, std::tuple{&occCosts, &batchedOcc, "isOccludedBatch"}}) {
+            uint64_t tests = 0, steps = 0;
+            for (const RayCost& c : *list) tests += c.intersectionTests, steps += c.traversalSteps;
+            if (tests != total->intersectionTests || steps != total->traversalSteps)
+                counterProblem(fmt::format("{} {}: per-ray costs add up to N_IT {}, N_TR {}; its counters {}", hint, what, tests, steps,
+                                           describeCounters(*total)));
+        }
     }
     return result;
 }

@@ -106,7 +106,7 @@ EdgeBuildCheck checkEdgeBuild(Accelerator& accel, const Scene& scene, std::span<
         check.problems.push_back(fmt::format("build took {:.1f} s (bound {:.0f} s)", check.seconds, maxSeconds));
     QueryCounters counters;
     std::vector<Hit> hits(rays.size());
-    accel.findNearestBatch(rays, hits, counters, {});
+    accel.findNearestBatch(rays, hits, counters, {}, RayCoherence::Incoherent);
     check.rays = rays.size();
     for (size_t i = 0; i < rays.size(); ++i) {
         if (hitsAgree(hits[i], reference[i])) continue;

@@ -276,10 +276,13 @@ LeakStats countLeaks(const Accelerator& accel, std::span<const WatertightProbeRa
             const size_t n = range.size();
             std::vector<Ray> rays(n);
             for (size_t i = 0; i < n; ++i) rays[i] = probes[range.begin() + i].ray;
-            std::vector<Hit> hits(n);
-            std::vector<uint8_t> occluded(n);
-            accel.findNearestBatch(rays, hits, counters, {});
-            accel.isOccludedBatch(rays, occluded, counters, {});
+            // The batch calls under both hints: a structure may trace each by another path.
+            std::vector<Hit> hits(n), coherentHits(n);
+            std::vector<uint8_t> occluded(n), coherentOccluded(n);
+            accel.findNearestBatch(rays, hits, counters, {}, RayCoherence::Incoherent);
+            accel.isOccludedBatch(rays, occluded, counters, {}, RayCoherence::Incoherent);
+            accel.findNearestBatch(rays, coherentHits, counters, {}, RayCoherence::Coherent);
+            accel.isOccludedBatch(rays, coherentOccluded, counters, {}, RayCoherence::Coherent);
             for (size_t i = range.begin(); i < range.end(); ++i) {
                 const WatertightProbeRay& p = probes[i];
                 Hit hit;
@@ -293,8 +296,9 @@ LeakStats countLeaks(const Accelerator& accel, std::span<const WatertightProbeRa
                     ++(p.atVertex ? s.vertexLeaks : s.edgeLeaks);
                 }
                 if (notOccluded) ++s.occlusionLeaks;
-                const bool batchMissed = !hits[i - range.begin()].found();
-                const bool batchNotOccluded = occluded[i - range.begin()] == 0;
+                const size_t k = i - range.begin();
+                const bool batchMissed = !hits[k].found() || !coherentHits[k].found();
+                const bool batchNotOccluded = occluded[k] == 0 || coherentOccluded[k] == 0;
                 s.batchLeaks += batchMissed;
                 s.batchOcclusionLeaks += batchNotOccluded;
                 if ((missed || notOccluded || batchMissed || batchNotOccluded) && local.leaked.size() < maxExamples)

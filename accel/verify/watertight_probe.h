@@ -101,8 +101,8 @@ struct LeakStats {
 };
 
 // Traces every probe with findNearest and isOccluded, and again with findNearestBatch and
-// isOccludedBatch over each run of consecutive probes (in parallel with TBB; counters are not
-// kept). `threads` 0 = all hardware threads.
+// isOccludedBatch, under either coherence hint, over each run of consecutive probes (in
+// parallel with TBB; counters are not kept). `threads` 0 = all hardware threads.
 LeakStats countLeaks(const Accelerator& accel, std::span<const WatertightProbeRay> probes, int threads = 0,
                      size_t maxExamples = 5);
 

@@ -88,10 +88,8 @@ struct Contender {
 };
 
 struct NamedRaySet {
-    const char* name;
     const std::vector<Ray>* rays;
-    bool anyHit;
-    bool coherent;  // Embree's context hint for its stream and packet calls
+    const RaySetQuery& asked;
 };
 
 // Median over rounds of the ratio of two series measured round by round.
@@ -114,9 +112,8 @@ const char* yardstick(QueryKind kind) { return kind == QueryKind::Single ? "embr
 std::vector<nlohmann::json> measureRounds(const Scene& scene, const RaySets& rays, const Env& sceneEnv,
                                           const std::vector<AccelConfig>& configs, const std::vector<QueryKind>& kinds,
                                           int threads, int builds, int passes) {
-    const NamedRaySet raySets[] = {{"primary", &rays.primary, false, true},
-                                   {"shadow", &rays.shadow, true, true},
-                                   {"incoherent", &rays.incoherent, true, false}};
+    const NamedRaySet raySets[] = {
+        {&rays.primary, kRaySetQueries[0]}, {&rays.shadow, kRaySetQueries[1]}, {&rays.incoherent, kRaySetQueries[2]}};
     constexpr size_t kSets = std::size(raySets);
     std::vector<Structure> structures(configs.size() + std::size(kNothingRows));
     for (size_t c = 0; c < structures.size(); ++c) {
@@ -166,19 +163,19 @@ std::vector<nlohmann::json> measureRounds(const Scene& scene, const RaySets& ray
         std::map<std::string, std::unique_ptr<NativeRayBatch>> prepared;
         if (asked(QueryKind::Single)) bare = embreeApis->prepareNativeBatch(*s.rays);
         if (asked(QueryKind::Batch))
-            for (const std::string& api : batchApis) prepared[api] = embreeApis->prepareBatchApi(*s.rays, api, s.coherent);
+            for (const std::string& api : batchApis) prepared[api] = embreeApis->prepareBatchApi(*s.rays, api, s.asked.coherence);
         for (int round = 0; round < passes; ++round) {
             for (Contender& k : contenders) {
                 PassResult r;
                 if (k.label == "embree-bare") {
-                    r = traceNativePasses(*bare, s.anyHit, threads, 1);
+                    r = traceNativePasses(*bare, s.asked.anyHit, threads, 1);
                 } else if (k.label == "embree-batch") {
                     for (const std::string& api : batchApis) {
-                        r = traceNativePasses(*prepared[api], s.anyHit, threads, 1);
+                        r = traceNativePasses(*prepared[api], s.asked.anyHit, threads, 1);
                         k.byApi[set][api].push_back(r.usPerQuery);
                     }
                 } else {
-                    r = tracePasses(*k.structure->accel, *s.rays, s.anyHit, threads, 1, k.queries,
+                    r = tracePasses(*k.structure->accel, *s.rays, s.asked.anyHit, s.asked.coherence, threads, 1, k.queries,
                                     /*count=*/round == 0);
                 }
                 if (k.label != "embree-batch") k.usPerQuery[set].push_back(r.usPerQuery);
@@ -215,15 +212,15 @@ std::vector<nlohmann::json> measureRounds(const Scene& scene, const RaySets& ray
         row.update(buildStatsJson(structure.stats));
         for (size_t set = 0; set < kSets; ++set) {
             const double q = std::max<double>(1.0, double(k.counters[set].queries));
-            row[raySets[set].name] = {
+            row[raySets[set].asked.kind] = {
                 {"t_r_us", median(k.usPerQuery[set])},
                 {"t_r_us_all", k.usPerQuery[set]},
                 {"queries", k.counters[set].queries},
                 {"n_it", counted ? nlohmann::json(double(k.counters[set].intersectionTests) / q) : nlohmann::json()},
                 {"n_tr", counted ? nlohmann::json(double(k.counters[set].traversalSteps) / q) : nlohmann::json()}};
             if (!k.kept.empty()) {
-                row["embree_batch_api"][raySets[set].name] = k.kept[set];
-                for (const auto& [api, series] : k.byApi[set]) row[raySets[set].name]["t_r_us_by_api"][api] = median(series);
+                row["embree_batch_api"][raySets[set].asked.kind] = k.kept[set];
+                for (const auto& [api, series] : k.byApi[set]) row[raySets[set].asked.kind]["t_r_us_by_api"][api] = median(series);
             }
         }
         // Medians of the per-round ratios: to embree-bare and embree-batch (whichever this run
@@ -237,7 +234,7 @@ std::vector<nlohmann::json> measureRounds(const Scene& scene, const RaySets& ray
             if (!ref) continue;
             nlohmann::json ratios = {{"build", pairedRatio(structure.buildMs, ref->structure->buildMs)}};
             for (size_t set = 0; set < kSets; ++set) {
-                ratios[raySets[set].name] = raySets[set].rays->empty()
+                ratios[raySets[set].asked.kind] = raySets[set].rays->empty()
                                                 ? nlohmann::json()
                                                 : nlohmann::json(pairedRatio(k.usPerQuery[set], ref->usPerQuery[set]));
             }

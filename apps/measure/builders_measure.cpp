@@ -1,5 +1,6 @@
 // `bvhlab tradeoff --builders`: the configurations, one scene's rays and one configuration's figures.
 #include "apps/measure/builders.h"
+#include "apps/runtime/ray_sets.h"
 #include "apps/runtime/run_record.h"
 #include "apps/runtime/scene_loading.h"
 #include "apps/runtime/timing.h"
@@ -52,7 +53,6 @@ json measureBuilderConfig(const BuildersScene& b, const AccelConfig& config, con
     const std::vector<double>& buildCpuMs = built.buildCpuMs;
 
     const std::vector<Ray>* sets[] = {&b.rays.primary, &b.rays.shadow, &b.rays.incoherent};
-    const bool anyHit[] = {false, true, true};
     const bool counted = accel->hasCounters();
     json result = {{"scene", b.id},
                    {"config", config.label},
@@ -69,7 +69,9 @@ json measureBuilderConfig(const BuildersScene& b, const AccelConfig& config, con
     result.update(buildStatsJson(stats, {.mean = "avg_leaf", .largest = "max_leaf"}));
     // Through the batch calls, as the builders' figures have always been measured.
     for (size_t s = 0; s < std::size(kBuilderRaySets); ++s) {
-        const PassResult r = tracePasses(*accel, *sets[s], anyHit[s], settings.threads, settings.passes, QueryKind::Batch);
+        const RaySetQuery& asked = kRaySetQueries[s];
+        const PassResult r =
+            tracePasses(*accel, *sets[s], asked.anyHit, asked.coherence, settings.threads, settings.passes, QueryKind::Batch);
         const double q = std::max<double>(1.0, double(r.counters.queries));
         result[kBuilderRaySets[s]] = {{"rays", sets[s]->size()},
                                       {"t_r_us", r.usPerQuery},
@@ -84,7 +86,7 @@ json measureBuilderConfig(const BuildersScene& b, const AccelConfig& config, con
         for (size_t s = 0; s < std::size(kBuilderRaySets); ++s) {
             try {
                 const std::unique_ptr<NativeRayBatch> batch = native->prepareNativeBatch(*sets[s]);
-                const PassResult r = traceNativePasses(*batch, anyHit[s], settings.threads, settings.passes);
+                const PassResult r = traceNativePasses(*batch, kRaySetQueries[s].anyHit, settings.threads, settings.passes);
                 bare[kBuilderRaySets[s]] = {{"t_r_us", r.usPerQuery}, {"t_r_cpu_us", r.cpuUsPerQuery}};
             } catch (const std::invalid_argument& e) {
                 fmt::print(stderr, "  {}: no bare loop over the {} rays ({})\n", b.id, kBuilderRaySets[s], e.what());

@@ -23,14 +23,14 @@ public:
         ++counters.queries;
         return false;
     }
-    void findNearestBatch(View<const Ray> rays, View<Hit> hits, QueryCounters& counters,
-                          View<RayCost> costs) const override {
+    void findNearestBatch(View<const Ray> rays, View<Hit> hits, QueryCounters& counters, View<RayCost> costs,
+                          RayCoherence) const override {
         std::fill(hits.begin(), hits.end(), Hit{});
         std::fill(costs.begin(), costs.end(), RayCost{});
         counters.queries += rays.size();
     }
-    void isOccludedBatch(View<const Ray> rays, View<uint8_t> occluded, QueryCounters& counters,
-                         View<RayCost> costs) const override {
+    void isOccludedBatch(View<const Ray> rays, View<uint8_t> occluded, QueryCounters& counters, View<RayCost> costs,
+                         RayCoherence) const override {
         std::fill(occluded.begin(), occluded.end(), uint8_t(0));
         std::fill(costs.begin(), costs.end(), RayCost{});
         counters.queries += rays.size();

@@ -3,6 +3,7 @@
 #include "accel/registry.h"
 #include "apps/measure/tradeoff.h"
 #include "apps/runtime/atomic_write.h"
+#include "apps/runtime/ray_sets.h"
 #include "apps/runtime/run_record.h"
 #include "apps/runtime/scene_loading.h"
 #include "apps/runtime/timing.h"
@@ -216,8 +217,9 @@ json measureTradeoffConfig(const TradeoffScene& t, const AccelConfig& config, co
 
     // T_R on the ray sets (through the batch calls, as the tradeoff has always measured it), and
     // the answers compared with Embree's on the same rays.
-    auto pass = [&](const std::vector<Ray>& rays, bool anyHit) {
-        const PassResult r = tracePasses(*accel, rays, anyHit, settings.threads, settings.passes, QueryKind::Batch);
+    auto pass = [&](const std::vector<Ray>& rays, const RaySetQuery& asked) {
+        const PassResult r = tracePasses(*accel, rays, asked.anyHit, asked.coherence, settings.threads, settings.passes,
+                                         QueryKind::Batch);
         const double q = std::max<double>(1.0, double(r.counters.queries));
         return json{{"rays", rays.size()},
                     {"t_r_us", r.usPerQuery},
@@ -225,7 +227,7 @@ json measureTradeoffConfig(const TradeoffScene& t, const AccelConfig& config, co
                     {"n_it", counted ? json(double(r.counters.intersectionTests) / q) : json()},
                     {"n_tr", counted ? json(double(r.counters.traversalSteps) / q) : json()}};
     };
-    json primary = pass(t.rays.primary, false), shadow = pass(t.rays.shadow, true);
+    json primary = pass(t.rays.primary, kRaySetQueries[0]), shadow = pass(t.rays.shadow, kRaySetQueries[1]);
     // The first few disagreements are kept with the full ray (as `bvhlab raycast` reads it), so
     // that a referee (naive, Embree's robust mode) can say who is right.
     constexpr size_t kExamples = 5;

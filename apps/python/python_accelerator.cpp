@@ -55,9 +55,10 @@ PythonAccelerator build(std::shared_ptr<PythonScene> scene, const std::string& n
 // them (forEachRayRange), with the GIL released: each range is read into its thread's buffers,
 // answered by the batch call, and written in place by write(answers, costs, records). The
 // queries count only when `counters` is asked (a caller timing them asks for none); costs are
-// empty unless it is and the structure counts.
+// empty unless it is and the structure counts. `coherent`: the batch calls' hint (RayCoherence).
 template <typename Record, typename Answer, typename Write>
-py::array answerInto(const PythonAccelerator& self, const RayArrays& rays, int threads, bool counters, Write&& write) {
+py::array answerInto(const PythonAccelerator& self, const RayArrays& rays, int threads, bool counters, bool coherent,
+                     Write&& write) {
     checkThreads(threads);
     const bool counted = counters && self.accel->hasCounters();
     py::array_t<Record> result(py::ssize_t(rays.size()));
@@ -68,6 +69,7 @@ py::array answerInto(const PythonAccelerator& self, const RayArrays& rays, int t
         std::vector<RayCost> costs;
     };
     tbb::enumerable_thread_specific<Buffers> perThread;
+    const RayCoherence coherence = coherent ? RayCoherence::Coherent : RayCoherence::Incoherent;
     {
         py::gil_scoped_release release;  // held again before `result`, a Python object, is returned
         forEachRayRange(rays.size(), threads, counters, [&](size_t begin, size_t end, QueryCounters& queryCounters) {
@@ -77,9 +79,9 @@ py::array answerInto(const PythonAccelerator& self, const RayArrays& rays, int t
             b.costs.resize(counted ? end - begin : 0);
             rays.read(begin, b.rays);
             if constexpr (std::is_same_v<Answer, Hit>)
-                self.accel->findNearestBatch(b.rays, b.answers, queryCounters, b.costs);
+                self.accel->findNearestBatch(b.rays, b.answers, queryCounters, b.costs, coherence);
             else
-                self.accel->isOccludedBatch(b.rays, b.answers, queryCounters, b.costs);
+                self.accel->isOccludedBatch(b.rays, b.answers, queryCounters, b.costs, coherence);
             write(std::span<const Answer>(b.answers), std::span<const RayCost>(b.costs), records + begin);
         });
     }
@@ -87,24 +89,25 @@ py::array answerInto(const PythonAccelerator& self, const RayArrays& rays, int t
 }
 
 py::array intersect(const PythonAccelerator& self, const py::handle& origins, const py::handle& directions,
-                    const py::handle& tmin, const py::handle& tmax, int threads, bool counters) {
+                    const py::handle& tmin, const py::handle& tmax, int threads, bool counters, bool coherent) {
     const RayArrays rays(origins, directions, tmin, tmax);
-    if (counters) return answerInto<CountedHitRecord, Hit>(self, rays, threads, true, writeHitRecords<CountedHitRecord>);
-    return answerInto<HitRecord, Hit>(self, rays, threads, false, writeHitRecords<HitRecord>);
+    if (counters)
+        return answerInto<CountedHitRecord, Hit>(self, rays, threads, true, coherent, writeHitRecords<CountedHitRecord>);
+    return answerInto<HitRecord, Hit>(self, rays, threads, false, coherent, writeHitRecords<HitRecord>);
 }
 
 py::array occluded(const PythonAccelerator& self, const py::handle& origins, const py::handle& directions,
-                   const py::handle& tmin, const py::handle& tmax, int threads, bool counters) {
+                   const py::handle& tmin, const py::handle& tmax, int threads, bool counters, bool coherent) {
     const RayArrays rays(origins, directions, tmin, tmax);
     if (counters)
         return answerInto<CountedOcclusionRecord, uint8_t>(
-            self, rays, threads, true, [](auto answers, auto costs, CountedOcclusionRecord* out) {
+            self, rays, threads, true, coherent, [](auto answers, auto costs, CountedOcclusionRecord* out) {
                 for (size_t i = 0; i < answers.size(); ++i) {
                     out[i].occluded = answers[i] != 0;
                     writeCounters(costs, i, out[i]);
                 }
             });
-    return answerInto<bool, uint8_t>(self, rays, threads, false, [](auto answers, auto, bool* out) {
+    return answerInto<bool, uint8_t>(self, rays, threads, false, coherent, [](auto answers, auto, bool* out) {
         for (size_t i = 0; i < answers.size(); ++i) out[i] = answers[i] != 0;
     });
 }
@@ -122,7 +125,9 @@ Env envWith(const PythonScene& scene, const py::object& envDict, int threads) {
 void bindAccelerator(py::module_& m) {
     static const std::string queryArguments =
         "origins and directions: (N, 3) float32 or float64 of any strides, read in place, N >= 0; tmin, tmax: "
-        "numbers or (N,) arrays; threads: 0 for all hardware threads. Rays with a NaN are misses.";
+        "numbers or (N,) arrays; threads: 0 for all hardware threads; coherent: the rays are a coherent batch (a "
+        "camera's rays row by row, shadow rays towards one light), a hint for the structure's traversal that never "
+        "changes the answers. Rays with a NaN are misses.";
     // Static: pybind11 keeps the pointer.
     static const std::string intersectDoc =
         "Closest hits: a structured array t (inf on a miss), prim (-1 on a miss), u, v, and with counters n_it, "
@@ -139,12 +144,10 @@ void bindAccelerator(py::module_& m) {
                                "False for a structure that counts no N_IT and N_TR (Embree): its counters are NaN")
         .def("intersect", &intersect, py::arg("origins"), py::arg("directions"), py::arg("tmin") = 0.0f,
              py::arg("tmax") = std::numeric_limits<float>::infinity(), py::arg("threads") = 0,
-             py::arg("counters") = false,
-             intersectDoc.c_str())
+             py::arg("counters") = false, py::arg("coherent") = false, intersectDoc.c_str())
         .def("occluded", &occluded, py::arg("origins"), py::arg("directions"), py::arg("tmin") = 0.0f,
              py::arg("tmax") = std::numeric_limits<float>::infinity(), py::arg("threads") = 0,
-             py::arg("counters") = false,
-             occludedDoc.c_str())
+             py::arg("counters") = false, py::arg("coherent") = false, occludedDoc.c_str())
         .def("__repr__", [](const PythonAccelerator& a) {
             return fmt::format("<bvhlab.Accelerator {} over '{}'>", a.accel->name(), a.scene->scene.name);
         });

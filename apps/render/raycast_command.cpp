@@ -19,6 +19,7 @@ void addRaycastCommand(CLI::App& app) {
         EnvOptions env;
         std::string scene, rays, out;
         bool any = false;
+        bool coherent = false;
         bool count = false;
     };
     auto options = std::make_shared<Options>();
@@ -30,6 +31,10 @@ void addRaycastCommand(CLI::App& app) {
     command->add_option("--rays", options->rays, "input rays (BVHRAYS1)")->required();
     command->add_option("--out", options->out, "output hits (BVHHITS1)")->required();
     command->add_flag("--any", options->any, "any-hit queries (isOccluded) instead of closest hit");
+    command->add_flag("--coherent", options->coherent,
+                      "the rays are a coherent batch (a camera's rays row by row, shadow rays towards a light: "
+                      "`bvhlab rays --kind primary` or `shadow`), the hint the batch calls pass on; without it, "
+                      "incoherent. The answers are the same either way");
     command->add_flag("--count", options->count,
                       "also print N_IT and N_TR: the rays answered again, untimed, with counting on (the timed pass "
                       "and the hits written count nothing)");
@@ -42,13 +47,14 @@ void addRaycastCommand(CLI::App& app) {
             const std::vector<Ray> rays = readRayFile(options->rays);
             progress.phase(fmt::format("tracing {} rays", rays.size()), (rays.size() + kRaysPerRange - 1) / kRaysPerRange);
             const int threads = env.get(keys::SetRayTracing::threads);
+            const RayCoherence coherence = options->coherent ? RayCoherence::Coherent : RayCoherence::Incoherent;
             std::vector<Hit> hits(rays.size());
             std::vector<uint8_t> occluded(options->any ? rays.size() : 0);
 
             // The timed pass counts nothing, so that its time (and an instruction count of the
             // whole run) is the form of the queries that counts nothing.
             const auto start = std::chrono::steady_clock::now();
-            const QueryCounters timed = traceRays(*built.accel, rays, options->any, threads, /*counting=*/false,
+            const QueryCounters timed = traceRays(*built.accel, rays, options->any, coherence, threads, /*counting=*/false,
                                                   {hits, occluded, {}}, [&](size_t traced) { progress.advance(1, traced); });
             const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             progress.finish();
@@ -60,7 +66,8 @@ void addRaycastCommand(CLI::App& app) {
                 std::vector<Hit> countedHits(options->any ? 0 : rays.size());
                 std::vector<uint8_t> countedOccluded(occluded.size());
                 const QueryCounters total =
-                    traceRays(*built.accel, rays, options->any, threads, /*counting=*/true, {countedHits, countedOccluded, {}});
+                    traceRays(*built.accel, rays, options->any, coherence, threads, /*counting=*/true,
+                              {countedHits, countedOccluded, {}});
                 progress.finish();
                 const bool counted = built.accel->hasCounters();
                 counts = fmt::format("  N_IT {}  N_TR {}", counted ? fmt::format("{:.2f}", total.intersectionTests / n) : "n/a",

@@ -17,6 +17,18 @@ struct RaySets {
     std::vector<Ray> incoherent;  // any-hit queries of length aoRadius
 };
 
+// How each set is asked, in RaySets' order: shadow and incoherent rays are any-hit queries;
+// primary rays (row by row) and shadow rays (from neighbouring pixels' hits towards the lights)
+// are coherent batches, the bounces are not.
+struct RaySetQuery {
+    const char* kind;
+    bool anyHit;
+    RayCoherence coherence;
+};
+inline constexpr RaySetQuery kRaySetQueries[] = {{"primary", false, RayCoherence::Coherent},
+                                                 {"shadow", true, RayCoherence::Coherent},
+                                                 {"incoherent", true, RayCoherence::Incoherent}};
+
 // `reference` answers the primary rays to find the surfaces the other rays start from.
 // `aoRadiusFraction` is the incoherent rays' length relative to the scene's bounding diagonal.
 RaySets makeRaySets(const Scene& scene, const Camera& camera, const std::vector<PointLight>& lights,

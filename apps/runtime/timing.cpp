@@ -65,8 +65,8 @@ PassResult timePasses(size_t n, int threads, int passes, bool count, BeforePass&
 
 }  // namespace
 
-PassResult tracePasses(const Accelerator& accel, const std::vector<Ray>& rays, bool anyHit, int threads, int passes,
-                       QueryKind kind, bool count) {
+PassResult tracePasses(const Accelerator& accel, const std::vector<Ray>& rays, bool anyHit, RayCoherence coherence,
+                       int threads, int passes, QueryKind kind, bool count) {
     // Into answers allocated outside the timing.
     std::vector<Hit> hits(anyHit ? 0 : rays.size());
     std::vector<uint8_t> occluded(anyHit ? rays.size() : 0);
@@ -80,9 +80,11 @@ PassResult tracePasses(const Accelerator& accel, const std::vector<Ray>& rays, b
                 else
                     for (size_t i = begin; i < end; ++i) accel.findNearest(rays[i], hits[i], local);
             } else if (anyHit) {
-                accel.isOccludedBatch(all.subspan(begin, end - begin), std::span(occluded).subspan(begin, end - begin), local, {});
+                accel.isOccludedBatch(all.subspan(begin, end - begin), std::span(occluded).subspan(begin, end - begin), local, {},
+                                      coherence);
             } else {
-                accel.findNearestBatch(all.subspan(begin, end - begin), std::span(hits).subspan(begin, end - begin), local, {});
+                accel.findNearestBatch(all.subspan(begin, end - begin), std::span(hits).subspan(begin, end - begin), local, {},
+                                       coherence);
             }
         });
 }

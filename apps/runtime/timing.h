@@ -19,7 +19,8 @@ struct PassResult {
 };
 
 // How a structure is asked: ray by ray through findNearest / isOccluded (single), or through the
-// batch calls findNearestBatch / isOccludedBatch, one call per range of kQueryRange rays (batch).
+// batch calls findNearestBatch / isOccludedBatch, one call per range of kQueryRange rays (batch),
+// with the set's coherence hint.
 enum class QueryKind { Single, Batch };
 
 std::string_view toString(QueryKind kind);  // "single", "batch"
@@ -31,8 +32,8 @@ constexpr size_t kQueryRange = 4096;
 // Answers every ray `passes` times with `threads` threads, asked as `kind` says, with counting
 // off (QueryCounters::counting), timed; then, when `count` and the structure counts, once more
 // with counting on, untimed, in the same ranges: N_IT and N_TR of the same rays.
-PassResult tracePasses(const Accelerator& accel, const std::vector<Ray>& rays, bool anyHit, int threads, int passes,
-                       QueryKind kind, bool count = true);
+PassResult tracePasses(const Accelerator& accel, const std::vector<Ray>& rays, bool anyHit, RayCoherence coherence,
+                       int threads, int passes, QueryKind kind, bool count = true);
 
 // The same timed passes over a native batch (reset before each pass, untimed), one trace() per
 // range; counts queries only.

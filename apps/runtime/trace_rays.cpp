@@ -18,15 +18,18 @@ QueryCounters forEachRayRange(size_t n, int threads, bool counting,
     return passTotal(perThread, n, counting);
 }
 
-QueryCounters traceRays(const Accelerator& accel, std::span<const Ray> rays, bool anyHit, int threads, bool counting,
-                        const RayAnswers& answers, const std::function<void(size_t)>& onRange) {
+QueryCounters traceRays(const Accelerator& accel, std::span<const Ray> rays, bool anyHit, RayCoherence coherence,
+                        int threads, bool counting, const RayAnswers& answers,
+                        const std::function<void(size_t)>& onRange) {
     return forEachRayRange(rays.size(), threads, counting, [&](size_t begin, size_t end, QueryCounters& counters) {
         const size_t size = end - begin;
         const std::span<RayCost> costs = answers.costs.empty() ? answers.costs : answers.costs.subspan(begin, size);
         if (anyHit)
-            accel.isOccludedBatch(rays.subspan(begin, size), answers.occluded.subspan(begin, size), counters, costs);
+            accel.isOccludedBatch(rays.subspan(begin, size), answers.occluded.subspan(begin, size), counters, costs,
+                                  coherence);
         else
-            accel.findNearestBatch(rays.subspan(begin, size), answers.hits.subspan(begin, size), counters, costs);
+            accel.findNearestBatch(rays.subspan(begin, size), answers.hits.subspan(begin, size), counters, costs,
+                                   coherence);
         if (onRange) onRange(size);
     });
 }

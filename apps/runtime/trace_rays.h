@@ -41,11 +41,13 @@ QueryCounters passTotal(const PerThreadCounters& perThread, size_t n, bool count
 QueryCounters forEachRayRange(size_t n, int threads, bool counting,
                               const std::function<void(size_t begin, size_t end, QueryCounters&)>& traceRange);
 
-// Answers every ray (any-hit when `anyHit`) with `threads` threads (0: all hardware threads),
+// Answers every ray (any-hit when `anyHit`) through the batch calls with the hint `coherence`,
+// with `threads` threads (0: all hardware threads),
 // counting as forEachRayRange says, calling onRange(rays) after each range; returns the counters
 // of all threads. A timed pass runs with counting off; N_IT, N_TR and costs come from a pass
 // with it on.
-QueryCounters traceRays(const Accelerator& accel, std::span<const Ray> rays, bool anyHit, int threads, bool counting,
-                        const RayAnswers& answers, const std::function<void(size_t)>& onRange = {});
+QueryCounters traceRays(const Accelerator& accel, std::span<const Ray> rays, bool anyHit, RayCoherence coherence,
+                        int threads, bool counting, const RayAnswers& answers,
+                        const std::function<void(size_t)>& onRange = {});
 
 }  // namespace bvhlab

@@ -410,7 +410,7 @@ private:
             Baseline b{&config, {}, std::vector<Hit>(baseRays.size())};
             const auto accel = build(config, base, b.stats);
             QueryCounters counters;
-            accel->findNearestBatch(baseRays, b.hits, counters, {});
+            accel->findNearestBatch(baseRays, b.hits, counters, {}, RayCoherence::Incoherent);
             baselines.push_back(std::move(b));
         }
         size_t caseIndex = 0;

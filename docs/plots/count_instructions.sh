@@ -5,8 +5,9 @@
 # (cut_rays below), and each structure answers both files under `valgrind --tool=cachegrind --branch-sim=yes` (`bvhlab
 # raycast`, 1 thread, BVH::isa=avx2: valgrind runs no AVX-512, and Embree picks its AVX2 kernels
 # under it; without --count raycast's queries count nothing, the form that bvhlab times). Per query = (count of LARGE - count of SMALL) / (LARGE - SMALL): loading the scene
-# and building cancel. Shadow and incoherent rays are any-hit queries (raycast --any), as in the
-# bench. Writes OUT/counts.csv (and each run's log in OUT/logs) and prints a Markdown table,
+# and building cancel. Shadow and incoherent rays are any-hit queries (raycast --any), primary and
+# shadow rays coherent batches (raycast --coherent), as in the bench; no EPO after the build
+# (BVH::epoMaxTriangles=0: it is statistics, and half the run time). Writes OUT/counts.csv (and each run's log in OUT/logs) and prints a Markdown table,
 # ours / Embree's beside each structure that is not Embree.
 #   docs/plots/count_instructions.sh BUILD OUT [STRUCTURE ...]        (from the repository's root)
 # BUILD: a build folder configured with -DBVHLAB_NATIVE=OFF. STRUCTURE: an ASDS::type and -D keys
@@ -63,6 +64,7 @@ for scene in $SCENES; do
     scene_arg="--scene $scene" && [ "$scene" != default ] || scene_arg=""
     for kind in $KINDS; do
         any="" && [ "$kind" = primary ] || any="--any"
+        coherent="--coherent" && [ "$kind" != incoherent ] || coherent=""  # the bench's hint for each set
         all=$OUT/rays/$name.$kind.rays
         nice -n 19 "$BUILD/bvhlab" rays $scene_arg --kind "$kind" --out "$all" > "$OUT/logs/$name.$kind.rays.log" 2>&1 ||
             { echo "bvhlab rays failed: $OUT/logs/$name.$kind.rays.log" >&2; exit 1; }
@@ -76,7 +78,7 @@ for scene in $SCENES; do
                 log=$OUT/logs/$name.$kind.$label.$n.log
                 nice -n 19 valgrind --tool=cachegrind --cache-sim=no --branch-sim=yes --cachegrind-out-file=/dev/null \
                     "$BUILD/bvhlab" raycast $scene_arg --rays "$OUT/rays/$name.$kind.$n.rays" --out "$OUT/hits" \
-                    --threads 1 -DBVH::isa=avx2 $any $type_arg $keys > "$log" 2>&1 ||
+                    --threads 1 -DBVH::isa=avx2 -DBVH::epoMaxTriangles=0 $any $coherent $type_arg $keys > "$log" 2>&1 ||
                     { echo "raycast under valgrind failed: $log" >&2; exit 1; }
                 # The run answered all n rays (raycast prints "NAME closest-hit queries: n ...").
                 grep -q " queries: $n " "$log" || { echo "$log: not $n queries" >&2; exit 1; }

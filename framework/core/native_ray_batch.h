@@ -45,11 +45,11 @@ public:
     virtual std::vector<std::string> batchApis() const = 0;
 
     // The rays prepared for `api` (one of batchApis(), else std::invalid_argument), after
-    // build(); refused as prepareNativeBatch refuses them. `coherent`: the rays share an origin
-    // or an end (primary and shadow rays), a hint the API may take. A packet API traces whole
+    // build(); refused as prepareNativeBatch refuses them. `coherence`: the hint the batch calls
+    // take (RayCoherence), passed to the API where it takes one. A packet API traces whole
     // packets: trace()'s ranges must start at multiples of 16.
     virtual std::unique_ptr<NativeRayBatch> prepareBatchApi(const std::vector<Ray>& rays, std::string_view api,
-                                                            bool coherent) const = 0;
+                                                            RayCoherence coherence) const = 0;
 };
 
 }  // namespace bvhlab

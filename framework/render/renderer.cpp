@@ -88,21 +88,25 @@ private:
         ts.rays.resize(n);
         for (size_t i = 0; i < n; ++i) ts.rays[i] = ts.paths[i].ray;
         ts.hits.resize(n);
-        // Closest hits of the whole wavefront first: one batch call, timed as a block.
-        traceBatch(ts, ts.stats.primary, std::span(ts.hits), ts.countedHits);
+        // Closest hits of the whole wavefront first: one batch call, timed as a block. The camera's
+        // rays of a tile, and their shadow rays towards one light, are coherent; the rays that
+        // bounce off mirrors, and their shadow rays, may go anywhere.
+        const RayCoherence coherence = depth == 0 ? RayCoherence::Coherent : RayCoherence::Incoherent;
+        traceBatch(ts, ts.stats.primary, std::span(ts.hits), ts.countedHits, coherence);
         if (counts_)
             for (size_t i = 0; i < n; ++i) recordCost(ts.paths[i].pixel, ts.costs[i]);
 
         for (size_t i = 0; i < n; ++i) shade(ts, ts.paths[i], ts.hits[i], depth, firstSample);
-        traceShadows(ts);
+        traceShadows(ts, coherence);
     }
 
-    void query(std::span<const Ray> rays, std::span<Hit> hits, QueryCounters& counters, std::span<RayCost> costs) const {
-        accel_.findNearestBatch(rays, hits, counters, costs);
+    void query(std::span<const Ray> rays, std::span<Hit> hits, QueryCounters& counters, std::span<RayCost> costs,
+               RayCoherence coherence) const {
+        accel_.findNearestBatch(rays, hits, counters, costs, coherence);
     }
     void query(std::span<const Ray> rays, std::span<uint8_t> occluded, QueryCounters& counters,
-               std::span<RayCost> costs) const {
-        accel_.isOccludedBatch(rays, occluded, counters, costs);
+               std::span<RayCost> costs, RayCoherence coherence) const {
+        accel_.isOccludedBatch(rays, occluded, counters, costs, coherence);
     }
 
     // One batch of ts.rays: a timed call with counting off, whose answers are shaded; then, when
@@ -110,10 +114,11 @@ private:
     // N_TR and each ray's cost in ts.costs (a structure that counts nothing would leave numbers
     // that are not its work).
     template <typename Answer>
-    void traceBatch(ThreadState& ts, QueryStats& stats, std::span<Answer> answers, std::vector<Answer>& counted) const {
+    void traceBatch(ThreadState& ts, QueryStats& stats, std::span<Answer> answers, std::vector<Answer>& counted,
+                    RayCoherence coherence) const {
         QueryCounters timed{.counting = false};
         const auto start = Clock::now();
-        query(ts.rays, answers, timed, {});
+        query(ts.rays, answers, timed, {}, coherence);
         const auto end = Clock::now();
         stats.queryNanoseconds += std::chrono::duration<double, std::nano>(end - start).count();
         stats.counters.queries += ts.rays.size();
@@ -121,7 +126,7 @@ private:
         QueryCounters work;
         counted.resize(ts.rays.size());
         ts.costs.resize(ts.rays.size());
-        query(ts.rays, std::span(counted), work, ts.costs);
+        query(ts.rays, std::span(counted), work, ts.costs, coherence);
         stats.counters.addWork(work);
         ts.countingNanoseconds += std::chrono::duration<double, std::nano>(Clock::now() - end).count();
     }
@@ -182,14 +187,14 @@ private:
 
     // The shadow rays of the wavefront, one batch per light (rays towards one point). A pixel
     // has one path per wavefront, so it still receives its lights' radiance in light order.
-    void traceShadows(ThreadState& ts) const {
+    void traceShadows(ThreadState& ts, RayCoherence coherence) const {
         QueryStats& shadow = ts.stats.shadow;
         for (const std::vector<ShadowQuery>& queries : ts.shadowsByLight) {
             const size_t n = queries.size();
             ts.rays.resize(n);
             for (size_t i = 0; i < n; ++i) ts.rays[i] = queries[i].ray;
             ts.occluded.resize(n);
-            traceBatch(ts, shadow, std::span(ts.occluded), ts.countedOccluded);
+            traceBatch(ts, shadow, std::span(ts.occluded), ts.countedOccluded, coherence);
             for (size_t i = 0; i < n; ++i) {
                 if (counts_) recordCost(queries[i].pixel, ts.costs[i]);
                 // Unoccluded rays carry their radiance; occluded ones add nothing.

@@ -204,7 +204,7 @@ SpdResult traceSpd(const Scene& scene, const Accelerator& accel, const SpdRules&
             ts.hits.resize(size_t(cornersX));
             ts.costs.resize(size_t(cornersX));
             for (int x = 0; x < cornersX; ++x) ts.rays[size_t(x)] = camera.generateRay(float(x), float(y));
-            accel.findNearestBatch(ts.rays, ts.hits, ts.result.closest, ts.costs);
+            accel.findNearestBatch(ts.rays, ts.hits, ts.result.closest, ts.costs, RayCoherence::Coherent);
             for (int x = 0; x < cornersX; ++x)
                 corners[size_t(y) * size_t(cornersX) + size_t(x)] =
                     tracer.eyeRay(ts.rays[size_t(x)], ts.hits[size_t(x)], ts.costs[size_t(x)], ts);

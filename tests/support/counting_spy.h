@@ -27,17 +27,17 @@ public:
     bool isOccluded(const Ray& ray, QueryCounters& counters) const override {
         return observe(counters, 1, {}, [&](QueryCounters& c) { return inner_.isOccluded(ray, c); });
     }
-    void findNearestBatch(View<const Ray> rays, View<Hit> hits, QueryCounters& counters,
-                          View<RayCost> costs) const override {
+    void findNearestBatch(View<const Ray> rays, View<Hit> hits, QueryCounters& counters, View<RayCost> costs,
+                          RayCoherence coherence) const override {
         observe(counters, rays.size(), costs, [&](QueryCounters& c) {
-            inner_.findNearestBatch(rays, hits, c, costs);
+            inner_.findNearestBatch(rays, hits, c, costs, coherence);
             return true;
         });
     }
-    void isOccludedBatch(View<const Ray> rays, View<uint8_t> occluded, QueryCounters& counters,
-                         View<RayCost> costs) const override {
+    void isOccludedBatch(View<const Ray> rays, View<uint8_t> occluded, QueryCounters& counters, View<RayCost> costs,
+                         RayCoherence coherence) const override {
         observe(counters, rays.size(), costs, [&](QueryCounters& c) {
-            inner_.isOccludedBatch(rays, occluded, c, costs);
+            inner_.isOccludedBatch(rays, occluded, c, costs, coherence);
             return true;
         });
     }

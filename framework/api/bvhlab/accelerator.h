@@ -36,14 +36,16 @@ public:
 
     // The same queries over a view of rays, answered into a view of the same length: every
     // hits[i] is written (Hit{} on a miss), occluded[i] is 1 or 0. `costs` is empty, or of the
-    // same length and receives each ray's work. One call answers its rays on the calling thread
-    // (callers split a large batch over threads), counting into `counters` exactly what the
-    // single-ray calls would. These defaults loop over the single-ray calls; a structure
-    // overrides them to choose its traversal once per batch (bvhlab's BVHs) or to call a native
-    // batch API (Embree's stream API). Answers equal the single-ray calls': bvhlab's bit for
-    // bit; a native batch API may round differently, within hitsAgree (docs/accuracy.md).
+    // same length and receives each ray's work. `coherence` is what the caller knows of the
+    // rays (RayCoherence): a hint for choosing a traversal, never a reason to answer otherwise.
+    // One call answers its rays on the calling thread (callers split a large batch over
+    // threads), counting into `counters` exactly what the single-ray calls would. These defaults
+    // loop over the single-ray calls; a structure overrides them to choose its traversal once per
+    // batch (bvhlab's BVHs) or to call a native batch API (Embree's stream API). Answers equal the
+    // single-ray calls': bvhlab's bit for bit; a native batch API may round differently, within
+    // hitsAgree (docs/accuracy.md).
     virtual void findNearestBatch(View<const Ray> rays, View<Hit> hits, QueryCounters& counters,
-                                  View<RayCost> costs) const {
+                                  View<RayCost> costs, RayCoherence /*coherence*/) const {
         for (size_t i = 0; i < rays.size(); ++i) {
             const QueryCounters before = counters;
             Hit hit;
@@ -53,7 +55,7 @@ public:
         }
     }
     virtual void isOccludedBatch(View<const Ray> rays, View<uint8_t> occluded, QueryCounters& counters,
-                                 View<RayCost> costs) const {
+                                 View<RayCost> costs, RayCoherence /*coherence*/) const {
         for (size_t i = 0; i < rays.size(); ++i) {
             const QueryCounters before = counters;
             occluded[i] = isOccluded(rays[i], counters) ? 1 : 0;

@@ -54,7 +54,7 @@ TEST(RaycastCommand, CountsOnlyWhenAskedAsACountingPass) {
             accel->build(scene.primitives());
             std::vector<Hit> hits(rays.size());
             std::vector<uint8_t> occluded(any ? rays.size() : 0);
-            const QueryCounters expected = traceRays(*accel, rays, any, 1, /*counting=*/true, {hits, occluded, {}});
+            const QueryCounters expected = traceRays(*accel, rays, any, RayCoherence::Incoherent, 1, /*counting=*/true, {hits, occluded, {}});
             EXPECT_GT(expected.traversalSteps, 0u);
             const double n = double(rays.size());
             EXPECT_NE(counted.output.find(fmt::format(" queries: {}  N_IT {:.2f}  N_TR {:.2f}  T_R ", rays.size(),

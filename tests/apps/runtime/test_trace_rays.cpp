@@ -47,7 +47,7 @@ struct DefaultSceneRays {
         naive->build(scene.primitives());
         std::vector<Hit> hits(primary.size());
         QueryCounters unused;
-        naive->findNearestBatch(primary, hits, unused, {});
+        naive->findNearestBatch(primary, hits, unused, {}, RayCoherence::Coherent);
         for (size_t i = 0; i < primary.size(); ++i) {
             if (!hits[i].found()) continue;
             const Vec3 origin = surfaceAt(scene, primary[i], hits[i]).originAbove();
@@ -95,8 +95,8 @@ TEST_P(CountingForm, AnswersBitForBitWithCountingOnAndOff) {
         const size_t n = set.rays.size();
         std::vector<Hit> hitsOff(n), hitsOn(n);
         std::vector<uint8_t> occludedOff(set.anyHit ? n : 0), occludedOn(set.anyHit ? n : 0);
-        const QueryCounters off = traceRays(*accel, set.rays, set.anyHit, 2, /*counting=*/false, {hitsOff, occludedOff, {}});
-        const QueryCounters on = traceRays(*accel, set.rays, set.anyHit, 2, /*counting=*/true, {hitsOn, occludedOn, {}});
+        const QueryCounters off = traceRays(*accel, set.rays, set.anyHit, RayCoherence::Coherent, 2, /*counting=*/false, {hitsOff, occludedOff, {}});
+        const QueryCounters on = traceRays(*accel, set.rays, set.anyHit, RayCoherence::Coherent, 2, /*counting=*/true, {hitsOn, occludedOn, {}});
         EXPECT_TRUE(bitEqual(hitsOff, hitsOn));
         EXPECT_TRUE(bitEqual(occludedOff, occludedOn));
         EXPECT_EQ(off.queries, n);
@@ -129,13 +129,13 @@ TEST(TraceRays, ReportsOnlyQueriesWithCountingOff) {
     const auto accel = builtOver("sahbvh8", d.scene);
     const CountingSpy spy(*accel);
     std::vector<Hit> hits(d.primary.size());
-    const QueryCounters off = traceRays(spy, d.primary, false, 2, /*counting=*/false, {hits, {}, {}});
+    const QueryCounters off = traceRays(spy, d.primary, false, RayCoherence::Coherent, 2, /*counting=*/false, {hits, {}, {}});
     EXPECT_EQ(off.queries, d.primary.size());
     EXPECT_EQ(off.intersectionTests, 0u);
     EXPECT_EQ(off.traversalSteps, 0u);
     EXPECT_EQ(spy.uncountedRays(), d.primary.size());
     EXPECT_EQ(spy.countedRays(), 0u);
-    const QueryCounters on = traceRays(spy, d.primary, false, 2, /*counting=*/true, {hits, {}, {}});
+    const QueryCounters on = traceRays(spy, d.primary, false, RayCoherence::Coherent, 2, /*counting=*/true, {hits, {}, {}});
     EXPECT_EQ(on.intersectionTests, spy.countedIntersectionTests());
     EXPECT_EQ(on.traversalSteps, spy.countedTraversalSteps());
 }
@@ -151,7 +151,7 @@ TEST(TracePasses, TimesWithCountingOffAndCountsInAPassOfItsOwn) {
             SCOPED_TRACE(fmt::format("{} {}", toString(kind), anyHit ? "any-hit" : "closest-hit"));
             const std::vector<Ray>& rays = anyHit ? d.shadow : d.primary;
             const CountingSpy spy(*accel);
-            const PassResult r = tracePasses(spy, rays, anyHit, 2, 3, kind);
+            const PassResult r = tracePasses(spy, rays, anyHit, RayCoherence::Coherent, 2, 3, kind);
             EXPECT_EQ(spy.uncountedRays(), 3 * rays.size());
             EXPECT_EQ(spy.countedRays(), rays.size());
             EXPECT_EQ(r.counters.queries, rays.size());
@@ -169,16 +169,16 @@ TEST(TracePasses, TimesWithCountingOffAndCountsInAPassOfItsOwn) {
                         if (anyHit) accel->isOccluded(range[i], expected);
                         else accel->findNearest(range[i], hits[i], expected);
                 } else if (anyHit) {
-                    accel->isOccludedBatch(range, std::span(occluded).first(range.size()), expected, {});
+                    accel->isOccludedBatch(range, std::span(occluded).first(range.size()), expected, {}, RayCoherence::Incoherent);
                 } else {
-                    accel->findNearestBatch(range, std::span(hits).first(range.size()), expected, {});
+                    accel->findNearestBatch(range, std::span(hits).first(range.size()), expected, {}, RayCoherence::Incoherent);
                 }
             }
             EXPECT_TRUE(verify::sameCounters(r.counters, expected));
             EXPECT_GT(expected.traversalSteps, 0u);
 
             const CountingSpy uncounted(*accel);
-            const PassResult timedOnly = tracePasses(uncounted, rays, anyHit, 2, 2, kind, /*count=*/false);
+            const PassResult timedOnly = tracePasses(uncounted, rays, anyHit, RayCoherence::Coherent, 2, 2, kind, /*count=*/false);
             EXPECT_EQ(uncounted.countedRays(), 0u);
             EXPECT_EQ(timedOnly.counters.queries, rays.size());
             EXPECT_EQ(timedOnly.counters.intersectionTests, 0u);

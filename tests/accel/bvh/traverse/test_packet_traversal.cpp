@@ -156,8 +156,8 @@ void expectBatchAsSingle(const Accelerator& accel, const std::vector<Ray>& rays,
     std::vector<Hit> hits(rays.size(), Hit{1.0f, 5, 0.5f, 0.5f});
     std::vector<uint8_t> occluded(rays.size(), 2);
     std::vector<RayCost> costs(rays.size()), occCosts(rays.size());
-    accel.findNearestBatch(rays, hits, batch, costs);
-    accel.isOccludedBatch(rays, occluded, batchOcc, occCosts);
+    accel.findNearestBatch(rays, hits, batch, costs, RayCoherence::Coherent);
+    accel.isOccludedBatch(rays, occluded, batchOcc, occCosts, RayCoherence::Coherent);
     EXPECT_GT(std::max(hitCount, occludedCount), rays.size() / 20);  // the set tests something
     size_t failures = 0, ties = 0;
     for (size_t i = 0; i < rays.size(); ++i) {

@@ -85,8 +85,8 @@ void expectTimedFormAnswersAlike(const Accelerator& accel, const std::vector<Ray
     timed.counting = false;
     std::vector<Hit> batchHits(rays.size());
     std::vector<uint8_t> batchOccluded(rays.size());
-    accel.findNearestBatch(rays, batchHits, timed, {});
-    accel.isOccludedBatch(rays, batchOccluded, timed, {});
+    accel.findNearestBatch(rays, batchHits, timed, {}, RayCoherence::Coherent);
+    accel.isOccludedBatch(rays, batchOccluded, timed, {}, RayCoherence::Coherent);
     for (size_t i = 0; i < rays.size(); ++i) {
         Hit hit;
         accel.findNearest(rays[i], hit, timed);
@@ -114,8 +114,8 @@ Answers answersOf(Isa isa, bool robust, const test::Soup& soup, const std::vecto
     a.batchHits.resize(rays.size());
     a.batchOccluded.resize(rays.size());
     a.costs.resize(rays.size());
-    accel.findNearestBatch(rays, a.batchHits, a.batch, a.costs);
-    accel.isOccludedBatch(rays, a.batchOccluded, a.batch, {});
+    accel.findNearestBatch(rays, a.batchHits, a.batch, a.costs, RayCoherence::Coherent);
+    accel.isOccludedBatch(rays, a.batchOccluded, a.batch, {}, RayCoherence::Coherent);
     expectTimedFormAnswersAlike(accel, rays, a);
     const BuildStats stats = accel.buildStats();
     const auto bits = std::find_if(stats.figures.begin(), stats.figures.end(),
