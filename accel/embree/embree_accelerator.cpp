@@ -213,6 +213,9 @@ EmbreeAccelerator::EmbreeAccelerator(const EmbreeConfig& config)
     : config_(config), state_(std::make_unique<DeviceState>()) {
     if (config_.threads < 0) throw EmbreeError(fmt::format("Embree: negative thread count {}", config_.threads));
     deviceConfig_ = fmt::format("threads={}", config_.threads);
+    // max_isa, not isa: Embree then takes the best of its kernels up to that ISA the CPU runs,
+    // where isa= would refuse an ISA the CPU lacks.
+    if (!config_.maxIsa.empty()) deviceConfig_ += fmt::format(",max_isa={}", config_.maxIsa);
     RTCDevice device = rtcNewDevice(deviceConfig_.c_str());
     if (!device) {
         const RTCError code = rtcGetDeviceError(nullptr);
@@ -333,7 +336,20 @@ BuildStats EmbreeAccelerator::buildStats() const {
     BuildStats stats;
     stats.primitives = primitives_;
     stats.bytes = bytes_;
+    stats.figures.push_back({"kernel_bits", double(kernelBits()),
+                             fmt::format("vector width of Embree's kernels on this device, its widest native ray "
+                                         "packet (Embree::isa={})",
+                                         config_.maxIsa.empty() ? "auto" : config_.maxIsa)});
     return stats;
+}
+
+int EmbreeAccelerator::kernelBits() const {
+    // Embree names no ISA it chose; its packets follow the ISA (8 rays from AVX on, 16 with
+    // AVX-512), so the widest one it traces natively is the width of its kernels.
+    RTCDevice device = device_.get();
+    if (rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED)) return 512;
+    if (rtcGetDeviceProperty(device, RTC_DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED)) return 256;
+    return 128;
 }
 
 namespace {

@@ -7,6 +7,9 @@
 // only counters.queries is counted. BuildStats::bytes is Embree's own memory for the structure
 // as its memory monitor reports it (see build()).
 //
+// ISA: Embree::isa limits the device's kernels (max_isa); buildStats' figure kernel_bits says
+// what width ran. Each instance owns its device, so structures of different ISAs never share one.
+//
 // Threads: each instance owns one RTCDevice created with "threads=N". Embree applies this
 // process-wide: while a device lives it installs a tbb::global_control limiting all TBB
 // parallelism in the process (with several devices alive, the largest request wins; 0 =
@@ -100,8 +103,11 @@ public:
     std::unique_ptr<EmbreePreparedRays> prepareRays(const std::vector<Ray>& rays, std::string_view api, bool coherent) const;
 
     const EmbreeConfig& config() const { return config_; }
-    // The device's configuration string, e.g. "threads=1".
+    // The device's configuration string, e.g. "threads=1" or "threads=1,max_isa=avx2".
     const std::string& deviceConfig() const { return deviceConfig_; }
+    // The vector width of the kernels Embree runs on this device, in bits: 128 (SSE), 256 (AVX,
+    // AVX2) or 512 (AVX-512). buildStats() reports it as the figure kernel_bits, as BVH's.
+    int kernelBits() const;
 
 private:
     struct DeviceState;  // error and memory callbacks' payload; must outlive the device

@@ -11,6 +11,7 @@ const KeyBindings<EmbreeConfig>& embreeKeys() {
          }},
         {keys::Embree::robust, [](EmbreeConfig& c, bool v) { c.robust = v; }},
         {keys::Embree::threads, [](EmbreeConfig& c, int v) { c.threads = v; }},
+        {keys::Embree::isa, [](EmbreeConfig& c, const std::string& v) { c.maxIsa = v == "auto" ? "" : v; }},
     };
     return bound;
 }

@@ -18,6 +18,11 @@ inline constexpr BoolKey robust{"Embree::robust", "false",
 inline constexpr IntKey threads{
     "Embree::threads", "0", 0, 1024,
     "Embree build threads; 0 = as SetRayTracing::threads. Process-wide: limits TBB while the device lives"};
+inline constexpr std::string_view kIsas[] = {"auto", "sse2", "sse4.2", "avx", "avx2", "avx512"};
+inline constexpr ChoiceKey isa{
+    "Embree::isa", "auto", kIsas,
+    "the widest SIMD kernels Embree may use (its device's max_isa): auto = the best this CPU runs; above the "
+    "CPU's best, that best. avx2 beside BVH::isa=avx2 compares kernels of one vector width (bvhlab bench --isa-pairs)"};
 }  // namespace keys::Embree
 
 enum class EmbreeQuality { Low, Medium, High };
@@ -26,8 +31,9 @@ struct EmbreeConfig {
     EmbreeQuality quality = EmbreeQuality::Medium;
     bool robust = false;
     int threads = 0;  // as passed to rtcNewDevice: 0 = all hardware threads
+    std::string maxIsa;  // as passed to rtcNewDevice's max_isa: empty = no limit (Embree::isa=auto)
 
-    // Embree::quality, Embree::robust and Embree::threads (0 = SetRayTracing::threads).
+    // Embree::quality, Embree::robust, Embree::threads (0 = SetRayTracing::threads) and Embree::isa.
     static EmbreeConfig fromEnv(const Env& env);
 };
 

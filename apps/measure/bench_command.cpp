@@ -10,11 +10,13 @@
 // behind the guard of a plugin's structure: the floor under every row. A benchmark, not a test.
 // Each scene is a job in a process of its own (apps/runtime/child_job.h): a structure that
 // crashes, throws or runs past --job-timeout fails its scene's job (all its structures share the
-// rounds), a failed row with the reason, and the other scenes run.
+// rounds), a failed row with the reason, and the other scenes run. --isa-pairs times copies of
+// the structures at one ISA against Embree at that ISA beside them (isa_pairs.h).
 #include "accel/registry.h"
 #include "apps/cli/command_line.h"
 #include "apps/cli/commands.h"
 #include "apps/measure/bench_resume.h"
+#include "apps/measure/isa_pairs.h"
 #include "apps/measure/nothing_accelerator.h"
 #include "apps/runtime/accel_config.h"
 #include "apps/runtime/atomic_write.h"
@@ -51,9 +53,17 @@
 namespace bvhlab {
 namespace {
 
+// A structure of the contest as --accel and --isa-pairs give it, at `isa`: "best" in the
+// headline pair (its keys as given: by default the best ISA the CPU runs), else a pair's ISA.
+struct ContestConfig {
+    AccelConfig accel;
+    std::string isa = "best";
+};
+
 // One structure of the contest: its builds, measured in rounds.
 struct Structure {
     AccelConfig config;
+    std::string isa = "best";
     Env env{programKeys()};  // the scene's, with the config's overrides and the thread count
     std::unique_ptr<Accelerator> accel;
     BuildStats stats;
@@ -71,15 +81,29 @@ std::unique_ptr<Accelerator> createFor(const Structure& k) {
     return createAccelerator(k.config.name, k.env);
 }
 
+// Embree queried as its users do, at one ISA of the contest: the last build of `embree` (or of
+// its copy at that ISA) with the rays prepared once per set outside the timing
+// (NativeBatchApis: prepareNativeBatch, and for each of its batch APIs), the yardstick of the
+// rows at that ISA.
+struct EmbreeYardstick {
+    std::string isa;
+    const Structure* structure = nullptr;
+    const NativeBatchApis* apis = nullptr;
+    std::vector<std::string> batchApis;
+    std::unique_ptr<NativeRayBatch> bare;                            // of the current ray set
+    std::map<std::string, std::unique_ptr<NativeRayBatch>> prepared;  // likewise, per batch API
+};
+
 // One row of the results: a structure asked as `queries` says (or Embree through its own API:
 // embree-bare, embree-batch), with what the rounds measured.
 struct Contender {
-    Contender(std::string label, QueryKind queries, const Structure* structure)
-        : label(std::move(label)), queries(queries), structure(structure) {}
+    Contender(std::string label, QueryKind queries, const Structure* structure, EmbreeYardstick* native = nullptr)
+        : label(std::move(label)), queries(queries), structure(structure), native(native) {}
 
     std::string label;
     QueryKind queries;
     const Structure* structure;                  // its builds; embree's for embree-bare and -batch
+    EmbreeYardstick* native;                     // embree-bare and -batch's prepared rays; else null
     std::vector<std::vector<double>> usPerQuery; // per ray set: one per round
     std::vector<QueryCounters> counters;         // per ray set: of the first round's counting pass
     // embree-batch: per ray set, each batch API's series and the one kept (the lowest median).
@@ -110,7 +134,7 @@ const char* yardstick(QueryKind kind) { return kind == QueryKind::Single ? "embr
 // machine thus hits all contenders of a round alike, and the medians of the per-round ratios to
 // Embree hold where absolute times drift by tens of percent.
 std::vector<nlohmann::json> measureRounds(const Scene& scene, const RaySets& rays, const Env& sceneEnv,
-                                          const std::vector<AccelConfig>& configs, const std::vector<QueryKind>& kinds,
+                                          const std::vector<ContestConfig>& configs, const std::vector<QueryKind>& kinds,
                                           int threads, int builds, int passes) {
     const NamedRaySet raySets[] = {
         {&rays.primary, kRaySetQueries[0]}, {&rays.shadow, kRaySetQueries[1]}, {&rays.incoherent, kRaySetQueries[2]}};
@@ -119,7 +143,8 @@ std::vector<nlohmann::json> measureRounds(const Scene& scene, const RaySets& ray
     for (size_t c = 0; c < structures.size(); ++c) {
         Structure& k = structures[c];
         if (c < configs.size()) {
-            k.config = configs[c];
+            k.config = configs[c].accel;
+            k.isa = configs[c].isa;
             k.env = accelConfigEnv(k.config, sceneEnv);
         } else {
             k.config.label = kNothingRows[c - configs.size()];
@@ -136,49 +161,57 @@ std::vector<nlohmann::json> measureRounds(const Scene& scene, const RaySets& ray
             k.buildMs.push_back(k.stats.buildMs);
         }
     }
-    const Structure& embree =
-        *std::find_if(structures.begin(), structures.end(), [](const Structure& k) { return k.config.label == "embree"; });
-    // embree-bare and embree-batch: the last build of `embree` queried as Embree's users do
-    // (rays prepared once, outside the timing by NativeBatchApis: prepareNativeBatch, and for each
-    // of its batch APIs), contenders of their own in every round; their build is embree's.
-    const auto* embreeApis = dynamic_cast<const NativeBatchApis*>(embree.accel.get());
-    if (!embreeApis) throw std::logic_error("bvhlab bench: embree has no NativeBatchApis");
-    const std::vector<std::string> batchApis = embreeApis->batchApis();
+    // embree-bare and embree-batch at each ISA: contenders of their own in every round, their
+    // build embree's at that ISA.
+    std::vector<EmbreeYardstick> yardsticks;
+    for (const Structure& k : structures) {
+        if (k.config.label != labelAtIsa("embree", k.isa)) continue;
+        EmbreeYardstick& y = yardsticks.emplace_back();
+        y.isa = k.isa;
+        y.structure = &k;
+        y.apis = dynamic_cast<const NativeBatchApis*>(k.accel.get());
+        if (!y.apis) throw std::logic_error("bvhlab bench: embree has no NativeBatchApis");
+        y.batchApis = y.apis->batchApis();  // fewer packets at a lower ISA
+    }
 
     std::vector<Contender> contenders;
     for (QueryKind kind : kinds) {
         for (const Structure& k : structures) contenders.emplace_back(k.config.label, kind, &k);
-        contenders.emplace_back(yardstick(kind), kind, &embree);
+        for (EmbreeYardstick& y : yardsticks)
+            contenders.emplace_back(labelAtIsa(yardstick(kind), y.isa), kind, y.structure, &y);
     }
+    const auto isBatchYardstick = [](const Contender& k) { return k.native && k.queries == QueryKind::Batch; };
     for (Contender& k : contenders) {
         k.usPerQuery.resize(kSets);
         k.counters.resize(kSets);
-        if (k.label == "embree-batch") k.byApi.resize(kSets);
+        if (isBatchYardstick(k)) k.byApi.resize(kSets);
     }
     for (size_t set = 0; set < kSets; ++set) {
         const NamedRaySet& s = raySets[set];
         // Embree's prepared rays of this set only (a copy per API, and another to reset from).
         const auto asked = [&](QueryKind kind) { return std::find(kinds.begin(), kinds.end(), kind) != kinds.end(); };
-        std::unique_ptr<NativeRayBatch> bare;
-        std::map<std::string, std::unique_ptr<NativeRayBatch>> prepared;
-        if (asked(QueryKind::Single)) bare = embreeApis->prepareNativeBatch(*s.rays);
-        if (asked(QueryKind::Batch))
-            for (const std::string& api : batchApis) prepared[api] = embreeApis->prepareBatchApi(*s.rays, api, s.asked.coherence);
+        for (EmbreeYardstick& y : yardsticks) {
+            y.bare.reset();
+            y.prepared.clear();
+            if (asked(QueryKind::Single)) y.bare = y.apis->prepareNativeBatch(*s.rays);
+            if (asked(QueryKind::Batch))
+                for (const std::string& api : y.batchApis) y.prepared[api] = y.apis->prepareBatchApi(*s.rays, api, s.asked.coherence);
+        }
         for (int round = 0; round < passes; ++round) {
             for (Contender& k : contenders) {
                 PassResult r;
-                if (k.label == "embree-bare") {
-                    r = traceNativePasses(*bare, s.asked.anyHit, threads, 1);
-                } else if (k.label == "embree-batch") {
-                    for (const std::string& api : batchApis) {
-                        r = traceNativePasses(*prepared[api], s.asked.anyHit, threads, 1);
+                if (isBatchYardstick(k)) {
+                    for (const std::string& api : k.native->batchApis) {
+                        r = traceNativePasses(*k.native->prepared[api], s.asked.anyHit, threads, 1);
                         k.byApi[set][api].push_back(r.usPerQuery);
                     }
+                } else if (k.native) {
+                    r = traceNativePasses(*k.native->bare, s.asked.anyHit, threads, 1);
                 } else {
                     r = tracePasses(*k.structure->accel, *s.rays, s.asked.anyHit, s.asked.coherence, threads, 1, k.queries,
                                     /*count=*/round == 0);
                 }
-                if (k.label != "embree-batch") k.usPerQuery[set].push_back(r.usPerQuery);
+                if (!isBatchYardstick(k)) k.usPerQuery[set].push_back(r.usPerQuery);
                 if (round == 0) k.counters[set] = r.counters;
             }
         }
@@ -200,10 +233,10 @@ std::vector<nlohmann::json> measureRounds(const Scene& scene, const RaySets& ray
     std::vector<nlohmann::json> rows;
     for (const Contender& k : contenders) {
         const Structure& structure = *k.structure;
-        const bool native = k.label == yardstick(k.queries);
-        const bool counted = !native && structure.accel->hasCounters();
+        const bool counted = !k.native && structure.accel->hasCounters();
         nlohmann::json row = {{"scene", scene.name},
                               {"accel", k.label},
+                              {"isa", structure.isa},
                               {"queries", toString(k.queries)},
                               {"threads", threads},
                               {"prims", scene.triangleCount()},
@@ -224,13 +257,14 @@ std::vector<nlohmann::json> measureRounds(const Scene& scene, const RaySets& ray
             }
         }
         // Medians of the per-round ratios: to embree-bare and embree-batch (whichever this run
-        // measured), and to embree and embree-robust asked as this row is.
-        const std::pair<const char*, const Contender*> references[] = {
-            {"embree-bare", find("embree-bare", QueryKind::Single)},
-            {"embree-batch", find("embree-batch", QueryKind::Batch)},
-            {"embree", find("embree", k.queries)},
-            {"embree-robust", find("embree-robust", k.queries)}};
-        for (const auto& [label, ref] : references) {
+        // measured), and to embree and embree-robust asked as this row is; all at the row's ISA.
+        const std::pair<const char*, QueryKind> references[] = {{"embree-bare", QueryKind::Single},
+                                                                {"embree-batch", QueryKind::Batch},
+                                                                {"embree", k.queries},
+                                                                {"embree-robust", k.queries}};
+        for (const auto& [name, kind] : references) {
+            const std::string label = labelAtIsa(name, structure.isa);
+            const Contender* ref = find(label, kind);
             if (!ref) continue;
             nlohmann::json ratios = {{"build", pairedRatio(structure.buildMs, ref->structure->buildMs)}};
             for (size_t set = 0; set < kSets; ++set) {
@@ -238,7 +272,7 @@ std::vector<nlohmann::json> measureRounds(const Scene& scene, const RaySets& ray
                                                 ? nlohmann::json()
                                                 : nlohmann::json(pairedRatio(k.usPerQuery[set], ref->usPerQuery[set]));
             }
-            row[std::string("ratio_to_") + label] = ratios;
+            row["ratio_to_" + label] = ratios;
         }
         rows.push_back(std::move(row));
     }
@@ -256,9 +290,13 @@ const nlohmann::json& ratiosTo(const nlohmann::json& row, const std::string& lab
     return it == row.end() ? none : *it;
 }
 
-// The yardstick of a row: embree-bare for single queries, embree-batch for batch queries.
+// The ISA of a row ("best" in the headline pair and in results from before --isa-pairs).
+std::string isaOf(const nlohmann::json& row) { return row.value("isa", std::string("best")); }
+
+// The yardstick of a row: embree-bare for single queries, embree-batch for batch queries, at the
+// row's ISA.
 std::string yardstickOf(const nlohmann::json& row) {
-    return yardstick(row["queries"] == "single" ? QueryKind::Single : QueryKind::Batch);
+    return labelAtIsa(yardstick(row["queries"] == "single" ? QueryKind::Single : QueryKind::Batch), isaOf(row));
 }
 
 // One line per scene x threads x structure x kind of query, then the geometric means of the
@@ -286,7 +324,7 @@ std::string benchTable(const nlohmann::json& results, const std::vector<std::str
         }
         if (!isShown(row)) continue;
         const nlohmann::json& e = ratiosTo(row, yardstickOf(row));
-        const nlohmann::json& er = ratiosTo(row, "embree-robust");
+        const nlohmann::json& er = ratiosTo(row, labelAtIsa("embree-robust", isaOf(row)));
         out += fmt::format("{:<16} {:>3} {:<{}} {:<6} {:>9.1f} {:>6} {:>8.3f} {:>6} {:>6} {:>8.3f} {:>6} {:>6} "
                            "{:>8.3f} {:>6} {:>6} {:>6} {:>6} {:>8} {:>7} {:>7}",
                            row["scene"].get<std::string>(), row["threads"].get<int>(), row["accel"].get<std::string>(),
@@ -316,7 +354,7 @@ std::string benchTable(const nlohmann::json& results, const std::vector<std::str
             int n = 0;
             for (const nlohmann::json& row : rows) {
                 const nlohmann::json& e = ratiosTo(row, yardstickOf(row))[kind];
-                const nlohmann::json& er = ratiosTo(row, "embree-robust")[kind];
+                const nlohmann::json& er = ratiosTo(row, labelAtIsa("embree-robust", isaOf(row)))[kind];
                 if (!e.is_null() && !er.is_null()) {
                     logE += std::log(e.get<double>());
                     logER += std::log(er.get<double>());
@@ -326,6 +364,14 @@ std::string benchTable(const nlohmann::json& results, const std::vector<std::str
             out += n ? fmt::format("  {} {:.2f} ({:.2f})", kind, std::exp(logE / n), std::exp(logER / n)) : "";
         }
         out += "\n";
+    }
+    if (results.contains("isa_pairs")) {
+        const nlohmann::json& pairs = results["isa_pairs"];
+        for (const std::string isa : pairs["isas"])
+            out += fmt::format("\nrows LABEL@{0}: BVH::isa={0} or Embree::isa={0}, their ratios to Embree's rows at {0} "
+                               "(embree-bare@{0}, embree-batch@{0}, embree-robust@{0}); the others at this CPU's best, {1}\n",
+                               isa, pairs["best"].get<std::string>());
+        if (!pairs["note"].get<std::string>().empty()) out += fmt::format("\n{}\n", pairs["note"].get<std::string>());
     }
     if (results["scenes"].empty()) return out;
     out += "\nstructures, with their own settings:\n";
@@ -351,6 +397,7 @@ void addBenchCommand(CLI::App& app) {
         std::string accels = "tdbvh,sahbvh,embree,embree:Embree::robust=true";
         std::string threads = "1,0";
         std::string queries = "single,batch";
+        std::string isaPairs;
         int builds = 5, passes = 5;
         std::string out = "out/bench.json";
         bool fresh = false;
@@ -370,6 +417,11 @@ void addBenchCommand(CLI::App& app) {
                         "single (ray by ray, against embree-bare), batch (the batch calls, against embree-batch) or both, "
                         "comma-separated")
         ->capture_default_str();
+    command->add_option("--isa-pairs", options->isaPairs,
+                        "ISAs at which to time ours against Embree beside the headline pair (each at the best ISA the "
+                        "CPU runs), comma-separated: avx2, avx512. Each structure that reads BVH::isa or Embree::isa "
+                        "is timed again as LABEL@ISA with that key set, against Embree's rows at ISA; one that is the "
+                        "CPU's best is the headline pair, timed once");
     command->add_option("--threads", options->threads, "threads N (0 = all hardware threads), or a comma-separated list of them to measure each")
         ->capture_default_str();
     command->add_option("--builds", options->builds, "builds per structure (median)")->capture_default_str()->check(CLI::Range(1, 1000));
@@ -395,6 +447,16 @@ void addBenchCommand(CLI::App& app) {
                     throw InputError(fmt::format("--accel {}: the bench's own row of that name", c.label));
             nameAccelerators(configs, options->env);
             checkAccelConfigs(configs, options->env.load());
+            // Each structure, then its copies at the ISAs of --isa-pairs: the rows of a pair side by side.
+            const IsaPairs pairs = parseIsaPairs(options->isaPairs);
+            std::vector<ContestConfig> contest;
+            std::vector<AccelConfig> contestAccels;  // the same, for the result key
+            for (const AccelConfig& config : configs) {
+                contest.push_back({config, "best"});
+                for (const std::string& isa : pairs.isas)
+                    if (const std::optional<AccelConfig> copy = configAtIsa(config, isa)) contest.push_back({*copy, isa});
+            }
+            for (const ContestConfig& c : contest) contestAccels.push_back(c.accel);
             std::vector<int> threadCounts;
             for (const std::string& item : splitCommaList(options->threads)) {
                 int t = -1;
@@ -432,7 +494,7 @@ void addBenchCommand(CLI::App& app) {
                                            scene.name, rays.primary.size(), rays.shadow.size(), rays.incoherent.size()));
 
                 for (int threads : threadCounts) {
-                    for (nlohmann::json& row : measureRounds(scene, rays, env, configs, kinds, threads, options->builds,
+                    for (nlohmann::json& row : measureRounds(scene, rays, env, contest, kinds, threads, options->builds,
                                                              options->passes)) {
                         const std::string reference = yardstickOf(row);
                         const nlohmann::json& ratio = ratiosTo(row, reference)["primary"];
@@ -460,7 +522,8 @@ void addBenchCommand(CLI::App& app) {
                                       {"builds", options->builds},
                                       {"passes", options->passes},
                                       {"scenes", nlohmann::json::array()},
-                                      {"rows", nlohmann::json::array()}};
+                                      {"rows", nlohmann::json::array()},
+                                      {"isa_pairs", {{"best", pairs.best}, {"isas", pairs.isas}, {"note", pairs.note}}}};
             const std::filesystem::path out = prepareOutputFile(options->out);
 
             // Each scene's result key first (bench_resume.h): the scenes --out holds with it are kept.
@@ -472,7 +535,7 @@ void addBenchCommand(CLI::App& app) {
             std::vector<bool> keep;
             ResumeCount resume;
             for (const SceneArgument& scene : scenes) {
-                keys.push_back(benchSceneKey(configs, scene.load(options->env), measurement));
+                keys.push_back(benchSceneKey(contestAccels, scene.load(options->env), measurement));
                 const StoredResult stored = options->fresh ? StoredResult{false, "of --fresh"} : earlier.check(scene.id, keys.back());
                 resume.add(stored);
                 keep.push_back(stored.keep);
@@ -507,7 +570,10 @@ void addBenchCommand(CLI::App& app) {
             results["failed_jobs"] = failed;
             writeFileAtomically(out, results.dump(2) + "\n");
             std::vector<std::string> shown;
-            for (const AccelConfig& config : parseAccelConfigList(options->accels)) shown.push_back(config.label);
+            for (const AccelConfig& config : parseAccelConfigList(options->accels)) {
+                shown.push_back(config.label);
+                for (const std::string& isa : pairs.isas) shown.push_back(labelAtIsa(config.label, isa));
+            }
             if (options->referenceRows)
                 for (const nlohmann::json& row : results["rows"])
                     if (!row.contains("failed")) shown.push_back(row["accel"].get<std::string>());

@@ -15,7 +15,8 @@ from plot_common import arguments, bar_panel  # first: it sets matplotlib's back
 import matplotlib.pyplot as plt  # noqa: E402
 
 RAY_SETS = ["primary", "shadow", "incoherent"]
-# The rows bench adds beside the measured structures (apps/measure/bench_command.cpp).
+# The rows bench adds beside the measured structures (apps/measure/bench_command.cpp), also as
+# copies at an ISA of --isa-pairs (LABEL@ISA).
 REFERENCE_ROWS = {"embree", "embree-robust", "nothing", "nothing-guarded", "embree-bare", "embree-batch"}
 
 
@@ -37,7 +38,7 @@ def main():
     for axes_row, scene in zip(axes, scenes):
         measured = [r for r in rows if r["scene"] == scene]
         labels = [f'{r["accel"]} {r["queries"]}' + (f' threads={r["threads"]}' if several_threads else "") for r in measured]
-        colours = ["tab:orange" if r["accel"] in REFERENCE_ROWS else "tab:blue" for r in measured]
+        colours = ["tab:orange" if r["accel"].split("@")[0] in REFERENCE_ROWS else "tab:blue" for r in measured]
         for ax, (key, title) in zip(axes_row, panels):
             values = [r[key] if key == "build_ms" else r[key]["t_r_us"] for r in measured]
             bar_panel(ax, values, labels if key == "build_ms" else None, f"{scene}: {title}", colours)

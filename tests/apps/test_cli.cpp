@@ -1,5 +1,6 @@
 // The bvhlab program end to end: render writes its files, raycast answers a ray file, and
 // broken input gives a one-line error with file and line and a non-zero exit, never a crash.
+#include "framework/core/cpu_levels.h"
 #include "framework/io/ray_file.h"
 #include "tests/support/cli_run.h"
 #include "tests/support/scratch_dir.h"
@@ -226,6 +227,56 @@ TEST(Cli, BenchMeasuresInRoundsWithPairedRatios) {
                                                 "embree batch", "embree-robust batch", "nothing batch",
                                                 "nothing-guarded batch", "embree-batch batch"}));
     EXPECT_NE(r.output.find("embree-batch"), std::string::npos) << r.output;
+}
+
+// --isa-pairs avx2: on an AVX-512 CPU each structure and Embree's rows again at avx2, labelled
+// LABEL@avx2 and measured against Embree's rows at avx2, beside the headline pair; on an AVX2
+// CPU the headline pair is the AVX2 pair, said once and timed once. An ISA of neither key set is
+// an error naming it.
+TEST(Cli, BenchIsaPairsTimeTheAvx2PairBesideTheHeadline) {
+    const auto env = scratchFile("tiny.env", "Camera::width 8\nCamera::height 8\n");
+    const auto out = cliScratchDir() / "bench-isa.json";
+    const Result r = run("bench --scenes " + env.string() + " --accel sahbvh8 --isa-pairs avx2 --queries single "
+                         "--threads 1 --builds 1 --passes 1 --out " + out.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    std::ifstream in(out);
+    const nlohmann::json j = nlohmann::json::parse(in);
+    std::vector<std::string> labels;
+    for (const nlohmann::json& row : j["rows"]) labels.push_back(row["accel"]);
+    if (!cpuLevels().v4) {
+        EXPECT_NE(r.output.find("avx2 is this CPU's best ISA, so the headline pair is the avx2 pair (timed once)"),
+                  std::string::npos) << r.output;
+        EXPECT_EQ(labels, (std::vector<std::string>{"sahbvh8", "embree", "embree-robust", "nothing", "nothing-guarded",
+                                                    "embree-bare"}));
+        return;
+    }
+    EXPECT_EQ(labels, (std::vector<std::string>{"sahbvh8", "sahbvh8@avx2", "embree", "embree@avx2", "embree-robust",
+                                                "embree-robust@avx2", "nothing", "nothing-guarded", "embree-bare",
+                                                "embree-bare@avx2"}));
+    for (const nlohmann::json& row : j["rows"]) {
+        const std::string accel = row["accel"];
+        const bool avx2 = accel.ends_with("@avx2");
+        EXPECT_EQ(row["isa"], avx2 ? "avx2" : "best") << accel;
+        // Each row's ratios are to Embree at its own ISA, and only to those.
+        EXPECT_EQ(row.contains("ratio_to_embree-bare@avx2"), avx2) << accel;
+        EXPECT_EQ(row.contains("ratio_to_embree-bare"), !avx2) << accel;
+        EXPECT_EQ(row.contains("ratio_to_embree-robust@avx2"), avx2) << accel;
+        if (accel == "embree-bare@avx2") {
+            EXPECT_EQ(row["ratio_to_embree-bare@avx2"]["primary"], 1.0);
+        }
+        // What ran: 256-bit kernels in the AVX2 pair, 512-bit ones in the headline pair.
+        if (accel.starts_with("sahbvh8") || accel.starts_with("embree")) {
+            EXPECT_EQ(row["figures"]["kernel_bits"]["value"], avx2 ? 256 : 512) << accel;
+        }
+    }
+    EXPECT_EQ(j["rows"][1]["structure"]["keys"]["BVH::isa"], "avx2");
+    // The table: ours at both ISAs, and what the @avx2 rows are.
+    EXPECT_NE(r.output.find("  1 sahbvh8@avx2 "), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("rows LABEL@avx2: BVH::isa=avx2 or Embree::isa=avx2"), std::string::npos) << r.output;
+
+    const Result bad = run("bench --scenes " + env.string() + " --accel sahbvh8 --isa-pairs sse2 --out " + out.string());
+    EXPECT_NE(bad.exitCode, 0);
+    EXPECT_NE(bad.output.find("--isa-pairs sse2: 'sse2' is not avx2 or avx512"), std::string::npos) << bad.output;
 }
 
 // --quiet leaves the table and the file written, and drops the line per measured row.

@@ -1,5 +1,6 @@
 #include "accel/bvh/traverse/traversal_kernels.h"
 
+#include "framework/core/cpu_levels.h"
 #include "framework/core/error.h"
 
 #include <fmt/format.h>
@@ -36,21 +37,14 @@ int isaVectorBits(Isa isa) {
 }
 
 // The kernels are compiled for the x86-64 micro-architecture levels (accel/CMakeLists.txt):
-// the baseline, v3 (AVX2, FMA, BMI1/2, and LZCNT, MOVBE, F16C, which every CPU with those has)
-// and v4 (v3 and AVX-512 F/BW/CD/DQ/VL). Checked feature by feature: clang's check does not
-// know the level names.
+// the baseline, v3 and v4 (framework/core/cpu_levels.h).
 bool cpuRuns(Isa isa) {
-    __builtin_cpu_init();
-    const bool v3 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") &&
-                    __builtin_cpu_supports("bmi") && __builtin_cpu_supports("bmi2");
-    const bool v4 = v3 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
-                    __builtin_cpu_supports("avx512cd") && __builtin_cpu_supports("avx512dq") &&
-                    __builtin_cpu_supports("avx512vl");
+    const CpuLevels cpu = cpuLevels();
     switch (isa) {
     case Isa::Auto:
     case Isa::Scalar: return true;
-    case Isa::Avx2: return v3;
-    case Isa::Avx512: return v4;
+    case Isa::Avx2: return cpu.v3;
+    case Isa::Avx512: return cpu.v4;
     }
     return false;
 }

@@ -1,15 +1,19 @@
 // The `embree` accelerator's devices: every quality builds, configurations from env, several
-// devices alive at once, concurrent queries, and the process-wide thread limit. Agreement with
+// devices alive at once (of different ISAs too), concurrent queries, and the process-wide thread
+// limit. Agreement with
 // the other accelerators on whole scenes is tested in the cross-accelerator suite.
 #include "accel/embree/embree_accelerator.h"
 #include "accel/naive/naive_accelerator.h"
 #include "accel/registry.h"
 #include "accel/verify/verify_keys.h"
+#include "framework/core/cpu_levels.h"
 #include "framework/core/timed_build.h"
 #include "tests/accel/embree/embree_test_scenes.h"
 
 #include <gtest/gtest.h>
 #include <tbb/global_control.h>
+
+#include <fmt/format.h>
 
 #include <random>
 #include <thread>
@@ -67,6 +71,7 @@ TEST(Embree, ConfigFromEnv) {
     EXPECT_EQ(config.quality, EmbreeQuality::Medium);
     EXPECT_FALSE(config.robust);
     EXPECT_EQ(config.threads, 0);
+    EXPECT_EQ(config.maxIsa, "");  // auto: no limit
 
     env.setOverride("SetRayTracing::threads=1");
     EXPECT_EQ(EmbreeConfig::fromEnv(env).threads, 1);  // follows the render threads
@@ -78,11 +83,59 @@ TEST(Embree, ConfigFromEnv) {
     EXPECT_EQ(config.quality, EmbreeQuality::High);
     EXPECT_TRUE(config.robust);
     EXPECT_THROW(env.setOverride("Embree::quality=ultra"), std::exception);
+    EXPECT_THROW(env.setOverride("Embree::isa=avx512skx"), std::exception);  // Embree 3's names only
 
     env.setOverride("ASDS::type=embree");
     const std::unique_ptr<Accelerator> accel = createAccelerator(env);
     EXPECT_STREQ(accel->name(), "embree");
     EXPECT_EQ(static_cast<const EmbreeAccelerator&>(*accel).deviceConfig(), "threads=2");
+    env.setOverride("Embree::isa=sse4.2");
+    EXPECT_EQ(EmbreeConfig::fromEnv(env).maxIsa, "sse4.2");
+    EXPECT_EQ(static_cast<const EmbreeAccelerator&>(*createAccelerator(env)).deviceConfig(), "threads=2,max_isa=sse4.2");
+}
+
+// The kernel width a structure reports (its figure kernel_bits).
+double kernelBits(const BuildStats& stats) {
+    for (const NamedFigure& f : stats.figures)
+        if (f.name == "kernel_bits") return f.value;
+    return 0;
+}
+
+// Embree::isa limits each device on its own: devices of several ISAs alive at once run kernels of
+// their own width (never one shared device), each answering within the accuracy rule, and at
+// avx2 as the default device does. An ISA above the CPU's is its best, not an error.
+TEST(Embree, IsaLimitsEachDevice) {
+    const Scene scene = smallScene();
+    const CpuLevels cpu = cpuLevels();
+    const int best = cpu.v4 ? 512 : cpu.v3 ? 256 : 128;
+    const std::pair<const char*, int> isas[] = {{"", best}, {"sse2", 128}, {"sse4.2", 128},
+                                                {"avx2", std::min(best, 256)}, {"avx512", best}};
+    std::vector<std::unique_ptr<EmbreeAccelerator>> devices;
+    for (const auto& [isa, bits] : isas) {
+        EmbreeConfig config;
+        config.maxIsa = isa;
+        devices.push_back(std::make_unique<EmbreeAccelerator>(config));
+        devices.back()->build(scene.primitives());
+        SCOPED_TRACE(devices.back()->deviceConfig());
+        EXPECT_EQ(devices.back()->deviceConfig(), *isa ? fmt::format("threads=0,max_isa={}", isa) : "threads=0");
+        EXPECT_EQ(devices.back()->kernelBits(), bits);
+        EXPECT_EQ(kernelBits(devices.back()->buildStats()), bits);
+        expectAgreesWithNaive(scene, *devices.back(), 200, 13u);
+    }
+    // avx2 against the default device, ray by ray, both alive.
+    const EmbreeAccelerator& byDefault = *devices[0];
+    const EmbreeAccelerator& avx2 = *devices[3];
+    std::mt19937 rng(17u);
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+    const Vec3 c = scene.bounds.center(), d = scene.bounds.diagonal();
+    QueryCounters counters;
+    for (int i = 0; i < 500; ++i) {
+        const Ray ray{c + d * Vec3(unit(rng), unit(rng), unit(rng)), Vec3(unit(rng), unit(rng), unit(rng))};
+        Hit a, b;
+        ASSERT_EQ(byDefault.findNearest(ray, a, counters), avx2.findNearest(ray, b, counters)) << "ray " << i;
+        ASSERT_TRUE(hitsAgree(a, b)) << "ray " << i << ": t " << a.t << " vs " << b.t;
+        ASSERT_EQ(byDefault.isOccluded(ray, counters), avx2.isOccluded(ray, counters)) << "ray " << i;
+    }
 }
 
 TEST(Embree, TwoAcceleratorsAliveAtOnce) {

@@ -204,8 +204,8 @@ TEST(Tradeoff, BuildersQuickRunWritesRowsAndResumes) {
     EXPECT_TRUE(contains(r.output, "30 configurations measured, 0 kept")) << r.output;
     EXPECT_TRUE(contains(r.output, "Spearman")) << r.output;
     // What each configuration is: our builders with their BVH:: keys, Embree's qualities with Embree's.
-    EXPECT_TRUE(contains(r.output, "- `sbvh`: BVH::allAxes=false, BVH::bins=16")) << r.output;
-    EXPECT_TRUE(contains(r.output, "- `embree-high`: Embree::quality=high, Embree::robust=false")) << r.output;
+    EXPECT_TRUE(contains(r.output, "- `sbvh`: BVH::allAxes=false, BVH::batchTraversal=auto, BVH::bins=16")) << r.output;
+    EXPECT_TRUE(contains(r.output, "- `embree-high`: Embree::isa=auto, Embree::quality=high, Embree::robust=false")) << r.output;
     const fs::path out = dir / "out";
     const std::vector<std::string> configs = {
         "sahbvh",           "sahbvh8",           "sbvh",          "sbvh8",           "ploc",
