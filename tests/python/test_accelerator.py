@@ -58,6 +58,23 @@ def test_answers_equal_with_and_without_counters(default_scene, name):
     np.testing.assert_array_equal(occluded["occluded"], accel.occluded(**rays))
 
 
+@pytest.mark.parametrize("name", ["sahbvh8", "sahbvh4", "embree"])
+@pytest.mark.parametrize("kind", ["primary", "shadow", "incoherent"])
+def test_answers_equal_under_either_coherence_hint(default_scene, name, kind):
+    """coherent= only chooses a traversal: bvhlab's answers are the same bit for bit, Embree's within hitsAgree."""
+    accel = bvhlab.build(default_scene, name)
+    rays = bvhlab.rays(default_scene, kind, env={"Camera::width": 40, "Camera::height": 30})
+    coherent, incoherent = accel.intersect(**rays, coherent=True), accel.intersect(**rays, coherent=False)
+    if name == "embree":
+        both = np.isfinite(coherent["t"]) & np.isfinite(incoherent["t"])
+        np.testing.assert_array_equal(np.isfinite(coherent["t"]), np.isfinite(incoherent["t"]))
+        assert np.all(np.abs(coherent["t"][both] - incoherent["t"][both]) <= 1e-4 * np.maximum(1, np.abs(coherent["t"][both])))
+    else:
+        for field in ("t", "prim", "u", "v"):
+            assert coherent[field].tobytes() == incoherent[field].tobytes(), field
+        np.testing.assert_array_equal(accel.occluded(**rays, coherent=True), accel.occluded(**rays))
+
+
 def test_float64_and_per_ray_intervals(quad_scene):
     accel = bvhlab.build(quad_scene, "sahbvh")
     origins, directions = rays_down(100)
