@@ -52,18 +52,18 @@ struct PacketFrustum {
             float orgLeast = org[a][0], orgGreatest = org[a][0];
             invLeast[a] = invGreatest[a] = inv[a][0];
             invFarLeast[a] = invFarGreatest[a] = invFar[a][0];
-            for (int k = 0; k < count; ++k) {
+            for (int k = 0; k < count; ++k) {  // simd::min and max: minss, maxss, no libm call
                 usable = usable && std::isfinite(org[a][k]) && std::isfinite(invFar[a][k]) && inv[a][k] != 0.0f;
-                orgLeast = std::fmin(orgLeast, org[a][k]), orgGreatest = std::fmax(orgGreatest, org[a][k]);
-                invLeast[a] = std::fmin(invLeast[a], inv[a][k]), invGreatest[a] = std::fmax(invGreatest[a], inv[a][k]);
-                invFarLeast[a] = std::fmin(invFarLeast[a], invFar[a][k]);
-                invFarGreatest[a] = std::fmax(invFarGreatest[a], invFar[a][k]);
+                orgLeast = simd::min(orgLeast, org[a][k]), orgGreatest = simd::max(orgGreatest, org[a][k]);
+                invLeast[a] = simd::min(invLeast[a], inv[a][k]), invGreatest[a] = simd::max(invGreatest[a], inv[a][k]);
+                invFarLeast[a] = simd::min(invFarLeast[a], invFar[a][k]);
+                invFarGreatest[a] = simd::max(invFarGreatest[a], invFar[a][k]);
             }
             const bool positive = inv[a][0] > 0.0f;  // one octant: one sign per axis
             orgNear[a] = positive ? orgGreatest : orgLeast;
             orgFar[a] = positive ? orgLeast : orgGreatest;
         }
-        for (int k = 0; k < count; ++k) tmin = std::fmin(tmin, tmins[k]);
+        for (int k = 0; k < count; ++k) tmin = simd::min(tmin, tmins[k]);
     }
 
     // The children (a lane mask) that some ray of the packet with tmax <= `tmax` may hit; all
@@ -156,15 +156,35 @@ struct PacketTriangleTest<K, false> {
     }
 };
 
-// Tests the leaf `child` (a wide_child word, of `triangles` triangles) against the rays in `active`: each triangle against
-// all of them, in leaf order (padding lanes left out). queries[k] and tmax[k] follow each ray's
-// hits; an any-hit ray stops at the triangle that occludes it. Counting: N_IT per ray as
-// testLeafBlocks counts it.
+// How many of the leaf `child`'s lanes (a wide_child word) the packet's test takes, in leaf order:
+// all but the run of repeats that ends its last block. Its padding lanes repeat its last triangle;
+// leaving a repeat out changes no answer (it hits exactly where the lane before it does, later in
+// leaf order), and counting this way reads the blocks the test reads anyway, not primIndices.
+[[gnu::always_inline]] inline uint32_t lanesToTest(const TriangleBlockLeaves& leaves, uint32_t child) {
+    constexpr int W = TriangleBlock::kLanes;
+    const uint32_t blocks = wide_child::blocks(child);
+    const TriangleBlock& last = leaves.blocks[wide_child::firstBlock(child) + blocks - 1];
+    const auto repeats = [&](int lane) {  // lane holds the triangle of lane - 1, bit for bit
+        for (int v = 0; v < 3; ++v)
+            for (int a = 0; a < 3; ++a)
+                if (std::bit_cast<uint32_t>(last.vertex[v][a][lane]) != std::bit_cast<uint32_t>(last.vertex[v][a][lane - 1]))
+                    return false;
+        return true;
+    };
+    int lanes = W;
+    while (lanes > 1 && repeats(lanes - 1)) --lanes;
+    return (blocks - 1) * W + uint32_t(lanes);
+}
+
+// Tests the first `lanes` lanes (lanesToTest) of the leaf `child` (a wide_child word) against
+// the rays in `active`: each triangle against
+// all of them, in leaf order. queries[k] and tmax[k] follow each ray's hits; an any-hit ray
+// stops at the triangle that occludes it. Counting: N_IT per ray as testLeafBlocks counts it.
 template <bool Counting, typename Query, bool Robust, int K>
 [[gnu::always_inline]] inline void testLeafPacket(Query* queries, float* tmax, const float* tmin,
                                                  const PacketTriangleTest<K, Robust>& test,
-                                                 const TriangleBlockLeaves& leaves, uint32_t child,
-                                                 uint32_t triangles, int active, uint64_t* tests) {
+                                                 const TriangleBlockLeaves& leaves, uint32_t child, uint32_t lanesTested,
+                                                 int active, uint64_t* tests) {
     using F = simd::Floats<K>;
     constexpr int W = TriangleBlock::kLanes;
     const uint32_t first = wide_child::firstBlock(child);
@@ -175,7 +195,7 @@ template <bool Counting, typename Query, bool Robust, int K>
         int lanes = test.groupLanes[group] & active;
         if (lanes == 0) continue;
         F tmaxes = F::load(tmax);
-        for (uint32_t i = 0; i < triangles; ++i) {
+        for (uint32_t i = 0; i < lanesTested; ++i) {
             const LaneHits<F> hits = test.intersect(block[i / W], int(i % W), group, tmins, tmaxes, lanes);
             if (hits.mask == 0) [[likely]] continue;
             hits.t.store(t), hits.u.store(u), hits.v.store(v);
@@ -195,6 +215,7 @@ template <bool Counting, typename Query, bool Robust, int K>
             }
         }
         if constexpr (Counting) {
+            const uint32_t triangles = leaves.trianglesIn(first, wide_child::blocks(child));
             for (int m = lanes; m != 0; m &= m - 1) tests[std::countr_zero(unsigned(m))] += triangles;
         }
     }

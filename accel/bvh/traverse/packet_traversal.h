@@ -164,15 +164,14 @@ void tracePacket(const WideBvh<N>& bvh, const Ray* rays, int count, int octant, 
         const int active = current.rays;
         if (wide_child::isLeaf(current.child)) {
             // Coherent: the packet's test where it takes fewer triangle tests than the rays'
-            // blocks would (all triangles once, against the blocks once per active ray).
+            // blocks would (its lanes once, against the blocks once per active ray).
             const int rayCount = std::popcount(unsigned(active));
-            uint32_t triangles = 0;
-            if constexpr (kCoherent)
-                triangles = bvh.trianglesIn(wide_child::firstBlock(current.child), wide_child::blocks(current.child));
-            if (kCoherent && triangles <= uint32_t(rayCount) * wide_child::blocks(current.child)) {
+            uint32_t lanes = 0;
+            if constexpr (kCoherent) lanes = lanesToTest(bvh, current.child);
+            if (kCoherent && lanes <= uint32_t(rayCount) * wide_child::blocks(current.child)) {
                 if constexpr (kCoherent) {
                     testLeafPacket<Counting>(queries.data(), tmax, boxTest.tmin, packetTriangleTest, bvh,
-                                             current.child, triangles, active, tests);
+                                             current.child, lanes, active, tests);
                 }
                 for (int m = active; m != 0; m &= m - 1) {
                     const int k = std::countr_zero(unsigned(m));
