@@ -113,6 +113,11 @@ struct PacketTriangleTest {
         }
     }
 
+    // How many groups the rays in `lanes` fall into: the tests a triangle takes.
+    [[gnu::always_inline]] int groupsOf(int lanes) const {
+        return int((groupLanes[0] & lanes) != 0) + int((groupLanes[1] & lanes) != 0) + int((groupLanes[2] & lanes) != 0);
+    }
+
     // The hits of the triangle in lane `lane` of `block` among `lanes` of group `group`, at t in
     // each lane's [tmin, tmax].
     [[gnu::always_inline]] LaneHits<F> intersect(const TriangleBlock& block, int lane, int group, F tmin, F tmax,
@@ -144,6 +149,8 @@ struct PacketTriangleTest<K, false> {
         for (int k = 0; k < K; ++k)
             for (int a = 0; a < 3; ++a) org[a][k] = rays[k < count ? k : 0].org[a], dir[a][k] = rays[k < count ? k : 0].dir[a];
     }
+
+    static int groupsOf(int) { return 1; }
 
     [[gnu::always_inline]] LaneHits<F> intersect(const TriangleBlock& block, int lane, int, F tmin, F tmax,
                                                  int lanes) const {
@@ -180,8 +187,9 @@ struct PacketTriangleTest<K, false> {
 // the rays in `active`: each triangle against
 // all of them, in leaf order. queries[k] and tmax[k] follow each ray's hits; an any-hit ray
 // stops at the triangle that occludes it. Counting: N_IT per ray as testLeafBlocks counts it.
+// Returns whether any ray hit.
 template <bool Counting, typename Query, bool Robust, int K>
-[[gnu::always_inline]] inline void testLeafPacket(Query* queries, float* tmax, const float* tmin,
+[[gnu::always_inline]] inline bool testLeafPacket(Query* queries, float* tmax, const float* tmin,
                                                  const PacketTriangleTest<K, Robust>& test,
                                                  const TriangleBlockLeaves& leaves, uint32_t child, uint32_t lanesTested,
                                                  int active, uint64_t* tests) {
@@ -191,6 +199,7 @@ template <bool Counting, typename Query, bool Robust, int K>
     const TriangleBlock* block = leaves.blocks.data() + first;
     const F tmins = F::load(tmin);
     alignas(64) float t[K], u[K], v[K];
+    bool hit = false;
     for (int group = 0; group < test.kGroups; ++group) {
         int lanes = test.groupLanes[group] & active;
         if (lanes == 0) continue;
@@ -198,6 +207,7 @@ template <bool Counting, typename Query, bool Robust, int K>
         for (uint32_t i = 0; i < lanesTested; ++i) {
             const LaneHits<F> hits = test.intersect(block[i / W], int(i % W), group, tmins, tmaxes, lanes);
             if (hits.mask == 0) [[likely]] continue;
+            hit = true;
             hits.t.store(t), hits.u.store(u), hits.v.store(v);
             for (int m = hits.mask; m != 0; m &= m - 1) {
                 const int k = std::countr_zero(unsigned(m));
@@ -219,6 +229,7 @@ template <bool Counting, typename Query, bool Robust, int K>
             for (int m = lanes; m != 0; m &= m - 1) tests[std::countr_zero(unsigned(m))] += triangles;
         }
     }
+    return hit;
 }
 
 }  // namespace BVHLAB_KERNEL_NS

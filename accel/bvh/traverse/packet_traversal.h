@@ -164,14 +164,20 @@ void tracePacket(const WideBvh<N>& bvh, const Ray* rays, int count, int octant, 
         const int active = current.rays;
         if (wide_child::isLeaf(current.child)) {
             // Coherent: the packet's test where it takes fewer triangle tests than the rays'
-            // blocks would (its lanes once, against the blocks once per active ray).
+            // blocks would (its lanes once per group of sheared frames, against the blocks once
+            // per active ray).
             const int rayCount = std::popcount(unsigned(active));
+            uint32_t packetTests = 0;
             uint32_t lanes = 0;
-            if constexpr (kCoherent) lanes = lanesToTest(bvh, current.child);
-            if (kCoherent && lanes <= uint32_t(rayCount) * wide_child::blocks(current.child)) {
+            if constexpr (kCoherent) {
+                lanes = lanesToTest(bvh, current.child);
+                packetTests = lanes * uint32_t(packetTriangleTest.groupsOf(active));
+            }
+            bool hit = false;
+            if (kCoherent && packetTests <= uint32_t(rayCount) * wide_child::blocks(current.child)) {
                 if constexpr (kCoherent) {
-                    testLeafPacket<Counting>(queries.data(), tmax, boxTest.tmin, packetTriangleTest, bvh,
-                                             current.child, lanes, active, tests);
+                    hit = testLeafPacket<Counting>(queries.data(), tmax, boxTest.tmin, packetTriangleTest, bvh,
+                                                   current.child, lanes, active, tests);
                 }
                 for (int m = active; m != 0; m &= m - 1) {
                     const int k = std::countr_zero(unsigned(m));
@@ -182,11 +188,12 @@ void tracePacket(const WideBvh<N>& bvh, const Ray* rays, int count, int octant, 
                 for (int m = active; m != 0; m &= m - 1) {
                     const int k = std::countr_zero(unsigned(m));
                     if constexpr (Counting) ++steps[k];
-                    testLeafBlocks<Counting>(queries[k], triangleTests[k], bvh, current.child, rays[k].tmin, tests[k]);
+                    hit |= testLeafBlocks<Counting>(queries[k], triangleTests[k], bvh, current.child, rays[k].tmin,
+                                                    tests[k]) || queries[k].tmax < tmax[k];
                     finished(k);
                 }
             }
-            updateFrustumTmax();
+            if (hit) updateFrustumTmax();
         } else if (std::popcount(unsigned(active)) <= fallback) {
             for (int m = active; m != 0; m &= m - 1) {
                 const int k = std::countr_zero(unsigned(m));
