@@ -3,10 +3,13 @@
 // architecture"): up to kPacketWidth rays of one direction octant walk the tree together, one
 // SIMD lane per ray. At a node, each child box is tested against all active rays at once; a
 // child is visited when any of them hits it, with the mask of those that do, in the node's
-// order for the octant (WideNode::order), nearest first. Leaves are tested ray by ray with the single-ray block test. A node reached by at most
-// `fallback` active rays no longer pays for a packet step (a packet tests one box per SIMD
-// test, a single ray all N): each of its rays finishes that subtree alone, by the single-ray
-// skeleton (traverseFrom, wide_bvh_traversal.h).
+// order for the octant (WideNode::order), nearest first. Leaves are tested ray by ray with the
+// single-ray block test. A node reached by at most `fallback` active rays no longer pays for a
+// packet step (a packet tests one box per SIMD test, a single ray all N): each of its rays
+// finishes that subtree alone, by the single-ray skeleton (traverseFrom, wide_bvh_traversal.h).
+// PacketKind::Coherent (BVH::batchTraversal=coherent) adds a frustum test of each node's
+// children before the rays' own tests and tests leaves one triangle against all active rays
+// (coherent_traversal.h); the walk and the answers are the same.
 //
 // Answers equal the single-ray traversal's bit for bit: a ray's box test here performs
 // WideBoxTest's operations in its order on the same RaySlabs values (lane by lane instead of
@@ -22,8 +25,10 @@
 #pragma once
 
 #include "accel/bvh/simd/kernel_namespace.h"
+#include "accel/bvh/traverse/coherent_traversal.h"
 #include "accel/bvh/traverse/wide_bvh_traversal.h"
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <span>
@@ -36,11 +41,14 @@ inline namespace BVHLAB_KERNEL_NS {
 // Rays per packet: 16 where the SIMD layer has 16-lane floats (AVX-512), else 8.
 inline constexpr int kPacketWidth = std::is_same_v<simd::Floats<16>, simd::Scalar<16>> ? 8 : 16;
 
+// The packets' node and leaf steps: Plain (Benthin et al.), or Coherent (coherent_traversal.h).
+enum class PacketKind { Plain, Coherent };
+
 namespace packet_traversal {
 
 // The K rays' RaySlabs in SoA, one lane per ray, for rays of one direction octant (so that all
-// enter a box through the same bounds); lanes past the packet's rays hold zeros and are never
-// active.
+// enter a box through the same bounds); lanes past the packet's rays hold zeros (1/dir: inf)
+// and are never active.
 template <int K, int N, bool Robust>
 struct PacketBoxTest {
     using F = simd::Floats<K>;
@@ -50,15 +58,17 @@ struct PacketBoxTest {
     alignas(64) float tmin[K]{};
     int nearOffset[3], farOffset[3];  // into a node's floats: its lower or upper bounds of each axis
 
+    // RaySlabs' values in lanes: one IEEE operation per lane, the same values.
     PacketBoxTest(const Ray* rays, int count, int octant) {
+        alignas(64) float dir[3][K]{};
         for (int k = 0; k < count; ++k) {
-            const RaySlabs<Robust> slabs(rays[k]);
-            for (int a = 0; a < 3; ++a) {
-                org[a][k] = slabs.org[a];
-                inv[a][k] = slabs.inv[a];
-                invFar[a][k] = slabs.invFar[a];
-            }
-            tmin[k] = slabs.tmin;
+            for (int a = 0; a < 3; ++a) org[a][k] = rays[k].org[a], dir[a][k] = rays[k].dir[a];
+            tmin[k] = rays[k].tmin;
+        }
+        for (int a = 0; a < 3; ++a) {
+            const F lanes = F::broadcast(1.0f) / F::load(dir[a]);
+            lanes.store(inv[a]);
+            (lanes * F::broadcast(1.0f + kFarMargin<Robust>)).store(invFar[a]);
         }
         for (int a = 0; a < 3; ++a) {
             const int lower = a * N, upper = (3 + a) * N;  // WideNode: lower[3][N], then upper[3][N]
@@ -103,10 +113,12 @@ auto arrayOf(Make&& make) {
 }  // namespace packet_traversal
 
 // Traces rays[0, count) (0 < count <= K; every ray valid with tmin >= 0 and of direction
-// octant `octant`; the tree not empty) as one packet, then calls answer(k, query, work) for each ray k with its query and its work
-// (queries = 1; its steps and tests when Counting).
-template <bool Counting, typename Query, bool Robust, int K, int N, typename Answer>
+// octant `octant`; the tree not empty) as one packet, then calls answer(k, query, work) for each
+// ray k with its query and its work (queries = 1; its steps and tests when Counting).
+template <bool Counting, typename Query, bool Robust, int K, PacketKind Kind = PacketKind::Plain, int N,
+          typename Answer>
 void tracePacket(const WideBvh<N>& bvh, const Ray* rays, int count, int octant, int fallback, Answer&& answer) {
+    constexpr bool kCoherent = Kind == PacketKind::Coherent;
     using namespace packet_traversal;
     using F = simd::Floats<K>;
     // Lanes past `count` repeat ray 0: never active, only so that every lane is constructed.
@@ -116,6 +128,24 @@ void tracePacket(const WideBvh<N>& bvh, const Ray* rays, int count, int octant, 
     auto queries = arrayOf<K>([&](size_t k) { return Query(rayOf(k)); });
     alignas(64) float tmax[K]{};
     for (int k = 0; k < count; ++k) tmax[k] = queries[k].tmax;
+    // Coherent: the frustum, its tmax the greatest of the rays' (kept up to date as hits shorten
+    // them), and the packet's leaf test; nothing for the plain packets.
+    const auto coherentOnly = [](auto make) {
+        if constexpr (kCoherent) {
+            return make();
+        } else {
+            return 0;
+        }
+    };
+    const auto frustum = coherentOnly([&] {
+        return PacketFrustum<N>(boxTest.org, boxTest.inv, boxTest.invFar, boxTest.tmin, count, boxTest.nearOffset,
+                                boxTest.farOffset);
+    });
+    const auto packetTriangleTest = coherentOnly([&] { return PacketTriangleTest<K, Robust>(rays, count); });
+    float frustumTmax = *std::max_element(tmax, tmax + count);
+    const auto updateFrustumTmax = [&] {
+        if constexpr (kCoherent && !Query::kStopsAtFirstHit) frustumTmax = *std::max_element(tmax, tmax + count);
+    };
     uint64_t steps[K]{}, tests[K]{};
     const WideNode<N>* nodes = bvh.nodes.data();
 
@@ -133,12 +163,37 @@ void tracePacket(const WideBvh<N>& bvh, const Ray* rays, int count, int octant, 
     for (;;) {
         const int active = current.rays;
         if (wide_child::isLeaf(current.child)) {
-            for (int m = active; m != 0; m &= m - 1) {
-                const int k = std::countr_zero(unsigned(m));
-                if constexpr (Counting) ++steps[k];
-                testLeafBlocks<Counting>(queries[k], triangleTests[k], bvh, current.child, rays[k].tmin, tests[k]);
-                finished(k);
+            // Coherent: the packet's test where it takes fewer triangle tests than the rays'
+            // blocks would (its lanes once per group of sheared frames, against the blocks once
+            // per active ray).
+            const int rayCount = std::popcount(unsigned(active));
+            uint32_t packetTests = 0;
+            uint32_t lanes = 0;
+            if constexpr (kCoherent) {
+                lanes = lanesToTest(bvh, current.child);
+                packetTests = lanes * uint32_t(packetTriangleTest.groupsOf(active));
             }
+            bool hit = false;
+            if (kCoherent && packetTests <= uint32_t(rayCount) * wide_child::blocks(current.child)) {
+                if constexpr (kCoherent) {
+                    hit = testLeafPacket<Counting>(queries.data(), tmax, boxTest.tmin, packetTriangleTest, bvh,
+                                                   current.child, lanes, active, tests);
+                }
+                for (int m = active; m != 0; m &= m - 1) {
+                    const int k = std::countr_zero(unsigned(m));
+                    if constexpr (Counting) ++steps[k];
+                    finished(k);
+                }
+            } else {
+                for (int m = active; m != 0; m &= m - 1) {
+                    const int k = std::countr_zero(unsigned(m));
+                    if constexpr (Counting) ++steps[k];
+                    hit |= testLeafBlocks<Counting>(queries[k], triangleTests[k], bvh, current.child, rays[k].tmin,
+                                                    tests[k]) || queries[k].tmax < tmax[k];
+                    finished(k);
+                }
+            }
+            if (hit) updateFrustumTmax();
         } else if (std::popcount(unsigned(active)) <= fallback) {
             for (int m = active; m != 0; m &= m - 1) {
                 const int k = std::countr_zero(unsigned(m));
@@ -146,6 +201,7 @@ void tracePacket(const WideBvh<N>& bvh, const Ray* rays, int count, int octant, 
                 traverseFrom<Counting>(bvh, single, triangleTests[k], queries[k], current.child, steps[k], tests[k]);
                 finished(k);
             }
+            updateFrustumTmax();
         } else {
             if constexpr (Counting) {
                 for (int m = active; m != 0; m &= m - 1) ++steps[std::countr_zero(unsigned(m))];
@@ -155,9 +211,16 @@ void tracePacket(const WideBvh<N>& bvh, const Ray* rays, int count, int octant, 
             int hitRays[N];
             int order[N];  // the children hit: closest hit far to near for the octant, any hit in lane order
             int hits = 0;
+            // Coherent: the rays' own tests only on the children the frustum keeps.
+            int candidates = 0;
+            if constexpr (kCoherent) candidates = frustum.intersect(node, frustumTmax);
             for (int p = 0; p < N; ++p) {
                 const int c = Query::kStopsAtFirstHit ? p : int(node.order[p] >> (3 * octant) & 7);
-                if (!(node.lower[0][c] <= node.upper[0][c])) continue;  // an empty lane
+                if constexpr (kCoherent) {
+                    if ((candidates >> c & 1) == 0) continue;
+                } else if (!(node.lower[0][c] <= node.upper[0][c])) {
+                    continue;  // an empty lane
+                }
                 const int mask = boxTest.intersect(node, c, tmax, entries[c]) & active;
                 if (mask == 0) continue;
                 hitRays[c] = mask;
@@ -208,7 +271,7 @@ void tracePacket(const WideBvh<N>& bvh, const Ray* rays, int count, int octant, 
 // rays of a packet are neighbours where the batch is coherent), the others alone (runQuery: a
 // miss for an invalid ray, the sign-aware box test for tmin < 0). Calls answer(i, query, work)
 // once per ray i, not in order, with its query and its work (queries = 1).
-template <bool Counting, typename Query, bool Robust, int N, typename Answer>
+template <bool Counting, typename Query, bool Robust, PacketKind Kind, int N, typename Answer>
 void traceAsPackets(const WideBvh<N>& bvh, std::span<const Ray> rays, int fallback, Answer&& answer) {
     constexpr int K = kPacketWidth;
     struct Packet {
@@ -219,10 +282,10 @@ void traceAsPackets(const WideBvh<N>& bvh, std::span<const Ray> rays, int fallba
     Packet packets[8];  // one filling per octant
     const auto trace = [&](int octant) {
         Packet& p = packets[octant];
-        tracePacket<Counting, Query, Robust, K>(bvh, p.rays, p.count, octant, fallback,
-                                                [&](int k, const Query& query, const QueryCounters& work) {
-                                                    answer(p.index[k], query, work);
-                                                });
+        tracePacket<Counting, Query, Robust, K, Kind>(bvh, p.rays, p.count, octant, fallback,
+                                                      [&](int k, const Query& query, const QueryCounters& work) {
+                                                          answer(p.index[k], query, work);
+                                                      });
         p.count = 0;
     };
     for (size_t i = 0; i < rays.size(); ++i) {

@@ -21,6 +21,7 @@ const char* batchTraversalName(BatchTraversal path) {
     switch (path) {
     case BatchTraversal::Auto: return "auto";
     case BatchTraversal::Packets: return "packets";
+    case BatchTraversal::Coherent: return "coherent";
     case BatchTraversal::Single: return "single";
     }
     return "?";

@@ -61,7 +61,7 @@ bool cpuRuns(Isa isa);
 Isa bestIsa();
 // "scalar", "avx2", "avx512" ("auto" for Auto): BVH::isa's values.
 const char* isaName(Isa isa);
-// "auto", "packets", "single": BVH::batchTraversal's values.
+// "auto", "packets", "coherent", "single": BVH::batchTraversal's values.
 const char* batchTraversalName(BatchTraversal path);
 // The widest vectors the kernels of `isa` use, in bits: 128 (SSE2), 256, 512 (0 for Auto).
 int isaVectorBits(Isa isa);

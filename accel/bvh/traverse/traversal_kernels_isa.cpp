@@ -33,7 +33,7 @@ BatchTraversal batchPath(const TraversalConfig& config, RayCoherence) {
 }
 
 // Hands each ray's query and work to answer(i, query, work): the wide layouts trace the rays by
-// the batch's path (packets: packet_traversal.h), the binary one ray by ray.
+// the batch's path (packets, coherent: packet_traversal.h), the binary one ray by ray.
 template <typename Query, bool Robust, bool Counting, typename Tree, typename Answer>
 void traceRange(const Tree& tree, std::span<const Ray> rays, const TraversalConfig& config, RayCoherence coherence,
                 Answer&& answer) {
@@ -49,7 +49,12 @@ void traceRange(const Tree& tree, std::span<const Ray> rays, const TraversalConf
     } else {
         switch (batchPath(config, coherence)) {
         case BatchTraversal::Single: oneByOne(); break;
-        default: traceAsPackets<Counting, Query, Robust>(tree, rays, config.packetFallback, answer); break;
+        case BatchTraversal::Coherent:
+            traceAsPackets<Counting, Query, Robust, PacketKind::Coherent>(tree, rays, config.packetFallback, answer);
+            break;
+        default:
+            traceAsPackets<Counting, Query, Robust, PacketKind::Plain>(tree, rays, config.packetFallback, answer);
+            break;
         }
     }
 }

@@ -15,13 +15,88 @@
 namespace bvhlab {
 inline namespace BVHLAB_KERNEL_NS {
 
-// The hits of one block: a lane mask and each lane's t, u, v (meaningful where the mask is set),
-// kept in registers: the leaf test is inlined into the traversal loop.
-struct BlockHits {
-    using F = simd::Floats<TriangleBlock::kLanes>;
+// The hits of a lane-wise test: a lane mask and each lane's t, u, v (meaningful where the mask
+// is set), kept in registers: the leaf tests are inlined into the traversal loops.
+template <typename F>
+struct LaneHits {
     int mask = 0;
     F t, u, v;
 };
+// One block's: a lane per triangle.
+using BlockHits = LaneHits<simd::Floats<TriangleBlock::kLanes>>;
+
+// The triangle tests on lanes, written once for both uses: a block's eight triangles against one
+// ray (BlockTriangleTest), and one triangle against a packet's rays (coherent_traversal.h).
+// Every lane performs the scalar test's operations in its order, so both agree with it bit for
+// bit. `lanes` are the lanes that count: the others may hold anything.
+namespace lane_tests {
+
+// edgeFunction (triangle.h) as it forms it: fma(a, b, -c*d), its sign certain where it exceeds
+// the error bound; the doubtful lanes (rare) in double.
+template <typename F>
+[[gnu::always_inline]] inline F edgeFunction(F a, F b, F c, F d, int lanes) {
+    const F cd = c * d;
+    const F e = fmsub(a, b, cd);
+    const auto certain = abs(e) > fmadd(abs(cd), F::broadcast(kEdgeErrorScale), F::broadcast(kEdgeErrorFloor));
+    if ((movemask(certain) & lanes) == lanes) [[likely]] return e;
+    return select(certain, e, differenceOfProducts(a, b, c, d));
+}
+
+// The watertight test after the shear: x, y, z are the vertices in the sheared frame (z not
+// yet scaled by sz).
+template <typename F>
+[[gnu::always_inline]] inline LaneHits<F> watertight(const F* x, const F* y, const F* z, F sz, F tmin, F tmax,
+                                                     int lanes) {
+    const F e0 = edgeFunction(x[2], y[1], y[2], x[1], lanes);  // edge v1-v2: weight of v0
+    const F e1 = edgeFunction(x[0], y[2], y[0], x[2], lanes);  // edge v2-v0: weight of v1
+    const F e2 = edgeFunction(x[1], y[0], y[1], x[0], lanes);  // edge v0-v1: weight of v2
+    const F zero = F::broadcast(0.0f);
+    // Lanes with edge functions of both signs miss; so does a zero determinant. The division
+    // only where a lane may hit (a lane's quotient does not depend on the others).
+    const int mixedSigns = movemask((e0 < zero) | (e1 < zero) | (e2 < zero)) &
+                           movemask((e0 > zero) | (e1 > zero) | (e2 > zero));
+    const F det = e0 + e1 + e2;
+    LaneHits<F> hits;
+    if ((~mixedSigns & movemask(det != zero) & lanes) == 0) return hits;
+    const F invDet = F::broadcast(1.0f) / det;
+    hits.t = (e0 * (sz * z[0]) + e1 * (sz * z[1]) + e2 * (sz * z[2])) * invDet;
+    const auto inRange = (hits.t >= tmin) & (hits.t <= tmax) & (det != zero);
+    hits.mask = movemask(inRange) & ~mixedSigns & lanes;
+    hits.u = e1 * invDet;
+    hits.v = e2 * invDet;
+    return hits;
+}
+
+// Moeller-Trumbore with the scalar form's operations and tests (triangle_moller_trumbore.h;
+// glm's cross and dot, summed x + y + z); v[k] is vertex k.
+template <typename F>
+[[gnu::always_inline]] inline LaneHits<F> mollerTrumbore(const F* org, const F* dir, const F (*v)[3], F tmin, F tmax,
+                                                         int lanes) {
+    const auto cross = [](const F* a, const F* b, F* out) {
+        out[0] = a[1] * b[2] - b[1] * a[2];
+        out[1] = a[2] * b[0] - b[2] * a[0];
+        out[2] = a[0] * b[1] - b[0] * a[1];
+    };
+    const auto dot = [](const F* a, const F* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
+    F e1[3], e2[3], s[3];
+    for (int a = 0; a < 3; ++a) {
+        e1[a] = v[1][a] - v[0][a];
+        e2[a] = v[2][a] - v[0][a];
+        s[a] = org[a] - v[0][a];
+    }
+    F p[3], q[3];
+    cross(dir, e2, p);
+    cross(s, e1, q);
+    const F det = dot(e1, p);
+    const F invDet = F::broadcast(1.0f) / det;
+    const F u = dot(s, p) * invDet, v1 = dot(dir, q) * invDet, t = dot(e2, q) * invDet;
+    const F zero = F::broadcast(0.0f), one = F::broadcast(1.0f);
+    const int outside = movemask((u < zero) | (u > one) | (v1 < zero) | (u + v1 > one));
+    const int inRange = movemask((t >= tmin) & (t <= tmax) & (det != zero));
+    return {inRange & ~outside & lanes, t, u, v1};
+}
+
+}  // namespace lane_tests
 
 template <bool Robust>
 struct BlockTriangleTest {
@@ -50,33 +125,8 @@ struct BlockTriangleTest {
             x[k] = ax - sx * z[k];
             y[k] = ay - sy * z[k];
         }
-        // Edge functions as edgeFunction (triangle.h) forms them: fma(a, b, -c*d), its sign
-        // certain where it exceeds the error bound; the doubtful lanes (rare) in double.
-        const F scale = F::broadcast(kEdgeErrorScale), floor = F::broadcast(kEdgeErrorFloor);
-        const auto edge = [&](F a, F b, F c, F d) {
-            const F cd = c * d;
-            const F e = fmsub(a, b, cd);
-            const auto certain = abs(e) > fmadd(abs(cd), scale, floor);
-            if (movemask(certain) == (1 << TriangleBlock::kLanes) - 1) [[likely]] return e;
-            return select(certain, e, differenceOfProducts(a, b, c, d));
-        };
-        const F e0 = edge(x[2], y[1], y[2], x[1]);  // edge v1-v2: weight of v0
-        const F e1 = edge(x[0], y[2], y[0], x[2]);  // edge v2-v0: weight of v1
-        const F e2 = edge(x[1], y[0], y[1], x[0]);  // edge v0-v1: weight of v2
-        const F zero = F::broadcast(0.0f);
-        // Lanes with edge functions of both signs miss; so does a zero determinant.
-        const int mixedSigns = movemask((e0 < zero) | (e1 < zero) | (e2 < zero)) &
-                               movemask((e0 > zero) | (e1 > zero) | (e2 > zero));
-        const F det = e0 + e1 + e2;
-        BlockHits hits;
-        if (mixedSigns == (1 << TriangleBlock::kLanes) - 1 || movemask(det != zero) == 0) return hits;
-        const F invDet = F::broadcast(1.0f) / det;
-        hits.t = (e0 * (sz * z[0]) + e1 * (sz * z[1]) + e2 * (sz * z[2])) * invDet;
-        const auto inRange = (hits.t >= F::broadcast(tmin)) & (hits.t <= F::broadcast(tmax)) & (det != zero);
-        hits.mask = movemask(inRange) & ~mixedSigns;
-        hits.u = e1 * invDet;
-        hits.v = e2 * invDet;
-        return hits;
+        constexpr int kAll = (1 << TriangleBlock::kLanes) - 1;
+        return lane_tests::watertight(x, y, z, sz, F::broadcast(tmin), F::broadcast(tmax), kAll);
     }
 };
 
@@ -93,29 +143,11 @@ struct BlockTriangleTest<false> {
     }
 
     [[gnu::always_inline]] BlockHits intersect(const TriangleBlock& block, float tmin, float tmax) const {
-        const auto cross = [](const F* a, const F* b, F* out) {
-            out[0] = a[1] * b[2] - b[1] * a[2];
-            out[1] = a[2] * b[0] - b[2] * a[0];
-            out[2] = a[0] * b[1] - b[0] * a[1];
-        };
-        const auto dot = [](const F* a, const F* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
-        F v0[3], e1[3], e2[3], s[3];
-        for (int a = 0; a < 3; ++a) {
-            v0[a] = F::load(block.vertex[0][a]);
-            e1[a] = F::load(block.vertex[1][a]) - v0[a];
-            e2[a] = F::load(block.vertex[2][a]) - v0[a];
-            s[a] = org[a] - v0[a];
-        }
-        F p[3], q[3];
-        cross(dir, e2, p);
-        cross(s, e1, q);
-        const F det = dot(e1, p);
-        const F invDet = F::broadcast(1.0f) / det;
-        const F u = dot(s, p) * invDet, v = dot(dir, q) * invDet, t = dot(e2, q) * invDet;
-        const F zero = F::broadcast(0.0f), one = F::broadcast(1.0f);
-        const int outside = movemask((u < zero) | (u > one) | (v < zero) | (u + v > one));
-        const int inRange = movemask((t >= F::broadcast(tmin)) & (t <= F::broadcast(tmax)) & (det != zero));
-        return {inRange & ~outside, t, u, v};
+        F v[3][3];
+        for (int k = 0; k < 3; ++k)
+            for (int a = 0; a < 3; ++a) v[k][a] = F::load(block.vertex[k][a]);
+        constexpr int kAll = (1 << TriangleBlock::kLanes) - 1;
+        return lane_tests::mollerTrumbore(org, dir, v, F::broadcast(tmin), F::broadcast(tmax), kAll);
     }
 };
 

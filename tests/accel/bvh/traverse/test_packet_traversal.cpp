@@ -1,4 +1,5 @@
-// Batches traced as packets (packet_traversal.h) against the single-ray traversal of the same
+// Batches traced as packets (packet_traversal.h), plain and coherent (BVH::batchTraversal=
+// packets, coherent: coherent_traversal.h), against the single-ray traversal of the same
 // tree: hits bit for bit (t, u, v, primitive) and occluded flags equal, on ray sets chosen to
 // take every path (coherent packets, packets thinning out to single rays, rays left alone:
 // tmin < 0, NaN), and on coplanar duplicate triangles, whose ties the closest hit must break
@@ -186,15 +187,18 @@ void expectBatchAsSingle(const Accelerator& accel, const std::vector<Ray>& rays,
 }
 
 // Every ray set on `soup`, for a layout, robustness and fallback threshold (0: packets to
-// the leaves; 2: the default; 64: every ray alone from the root).
+// the leaves; 2: the default; 64: every ray alone from the root), on the batch path `path`.
 template <typename Layout>
-void expectPacketsAsSingle(const Soup& soup, Match axisParallel = Match::Bits) {
+void expectPacketsAsSingle(const Soup& soup, Match axisParallel = Match::Bits,
+                           BatchTraversal path = BatchTraversal::Packets) {
     for (const bool robust : {true, false})
         for (const int fallback : {0, 2, 64}) {
-            SCOPED_TRACE("robust " + std::to_string(robust) + ", fallback " + std::to_string(fallback));
+            SCOPED_TRACE(std::string(batchTraversalName(path)) + ", robust " + std::to_string(robust) + ", fallback " +
+                         std::to_string(fallback));
             TraversalConfig traversal;
             traversal.robust = robust;
             traversal.packetFallback = fallback;
+            traversal.batchTraversal = path;
             BvhAccelerator<Layout> accel(builderRecord("sahbvh"), BvhBuildConfig{}, traversal);
             accel.build(soup.prims());
             const std::vector<Ray> primary = primaryRays(Vec3(3, 14, 22), 64, 48);
@@ -216,13 +220,63 @@ TEST(PacketTraversal, TiesOnDuplicatesAnswerAsSingleRays) {
     expectPacketsAsSingle<WideBvh<4>>(duplicatesScene(), Match::TiesAtLeafBoundaries);
 }
 
+// The coherent packets: the frustum before the rays' box tests, one triangle against all rays
+// at leaves.
+TEST(CoherentTraversal, Wide8AnswersAsSingleRays) {
+    expectPacketsAsSingle<WideBvh<8>>(randomScene(1), Match::Bits, BatchTraversal::Coherent);
+}
+TEST(CoherentTraversal, Wide4AnswersAsSingleRays) {
+    expectPacketsAsSingle<WideBvh<4>>(randomScene(2), Match::Bits, BatchTraversal::Coherent);
+}
+TEST(CoherentTraversal, TiesOnDuplicatesAnswerAsSingleRays) {
+    expectPacketsAsSingle<WideBvh<8>>(duplicatesScene(), Match::TiesAtLeafBoundaries, BatchTraversal::Coherent);
+    expectPacketsAsSingle<WideBvh<4>>(duplicatesScene(), Match::TiesAtLeafBoundaries, BatchTraversal::Coherent);
+}
+
+// The coherent packets walk as the plain ones (the frustum drops no child that a ray hits, the
+// packet's leaf test finds each ray's hits), so each ray counts the same work in both.
+template <typename Layout>
+void expectCoherentCountsAsPackets(const Soup& soup) {
+    for (const bool robust : {true, false}) {
+        SCOPED_TRACE("robust " + std::to_string(robust));
+        std::vector<Ray> rays = primaryRays(Vec3(3, 14, 22), 64, 48);
+        const std::vector<Ray> incoherent = incoherentRays(2000, 7);
+        rays.insert(rays.end(), incoherent.begin(), incoherent.end());
+        std::vector<RayCost> costs[2][2];  // [path][closest, any]
+        for (const BatchTraversal path : {BatchTraversal::Packets, BatchTraversal::Coherent}) {
+            const int p = path == BatchTraversal::Coherent ? 1 : 0;
+            BvhAccelerator<Layout> accel(builderRecord("sahbvh"), BvhBuildConfig{},
+                                         TraversalConfig{.robust = robust, .batchTraversal = path});
+            accel.build(soup.prims());
+            std::vector<Hit> hits(rays.size());
+            std::vector<uint8_t> occluded(rays.size());
+            QueryCounters counters;
+            costs[p][0].resize(rays.size()), costs[p][1].resize(rays.size());
+            accel.findNearestBatch(rays, hits, counters, costs[p][0]);
+            accel.isOccludedBatch(rays, occluded, counters, costs[p][1]);
+        }
+        for (int query = 0; query < 2; ++query) {
+            size_t differing = 0;
+            for (size_t i = 0; i < rays.size(); ++i)
+                differing += costs[1][query][i].intersectionTests != costs[0][query][i].intersectionTests ||
+                             costs[1][query][i].traversalSteps != costs[0][query][i].traversalSteps;
+            EXPECT_EQ(differing, 0u) << (query == 0 ? "closest hit" : "any hit");
+        }
+    }
+}
+TEST(CoherentTraversal, CountsAsPlainPackets) {
+    expectCoherentCountsAsPackets<WideBvh<8>>(randomScene(4));
+    expectCoherentCountsAsPackets<WideBvh<4>>(duplicatesScene());
+}
+
 // The binary layout keeps its single loop, and the tie rule is the same there: of four
 // duplicates the first in leaf order, whichever leaf is visited first.
 TEST(PacketTraversal, BinaryBatchAnswersAsSingleRays) { expectPacketsAsSingle<BinaryBvh>(duplicatesScene()); }
 
 // Packets of 16 (AVX-512's width; here whatever backend Floats<16> is, Scalar<16> on AVX2
 // machines) answer as single rays too: tracePacket for every width the batch entry may pick.
-TEST(PacketTraversal, SixteenRayPacketsAnswerAsSingleRays) {
+template <PacketKind Kind>
+void expectSixteenRayPacketsAsSingle() {
     BvhAccelerator<WideBvh<8>> accel(builderRecord("sahbvh"), BvhBuildConfig{});
     accel.build(randomScene(3).prims());
     const WideBvh<8>& tree = accel.bvh();
@@ -235,7 +289,7 @@ TEST(PacketTraversal, SixteenRayPacketsAnswerAsSingleRays) {
             const int octant = directionOctant(rays[begin].dir);
             for (count = 1; count < 16 && begin + count < rays.size(); ++count)
                 if (directionOctant(rays[begin + count].dir) != octant) break;
-            tracePacket<true, ClosestHitQuery, true, 16>(
+            tracePacket<true, ClosestHitQuery, true, 16, Kind>(
                 tree, rays.data() + begin, int(count), octant, fallback, [&](int k, const ClosestHitQuery& query, const QueryCounters&) {
                     QueryCounters counters;
                     Hit packet, single;
@@ -244,7 +298,7 @@ TEST(PacketTraversal, SixteenRayPacketsAnswerAsSingleRays) {
                     EXPECT_TRUE(bitEqual(packet, single)) << "ray " << begin + k << ", fallback " << fallback;
                     ++compared;
                 });
-            tracePacket<true, AnyHitQuery, true, 16>(tree, rays.data() + begin, int(count), octant, fallback,
+            tracePacket<true, AnyHitQuery, true, 16, Kind>(tree, rays.data() + begin, int(count), octant, fallback,
                                                [&](int k, const AnyHitQuery& query, const QueryCounters&) {
                                                    QueryCounters counters;
                                                    EXPECT_EQ(query.occluded, accel.isOccluded(rays[begin + k], counters));
@@ -253,6 +307,8 @@ TEST(PacketTraversal, SixteenRayPacketsAnswerAsSingleRays) {
         EXPECT_EQ(compared, rays.size());
     }
 }
+TEST(PacketTraversal, SixteenRayPacketsAnswerAsSingleRays) { expectSixteenRayPacketsAsSingle<PacketKind::Plain>(); }
+TEST(CoherentTraversal, SixteenRayPacketsAnswerAsSingleRays) { expectSixteenRayPacketsAsSingle<PacketKind::Coherent>(); }
 
 }  // namespace
 }  // namespace bvhlab

@@ -101,8 +101,9 @@ void expectTimedFormAnswersAlike(const Accelerator& accel, const std::vector<Ray
 }
 
 template <typename Layout>
-Answers answersOf(Isa isa, bool robust, const test::Soup& soup, const std::vector<Ray>& rays) {
-    BvhAccelerator<Layout> accel(builderRecord("sahbvh"), BvhBuildConfig{}, TraversalConfig{.robust = robust, .isa = isa});
+Answers answersOf(Isa isa, bool robust, BatchTraversal path, const test::Soup& soup, const std::vector<Ray>& rays) {
+    BvhAccelerator<Layout> accel(builderRecord("sahbvh"), BvhBuildConfig{},
+                                 TraversalConfig{.robust = robust, .isa = isa, .batchTraversal = path});
     accel.build(soup.prims());
     Answers a;
     a.hits.resize(rays.size());
@@ -128,31 +129,34 @@ template <typename Layout>
 void expectKernelsAgree(const char* layout) {
     const test::Soup soup = kernelScene();
     const std::vector<Ray> rays = kernelRays();
-    for (bool robust : {true, false}) {
-        const Answers reference = answersOf<Layout>(Isa::Scalar, robust, soup, rays);
-        size_t found = 0;
-        for (const Hit& h : reference.hits) found += h.primitive != kInvalidPrimitive;
-        EXPECT_GT(found, rays.size() / 4);
-        EXPECT_LT(found, rays.size());
-        for (Isa isa : kIsas) {
-            if (isa == Isa::Scalar || !cpuRuns(isa)) continue;
-            std::printf("[ kernels  ] %s robust=%d: %s against scalar\n", layout, int(robust), isaName(isa));
-            const Answers a = answersOf<Layout>(isa, robust, soup, rays);
-            const std::string what = std::string(layout) + " " + isaName(isa) + (robust ? "" : " not robust");
-            for (size_t i = 0; i < rays.size(); ++i) {
-                expectSameHit(a.hits[i], reference.hits[i], what + " ray " + std::to_string(i));
-                expectSameHit(a.batchHits[i], reference.batchHits[i], what + " batch ray " + std::to_string(i));
-                EXPECT_EQ(a.occluded[i], reference.occluded[i]) << what << " ray " << i;
-                EXPECT_EQ(a.batchOccluded[i], reference.batchOccluded[i]) << what << " batch ray " << i;
-                if (!samePackets(isa, Isa::Scalar)) continue;
-                EXPECT_EQ(a.costs[i].intersectionTests, reference.costs[i].intersectionTests) << what << " ray " << i;
-                EXPECT_EQ(a.costs[i].traversalSteps, reference.costs[i].traversalSteps) << what << " ray " << i;
+    for (bool robust : {true, false})
+        for (BatchTraversal path : {BatchTraversal::Packets, BatchTraversal::Coherent}) {
+            const Answers reference = answersOf<Layout>(Isa::Scalar, robust, path, soup, rays);
+            size_t found = 0;
+            for (const Hit& h : reference.hits) found += h.primitive != kInvalidPrimitive;
+            EXPECT_GT(found, rays.size() / 4);
+            EXPECT_LT(found, rays.size());
+            for (Isa isa : kIsas) {
+                if (isa == Isa::Scalar || !cpuRuns(isa)) continue;
+                std::printf("[ kernels  ] %s robust=%d %s: %s against scalar\n", layout, int(robust),
+                            batchTraversalName(path), isaName(isa));
+                const Answers a = answersOf<Layout>(isa, robust, path, soup, rays);
+                const std::string what = std::string(layout) + " " + isaName(isa) + (robust ? "" : " not robust") + " " +
+                                         batchTraversalName(path);
+                for (size_t i = 0; i < rays.size(); ++i) {
+                    expectSameHit(a.hits[i], reference.hits[i], what + " ray " + std::to_string(i));
+                    expectSameHit(a.batchHits[i], reference.batchHits[i], what + " batch ray " + std::to_string(i));
+                    EXPECT_EQ(a.occluded[i], reference.occluded[i]) << what << " ray " << i;
+                    EXPECT_EQ(a.batchOccluded[i], reference.batchOccluded[i]) << what << " batch ray " << i;
+                    if (!samePackets(isa, Isa::Scalar)) continue;
+                    EXPECT_EQ(a.costs[i].intersectionTests, reference.costs[i].intersectionTests) << what << " ray " << i;
+                    EXPECT_EQ(a.costs[i].traversalSteps, reference.costs[i].traversalSteps) << what << " ray " << i;
+                }
+                expectSameCounters(a.single, reference.single, what);
+                if (samePackets(isa, Isa::Scalar)) expectSameCounters(a.batch, reference.batch, what + " batch");
+                else EXPECT_EQ(a.batch.queries, reference.batch.queries) << what;
             }
-            expectSameCounters(a.single, reference.single, what);
-            if (samePackets(isa, Isa::Scalar)) expectSameCounters(a.batch, reference.batch, what + " batch");
-            else EXPECT_EQ(a.batch.queries, reference.batch.queries) << what;
         }
-    }
 }
 
 TEST(TraversalKernels, EveryKernelTheCpuRunsAnswersAsTheScalarOne) {
