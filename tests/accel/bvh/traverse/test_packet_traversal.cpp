@@ -252,8 +252,8 @@ void expectCoherentCountsAsPackets(const Soup& soup) {
             std::vector<uint8_t> occluded(rays.size());
             QueryCounters counters;
             costs[p][0].resize(rays.size()), costs[p][1].resize(rays.size());
-            accel.findNearestBatch(rays, hits, counters, costs[p][0]);
-            accel.isOccludedBatch(rays, occluded, counters, costs[p][1]);
+            accel.findNearestBatch(rays, hits, counters, costs[p][0], RayCoherence::Coherent);
+            accel.isOccludedBatch(rays, occluded, counters, costs[p][1], RayCoherence::Coherent);
         }
         for (int query = 0; query < 2; ++query) {
             size_t differing = 0;
