@@ -47,6 +47,7 @@ struct PacketBoxTest {
     alignas(64) float org[3][K]{};
     alignas(64) float inv[3][K]{};
     alignas(64) float invFar[3][K]{};
+    alignas(64) float orgInv[3][K]{};
     alignas(64) float tmin[K]{};
     int nearOffset[3], farOffset[3];  // into a node's floats: its lower or upper bounds of each axis
 
@@ -57,6 +58,7 @@ struct PacketBoxTest {
                 org[a][k] = slabs.org[a];
                 inv[a][k] = slabs.inv[a];
                 invFar[a][k] = slabs.invFar[a];
+                orgInv[a][k] = slabs.orgInv[a];
             }
             tmin[k] = slabs.tmin;
         }
@@ -76,9 +78,15 @@ struct PacketBoxTest {
         const float* bounds = &node.lower[0][0];
         F nearT[3], farT[3];
         for (int a = 0; a < 3; ++a) {
-            const F o = F::load(org[a]);
-            nearT[a] = (F::broadcast(bounds[nearOffset[a] + c]) - o) * F::load(inv[a]);
-            farT[a] = (F::broadcast(bounds[farOffset[a] + c]) - o) * F::load(invFar[a]);
+            const F nearBound = F::broadcast(bounds[nearOffset[a] + c]), farBound = F::broadcast(bounds[farOffset[a] + c]);
+            if constexpr (Robust) {
+                const F o = F::load(org[a]);
+                nearT[a] = (nearBound - o) * F::load(inv[a]);
+                farT[a] = (farBound - o) * F::load(invFar[a]);
+            } else {
+                nearT[a] = fmsub(nearBound, F::load(inv[a]), F::load(orgInv[a]));
+                farT[a] = fmsub(farBound, F::load(inv[a]), F::load(orgInv[a]));
+            }
         }
         const F entry = max(max(nearT[0], nearT[1]), max(nearT[2], F::load(tmin)));
         const F exit = min(min(farT[0], farT[1]), min(farT[2], F::load(tmax)));
