@@ -23,6 +23,15 @@ struct BlockHits {
     F t, u, v;
 };
 
+// The edge function e = fma(a, b, -c*d) with its doubtful lanes (not `certain`) recomputed in
+// double, as edgeFunction does. Rare, so out of line: inlined, its registers weighed on the
+// traversal loop around the leaf test, which then saved and restored the ray's vectors at every
+// leaf.
+template <typename F, typename Mask>
+[[gnu::noinline, gnu::cold]] F recomputeDoubtfulLanes(Mask certain, F e, F a, F b, F c, F d) {
+    return select(certain, e, differenceOfProducts(a, b, c, d));
+}
+
 template <bool Robust>
 struct BlockTriangleTest {
     using F = simd::Floats<TriangleBlock::kLanes>;
@@ -58,7 +67,7 @@ struct BlockTriangleTest {
             const F e = fmsub(a, b, cd);
             const auto certain = abs(e) > fmadd(abs(cd), scale, floor);
             if (movemask(certain) == (1 << TriangleBlock::kLanes) - 1) [[likely]] return e;
-            return select(certain, e, differenceOfProducts(a, b, c, d));
+            return recomputeDoubtfulLanes(certain, e, a, b, c, d);
         };
         const F e0 = edge(x[2], y[1], y[2], x[1]);  // edge v1-v2: weight of v0
         const F e1 = edge(x[0], y[2], y[0], x[2]);  // edge v2-v0: weight of v1
