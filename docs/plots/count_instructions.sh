@@ -4,7 +4,8 @@
 # kind, SMALL and LARGE of the bench's rays (`bvhlab rays`) are taken from all over the image
 # (cut_rays below), and each structure answers both files under `valgrind --tool=cachegrind --branch-sim=yes` (`bvhlab
 # raycast`, 1 thread, BVH::isa=avx2: valgrind runs no AVX-512, and Embree picks its AVX2 kernels
-# under it; without --count raycast's queries count nothing, the form that bvhlab times). Per query = (count of LARGE - count of SMALL) / (LARGE - SMALL): loading the scene
+# under it; BVH::epoMaxTriangles=0: no EPO statistics after the build, half the run time under
+# valgrind; without --count raycast's queries count nothing, the form that bvhlab times). Per query = (count of LARGE - count of SMALL) / (LARGE - SMALL): loading the scene
 # and building cancel. Shadow and incoherent rays are any-hit queries (raycast --any), as in the
 # bench. Writes OUT/counts.csv (and each run's log in OUT/logs) and prints a Markdown table,
 # ours / Embree's beside each structure that is not Embree.
@@ -76,7 +77,7 @@ for scene in $SCENES; do
                 log=$OUT/logs/$name.$kind.$label.$n.log
                 nice -n 19 valgrind --tool=cachegrind --cache-sim=no --branch-sim=yes --cachegrind-out-file=/dev/null \
                     "$BUILD/bvhlab" raycast $scene_arg --rays "$OUT/rays/$name.$kind.$n.rays" --out "$OUT/hits" \
-                    --threads 1 -DBVH::isa=avx2 $any $type_arg $keys > "$log" 2>&1 ||
+                    --threads 1 -DBVH::isa=avx2 -DBVH::epoMaxTriangles=0 $any $type_arg $keys > "$log" 2>&1 ||
                     { echo "raycast under valgrind failed: $log" >&2; exit 1; }
                 # The run answered all n rays (raycast prints "NAME closest-hit queries: n ...").
                 grep -q " queries: $n " "$log" || { echo "$log: not $n queries" >&2; exit 1; }
