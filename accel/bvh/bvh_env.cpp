@@ -34,6 +34,11 @@ const BvhKeys& bvhCommonKeys() {
                                      BatchTraversal::Single})
                  if (v == batchTraversalName(p)) s.traversal.batchTraversal = p;
          }},
+        {singleStep,
+         [](BvhSettings& s, const std::string& v) {
+             for (SingleStep step : {SingleStep::Offsets, SingleStep::Octant})
+                 if (v == singleStepName(step)) s.traversal.singleStep = step;
+         }},
     };
     return bound;
 }

@@ -63,6 +63,12 @@ inline constexpr ChoiceKey batchTraversal{
     "(packets with a frustum test per node and one triangle against all rays at leaves, after Embree's coherent "
     "hybrid traversal), single (ray by ray): one path whatever the hint, to time paths against each other. Answers "
     "are the same whatever the value"};
+inline constexpr std::string_view kSingleSteps[] = {"offsets", "octant"};
+inline constexpr ChoiceKey singleStep{
+    "BVH::singleStep", "offsets", kSingleSteps,
+    "single rays on the wide layouts: offsets = a node's near and far bounds at offsets chosen per ray; octant = the "
+    "loop compiled per direction octant, the bounds at fixed offsets (as tinybvh's BVH8_CPU). Answers are the same "
+    "whatever the value; there to time the two"};
 inline constexpr IntKey threads{"BVH::threads", "0", 0, 1024,
                                 "build threads; 0 = as SetRayTracing::threads (0 there: all hardware threads). The "
                                 "tree is the same whatever the count"};

@@ -28,6 +28,8 @@ namespace simd {
 // min(+0, -0) = -0. The box tests rely on it to drop NaN slab distances (box_test.h).
 inline float min(float a, float b) { return a < b ? a : b; }
 inline float max(float a, float b) { return a > b ? a : b; }
+// a * b - c rounded once, for the one-lane (float) form of a formula.
+inline float fmsub(float a, float b, float c) { return std::fma(a, b, -c); }
 
 // Plain float as a one-lane backend, so that a formula written once serves the binary
 // traversal's scalar box test and the wide one's lanes (box_test.h).

@@ -35,7 +35,8 @@ struct StackEntry {
 
 }  // namespace binary_traversal
 
-template <bool Counting, typename Query, bool NegativeT, bool Robust, typename Leaves>
+// One step for every SingleStep (BVH::singleStep is the wide layouts').
+template <bool Counting, typename Query, bool NegativeT, bool Robust, SingleStep, typename Leaves>
 Query traverse(const NodeTree<BvhNode, Leaves>& bvh, const Ray& ray, QueryCounters& counters) {
     using namespace binary_traversal;
     const RayBoxTest<NegativeT, Robust> boxTest(ray);

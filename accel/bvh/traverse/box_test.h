@@ -9,7 +9,9 @@
 // pbrt scales by 1 + 2*gamma, right only for far >= 0; that is all a ray with tmin >= 0 needs
 // (a box with far < 0 lies behind it either way), and it is folded into a premultiplied 1/dir.
 // Rays whose interval reaches below 0 (NegativeT) take the sign-aware form,
-// far * (1 -+ 2*gamma). Robust = false (BVH::robust=false) drops the margin.
+// far * (1 -+ 2*gamma). Robust = false (BVH::robust=false) drops the margin. (Embree's and
+// tinybvh's fused form, bound * inv - org * inv, gives inf - inf = NaN for a zero direction
+// component, and with it empty lanes that pass: it would need their safe reciprocal too.)
 //
 // Axis-parallel rays: 1/0 gives +-inf; when the origin lies exactly on a slab plane, 0 * inf is
 // NaN. The min/max of the SIMD layer return their second argument when the first is NaN, so a
@@ -61,6 +63,17 @@ struct RaySlabs {
         }
     }
 
+    // The ray's direction octant, as WideNode::order numbers them (directionOctant).
+    int octant() const { return nearIsUpper[0] | nearIsUpper[1] << 1 | nearIsUpper[2] << 2; }
+
+    // The near slab distance of `bound` on axis a: F is float (the binary test) or SIMD lanes
+    // (the wide one).
+    template <typename F>
+    [[gnu::always_inline]] F nearDistance(F bound, int a) const {
+        using simd::broadcast;
+        return (bound - broadcast<F>(org[a])) * broadcast<F>(inv[a]);
+    }
+
     // The far slab distance of `bound` on axis a, pushed outwards: F is float (the binary
     // test) or SIMD lanes (the wide one).
     template <bool NegativeT, typename F>
@@ -97,9 +110,9 @@ struct RayBoxTest : RaySlabs<Robust> {
     // True when the ray overlaps the box within [tmin, tmax]; `entry` is where it enters.
     [[gnu::always_inline]] bool intersect(const BvhNode& node, float tmax, float& entry) const {
         const float* b = node.bounds;
-        const float nx = (b[nearSlab[0]] - this->org[0]) * this->inv[0];
-        const float ny = (b[nearSlab[1]] - this->org[1]) * this->inv[1];
-        const float nz = (b[nearSlab[2]] - this->org[2]) * this->inv[2];
+        const float nx = this->nearDistance(b[nearSlab[0]], 0);
+        const float ny = this->nearDistance(b[nearSlab[1]], 1);
+        const float nz = this->nearDistance(b[nearSlab[2]], 2);
         const float fx = this->template farDistance<NegativeT>(b[farSlab[0]], 0);
         const float fy = this->template farDistance<NegativeT>(b[farSlab[1]], 1);
         const float fz = this->template farDistance<NegativeT>(b[farSlab[2]], 2);
@@ -109,8 +122,15 @@ struct RayBoxTest : RaySlabs<Robust> {
     }
 };
 
+// A ray's direction octant not known at compile time (WideBoxTest::test<Octant>).
+inline constexpr int kAnyOctant = -1;
+
 // The N child boxes of a wide node, in lanes of simd::Floats<N>. The ray's constants are kept
-// as vectors for the whole traversal, so a node step loads the node and nothing else.
+// as vectors for the whole traversal, so a node step loads the node and nothing else. Which
+// bounds a ray enters first depends on its octant: test(node, tmax) finds them at byte offsets
+// chosen per ray, test<Octant>(node, tmax) (the octant known at compile time, as tinybvh's
+// BVH8_CPU) reads them as members at fixed offsets, which spares a step the offsets' registers
+// or their reloads. Both perform the same operations on the same values.
 template <int N, bool NegativeT, bool Robust>
 struct WideBoxTest : RaySlabs<Robust> {
     using F = simd::Floats<N>;
@@ -142,7 +162,8 @@ struct WideBoxTest : RaySlabs<Robust> {
         return reinterpret_cast<const float*>(reinterpret_cast<const char*>(&node) + offset);
     }
 
-    // RaySlabs::farDistance's operations, on the constants in lanes.
+    // RaySlabs::nearDistance's and farDistance's operations, on the constants in lanes.
+    [[gnu::always_inline]] F nearDistance(F bound, int a) const { return (bound - org[a]) * inv[a]; }
     [[gnu::always_inline]] F farDistance(F bound, int a) const {
         if constexpr (NegativeT && Robust) {
             constexpr float margin = kFarMargin<Robust>;
@@ -153,16 +174,39 @@ struct WideBoxTest : RaySlabs<Robust> {
         }
     }
 
-    // The boxes the ray overlaps within [tmin, tmax].
-    [[gnu::always_inline]] Hits test(const Node& node, F tmax) const {
+    // The boxes the ray overlaps within [tmin, tmax], given each axis's near and far bounds.
+    [[gnu::always_inline]] Hits test(const float* const (&nearBounds)[3], const float* const (&farBounds)[3],
+                                     F tmax) const {
         F nearT[3], farT[3];
         for (int a = 0; a < 3; ++a) {
-            nearT[a] = (F::load(bounds(node, nearOffset[a])) - org[a]) * inv[a];
-            farT[a] = farDistance(F::load(bounds(node, farOffset[a])), a);
+            nearT[a] = nearDistance(F::load(nearBounds[a]), a);
+            farT[a] = farDistance(F::load(farBounds[a]), a);
         }
         const F entry = max(max(nearT[0], nearT[1]), max(nearT[2], tmin));
         const F exit = min(min(farT[0], farT[1]), min(farT[2], tmax));
         return {entry, entry <= exit};
+    }
+
+    // The boxes of `node` the ray overlaps within [tmin, tmax], their bounds at the ray's offsets.
+    [[gnu::always_inline]] Hits test(const Node& node, F tmax) const {
+        const float* nearBounds[3] = {bounds(node, nearOffset[0]), bounds(node, nearOffset[1]), bounds(node, nearOffset[2])};
+        const float* farBounds[3] = {bounds(node, farOffset[0]), bounds(node, farOffset[1]), bounds(node, farOffset[2])};
+        return test(nearBounds, farBounds, tmax);
+    }
+
+    // The same for a ray of direction octant Octant (this ray's: octant(); kAnyOctant: the above).
+    template <int Octant>
+    [[gnu::always_inline]] Hits test(const Node& node, F tmax) const {
+        if constexpr (Octant == kAnyOctant) {
+            return test(node, tmax);
+        } else {
+            constexpr bool x = Octant & 1, y = Octant & 2, z = Octant & 4;
+            const float* nearBounds[3] = {x ? node.upper[0] : node.lower[0], y ? node.upper[1] : node.lower[1],
+                                          z ? node.upper[2] : node.lower[2]};
+            const float* farBounds[3] = {x ? node.lower[0] : node.upper[0], y ? node.lower[1] : node.upper[1],
+                                         z ? node.lower[2] : node.upper[2]};
+            return test(nearBounds, farBounds, tmax);
+        }
     }
 
     // The same as a bit mask, where the ray enters each box to entryOut.

@@ -86,9 +86,10 @@ struct PacketBoxTest {
         const float* bounds = &node.lower[0][0];
         F nearT[3], farT[3];
         for (int a = 0; a < 3; ++a) {
+            const F nearBound = F::broadcast(bounds[nearOffset[a] + c]), farBound = F::broadcast(bounds[farOffset[a] + c]);
             const F o = F::load(org[a]);
-            nearT[a] = (F::broadcast(bounds[nearOffset[a] + c]) - o) * F::load(inv[a]);
-            farT[a] = (F::broadcast(bounds[farOffset[a] + c]) - o) * F::load(invFar[a]);
+            nearT[a] = (nearBound - o) * F::load(inv[a]);
+            farT[a] = (farBound - o) * F::load(invFar[a]);
         }
         const F entry = max(max(nearT[0], nearT[1]), max(nearT[2], F::load(tmin)));
         const F exit = min(min(farT[0], farT[1]), min(farT[2], F::load(tmax)));

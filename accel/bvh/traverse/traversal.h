@@ -1,7 +1,8 @@
 // What the traversal skeletons of every layout share: the two queries (closest hit, any hit),
 // the leaves' triangle test, and the entry that picks the skeleton's variant for a ray. Each
-// layout has one skeleton, `traverse<Counting, Query, NegativeT, Robust>(tree, ray, counters)`
-// (binary_bvh_traversal.h, wide_bvh_traversal.h), with a fixed-size stack and no allocation.
+// layout has one skeleton, `traverse<Counting, Query, NegativeT, Robust, Step>(tree, ray,
+// counters)` (binary_bvh_traversal.h, wide_bvh_traversal.h; Step: BVH::singleStep, which only
+// the wide one reads), with a fixed-size stack and no allocation.
 //
 // What the counters count (QueryCounters, Havran's terms):
 //   N_TR (traversalSteps): nodes visited. The root is visited by every valid query; any other
@@ -149,12 +150,12 @@ struct LeafTester<QuadricLeaves, Robust> {
 // (Counting: the query's work too), answers invalid rays and empty trees with a miss, and runs
 // the skeleton variant the ray needs: NegativeT when the interval reaches below t = 0 (the box
 // test's far margin must then be sign-aware).
-template <typename Query, bool Robust, bool Counting, typename Tree>
+template <typename Query, bool Robust, bool Counting, SingleStep Step = SingleStep::Offsets, typename Tree>
 [[gnu::always_inline]] inline Query runQuery(const Tree& tree, const Ray& ray, QueryCounters& counters) {
     ++counters.queries;
     if (tree.empty() || !ray.isValid()) return Query(ray);
-    return ray.tmin < 0.0f ? traverse<Counting, Query, true, Robust>(tree, ray, counters)
-                           : traverse<Counting, Query, false, Robust>(tree, ray, counters);
+    return ray.tmin < 0.0f ? traverse<Counting, Query, true, Robust, Step>(tree, ray, counters)
+                           : traverse<Counting, Query, false, Robust, Step>(tree, ray, counters);
 }
 
 // Robust per BVH::robust, counting.

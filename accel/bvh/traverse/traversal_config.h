@@ -13,6 +13,11 @@ enum class Isa { Auto, Scalar, Avx2, Avx512 };
 // other as contenders in one run. Every path answers bit for bit alike.
 enum class BatchTraversal { Auto, Packets, Coherent, Single };
 
+// BVH::singleStep: how the wide layouts' single-ray loop finds a node's near and far bounds
+// (box_test.h, WideBoxTest): at byte offsets chosen per ray, or as members of a loop compiled
+// per direction octant. Both answer bit for bit alike; the key is there to time them.
+enum class SingleStep { Offsets, Octant };
+
 struct TraversalConfig {
     // BVH::robust. true: the watertight triangle test and the conservative box test (box_test.h);
     // false: Moeller-Trumbore and plain boxes (not watertight), only to measure what
@@ -26,6 +31,8 @@ struct TraversalConfig {
     Isa isa = Isa::Auto;
     // BVH::batchTraversal.
     BatchTraversal batchTraversal = BatchTraversal::Auto;
+    // BVH::singleStep.
+    SingleStep singleStep = SingleStep::Offsets;
 };
 
 }  // namespace bvhlab

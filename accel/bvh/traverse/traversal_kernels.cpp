@@ -27,6 +27,14 @@ const char* batchTraversalName(BatchTraversal path) {
     return "?";
 }
 
+const char* singleStepName(SingleStep step) {
+    switch (step) {
+    case SingleStep::Offsets: return "offsets";
+    case SingleStep::Octant: return "octant";
+    }
+    return "?";
+}
+
 int isaVectorBits(Isa isa) {
     switch (isa) {
     case Isa::Auto: return 0;
@@ -63,9 +71,9 @@ TraversalKernels<Tree> traversalKernels(const TraversalConfig& config) {
         throw InputError(fmt::format("BVH::isa={}: this CPU does not run the {} kernels (it runs up to {})",
                                      isaName(isa), isaName(isa), isaName(bestIsa())));
     switch (isa) {
-    case Isa::Avx512: return kernels::avx512<Tree>(config.robust);
-    case Isa::Avx2: return kernels::avx2<Tree>(config.robust);
-    default: return kernels::scalar<Tree>(config.robust);
+    case Isa::Avx512: return kernels::avx512<Tree>(config.robust, config.singleStep);
+    case Isa::Avx2: return kernels::avx2<Tree>(config.robust, config.singleStep);
+    default: return kernels::scalar<Tree>(config.robust, config.singleStep);
     }
 }
 

@@ -50,7 +50,7 @@ struct TraversalKernels {
     }
 };
 
-// The kernels of `config` (its robustness, its ISA: Auto = the best this CPU runs). Throws
+// The kernels of `config` (its robustness, its single-ray step, its ISA: Auto = the best this CPU runs). Throws
 // InputError naming BVH::isa when the CPU cannot run the ISA asked for.
 template <typename Tree>
 TraversalKernels<Tree> traversalKernels(const TraversalConfig& config);
@@ -63,17 +63,20 @@ Isa bestIsa();
 const char* isaName(Isa isa);
 // "auto", "packets", "coherent", "single": BVH::batchTraversal's values.
 const char* batchTraversalName(BatchTraversal path);
+// "offsets", "octant": BVH::singleStep's values.
+const char* singleStepName(SingleStep step);
 // The widest vectors the kernels of `isa` use, in bits: 128 (SSE2), 256, 512 (0 for Auto).
 int isaVectorBits(Isa isa);
 
-// One table per ISA, each defined by that ISA's compilation of traversal_kernels_isa.cpp.
+// One table per ISA, each defined by that ISA's compilation of traversal_kernels_isa.cpp (the
+// binary layout has one single-ray step, whatever `step` says).
 namespace kernels {
 template <typename Tree>
-const TraversalKernels<Tree>& scalar(bool robust);
+const TraversalKernels<Tree>& scalar(bool robust, SingleStep step);
 template <typename Tree>
-const TraversalKernels<Tree>& avx2(bool robust);
+const TraversalKernels<Tree>& avx2(bool robust, SingleStep step);
 template <typename Tree>
-const TraversalKernels<Tree>& avx512(bool robust);
+const TraversalKernels<Tree>& avx512(bool robust, SingleStep step);
 }  // namespace kernels
 
 }  // namespace bvhlab

@@ -17,14 +17,14 @@ namespace bvhlab {
 inline namespace BVHLAB_KERNEL_NS {
 namespace {
 
-template <typename Tree, bool Robust, bool Counting>
+template <typename Tree, bool Robust, bool Counting, SingleStep Step>
 bool findNearestKernel(const Tree& tree, const Ray& ray, Hit& hit, QueryCounters& counters) {
-    return answerOf(tree, runQuery<ClosestHitQuery, Robust, Counting>(tree, ray, counters), hit);
+    return answerOf(tree, runQuery<ClosestHitQuery, Robust, Counting, Step>(tree, ray, counters), hit);
 }
 
-template <typename Tree, bool Robust, bool Counting>
+template <typename Tree, bool Robust, bool Counting, SingleStep Step>
 bool isOccludedKernel(const Tree& tree, const Ray& ray, QueryCounters& counters) {
-    return runQuery<AnyHitQuery, Robust, Counting>(tree, ray, counters).occluded;
+    return runQuery<AnyHitQuery, Robust, Counting, Step>(tree, ray, counters).occluded;
 }
 
 // The path a batch takes on a wide layout: BVH::batchTraversal, or for Auto the hint's.
@@ -34,13 +34,13 @@ BatchTraversal batchPath(const TraversalConfig& config, RayCoherence) {
 
 // Hands each ray's query and work to answer(i, query, work): the wide layouts trace the rays by
 // the batch's path (packets, coherent: packet_traversal.h), the binary one ray by ray.
-template <typename Query, bool Robust, bool Counting, typename Tree, typename Answer>
+template <typename Query, bool Robust, bool Counting, SingleStep Step, typename Tree, typename Answer>
 void traceRange(const Tree& tree, std::span<const Ray> rays, const TraversalConfig& config, RayCoherence coherence,
                 Answer&& answer) {
     const auto oneByOne = [&] {
         for (size_t i = 0; i < rays.size(); ++i) {
             QueryCounters work;
-            const Query query = runQuery<Query, Robust, Counting>(tree, rays[i], work);
+            const Query query = runQuery<Query, Robust, Counting, Step>(tree, rays[i], work);
             answer(i, query, work);
         }
     };
@@ -59,10 +59,10 @@ void traceRange(const Tree& tree, std::span<const Ray> rays, const TraversalConf
     }
 }
 
-template <typename Tree, bool Robust, bool Counting>
+template <typename Tree, bool Robust, bool Counting, SingleStep Step>
 void findNearestRange(const Tree& tree, std::span<const Ray> rays, std::span<Hit> hits, QueryCounters& counters,
                       std::span<RayCost> costs, const TraversalConfig& config, RayCoherence coherence) {
-    traceRange<ClosestHitQuery, Robust, Counting>(tree, rays, config, coherence,
+    traceRange<ClosestHitQuery, Robust, Counting, Step>(tree, rays, config, coherence,
                                                   [&](size_t i, const ClosestHitQuery& query, const QueryCounters& work) {
                                                       counters += work;
                                                       Hit hit;
@@ -72,10 +72,10 @@ void findNearestRange(const Tree& tree, std::span<const Ray> rays, std::span<Hit
                                                   });
 }
 
-template <typename Tree, bool Robust, bool Counting>
+template <typename Tree, bool Robust, bool Counting, SingleStep Step>
 void isOccludedRange(const Tree& tree, std::span<const Ray> rays, std::span<uint8_t> occluded, QueryCounters& counters,
                      std::span<RayCost> costs, const TraversalConfig& config, RayCoherence coherence) {
-    traceRange<AnyHitQuery, Robust, Counting>(tree, rays, config, coherence,
+    traceRange<AnyHitQuery, Robust, Counting, Step>(tree, rays, config, coherence,
                                               [&](size_t i, const AnyHitQuery& query, const QueryCounters& work) {
                                                   counters += work;
                                                   occluded[i] = query.occluded ? 1 : 0;
@@ -83,13 +83,19 @@ void isOccludedRange(const Tree& tree, std::span<const Ray> rays, std::span<uint
                                               });
 }
 
-template <typename Tree, bool Robust, bool Counting>
+template <typename Tree, bool Robust, bool Counting, SingleStep Step>
 constexpr typename TraversalKernels<Tree>::Queries kQueries{
-    &findNearestKernel<Tree, Robust, Counting>, &isOccludedKernel<Tree, Robust, Counting>,
-    &findNearestRange<Tree, Robust, Counting>, &isOccludedRange<Tree, Robust, Counting>};
+    &findNearestKernel<Tree, Robust, Counting, Step>, &isOccludedKernel<Tree, Robust, Counting, Step>,
+    &findNearestRange<Tree, Robust, Counting, Step>, &isOccludedRange<Tree, Robust, Counting, Step>};
 
-template <typename Tree, bool Robust>
-constexpr TraversalKernels<Tree> kKernels{BVHLAB_KERNEL_ISA, kQueries<Tree, Robust, true>, kQueries<Tree, Robust, false>};
+template <typename Tree, bool Robust, SingleStep Step>
+constexpr TraversalKernels<Tree> kKernels{BVHLAB_KERNEL_ISA, kQueries<Tree, Robust, true, Step>,
+                                          kQueries<Tree, Robust, false, Step>};
+
+template <typename Tree, SingleStep Step>
+const TraversalKernels<Tree>& kernelsOf(bool robust) {
+    return robust ? kKernels<Tree, true, Step> : kKernels<Tree, false, Step>;
+}
 
 }  // namespace
 }  // namespace BVHLAB_KERNEL_NS
@@ -97,13 +103,16 @@ constexpr TraversalKernels<Tree> kKernels{BVHLAB_KERNEL_ISA, kQueries<Tree, Robu
 namespace kernels {
 
 template <typename Tree>
-const TraversalKernels<Tree>& BVHLAB_KERNEL_NS(bool robust) {
-    return robust ? kKernels<Tree, true> : kKernels<Tree, false>;
+const TraversalKernels<Tree>& BVHLAB_KERNEL_NS(bool robust, SingleStep step) {
+    if constexpr (!std::is_same_v<Tree, BinaryBvh>) {
+        if (step == SingleStep::Octant) return kernelsOf<Tree, SingleStep::Octant>(robust);
+    }
+    return kernelsOf<Tree, SingleStep::Offsets>(robust);
 }
 
-template const TraversalKernels<BinaryBvh>& BVHLAB_KERNEL_NS(bool);
-template const TraversalKernels<WideBvh<4>>& BVHLAB_KERNEL_NS(bool);
-template const TraversalKernels<WideBvh<8>>& BVHLAB_KERNEL_NS(bool);
+template const TraversalKernels<BinaryBvh>& BVHLAB_KERNEL_NS(bool, SingleStep);
+template const TraversalKernels<WideBvh<4>>& BVHLAB_KERNEL_NS(bool, SingleStep);
+template const TraversalKernels<WideBvh<8>>& BVHLAB_KERNEL_NS(bool, SingleStep);
 
 }  // namespace kernels
 }  // namespace bvhlab

@@ -31,6 +31,15 @@ using BlockHits = LaneHits<simd::Floats<TriangleBlock::kLanes>>;
 // bit. `lanes` are the lanes that count: the others may hold anything.
 namespace lane_tests {
 
+// The edge function e = fma(a, b, -c*d) with its doubtful lanes (not `certain`) recomputed in
+// double, as edgeFunction does. Rare, so out of line: inlined, its registers weighed on the
+// traversal loop around the leaf test, which then saved and restored the ray's vectors at every
+// leaf.
+template <typename F, typename Mask>
+[[gnu::noinline, gnu::cold]] F recomputeDoubtfulLanes(Mask certain, F e, F a, F b, F c, F d) {
+    return select(certain, e, differenceOfProducts(a, b, c, d));
+}
+
 // edgeFunction (triangle.h) as it forms it: fma(a, b, -c*d), its sign certain where it exceeds
 // the error bound; the doubtful lanes (rare) in double.
 template <typename F>
@@ -39,7 +48,7 @@ template <typename F>
     const F e = fmsub(a, b, cd);
     const auto certain = abs(e) > fmadd(abs(cd), F::broadcast(kEdgeErrorScale), F::broadcast(kEdgeErrorFloor));
     if ((movemask(certain) & lanes) == lanes) [[likely]] return e;
-    return select(certain, e, differenceOfProducts(a, b, c, d));
+    return recomputeDoubtfulLanes(certain, e, a, b, c, d);
 }
 
 // The watertight test after the shear: x, y, z are the vertices in the sheared frame (z not

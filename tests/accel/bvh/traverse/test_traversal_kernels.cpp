@@ -2,7 +2,8 @@
 // for bit alike: every kernel this CPU runs against the scalar one, for the binary and both wide
 // layouts, single and batch queries, hits (t, primitive, u, v) and counters, on random,
 // axis-parallel and grazing rays and rays whose interval starts below 0; and each kernel's form
-// that counts nothing answers as its counting form. Kernels the CPU cannot
+// that counts nothing answers as its counting form; and the wide layouts' single-ray steps
+// (BVH::singleStep) answer alike in every kernel. Kernels the CPU cannot
 // run are not run (so this passes on AVX2-only machines) and asking for one is an InputError.
 #include "accel/bvh/builder_table.h"
 #include "accel/bvh/bvh_accelerator.h"
@@ -101,9 +102,8 @@ void expectTimedFormAnswersAlike(const Accelerator& accel, const std::vector<Ray
 }
 
 template <typename Layout>
-Answers answersOf(Isa isa, bool robust, BatchTraversal path, const test::Soup& soup, const std::vector<Ray>& rays) {
-    BvhAccelerator<Layout> accel(builderRecord("sahbvh"), BvhBuildConfig{},
-                                 TraversalConfig{.robust = robust, .isa = isa, .batchTraversal = path});
+Answers answersOf(const TraversalConfig& config, const test::Soup& soup, const std::vector<Ray>& rays) {
+    BvhAccelerator<Layout> accel(builderRecord("sahbvh"), BvhBuildConfig{}, config);
     accel.build(soup.prims());
     Answers a;
     a.hits.resize(rays.size());
@@ -121,8 +121,25 @@ Answers answersOf(Isa isa, bool robust, BatchTraversal path, const test::Soup& s
     const BuildStats stats = accel.buildStats();
     const auto bits = std::find_if(stats.figures.begin(), stats.figures.end(),
                                    [](const NamedFigure& f) { return f.name == "kernel_bits"; });
-    EXPECT_TRUE(bits != stats.figures.end() && bits->value == isaVectorBits(isa)) << isaName(isa);
+    EXPECT_TRUE(bits != stats.figures.end() && bits->value == isaVectorBits(config.isa)) << isaName(config.isa);
     return a;
+}
+
+// `a` answers as `reference`, hit for hit and bit for bit; with the same work per ray and in
+// total where both traced the same packets (`sameBatchWork`).
+void expectSameAnswers(const Answers& a, const Answers& reference, const std::string& what, bool sameBatchWork) {
+    for (size_t i = 0; i < a.hits.size(); ++i) {
+        expectSameHit(a.hits[i], reference.hits[i], what + " ray " + std::to_string(i));
+        expectSameHit(a.batchHits[i], reference.batchHits[i], what + " batch ray " + std::to_string(i));
+        EXPECT_EQ(a.occluded[i], reference.occluded[i]) << what << " ray " << i;
+        EXPECT_EQ(a.batchOccluded[i], reference.batchOccluded[i]) << what << " batch ray " << i;
+        if (!sameBatchWork) continue;
+        EXPECT_EQ(a.costs[i].intersectionTests, reference.costs[i].intersectionTests) << what << " ray " << i;
+        EXPECT_EQ(a.costs[i].traversalSteps, reference.costs[i].traversalSteps) << what << " ray " << i;
+    }
+    expectSameCounters(a.single, reference.single, what);
+    if (sameBatchWork) expectSameCounters(a.batch, reference.batch, what + " batch");
+    else EXPECT_EQ(a.batch.queries, reference.batch.queries) << what;
 }
 
 template <typename Layout>
@@ -131,7 +148,8 @@ void expectKernelsAgree(const char* layout) {
     const std::vector<Ray> rays = kernelRays();
     for (bool robust : {true, false})
         for (BatchTraversal path : {BatchTraversal::Packets, BatchTraversal::Coherent}) {
-            const Answers reference = answersOf<Layout>(Isa::Scalar, robust, path, soup, rays);
+            const Answers reference =
+                answersOf<Layout>({.robust = robust, .isa = Isa::Scalar, .batchTraversal = path}, soup, rays);
             size_t found = 0;
             for (const Hit& h : reference.hits) found += h.primitive != kInvalidPrimitive;
             EXPECT_GT(found, rays.size() / 4);
@@ -140,29 +158,48 @@ void expectKernelsAgree(const char* layout) {
                 if (isa == Isa::Scalar || !cpuRuns(isa)) continue;
                 std::printf("[ kernels  ] %s robust=%d %s: %s against scalar\n", layout, int(robust),
                             batchTraversalName(path), isaName(isa));
-                const Answers a = answersOf<Layout>(isa, robust, path, soup, rays);
+                const Answers a = answersOf<Layout>({.robust = robust, .isa = isa, .batchTraversal = path}, soup, rays);
                 const std::string what = std::string(layout) + " " + isaName(isa) + (robust ? "" : " not robust") + " " +
                                          batchTraversalName(path);
-                for (size_t i = 0; i < rays.size(); ++i) {
-                    expectSameHit(a.hits[i], reference.hits[i], what + " ray " + std::to_string(i));
-                    expectSameHit(a.batchHits[i], reference.batchHits[i], what + " batch ray " + std::to_string(i));
-                    EXPECT_EQ(a.occluded[i], reference.occluded[i]) << what << " ray " << i;
-                    EXPECT_EQ(a.batchOccluded[i], reference.batchOccluded[i]) << what << " batch ray " << i;
-                    if (!samePackets(isa, Isa::Scalar)) continue;
-                    EXPECT_EQ(a.costs[i].intersectionTests, reference.costs[i].intersectionTests) << what << " ray " << i;
-                    EXPECT_EQ(a.costs[i].traversalSteps, reference.costs[i].traversalSteps) << what << " ray " << i;
-                }
-                expectSameCounters(a.single, reference.single, what);
-                if (samePackets(isa, Isa::Scalar)) expectSameCounters(a.batch, reference.batch, what + " batch");
-                else EXPECT_EQ(a.batch.queries, reference.batch.queries) << what;
+                expectSameAnswers(a, reference, what, samePackets(isa, Isa::Scalar));
             }
         }
+}
+
+// BVH::singleStep=octant (the single-ray loop compiled per direction octant) against offsets,
+// in every kernel this CPU runs, robust or not: the same answers and the same work, ray by ray.
+// Batches go ray by ray too (BVH::batchTraversal=single), so that they take the step as well.
+template <typename Layout>
+void expectSingleStepsAgree(const char* layout) {
+    const test::Soup soup = kernelScene();
+    const std::vector<Ray> rays = kernelRays();
+    for (bool robust : {true, false}) {
+        for (Isa isa : kIsas) {
+            if (!cpuRuns(isa)) continue;
+            TraversalConfig config{.robust = robust, .isa = isa, .batchTraversal = BatchTraversal::Single};
+            const Answers offsets = answersOf<Layout>(config, soup, rays);
+            config.singleStep = SingleStep::Octant;
+            const Answers octant = answersOf<Layout>(config, soup, rays);
+            expectSameAnswers(octant, offsets,
+                              std::string(layout) + " " + isaName(isa) + (robust ? "" : " not robust") + " octant step",
+                              true);
+        }
+    }
 }
 
 TEST(TraversalKernels, EveryKernelTheCpuRunsAnswersAsTheScalarOne) {
     expectKernelsAgree<BinaryBvh>("binary");
     expectKernelsAgree<WideBvh<4>>("wide4");
     expectKernelsAgree<WideBvh<8>>("wide8");
+}
+
+TEST(TraversalKernels, OctantStepAnswersAsOffsetsStep) {
+    Env env(verify::verifyKeys());
+    EXPECT_EQ(bvhSettingsFromEnv(env).traversal.singleStep, SingleStep::Offsets);
+    env.set(keys::BVH::singleStep, "octant", "test");
+    EXPECT_EQ(bvhSettingsFromEnv(env).traversal.singleStep, SingleStep::Octant);
+    expectSingleStepsAgree<WideBvh<4>>("wide4");
+    expectSingleStepsAgree<WideBvh<8>>("wide8");
 }
 
 TEST(TraversalKernels, AutoIsTheBestTheCpuRuns) {
