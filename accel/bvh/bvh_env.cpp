@@ -30,7 +30,8 @@ const BvhKeys& bvhCommonKeys() {
          }},
         {batchTraversal,
          [](BvhSettings& s, const std::string& v) {
-             for (BatchTraversal p : {BatchTraversal::Auto, BatchTraversal::Packets, BatchTraversal::Single})
+             for (BatchTraversal p :
+                  {BatchTraversal::Auto, BatchTraversal::Packets, BatchTraversal::Single, BatchTraversal::Stream})
                  if (v == batchTraversalName(p)) s.traversal.batchTraversal = p;
          }},
     };

@@ -11,7 +11,7 @@ enum class Isa { Auto, Scalar, Avx2, Avx512 };
 // BVH::batchTraversal: how the wide layouts trace a batch. Auto follows the batch's coherence
 // hint; the others force one path whatever the hint, so that paths can be timed against each
 // other as contenders in one run. Every path answers bit for bit alike.
-enum class BatchTraversal { Auto, Packets, Single };
+enum class BatchTraversal { Auto, Packets, Single, Stream };
 
 struct TraversalConfig {
     // BVH::robust. true: the watertight triangle test and the conservative box test (box_test.h);

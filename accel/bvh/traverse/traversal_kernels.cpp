@@ -21,6 +21,7 @@ const char* batchTraversalName(BatchTraversal path) {
     case BatchTraversal::Auto: return "auto";
     case BatchTraversal::Packets: return "packets";
     case BatchTraversal::Single: return "single";
+    case BatchTraversal::Stream: return "stream";
     }
     return "?";
 }

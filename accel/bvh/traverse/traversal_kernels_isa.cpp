@@ -5,6 +5,7 @@
 #include "accel/bvh/traverse/traversal_kernels.h"
 #include "accel/bvh/traverse/binary_bvh_traversal.h"
 #include "accel/bvh/traverse/packet_traversal.h"
+#include "accel/bvh/traverse/stream_traversal.h"
 #include "accel/bvh/traverse/wide_bvh_traversal.h"
 
 #include <type_traits>
@@ -33,7 +34,8 @@ BatchTraversal batchPath(const TraversalConfig& config, RayCoherence) {
 }
 
 // Hands each ray's query and work to answer(i, query, work): the wide layouts trace the rays by
-// the batch's path (packets: packet_traversal.h), the binary one ray by ray.
+// the batch's path (packets: packet_traversal.h, streams: stream_traversal.h), the binary one ray by
+// ray.
 template <typename Query, bool Robust, bool Counting, typename Tree, typename Answer>
 void traceRange(const Tree& tree, std::span<const Ray> rays, const TraversalConfig& config, RayCoherence coherence,
                 Answer&& answer) {
@@ -49,6 +51,7 @@ void traceRange(const Tree& tree, std::span<const Ray> rays, const TraversalConf
     } else {
         switch (batchPath(config, coherence)) {
         case BatchTraversal::Single: oneByOne(); break;
+        case BatchTraversal::Stream: traceAsStreams<Counting, Query, Robust>(tree, rays, answer); break;
         default: traceAsPackets<Counting, Query, Robust>(tree, rays, config.packetFallback, answer); break;
         }
     }

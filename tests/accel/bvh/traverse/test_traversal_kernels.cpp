@@ -1,9 +1,10 @@
 // The traversal kernels compiled per ISA (accel/bvh/traverse/traversal_kernels.h) answer bit
 // for bit alike: every kernel this CPU runs against the scalar one, for the binary and both wide
-// layouts, single and batch queries, hits (t, primitive, u, v) and counters, on random,
-// axis-parallel and grazing rays and rays whose interval starts below 0; and each kernel's form
-// that counts nothing answers as its counting form. Kernels the CPU cannot
-// run are not run (so this passes on AVX2-only machines) and asking for one is an InputError.
+// layouts, single and batch queries (packets and streams), hits (t, primitive, u, v) and
+// counters, on random, axis-parallel and grazing rays and rays whose interval starts below 0;
+// and each kernel's form that counts nothing answers as its counting form. Kernels the CPU
+// cannot run are not run (so this passes on AVX2-only machines) and asking for one is an
+// InputError.
 #include "accel/bvh/builder_table.h"
 #include "accel/bvh/bvh_accelerator.h"
 #include "accel/bvh/bvh_env.h"
@@ -53,9 +54,12 @@ std::vector<Ray> kernelRays() {
     return rays;
 }
 
-// The wide layouts' batches are packets of 16 rays in the avx512 kernels and of 8 in the others
+// The wide layouts' packets are of 16 rays in the avx512 kernels and of 8 in the others
 // (packet_traversal.h): a ray's work in a batch depends on its packet, its answer does not.
-bool samePackets(Isa a, Isa b) { return (a == Isa::Avx512) == (b == Isa::Avx512); }
+// Streams (stream_traversal.h) are of 64 rays in every kernel.
+bool sameGroups(BatchTraversal path, Isa a, Isa b) {
+    return path != BatchTraversal::Packets || (a == Isa::Avx512) == (b == Isa::Avx512);
+}
 
 void expectSameCounters(const QueryCounters& a, const QueryCounters& b, const std::string& what) {
     EXPECT_EQ(a.queries, b.queries) << what;
@@ -101,8 +105,9 @@ void expectTimedFormAnswersAlike(const Accelerator& accel, const std::vector<Ray
 }
 
 template <typename Layout>
-Answers answersOf(Isa isa, bool robust, const test::Soup& soup, const std::vector<Ray>& rays) {
-    BvhAccelerator<Layout> accel(builderRecord("sahbvh"), BvhBuildConfig{}, TraversalConfig{.robust = robust, .isa = isa});
+Answers answersOf(Isa isa, bool robust, BatchTraversal path, const test::Soup& soup, const std::vector<Ray>& rays) {
+    BvhAccelerator<Layout> accel(builderRecord("sahbvh"), BvhBuildConfig{},
+                                 TraversalConfig{.robust = robust, .isa = isa, .batchTraversal = path});
     accel.build(soup.prims());
     Answers a;
     a.hits.resize(rays.size());
@@ -129,28 +134,32 @@ void expectKernelsAgree(const char* layout) {
     const test::Soup soup = kernelScene();
     const std::vector<Ray> rays = kernelRays();
     for (bool robust : {true, false}) {
-        const Answers reference = answersOf<Layout>(Isa::Scalar, robust, soup, rays);
-        size_t found = 0;
-        for (const Hit& h : reference.hits) found += h.primitive != kInvalidPrimitive;
-        EXPECT_GT(found, rays.size() / 4);
-        EXPECT_LT(found, rays.size());
-        for (Isa isa : kIsas) {
-            if (isa == Isa::Scalar || !cpuRuns(isa)) continue;
-            std::printf("[ kernels  ] %s robust=%d: %s against scalar\n", layout, int(robust), isaName(isa));
-            const Answers a = answersOf<Layout>(isa, robust, soup, rays);
-            const std::string what = std::string(layout) + " " + isaName(isa) + (robust ? "" : " not robust");
-            for (size_t i = 0; i < rays.size(); ++i) {
-                expectSameHit(a.hits[i], reference.hits[i], what + " ray " + std::to_string(i));
-                expectSameHit(a.batchHits[i], reference.batchHits[i], what + " batch ray " + std::to_string(i));
-                EXPECT_EQ(a.occluded[i], reference.occluded[i]) << what << " ray " << i;
-                EXPECT_EQ(a.batchOccluded[i], reference.batchOccluded[i]) << what << " batch ray " << i;
-                if (!samePackets(isa, Isa::Scalar)) continue;
-                EXPECT_EQ(a.costs[i].intersectionTests, reference.costs[i].intersectionTests) << what << " ray " << i;
-                EXPECT_EQ(a.costs[i].traversalSteps, reference.costs[i].traversalSteps) << what << " ray " << i;
+        for (BatchTraversal path : {BatchTraversal::Packets, BatchTraversal::Stream}) {
+            const Answers reference = answersOf<Layout>(Isa::Scalar, robust, path, soup, rays);
+            size_t found = 0;
+            for (const Hit& h : reference.hits) found += h.primitive != kInvalidPrimitive;
+            EXPECT_GT(found, rays.size() / 4);
+            EXPECT_LT(found, rays.size());
+            for (Isa isa : kIsas) {
+                if (isa == Isa::Scalar || !cpuRuns(isa)) continue;
+                std::printf("[ kernels  ] %s robust=%d %s: %s against scalar\n", layout, int(robust),
+                            batchTraversalName(path), isaName(isa));
+                const Answers a = answersOf<Layout>(isa, robust, path, soup, rays);
+                const std::string what = std::string(layout) + " " + isaName(isa) + (robust ? "" : " not robust") + " " +
+                                         batchTraversalName(path);
+                for (size_t i = 0; i < rays.size(); ++i) {
+                    expectSameHit(a.hits[i], reference.hits[i], what + " ray " + std::to_string(i));
+                    expectSameHit(a.batchHits[i], reference.batchHits[i], what + " batch ray " + std::to_string(i));
+                    EXPECT_EQ(a.occluded[i], reference.occluded[i]) << what << " ray " << i;
+                    EXPECT_EQ(a.batchOccluded[i], reference.batchOccluded[i]) << what << " batch ray " << i;
+                    if (!sameGroups(path, isa, Isa::Scalar)) continue;
+                    EXPECT_EQ(a.costs[i].intersectionTests, reference.costs[i].intersectionTests) << what << " ray " << i;
+                    EXPECT_EQ(a.costs[i].traversalSteps, reference.costs[i].traversalSteps) << what << " ray " << i;
+                }
+                expectSameCounters(a.single, reference.single, what);
+                if (sameGroups(path, isa, Isa::Scalar)) expectSameCounters(a.batch, reference.batch, what + " batch");
+                else EXPECT_EQ(a.batch.queries, reference.batch.queries) << what;
             }
-            expectSameCounters(a.single, reference.single, what);
-            if (samePackets(isa, Isa::Scalar)) expectSameCounters(a.batch, reference.batch, what + " batch");
-            else EXPECT_EQ(a.batch.queries, reference.batch.queries) << what;
         }
     }
 }
