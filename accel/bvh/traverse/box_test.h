@@ -155,10 +155,21 @@ struct WideBoxTest : RaySlabs<Robust> {
 
     // The boxes the ray overlaps within [tmin, tmax].
     [[gnu::always_inline]] Hits test(const Node& node, F tmax) const {
+        F nearBounds[3], farBounds[3];
+        for (int a = 0; a < 3; ++a) {
+            nearBounds[a] = F::load(bounds(node, nearOffset[a]));
+            farBounds[a] = F::load(bounds(node, farOffset[a]));
+        }
+        return test(nearBounds, farBounds, tmax);
+    }
+
+    // The same on a node's bounds loaded already, the near and the far ones of each axis for
+    // this ray's octant: rays of one octant (stream_traversal.h) load them once per node.
+    [[gnu::always_inline]] Hits test(const F nearBounds[3], const F farBounds[3], F tmax) const {
         F nearT[3], farT[3];
         for (int a = 0; a < 3; ++a) {
-            nearT[a] = (F::load(bounds(node, nearOffset[a])) - org[a]) * inv[a];
-            farT[a] = farDistance(F::load(bounds(node, farOffset[a])), a);
+            nearT[a] = (nearBounds[a] - org[a]) * inv[a];
+            farT[a] = farDistance(farBounds[a], a);
         }
         const F entry = max(max(nearT[0], nearT[1]), max(nearT[2], tmin));
         const F exit = min(min(farT[0], farT[1]), min(farT[2], tmax));

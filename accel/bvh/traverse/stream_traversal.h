@@ -64,6 +64,51 @@ struct Slots {
     T& operator[](int k) { return std::launder(reinterpret_cast<T*>(bytes))[k]; }
 };
 
+// The rays that hit each child at a node step: ray k's hit lanes become bit k of those children's
+// masks, a transpose of the K x N hit bits done ray by ray without a branch (how many children
+// a ray hits is not predictable). AVX2 widens the lanes' compare masks to 64 bits and ORs the
+// ray's bit in (two registers for N = 8), AVX-512 ORs it into the hit lanes alone; elsewhere
+// lane by lane.
+template <int N>
+struct ChildRays {
+    using F = simd::Floats<N>;
+#if defined(__AVX512F__) && defined(__AVX512VL__)
+    __m512i masks = _mm512_setzero_si512();  // lanes past N stay 0
+    static_assert(N == 4 || N == 8);
+
+    [[gnu::always_inline]] void add(typename F::Mask, int hitLanes, int k) {
+        masks = _mm512_mask_or_epi64(masks, __mmask8(hitLanes), masks, _mm512_set1_epi64(int64_t(1) << k));
+    }
+    [[gnu::always_inline]] void store(uint64_t out[N]) const { _mm512_mask_storeu_epi64(out, __mmask8((1 << N) - 1), masks); }
+#elif defined(__AVX2__) && defined(__FMA__)
+    __m256i masks[N / 4] = {};
+    static_assert(N == 4 || N == 8);
+
+    [[gnu::always_inline]] void add(typename F::Mask hit, int, int k) {
+        const __m256i bit = _mm256_set1_epi64x(int64_t(1) << k);
+        if constexpr (N == 8) {
+            const __m256i lanes = _mm256_castps_si256(hit.m);
+            masks[0] = _mm256_or_si256(masks[0], _mm256_and_si256(bit, _mm256_cvtepi32_epi64(_mm256_castsi256_si128(lanes))));
+            masks[1] = _mm256_or_si256(masks[1], _mm256_and_si256(bit, _mm256_cvtepi32_epi64(_mm256_extracti128_si256(lanes, 1))));
+        } else {
+            masks[0] = _mm256_or_si256(masks[0], _mm256_and_si256(bit, _mm256_cvtepi32_epi64(_mm_castps_si128(hit.m))));
+        }
+    }
+    [[gnu::always_inline]] void store(uint64_t out[N]) const {
+        for (int i = 0; i < N / 4; ++i) _mm256_storeu_si256(reinterpret_cast<__m256i*>(out) + i, masks[i]);
+    }
+#else
+    uint64_t masks[N] = {};
+
+    [[gnu::always_inline]] void add(typename F::Mask, int hitLanes, int k) {
+        for (int c = 0; c < N; ++c) masks[c] |= (uint64_t(1) << k) & (uint64_t(0) - uint64_t(hitLanes >> c & 1));
+    }
+    [[gnu::always_inline]] void store(uint64_t out[N]) const {
+        for (int c = 0; c < N; ++c) out[c] = masks[c];
+    }
+#endif
+};
+
 // A child to visit (a wide_child word) with the rays (a bit mask) that hit it; a closest-hit
 // stream keeps their entry distances from `entries` on in its entry pool, in ray order.
 struct StreamEntry {
@@ -83,9 +128,11 @@ void traceStream(const WideBvh<N>& bvh, const Ray* rays, int count, int octant, 
     using namespace stream_traversal;
     constexpr int K = kStreamSize;
     constexpr bool kClosest = !Query::kStopsAtFirstHit;
+    using F = simd::Floats<N>;
     Slots<StreamRay<Query, Robust, N>, K> stream;
     for (int k = 0; k < count; ++k) new (&stream[k]) StreamRay<Query, Robust, N>(rays[k]);
     const WideNode<N>* nodes = bvh.nodes.data();
+    const WideBoxTest<N, false, Robust>& first = stream[0].boxTest;  // where the octant's near and far bounds lie
 
     StreamEntry stack[kWideStackSize<N>];
     int size = 0;
@@ -109,24 +156,32 @@ void traceStream(const WideBvh<N>& bvh, const Ray* rays, int count, int octant, 
             if (live == 0) break;
         } else {
             const WideNode<N>& node = nodes[current.child];
-            uint64_t childRays[N]{};
+            F nearBounds[3], farBounds[3];  // every ray's of the stream (one octant)
+            for (int a = 0; a < 3; ++a) {
+                nearBounds[a] = F::load(WideBoxTest<N, false, Robust>::bounds(node, first.nearOffset[a]));
+                farBounds[a] = F::load(WideBoxTest<N, false, Robust>::bounds(node, first.farOffset[a]));
+            }
+            ChildRays<N> hitBy;
+            int hitLanes = 0;  // the children hit by any ray
             for (uint64_t m = active; m != 0; m &= m - 1) {
                 const int k = std::countr_zero(m);
                 StreamRay<Query, Robust, N>& r = stream[k];
                 if constexpr (Counting) ++r.steps;
-                int hits;
-                if constexpr (kClosest) {
-                    hits = r.boxTest.intersect(node, r.query.tmax, entries[k]);
-                } else {
-                    hits = movemask(r.boxTest.test(node, simd::Floats<N>::broadcast(r.query.tmax)).mask);
-                }
-                for (; hits != 0; hits &= hits - 1) childRays[std::countr_zero(unsigned(hits))] |= uint64_t(1) << k;
+                const auto hits = r.boxTest.test(nearBounds, farBounds, F::broadcast(r.query.tmax));
+                if constexpr (kClosest) hits.entry.storeu(entries[k]);
+                const int lanes = movemask(hits.mask);
+                hitBy.add(hits.mask, lanes, k);
+                hitLanes |= lanes;
             }
-            int order[N];  // the children hit: closest hit far to near for the octant, any hit in lane order
+            alignas(64) uint64_t childRays[N];
+            hitBy.store(childRays);
+            // The children hit: closest hit far to near for the octant, any hit in lane order.
+            int order[N];
             int hitCount = 0;
             for (int p = 0; p < N; ++p) {
                 const int c = kClosest ? int(node.order[p] >> (3 * octant) & 7) : p;
-                if (childRays[c] != 0) order[hitCount++] = c;
+                order[hitCount] = c;
+                hitCount += hitLanes >> c & 1;
             }
             if (hitCount != 0) {
                 // Closest hit: the nearest next, the others pushed far to near. Any hit: the
