@@ -79,19 +79,24 @@ struct ChildRays {
     [[gnu::always_inline]] void add(typename F::Mask, int hitLanes, int k) {
         masks = _mm512_mask_or_epi64(masks, __mmask8(hitLanes), masks, _mm512_set1_epi64(int64_t(1) << k));
     }
-    [[gnu::always_inline]] void store(uint64_t out[N]) const { _mm512_mask_storeu_epi64(out, __mmask8((1 << N) - 1), masks); }
+    [[gnu::always_inline]] void store(uint64_t out[N]) const {
+        _mm512_mask_storeu_epi64(out, __mmask8((1 << N) - 1), masks);
+    }
 #elif defined(__AVX2__) && defined(__FMA__)
     __m256i masks[N / 4] = {};
     static_assert(N == 4 || N == 8);
 
     [[gnu::always_inline]] void add(typename F::Mask hit, int, int k) {
         const __m256i bit = _mm256_set1_epi64x(int64_t(1) << k);
+        const auto orIn = [&](__m256i& four, __m128i lanes) {  // four lanes' 32-bit masks
+            four = _mm256_or_si256(four, _mm256_and_si256(bit, _mm256_cvtepi32_epi64(lanes)));
+        };
         if constexpr (N == 8) {
             const __m256i lanes = _mm256_castps_si256(hit.m);
-            masks[0] = _mm256_or_si256(masks[0], _mm256_and_si256(bit, _mm256_cvtepi32_epi64(_mm256_castsi256_si128(lanes))));
-            masks[1] = _mm256_or_si256(masks[1], _mm256_and_si256(bit, _mm256_cvtepi32_epi64(_mm256_extracti128_si256(lanes, 1))));
+            orIn(masks[0], _mm256_castsi256_si128(lanes));
+            orIn(masks[1], _mm256_extracti128_si256(lanes, 1));
         } else {
-            masks[0] = _mm256_or_si256(masks[0], _mm256_and_si256(bit, _mm256_cvtepi32_epi64(_mm_castps_si128(hit.m))));
+            orIn(masks[0], _mm_castps_si128(hit.m));
         }
     }
     [[gnu::always_inline]] void store(uint64_t out[N]) const {
@@ -193,7 +198,8 @@ void traceStream(const WideBvh<N>& bvh, const Ray* rays, int count, int octant, 
                     const int c = order[j];
                     stack[size++] = {node.child[c], poolSize, childRays[c]};
                     if constexpr (kClosest) {
-                        for (uint64_t m = childRays[c]; m != 0; m &= m - 1) pool[poolSize++] = entries[std::countr_zero(m)][c];
+                        for (uint64_t m = childRays[c]; m != 0; m &= m - 1)
+                            pool[poolSize++] = entries[std::countr_zero(m)][c];
                     }
                 }
                 const int c = order[next];
