@@ -31,7 +31,7 @@ const BvhKeys& bvhCommonKeys() {
         {batchTraversal,
          [](BvhSettings& s, const std::string& v) {
              for (BatchTraversal p : {BatchTraversal::Auto, BatchTraversal::Packets, BatchTraversal::Coherent,
-                                     BatchTraversal::Single})
+                                     BatchTraversal::Stream, BatchTraversal::Single})
                  if (v == batchTraversalName(p)) s.traversal.batchTraversal = p;
          }},
         {singleStep,

@@ -56,13 +56,14 @@ inline constexpr ChoiceKey isa{
     "BVH::isa", "auto", kIsas,
     "traversal: the SIMD kernels to run, auto = the best this CPU runs (avx512, avx2: x86-64-v4, -v3; scalar: the "
     "x86-64 baseline); all answer bit for bit alike; one the CPU cannot run is an error"};
-inline constexpr std::string_view kBatchTraversals[] = {"auto", "packets", "coherent", "single"};
+inline constexpr std::string_view kBatchTraversals[] = {"auto", "packets", "coherent", "stream", "single"};
 inline constexpr ChoiceKey batchTraversal{
     "BVH::batchTraversal", "auto", kBatchTraversals,
     "batch queries on the wide layouts: auto = by the batch's coherence hint; packets (Benthin et al. 2012), coherent "
     "(packets with a frustum test per node and one triangle against all rays at leaves, after Embree's coherent "
-    "hybrid traversal), single (ray by ray): one path whatever the hint, to time paths against each other. Answers "
-    "are the same whatever the value"};
+    "hybrid traversal), stream (Embree's incoherent streams: 64 rays, each with its single-ray box test at a node), "
+    "single (ray by ray): one path whatever the hint, to time paths against each other. Answers are the same "
+    "whatever the value"};
 inline constexpr std::string_view kSingleSteps[] = {"offsets", "octant"};
 inline constexpr ChoiceKey singleStep{
     "BVH::singleStep", "offsets", kSingleSteps,

@@ -174,17 +174,25 @@ struct WideBoxTest : RaySlabs<Robust> {
         }
     }
 
-    // The boxes the ray overlaps within [tmin, tmax], given each axis's near and far bounds.
-    [[gnu::always_inline]] Hits test(const float* const (&nearBounds)[3], const float* const (&farBounds)[3],
-                                     F tmax) const {
+    // The boxes the ray overlaps within [tmin, tmax], given each axis's near and far bounds
+    // loaded already: rays of one octant (stream_traversal.h) load a node's once for all.
+    [[gnu::always_inline]] Hits test(const F nearBounds[3], const F farBounds[3], F tmax) const {
         F nearT[3], farT[3];
         for (int a = 0; a < 3; ++a) {
-            nearT[a] = nearDistance(F::load(nearBounds[a]), a);
-            farT[a] = farDistance(F::load(farBounds[a]), a);
+            nearT[a] = nearDistance(nearBounds[a], a);
+            farT[a] = farDistance(farBounds[a], a);
         }
         const F entry = max(max(nearT[0], nearT[1]), max(nearT[2], tmin));
         const F exit = min(min(farT[0], farT[1]), min(farT[2], tmax));
         return {entry, entry <= exit};
+    }
+
+    // The same, each axis's near and far bounds read from where they lie.
+    [[gnu::always_inline]] Hits test(const float* const (&nearBounds)[3], const float* const (&farBounds)[3],
+                                     F tmax) const {
+        const F nearLoaded[3] = {F::load(nearBounds[0]), F::load(nearBounds[1]), F::load(nearBounds[2])};
+        const F farLoaded[3] = {F::load(farBounds[0]), F::load(farBounds[1]), F::load(farBounds[2])};
+        return test(nearLoaded, farLoaded, tmax);
     }
 
     // The boxes of `node` the ray overlaps within [tmin, tmax], their bounds at the ray's offsets.

@@ -26,6 +26,7 @@
 
 #include "accel/bvh/simd/kernel_namespace.h"
 #include "accel/bvh/traverse/coherent_traversal.h"
+#include "accel/bvh/traverse/octant_groups.h"
 #include "accel/bvh/traverse/wide_bvh_traversal.h"
 
 #include <algorithm>
@@ -268,43 +269,18 @@ void tracePacket(const WideBvh<N>& bvh, const Ray* rays, int count, int octant, 
 }
 
 // A batch: its valid rays with tmin >= 0 in packets of up to kPacketWidth of one direction
-// octant, in the order they come (a wavefront's camera rays, the shadow rays of one light: the
-// rays of a packet are neighbours where the batch is coherent), the others alone (runQuery: a
-// miss for an invalid ray, the sign-aware box test for tmin < 0). Calls answer(i, query, work)
-// once per ray i, not in order, with its query and its work (queries = 1).
+// octant (a wavefront's camera rays, the shadow rays of one light: the rays of a packet are
+// neighbours where the batch is coherent), the others alone (octant_groups.h). Calls answer(i, query, work) once per ray i, not
+// in order, with its query and its work (queries = 1).
 template <bool Counting, typename Query, bool Robust, PacketKind Kind, int N, typename Answer>
 void traceAsPackets(const WideBvh<N>& bvh, std::span<const Ray> rays, int fallback, Answer&& answer) {
     constexpr int K = kPacketWidth;
-    struct Packet {
-        Ray rays[K];
-        size_t index[K];
-        int count = 0;
-    };
-    Packet packets[8];  // one filling per octant
-    const auto trace = [&](int octant) {
-        Packet& p = packets[octant];
-        tracePacket<Counting, Query, Robust, K, Kind>(bvh, p.rays, p.count, octant, fallback,
-                                                      [&](int k, const Query& query, const QueryCounters& work) {
-                                                          answer(p.index[k], query, work);
-                                                      });
-        p.count = 0;
-    };
-    for (size_t i = 0; i < rays.size(); ++i) {
-        const Ray& ray = rays[i];
-        if (bvh.empty() || !ray.isValid() || ray.tmin < 0.0f) {
-            QueryCounters work;
-            const Query query = runQuery<Query, Robust, Counting>(bvh, ray, work);
-            answer(i, query, work);
-            continue;
-        }
-        const int octant = directionOctant(ray.dir);
-        Packet& p = packets[octant];
-        p.rays[p.count] = ray;
-        p.index[p.count++] = i;
-        if (p.count == K) trace(octant);
-    }
-    for (int octant = 0; octant < 8; ++octant)
-        if (packets[octant].count != 0) trace(octant);
+    traceInOctantGroups<Counting, Query, Robust, K>(
+        bvh, rays,
+        [&](const Ray* group, int count, int octant, auto&& answerInGroup) {
+            tracePacket<Counting, Query, Robust, K, Kind>(bvh, group, count, octant, fallback, answerInGroup);
+        },
+        answer);
 }
 
 }  // namespace BVHLAB_KERNEL_NS

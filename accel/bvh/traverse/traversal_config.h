@@ -11,7 +11,7 @@ enum class Isa { Auto, Scalar, Avx2, Avx512 };
 // BVH::batchTraversal: how the wide layouts trace a batch. Auto follows the batch's coherence
 // hint; the others force one path whatever the hint, so that paths can be timed against each
 // other as contenders in one run. Every path answers bit for bit alike.
-enum class BatchTraversal { Auto, Packets, Coherent, Single };
+enum class BatchTraversal { Auto, Packets, Coherent, Stream, Single };
 
 // BVH::singleStep: how the wide layouts' single-ray loop finds a node's near and far bounds
 // (box_test.h, WideBoxTest): at byte offsets chosen per ray, or as members of a loop compiled

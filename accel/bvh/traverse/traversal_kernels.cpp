@@ -23,6 +23,7 @@ const char* batchTraversalName(BatchTraversal path) {
     case BatchTraversal::Packets: return "packets";
     case BatchTraversal::Coherent: return "coherent";
     case BatchTraversal::Single: return "single";
+    case BatchTraversal::Stream: return "stream";
     }
     return "?";
 }

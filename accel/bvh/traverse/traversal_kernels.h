@@ -25,7 +25,7 @@ namespace bvhlab {
 // nothing but the queries and is what a timed query runs (QueryCounters::counting picks one).
 // The batch calls take rays one by one (or as the kernel packs them) with the Accelerator's
 // contract: misses as Hit(), costs filled when not empty (and counted). The wide layouts trace a
-// batch in packets, the binary one ray by ray.
+// batch by its path (packets, streams, single rays), the binary one ray by ray.
 template <typename Tree>
 struct TraversalKernels {
     struct Queries {
@@ -61,7 +61,7 @@ bool cpuRuns(Isa isa);
 Isa bestIsa();
 // "scalar", "avx2", "avx512" ("auto" for Auto): BVH::isa's values.
 const char* isaName(Isa isa);
-// "auto", "packets", "coherent", "single": BVH::batchTraversal's values.
+// "auto", "packets", "coherent", "stream", "single": BVH::batchTraversal's values.
 const char* batchTraversalName(BatchTraversal path);
 // "offsets", "octant": BVH::singleStep's values.
 const char* singleStepName(SingleStep step);

@@ -5,6 +5,7 @@
 #include "accel/bvh/traverse/traversal_kernels.h"
 #include "accel/bvh/traverse/binary_bvh_traversal.h"
 #include "accel/bvh/traverse/packet_traversal.h"
+#include "accel/bvh/traverse/stream_traversal.h"
 #include "accel/bvh/traverse/wide_bvh_traversal.h"
 
 #include <type_traits>
@@ -33,7 +34,8 @@ BatchTraversal batchPath(const TraversalConfig& config, RayCoherence) {
 }
 
 // Hands each ray's query and work to answer(i, query, work): the wide layouts trace the rays by
-// the batch's path (packets, coherent: packet_traversal.h), the binary one ray by ray.
+// the batch's path (packets, coherent: packet_traversal.h; streams: stream_traversal.h), the binary
+// one ray by ray.
 template <typename Query, bool Robust, bool Counting, SingleStep Step, typename Tree, typename Answer>
 void traceRange(const Tree& tree, std::span<const Ray> rays, const TraversalConfig& config, RayCoherence coherence,
                 Answer&& answer) {
@@ -52,6 +54,7 @@ void traceRange(const Tree& tree, std::span<const Ray> rays, const TraversalConf
         case BatchTraversal::Coherent:
             traceAsPackets<Counting, Query, Robust, PacketKind::Coherent>(tree, rays, config.packetFallback, answer);
             break;
+        case BatchTraversal::Stream: traceAsStreams<Counting, Query, Robust>(tree, rays, answer); break;
         default:
             traceAsPackets<Counting, Query, Robust, PacketKind::Plain>(tree, rays, config.packetFallback, answer);
             break;

@@ -1,14 +1,17 @@
 // Batches traced as packets (packet_traversal.h), plain and coherent (BVH::batchTraversal=
-// packets, coherent: coherent_traversal.h), against the single-ray traversal of the same
-// tree: hits bit for bit (t, u, v, primitive) and occluded flags equal, on ray sets chosen to
-// take every path (coherent packets, packets thinning out to single rays, rays left alone:
-// tmin < 0, NaN), and on coplanar duplicate triangles, whose ties the closest hit must break
-// the same way whatever the visit order (ClosestHitQuery::record). The counts of a packet
-// differ from single-ray counts by design; only the queries must match, and each ray's costs
-// must add up to the totals.
+// packets, coherent: coherent_traversal.h), and as streams (stream_traversal.h) against the
+// single-ray traversal of the same tree: hits bit for bit (t, u, v, primitive) and occluded
+// flags equal, on ray sets chosen to take every path (coherent packets, packets thinning out to
+// single rays, incoherent streams, rays left alone: tmin < 0, NaN), and on coplanar duplicate
+// triangles, whose ties the closest hit must break the same way whatever the visit order
+// (ClosestHitQuery::record). The counts of a packet or a stream differ from single-ray counts
+// by design; only the queries must match, and each ray's costs must add up to the totals.
 #include "accel/bvh/builder_table.h"
 #include "accel/bvh/bvh_accelerator.h"
+#include "accel/bvh/bvh_env.h"
 #include "accel/bvh/traverse/packet_traversal.h"
+#include "accel/bvh/traverse/stream_traversal.h"
+#include "accel/verify/verify_keys.h"
 #include "tests/support/triangle_soup.h"
 
 #include <gtest/gtest.h>
@@ -186,6 +189,17 @@ void expectBatchAsSingle(const Accelerator& accel, const std::vector<Ray>& rays,
     }
 }
 
+// Every ray set through `accel`'s batches against its single rays.
+void expectRaySetsAsSingle(const Accelerator& accel, bool robust, Match axisParallel) {
+    const std::vector<Ray> primary = primaryRays(Vec3(3, 14, 22), 64, 48);
+    expectBatchAsSingle(accel, primary, "primary");
+    // Low and behind the wall of duplicatesScene, so that many shadow rays are occluded.
+    expectBatchAsSingle(accel, shadowRays(accel, primary, Vec3(2, 1.5f, -25)), "shadow");
+    expectBatchAsSingle(accel, incoherentRays(4000, 3), "incoherent");
+    const Match boundary = robust || axisParallel == Match::Bits ? axisParallel : Match::NearTiesAtLeafBoundaries;
+    expectBatchAsSingle(accel, axisAndGrazingRays(5), "axis-parallel and grazing", boundary);
+}
+
 // Every ray set on `soup`, for a layout, robustness and fallback threshold (0: packets to
 // the leaves; 2: the default; 64: every ray alone from the root), on the batch path `path`.
 template <typename Layout>
@@ -201,13 +215,7 @@ void expectPacketsAsSingle(const Soup& soup, Match axisParallel = Match::Bits,
             traversal.batchTraversal = path;
             BvhAccelerator<Layout> accel(builderRecord("sahbvh"), BvhBuildConfig{}, traversal);
             accel.build(soup.prims());
-            const std::vector<Ray> primary = primaryRays(Vec3(3, 14, 22), 64, 48);
-            expectBatchAsSingle(accel, primary, "primary");
-            // Low and behind the wall of duplicatesScene, so that many shadow rays are occluded.
-            expectBatchAsSingle(accel, shadowRays(accel, primary, Vec3(2, 1.5f, -25)), "shadow");
-            expectBatchAsSingle(accel, incoherentRays(4000, 3), "incoherent");
-            const Match boundary = robust || axisParallel == Match::Bits ? axisParallel : Match::NearTiesAtLeafBoundaries;
-            expectBatchAsSingle(accel, axisAndGrazingRays(5), "axis-parallel and grazing", boundary);
+            expectRaySetsAsSingle(accel, robust, axisParallel);
         }
 }
 
@@ -309,6 +317,72 @@ void expectSixteenRayPacketsAsSingle() {
 }
 TEST(PacketTraversal, SixteenRayPacketsAnswerAsSingleRays) { expectSixteenRayPacketsAsSingle<PacketKind::Plain>(); }
 TEST(CoherentTraversal, SixteenRayPacketsAnswerAsSingleRays) { expectSixteenRayPacketsAsSingle<PacketKind::Coherent>(); }
+
+
+// Every ray set on `soup` through streams, for a layout and robustness.
+template <typename Layout>
+void expectStreamsAsSingle(const Soup& soup, Match axisParallel = Match::Bits) {
+    for (const bool robust : {true, false}) {
+        SCOPED_TRACE("streams, robust " + std::to_string(robust));
+        TraversalConfig traversal;
+        traversal.robust = robust;
+        traversal.batchTraversal = BatchTraversal::Stream;
+        BvhAccelerator<Layout> accel(builderRecord("sahbvh"), BvhBuildConfig{}, traversal);
+        accel.build(soup.prims());
+        expectRaySetsAsSingle(accel, robust, axisParallel);
+    }
+}
+
+TEST(StreamTraversal, Wide8AnswersAsSingleRays) { expectStreamsAsSingle<WideBvh<8>>(randomScene(1)); }
+TEST(StreamTraversal, Wide4AnswersAsSingleRays) { expectStreamsAsSingle<WideBvh<4>>(randomScene(2)); }
+TEST(StreamTraversal, TiesOnDuplicatesAnswerAsSingleRays) {
+    expectStreamsAsSingle<WideBvh<8>>(duplicatesScene(), Match::TiesAtLeafBoundaries);
+    expectStreamsAsSingle<WideBvh<4>>(duplicatesScene(), Match::TiesAtLeafBoundaries);
+}
+
+// Streams of every length from 1 to kStreamSize, straight through traceStream: the ray masks'
+// ends (a full 64-bit mask among them) and each ray's costs against its single-ray answer.
+TEST(StreamTraversal, StreamsOfEveryLengthAnswerAsSingleRays) {
+    BvhAccelerator<WideBvh<8>> accel(builderRecord("sahbvh"), BvhBuildConfig{});
+    accel.build(randomScene(3).prims());
+    const WideBvh<8>& tree = accel.bvh();
+    std::vector<Ray> rays;  // of octant 0
+    for (Ray r : incoherentRays(4000, 9)) {
+        r.dir = glm::abs(r.dir);
+        rays.push_back(r);
+    }
+    size_t compared = 0, begin = 0;
+    for (int count = 1; count <= kStreamSize; begin += size_t(count), ++count) {
+        ASSERT_LE(begin + size_t(count), rays.size());
+        const Ray* stream = rays.data() + begin;
+        traceStream<true, ClosestHitQuery, true>(tree, stream, count, 0, [&](int k, const ClosestHitQuery& query,
+                                                                            const QueryCounters& work) {
+            QueryCounters counters;
+            Hit batch, single;
+            answerOf(tree, query, batch);
+            accel.findNearest(stream[k], single, counters);
+            EXPECT_TRUE(bitEqual(batch, single)) << "stream of " << count << ", ray " << k;
+            EXPECT_EQ(work.queries, 1u);
+            EXPECT_GE(work.traversalSteps, 1u);  // the root
+            ++compared;
+        });
+        traceStream<false, AnyHitQuery, true>(tree, stream, count, 0, [&](int k, const AnyHitQuery& query,
+                                                                         const QueryCounters& work) {
+            QueryCounters counters;
+            EXPECT_EQ(query.occluded, accel.isOccluded(stream[k], counters)) << "stream of " << count << ", ray " << k;
+            EXPECT_EQ(work.traversalSteps, 0u);  // the form that counts nothing
+            EXPECT_EQ(work.intersectionTests, 0u);
+        });
+    }
+    EXPECT_EQ(compared, size_t(kStreamSize) * (kStreamSize + 1) / 2);
+}
+
+TEST(StreamTraversal, BatchTraversalKeyNamesStream) {
+    Env env(verify::verifyKeys());
+    env.set(keys::BVH::batchTraversal, "stream", "test");
+    EXPECT_EQ(bvhSettingsFromEnv(env).traversal.batchTraversal, BatchTraversal::Stream);
+    EXPECT_STREQ(batchTraversalName(BatchTraversal::Stream), "stream");
+}
 
 }  // namespace
 }  // namespace bvhlab

@@ -1,10 +1,11 @@
 // The traversal kernels compiled per ISA (accel/bvh/traverse/traversal_kernels.h) answer bit
 // for bit alike: every kernel this CPU runs against the scalar one, for the binary and both wide
-// layouts, single and batch queries, hits (t, primitive, u, v) and counters, on random,
-// axis-parallel and grazing rays and rays whose interval starts below 0; and each kernel's form
-// that counts nothing answers as its counting form; and the wide layouts' single-ray steps
-// (BVH::singleStep) answer alike in every kernel. Kernels the CPU cannot
-// run are not run (so this passes on AVX2-only machines) and asking for one is an InputError.
+// layouts, single and batch queries (packets, coherent packets and streams), hits (t, primitive,
+// u, v) and counters, on random, axis-parallel and grazing rays and rays whose interval starts
+// below 0; and each kernel's form that counts nothing answers as its counting form; and the
+// wide layouts' single-ray steps (BVH::singleStep) answer alike in every kernel. Kernels the CPU
+// cannot run are not run (so this passes on AVX2-only machines) and asking for one is an
+// InputError.
 #include "accel/bvh/builder_table.h"
 #include "accel/bvh/bvh_accelerator.h"
 #include "accel/bvh/bvh_env.h"
@@ -54,9 +55,12 @@ std::vector<Ray> kernelRays() {
     return rays;
 }
 
-// The wide layouts' batches are packets of 16 rays in the avx512 kernels and of 8 in the others
-// (packet_traversal.h): a ray's work in a batch depends on its packet, its answer does not.
-bool samePackets(Isa a, Isa b) { return (a == Isa::Avx512) == (b == Isa::Avx512); }
+// The wide layouts' packets (plain and coherent) are of 16 rays in the avx512 kernels and of 8
+// in the others (packet_traversal.h): a ray's work in a batch depends on its packet, its answer
+// does not. Streams (stream_traversal.h) are of 64 rays in every kernel.
+bool sameGroups(BatchTraversal path, Isa a, Isa b) {
+    return path == BatchTraversal::Stream || (a == Isa::Avx512) == (b == Isa::Avx512);
+}
 
 void expectSameCounters(const QueryCounters& a, const QueryCounters& b, const std::string& what) {
     EXPECT_EQ(a.queries, b.queries) << what;
@@ -147,7 +151,7 @@ void expectKernelsAgree(const char* layout) {
     const test::Soup soup = kernelScene();
     const std::vector<Ray> rays = kernelRays();
     for (bool robust : {true, false})
-        for (BatchTraversal path : {BatchTraversal::Packets, BatchTraversal::Coherent}) {
+        for (BatchTraversal path : {BatchTraversal::Packets, BatchTraversal::Coherent, BatchTraversal::Stream}) {
             const Answers reference =
                 answersOf<Layout>({.robust = robust, .isa = Isa::Scalar, .batchTraversal = path}, soup, rays);
             size_t found = 0;
@@ -161,7 +165,7 @@ void expectKernelsAgree(const char* layout) {
                 const Answers a = answersOf<Layout>({.robust = robust, .isa = isa, .batchTraversal = path}, soup, rays);
                 const std::string what = std::string(layout) + " " + isaName(isa) + (robust ? "" : " not robust") + " " +
                                          batchTraversalName(path);
-                expectSameAnswers(a, reference, what, samePackets(isa, Isa::Scalar));
+                expectSameAnswers(a, reference, what, sameGroups(path, isa, Isa::Scalar));
             }
         }
 }
