@@ -59,7 +59,8 @@ inline constexpr ChoiceKey isa{
 inline constexpr std::string_view kBatchTraversals[] = {"auto", "packets", "coherent", "stream", "single"};
 inline constexpr ChoiceKey batchTraversal{
     "BVH::batchTraversal", "auto", kBatchTraversals,
-    "batch queries on the wide layouts: auto = by the batch's coherence hint; packets (Benthin et al. 2012), coherent "
+    "batch queries on the wide layouts: auto = by the batch's coherence hint (incoherent: stream; coherent closest "
+    "hit: coherent; coherent any hit: packets with AVX-512, else stream); packets (Benthin et al. 2012), coherent "
     "(packets with a frustum test per node and one triangle against all rays at leaves, after Embree's coherent "
     "hybrid traversal), stream (Embree's incoherent streams: 64 rays, each with its single-ray box test at a node), "
     "single (ray by ray): one path whatever the hint, to time paths against each other. Answers are the same "

@@ -28,9 +28,18 @@ bool isOccludedKernel(const Tree& tree, const Ray& ray, QueryCounters& counters)
     return runQuery<AnyHitQuery, Robust, Counting, Step>(tree, ray, counters).occluded;
 }
 
-// The path a batch takes on a wide layout: BVH::batchTraversal, or for Auto the hint's.
-BatchTraversal batchPath(const TraversalConfig& config, RayCoherence) {
-    return config.batchTraversal != BatchTraversal::Auto ? config.batchTraversal : BatchTraversal::Packets;
+// The path a batch of Query takes on a wide layout: BVH::batchTraversal, or for Auto the fastest
+// for the hint and the query, as timed against each other (docs/performance.md): incoherent
+// batches as streams; coherent closest-hit batches (camera rays) as coherent packets, whose
+// leaves test one triangle against all rays; coherent any-hit batches (shadow rays, which stop
+// early and leave packets thin) as plain packets where they are 16 rays wide (AVX-512), as
+// streams where they would be 8.
+template <typename Query>
+BatchTraversal batchPath(const TraversalConfig& config, RayCoherence coherence) {
+    if (config.batchTraversal != BatchTraversal::Auto) return config.batchTraversal;
+    if (coherence == RayCoherence::Incoherent) return BatchTraversal::Stream;
+    if constexpr (!Query::kStopsAtFirstHit) return BatchTraversal::Coherent;
+    return kPacketWidth == 16 ? BatchTraversal::Packets : BatchTraversal::Stream;
 }
 
 // Hands each ray's query and work to answer(i, query, work): the wide layouts trace the rays by
@@ -49,7 +58,7 @@ void traceRange(const Tree& tree, std::span<const Ray> rays, const TraversalConf
     if constexpr (std::is_same_v<Tree, BinaryBvh>) {
         oneByOne();
     } else {
-        switch (batchPath(config, coherence)) {
+        switch (batchPath<Query>(config, coherence)) {
         case BatchTraversal::Single: oneByOne(); break;
         case BatchTraversal::Coherent:
             traceAsPackets<Counting, Query, Robust, PacketKind::Coherent>(tree, rays, config.packetFallback, answer);
