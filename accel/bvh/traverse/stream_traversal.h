@@ -77,7 +77,7 @@ struct ChildRays {
     static_assert(N == 4 || N == 8);
 
     [[gnu::always_inline]] void add(typename F::Mask, int hitLanes, int k) {
-        masks = _mm512_mask_or_epi64(masks, __mmask8(hitLanes), masks, _mm512_set1_epi64(int64_t(1) << k));
+        masks = _mm512_mask_or_epi64(masks, __mmask8(hitLanes), masks, _mm512_set1_epi64(int64_t(uint64_t(1) << k)));
     }
     [[gnu::always_inline]] void store(uint64_t out[N]) const {
         _mm512_mask_storeu_epi64(out, __mmask8((1 << N) - 1), masks);
@@ -87,7 +87,7 @@ struct ChildRays {
     static_assert(N == 4 || N == 8);
 
     [[gnu::always_inline]] void add(typename F::Mask hit, int, int k) {
-        const __m256i bit = _mm256_set1_epi64x(int64_t(1) << k);
+        const __m256i bit = _mm256_set1_epi64x(int64_t(uint64_t(1) << k));
         const auto orIn = [&](__m256i& four, __m128i lanes) {  // four lanes' 32-bit masks
             four = _mm256_or_si256(four, _mm256_and_si256(bit, _mm256_cvtepi32_epi64(lanes)));
         };

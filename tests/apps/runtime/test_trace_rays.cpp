@@ -169,9 +169,9 @@ TEST(TracePasses, TimesWithCountingOffAndCountsInAPassOfItsOwn) {
                         if (anyHit) accel->isOccluded(range[i], expected);
                         else accel->findNearest(range[i], hits[i], expected);
                 } else if (anyHit) {
-                    accel->isOccludedBatch(range, std::span(occluded).first(range.size()), expected, {}, RayCoherence::Incoherent);
+                    accel->isOccludedBatch(range, std::span(occluded).first(range.size()), expected, {}, RayCoherence::Coherent);
                 } else {
-                    accel->findNearestBatch(range, std::span(hits).first(range.size()), expected, {}, RayCoherence::Incoherent);
+                    accel->findNearestBatch(range, std::span(hits).first(range.size()), expected, {}, RayCoherence::Coherent);
                 }
             }
             EXPECT_TRUE(verify::sameCounters(r.counters, expected));
