@@ -12,7 +12,8 @@ packages=(g++ cmake ninja-build pkg-config git
           python3-matplotlib   # bvhlab plot (apps/plot/) and docs/python.md, with /usr/bin/python3
           python3-dev pybind11-dev python3-numpy python3-pytest  # the Python module (docs/python.md)
           slurmctld slurmd slurm-client munge   # the SlurmCluster test (tests/slurm/with_local_slurm.sh)
-          clang)  # a plugin built by clang++ (the ClangPluginLoads test, tests/package/check_plugin.sh)
+          clang   # a plugin built by clang++ (the ClangPluginLoads test, tests/package/check_plugin.sh)
+          clang-format)  # the Format test (tests/check_format.sh, .clang-format)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -33,7 +34,9 @@ fi
 targets=(bvhlab)
 cmake_args=()
 for arg in "$@"; do
-  if [ "$arg" = --tests ]; then targets=(all); else cmake_args+=("$arg"); fi
+  # The tests' build, as CI's, takes a warning for an error.
+  if [ "$arg" = --tests ]; then targets=(all); cmake_args+=(-DCMAKE_COMPILE_WARNING_AS_ERROR=ON)
+  else cmake_args+=("$arg"); fi
 done
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release ${cmake_args[@]+"${cmake_args[@]}"}
 # The Python module too (docs/python.md), unless -DBVHLAB_PYTHON=OFF left it out.

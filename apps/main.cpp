@@ -18,17 +18,7 @@ int main(int argc, char** argv) {
     app.fallthrough();
     app.add_flag_callback("--quiet", [] { bvhlab::Progress::setQuiet(true); }, "no progress lines on stderr");
     app.require_subcommand(1);
-    bvhlab::addRenderCommand(app);
-    bvhlab::addRaycastCommand(app);
-    bvhlab::addRaysCommand(app);
-    bvhlab::addBenchCommand(app);
-    bvhlab::addBatchCommand(app);
-    bvhlab::addStressCommand(app);
-    bvhlab::addTradeoffCommand(app);
-    bvhlab::addSpdCommand(app);
-    bvhlab::addCheckCommand(app);
-    bvhlab::addKeysCommand(app);
-    bvhlab::addPlotCommand(app);
+    for (auto addCommand : bvhlab::kCommands) addCommand(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -7,6 +7,7 @@
 # arguments go to ctest.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-cmake -S . -B build-san -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBVHLAB_SANITIZE=ON
+cmake -S . -B build-san -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBVHLAB_SANITIZE=ON \
+  -DCMAKE_COMPILE_WARNING_AS_ERROR=ON
 cmake --build build-san -j "$(nproc)"
 ctest --test-dir build-san --output-on-failure -j 2 -E 'SharedScenes|SlurmCluster' "$@"

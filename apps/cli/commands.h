@@ -1,4 +1,5 @@
-// One function per subcommand, each in its own file, adding itself to the program.
+// One function per subcommand, each in its own file, adding itself to the program; a new
+// subcommand is its file and its two lines here.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -16,5 +17,11 @@ void addStressCommand(CLI::App& app);
 void addTradeoffCommand(CLI::App& app);
 void addSpdCommand(CLI::App& app);
 void addCheckCommand(CLI::App& app);
+
+// In the order `bvhlab --help` lists them.
+inline constexpr void (*kCommands[])(CLI::App&) = {
+    addRenderCommand, addRaycastCommand, addRaysCommand, addBenchCommand, addBatchCommand, addStressCommand,
+    addTradeoffCommand, addSpdCommand, addCheckCommand, addKeysCommand, addPlotCommand,
+};
 
 }  // namespace bvhlab

@@ -23,10 +23,18 @@ public:
     constexpr View(Container&& c) : data_(c.data()), size_(c.size()) {}
     template <size_t N>
     constexpr View(T (&array)[N]) : data_(array), size_(N) {}
-    // For arguments written in place, `{a, b}`: the list lives until the call returns.
+    // For arguments written in place, `{a, b}`: the list lives until the call returns. GCC warns
+    // that the array may not outlive the View, which is this constructor's contract.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Winit-list-lifetime"
+#endif
     constexpr View(std::initializer_list<std::remove_const_t<T>> list)
         requires std::is_const_v<T>
         : data_(list.begin()), size_(list.size()) {}
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
 
     constexpr T* data() const { return data_; }
     constexpr size_t size() const { return size_; }
