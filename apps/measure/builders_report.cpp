@@ -19,8 +19,8 @@ using nlohmann::json;
 
 constexpr size_t kSets = std::size(kBuilderRaySets);
 
-// T_B is wall time around build() (timedBuild; build_cpu_ms beside it), as docs/builders.md's
-// tables were made. T_R at one thread is the process's CPU time (what a shared
+// T_B is wall time around build() (timedBuild; build_cpu_ms beside it), as the tables of
+// docs/builders.md, "Studies", were made. T_R at one thread is the process's CPU time (what a shared
 // machine gave to others is left out); with more, wall time (CPU time would add the threads up).
 struct TimeKeys {
     const char* build = "build_ms";

@@ -5,8 +5,8 @@
 
 The PNGs go to DATA/plots unless --out names another folder (created if missing); `--out
 docs/plots` refreshes the plots committed with the docs. Writes tradeoff_build_vs_gap.png,
-tradeoff_time_to_image.png and tradeoff_error_vs_time.png, and prints the numbers the reading in
-docs/accuracy.md quotes: the gap and relative build time per configuration, the Pareto front of
+tradeoff_time_to_image.png and tradeoff_error_vs_time.png, and prints the numbers the reading of
+the tradeoff study (docs/accuracy.md, "Studies") quotes: the gap and relative build time per configuration, the Pareto front of
 build time against SAH cost, and the ray budgets at which a slower build pays off. A run without
 some of the configurations these compare (the K series of sahbvh, sweepbvh) plots what it has
 and prints n/a for the rest.

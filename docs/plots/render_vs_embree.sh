@@ -1,7 +1,7 @@
 #!/bin/sh
-# The render comparison of docs/performance.md: the query time of `bvhlab render` with the default
-# structure against -DASDS::type=embree, same settings, 1 thread, on conference, sibenik and
-# teapots. The two alternate ROUNDS times per scene; printed are the medians of T_R (primary and
+# The render comparison of a study docs/performance.md lists: the query time of `bvhlab render`
+# with the default structure against -DASDS::type=embree, same settings, 1 thread, on conference,
+# sibenik and teapots. The two alternate ROUNDS times per scene; printed are the medians of T_R (primary and
 # shadow rays) and of the per-round ratios ours / Embree's.
 #   docs/plots/render_vs_embree.sh [OUT] [ROUNDS]     (default out/render_vs_embree 3; from the repository's root)
 set -eu

@@ -2,7 +2,7 @@
 // as Embree's triangle4v, but at AVX's width), so that one SIMD test
 // (traverse/triangle_block_test.h) checks eight triangles of a leaf at once. Eight, not four:
 // a block costs one test either way, and the SAH then charges leaves by eights, which halves
-// the leaves and the build time (measured in docs/performance.md). A leaf of n triangles takes
+// the leaves and the build time (docs/performance.md, "Studies"). A leaf of n triangles takes
 // ceil(n / 8) blocks of its own; the lanes past its last triangle repeat that triangle, with
 // kInvalidPrimitive as their primitive. A repeat hits exactly where the triangle does, in a
 // later lane, and the lowest lane wins a tie: the traversal tests whole blocks without a lane

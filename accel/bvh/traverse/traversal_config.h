@@ -25,7 +25,7 @@ struct TraversalConfig {
     bool robust = true;
     // BVH::packetFallback. Batches on the wide layouts trace packets (packet_traversal.h); a
     // node reached by at most this many active rays of a packet is finished ray by ray.
-    // Measured best: docs/performance.md, "Packets: batches of the wide layouts".
+    // Measured best: docs/performance.md, "Studies".
     int packetFallback = 2;
     // BVH::isa.
     Isa isa = Isa::Auto;

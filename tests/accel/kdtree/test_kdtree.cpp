@@ -112,7 +112,7 @@ TEST(KdTreeBuild, AnEmptySideEarnsTheBonus) {
 // The sweeps' work is N log N shaped: the events swept over all nodes per N log2 N stay about
 // level as N grows 64-fold, at the same density. Counted, not timed. That the events are sorted
 // once (at the root, and the straddlers' few new ones per node) a count cannot show; the build
-// times over scene sizes in docs/builders.md do.
+// times over scene sizes in the kd-tree study of docs/builders.md, "Studies", do.
 TEST(KdTreeBuild, TheEventsSweptGrowAsNLogN) {
     std::vector<double> perNLogN;
     for (size_t n : {1000u, 8000u, 64000u}) {

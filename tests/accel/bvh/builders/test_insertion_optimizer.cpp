@@ -29,7 +29,7 @@ TEST(InsertionOptimizer, LowersTheSahAndKeepsTheInvariants) {
     const Soup soup = randomSoup(4000, 3);
     // How far below the builder's SAH the optimised tree must at least be. On uniform random
     // triangles the spatial median is already close to the SAH builders (-5.5 % measured); on
-    // the scenes of docs/builders.md it drops far more.
+    // the scenes of docs/builders.md, "Studies", it drops far more.
     const std::pair<BuilderRecord, double> kinds[] = {
         {builderRecord("tdbvh"), 0.97}, {builderRecord("sahbvh"), 1.0}, {builderRecord("sweepbvh"), 1.0}, {builderRecord("ploc"), 1.0}};
     for (const auto& [kind, bound] : kinds) {
