@@ -1,6 +1,7 @@
 #include "accel/verify/oracle.h"
 
-#include "framework/core/triangle.h"
+#include <bvhlab/triangle.h>
+#include <glm/glm.hpp>
 
 #include <fmt/format.h>
 
@@ -17,7 +18,7 @@ using D3 = glm::dvec3;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
 // ---------------------------------------------------------------------------------------------
-// Error model of the float watertight test (framework/core/triangle.h), used by the judge.
+// Error model of the float watertight test (<bvhlab/triangle.h>), used by the judge.
 //
 // The test subtracts the origin from each vertex and shears: every sheared coordinate carries
 // an absolute error of a few ulps of M = max |v_i - org| (infinity norm). The inside/outside

@@ -3,7 +3,7 @@
 #include "accel/verify/generated_scenes.h"
 #include "accel/verify/oracle.h"
 #include "accel/verify/verify_rng.h"
-#include "framework/core/triangle.h"
+#include <bvhlab/triangle.h>
 
 #include <fmt/format.h>
 

@@ -3,7 +3,7 @@
 // (std::*_distribution are not), so a seed names the same rays everywhere.
 #pragma once
 
-#include "framework/core/math.h"
+#include <bvhlab/math.h>
 
 #include <cmath>
 #include <cstdint>

@@ -3,7 +3,7 @@
 // (`env.get(kShadows)` is a bool). Components register their keys with an EnvRegistry.
 #pragma once
 
-#include "framework/core/math.h"
+#include <bvhlab/math.h>
 
 #include <bvhlab/settings.h>
 

@@ -2,7 +2,7 @@
 // statistics of a build as one struct, gathered from what a structure reports by name.
 #pragma once
 
-#include "framework/core/math.h"
+#include <bvhlab/math.h>
 #include "framework/core/native_ray_batch.h"
 
 #include <bvhlab/accelerator.h>

@@ -5,7 +5,8 @@
 // for the magnitude of the triangle left (below).
 #pragma once
 
-#include "framework/core/triangle.h"
+#include <bvhlab/triangle.h>
+#include <glm/glm.hpp>
 
 #include <algorithm>
 #include <bit>

@@ -4,7 +4,8 @@
 // test (triangle.h) costs: `BVH::robust=false` traverses with it.
 #pragma once
 
-#include "framework/core/triangle.h"
+#include <bvhlab/triangle.h>
+#include <glm/glm.hpp>
 
 namespace bvhlab {
 

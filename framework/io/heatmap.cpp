@@ -1,6 +1,7 @@
 #include "framework/io/heatmap.h"
 
-#include "framework/core/math.h"
+#include <bvhlab/math.h>
+#include <glm/glm.hpp>
 #include "framework/io/image_io.h"
 #include "framework/io/image_text.h"
 

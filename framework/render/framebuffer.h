@@ -2,7 +2,7 @@
 // researcher inspects (depth, primitive, normal, and the per-pixel query cost).
 #pragma once
 
-#include "framework/core/math.h"
+#include <bvhlab/math.h>
 
 #include <vector>
 

@@ -6,7 +6,8 @@
 // of zero area) is refused with the reason, never covered approximately.
 #pragma once
 
-#include "framework/core/math.h"
+#include <bvhlab/math.h>
+#include <glm/glm.hpp>
 
 #include <cstdint>
 #include <span>

@@ -2,7 +2,8 @@
 // one flat list, NFF's spheres and cones, materials, point lights and an optional camera.
 #pragma once
 
-#include "framework/core/triangle.h"
+#include <bvhlab/triangle.h>
+#include <glm/glm.hpp>
 
 #include <bvhlab/primitive_set.h>
 

@@ -3,7 +3,8 @@
 // them in space: shared by the triangulation, reader and accelerator tests.
 #pragma once
 
-#include "framework/core/math.h"
+#include <bvhlab/math.h>
+#include <glm/glm.hpp>
 
 #include <fmt/format.h>
 

@@ -2,7 +2,8 @@
 // intersectors against their double references.
 #pragma once
 
-#include "framework/core/math.h"
+#include <bvhlab/math.h>
+#include <glm/glm.hpp>
 
 #include <cmath>
 #include <random>

@@ -2,7 +2,7 @@
 // t/u/v, points by their barycentric coordinates, and a triangle whose hits are easy to work out.
 #pragma once
 
-#include "framework/core/triangle.h"
+#include <bvhlab/triangle.h>
 #include "tests/support/quiet_nan.h"
 
 #include <glm/glm.hpp>

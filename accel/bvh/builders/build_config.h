@@ -2,7 +2,7 @@
 // builder's own options are a Config of its own, next to it (madmann91/bvh v2's way).
 #pragma once
 
-#include "framework/core/math.h"
+#include <bvhlab/math.h>
 
 #include <algorithm>
 #include <cstdint>

@@ -3,7 +3,7 @@
 // LBVH builders, Karras 2012; ploc only needs the order to be local within its search radius).
 #pragma once
 
-#include "framework/core/math.h"
+#include <bvhlab/math.h>
 
 #include <algorithm>
 #include <cstdint>

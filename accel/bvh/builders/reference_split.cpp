@@ -1,5 +1,6 @@
 #include "accel/bvh/builders/reference_split.h"
 
+#include <algorithm>
 #include <bit>
 #include <cstdint>
 #include <limits>

@@ -5,7 +5,7 @@
 // where the SBVH gains on long, thin, diagonal triangles.
 #pragma once
 
-#include "framework/core/triangle.h"
+#include <bvhlab/triangle.h>
 
 #include <utility>
 

@@ -4,7 +4,7 @@
 // traversal step reads one contiguous 64-byte pair.
 #pragma once
 
-#include "framework/core/math.h"
+#include <bvhlab/math.h>
 
 #include <cstdint>
 

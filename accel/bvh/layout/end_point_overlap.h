@@ -12,7 +12,7 @@
 #pragma once
 
 #include "accel/bvh/layout/bvh_node.h"
-#include "framework/core/triangle.h"
+#include <bvhlab/triangle.h>
 
 #include <optional>
 #include <span>

@@ -4,7 +4,7 @@
 #pragma once
 
 #include "accel/bvh/layout/traversal_allocator.h"
-#include "framework/core/triangle.h"
+#include <bvhlab/triangle.h>
 
 #include <cstdint>
 #include <vector>

@@ -7,7 +7,7 @@
 
 #include "accel/bvh/layout/bvh_node.h"
 #include "accel/bvh/layout/leaf_arrays.h"
-#include "framework/core/quadric_shape.h"
+#include <bvhlab/quadric_shape.h>
 
 #include <cstdint>
 #include <vector>

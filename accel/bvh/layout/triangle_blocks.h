@@ -10,7 +10,7 @@
 #pragma once
 
 #include "accel/bvh/layout/traversal_allocator.h"
-#include "framework/core/triangle.h"
+#include <bvhlab/triangle.h>
 
 #include <cstdint>
 #include <vector>

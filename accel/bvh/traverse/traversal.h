@@ -26,7 +26,7 @@
 #include "accel/bvh/layout/quadric_leaves.h"
 #include "accel/bvh/traverse/traversal_config.h"
 #include "framework/core/accelerator.h"
-#include "framework/core/triangle.h"
+#include <bvhlab/triangle.h>
 #include "framework/core/triangle_moller_trumbore.h"
 
 namespace bvhlab {

@@ -10,7 +10,7 @@
 #include "accel/bvh/layout/triangle_blocks.h"
 #include "accel/bvh/layout/wide_bvh.h"
 #include "accel/bvh/simd/simd.h"
-#include "framework/core/triangle.h"
+#include <bvhlab/triangle.h>
 
 namespace bvhlab {
 inline namespace BVHLAB_KERNEL_NS {

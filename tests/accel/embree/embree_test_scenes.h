@@ -3,7 +3,7 @@
 #pragma once
 
 #include "framework/core/accelerator.h"
-#include "framework/core/triangle.h"
+#include <bvhlab/triangle.h>
 #include "framework/scene/procedural.h"
 #include "framework/scene/scene.h"
 

@@ -7,7 +7,7 @@
 #include "accel/verify/generated_scenes.h"
 #include "accel/verify/ray_generators.h"
 #include "accel/verify/watertight_probe.h"
-#include "framework/core/triangle.h"
+#include <bvhlab/triangle.h>
 #include "framework/scene/procedural.h"
 
 #include <gtest/gtest.h>

@@ -1,6 +1,7 @@
 // The shared watertight ray-triangle test (<bvhlab/triangle.h>), float and double: known hits
 // with their t/u/v, misses, windings, exact edge and vertex points, parallel rays, interval ends.
-#include "framework/core/triangle.h"
+#include <bvhlab/triangle.h>
+#include <glm/glm.hpp>
 #include "framework/scene/scene.h"
 #include "tests/support/random_geometry.h"
 #include "tests/support/triangle_hits.h"

@@ -1,6 +1,7 @@
 // The ray-triangle test on what is not a proper triangle or ray: degenerate and collinear
 // triangles, normals that cannot be normalised, NaN rays; and float and double agreeing.
-#include "framework/core/triangle.h"
+#include <bvhlab/triangle.h>
+#include <glm/glm.hpp>
 #include "framework/scene/scene.h"
 #include "tests/support/random_geometry.h"
 #include "tests/support/triangle_hits.h"

@@ -1,6 +1,7 @@
 // The ray-triangle test is watertight: no ray slips between two triangles along a shared edge
 // or around a shared vertex, because its edge functions have the exact sign.
-#include "framework/core/triangle.h"
+#include <bvhlab/triangle.h>
+#include <glm/glm.hpp>
 #include "framework/scene/scene.h"
 #include "tests/support/random_geometry.h"
 #include "tests/support/triangle_hits.h"
