@@ -44,7 +44,8 @@ TEST(Statistics, EveryCounterOfTheTableIsPrintedAndInTheJson) {
     EXPECT_EQ(written, keys);
     std::set<std::string> tableKeys, writerKeys;  // the writer of bench, builders, tradeoff and spd
     for (const QueryCounter& c : kQueryCounters) tableKeys.insert(c.key);
-    for (const auto& [key, v] : queryCountersJson(counters, 4.0, true).items()) writerKeys.insert(key);
+    const nlohmann::json writerJson = queryCountersJson(counters, 4.0, true);
+    for (const auto& [key, v] : writerJson.items()) writerKeys.insert(key);
     EXPECT_EQ(writerKeys, tableKeys);
 
     const std::string table = formatStatsTable(row);
