@@ -54,8 +54,8 @@ bool batchTracesPackets(std::string_view accelerator) {
 }
 
 bool sameCounters(const QueryCounters& a, const QueryCounters& b) {
-    return a.queries == b.queries && a.intersectionTests == b.intersectionTests &&
-           a.traversalSteps == b.traversalSteps && a.sphereTests == b.sphereTests && a.coneTests == b.coneTests;
+    return a.queries == b.queries &&
+           std::ranges::all_of(kQueryCounters, [&](const QueryCounter& c) { return a.*c.count == b.*c.count; });
 }
 
 bool sameQueries(const QueryCounters& a, const QueryCounters& b) {

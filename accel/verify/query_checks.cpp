@@ -95,8 +95,9 @@ std::string describeReference(const MixedReference& r) { return r.found() ? fmt:
 bool bitEqual(const Hit& a, const Hit& b) { return std::memcmp(&a, &b, sizeof(Hit)) == 0; }
 
 std::string describeCounters(const QueryCounters& c) {
-    return fmt::format("queries {}, N_IT {}, N_TR {}, spheres {}, cones {}", c.queries, c.intersectionTests,
-                       c.traversalSteps, c.sphereTests, c.coneTests);
+    std::string text = fmt::format("queries {}", c.queries);
+    for (const QueryCounter& counter : kQueryCounters) text += fmt::format(", {} {}", counter.key, c.*counter.count);
+    return text;
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include "apps/runtime/table_text.h"
 #include "framework/core/error.h"
 
+#include <bvhlab/counters.h>
 #include <fmt/core.h>
 #include <fmt/ranges.h>
 
@@ -27,10 +28,12 @@ struct Row {
     std::string failed;  // why the job left no results (child_job.h's JobOutcome::failure()); empty if it ran
     bool shadows = false;
     json prims, leaves, nodes, sah, buildMs;  // of the build, shared by both renders
-    json trUs, nIt, nTr, nQ, renderMs;          // over all queries of this render
+    json trUs, nQ, renderMs;                    // over all queries of this render
+    json counters = json::object();  // likewise, the counters of kQueryCounters with a column, by key
 };
 
-// T_R, N_IT and N_TR averaged over every query of a render, primary and shadow together.
+// T_R and the counters (N_IT, N_TR, ...) averaged over every query of a render, primary and shadow
+// together.
 json allQueries(const json& run) {
     const json& p = run.at("primary");
     const json& s = run.at("shadow");
@@ -47,10 +50,9 @@ json allQueries(const json& run) {
         }
         return q > 0 ? json(sum / q) : json();
     };
-    return {{"queries", p.at("queries").get<uint64_t>() + s.at("queries").get<uint64_t>()},
-            {"t_r_us", mean("t_r_us")},
-            {"n_it", mean("n_it")},
-            {"n_tr", mean("n_tr")}};
+    json all = {{"queries", p.at("queries").get<uint64_t>() + s.at("queries").get<uint64_t>()}, {"t_r_us", mean("t_r_us")}};
+    for (const QueryCounter& c : kQueryCounters) all[c.key] = mean(c.key);
+    return all;
 }
 
 bool jobFailed(const json& job) { return job.contains("failed"); }
@@ -66,10 +68,13 @@ Row failedRow(const json& job) {
 Row makeRow(const json& job, bool shadows) {
     const json& run = job.at("runs").at(shadows ? "shadows" : "no_shadows");
     const json all = allQueries(run);
+    json counters = json::object();
+    for (const QueryCounter& c : kQueryCounters)
+        if (c.column) counters[c.key] = all.at(c.key);
     return {job.at("scene").get<std::string>(), job.at("accel").get<std::string>(),
             job.value("result_key", json::object()).value("structure", json()), "", shadows, run.at("prims"),
             run.at("leaves"), run.at("nodes"), run.at("sah"), run.at("build_ms"),
-            all.at("t_r_us"), all.at("n_it"), all.at("n_tr"), all.at("queries"), run.at("render_ms")};
+            all.at("t_r_us"), all.at("queries"), run.at("render_ms"), std::move(counters)};
 }
 
 // A number as the Markdown table shows it; null is "n/a" (unavailable, never 0).
@@ -247,11 +252,16 @@ BatchTables makeBatchTables(const std::vector<json>& jobs, size_t batchJobs) {
     md += fmt::format("Settings: {}.\n\n", fmt::join(settings, ", "));
     md += fmt::format("Structures, with their own settings:\n{}\n\n", fmt::join(structureLines(jobs), "\n"));
     for (const std::string& w : t.warnings) md += fmt::format("**Warning:** {}.\n\n", w);
-    md += "| scene | accel | | #Prims | #Leaves | #Nodes | SAH | T_B [ms] | T_R [µs] | N_IT | N_TR | N_Q | render [ms] |\n";
-    md += "|:--|:--|:--|--:|--:|--:|--:|--:|--:|--:|--:|--:|--:|\n";
+    std::string counterColumns, counterAlignment, counterBlanks;
+    for (const QueryCounter& c : kQueryCounters)
+        if (c.column) counterColumns += fmt::format(" {} |", c.column), counterAlignment += "--:|", counterBlanks += " |";
+    md += fmt::format("| scene | accel | | #Prims | #Leaves | #Nodes | SAH | T_B [ms] | T_R [µs] |{} N_Q | render [ms] |\n",
+                      counterColumns);
+    md += fmt::format("|:--|:--|:--|--:|--:|--:|--:|--:|--:|{}--:|--:|\n", counterAlignment);
     for (const Row& r : rows) {
         if (!r.failed.empty()) {
-            md += fmt::format("| {} | {} | failed: {} | | | | | | | | | | |\n", r.scene, r.accel, markdownText(r.failed));
+            md += fmt::format("| {} | {} | failed: {} | | | | | | |{} | |\n", r.scene, r.accel, markdownText(r.failed),
+                              counterBlanks);
             continue;
         }
         if (!r.shadows)
@@ -260,8 +270,10 @@ BatchTables makeBatchTables(const std::vector<json>& jobs, size_t batchJobs) {
                               cell(r.leaves, "{}"), cell(r.nodes, "{}"), cell(r.sah, "{:.2f}"), cell(r.buildMs, "{:.1f}"));
         else
             md += "| | | + shadows | | | | | ";
-        md += fmt::format("| {} | {} | {} | {} | {} |\n", cell(r.trUs, "{:.3f}"), cell(r.nIt, "{:.2f}"),
-                          cell(r.nTr, "{:.2f}"), cell(r.nQ, "{}"), cell(r.renderMs, "{:.1f}"));
+        md += fmt::format("| {} |", cell(r.trUs, "{:.3f}"));
+        for (const QueryCounter& c : kQueryCounters)
+            if (c.column) md += fmt::format(" {} |", cell(r.counters.at(c.key), "{:.2f}"));
+        md += fmt::format(" {} | {} |\n", cell(r.nQ, "{}"), cell(r.renderMs, "{:.1f}"));
     }
     md += "\nT_B: build time. T_R: µs per query (thread time inside the query loops / queries). N_IT, N_TR: "
           "ray-triangle tests and nodes visited per query. N_Q: queries. SAH: normalised by the root box, with "
@@ -285,18 +297,22 @@ BatchTables makeBatchTables(const std::vector<json>& jobs, size_t batchJobs) {
     // CSV: every column on both rows; a failed job's one row has only its reason. The structure's
     // own settings as KEY=value;KEY=value, its plugin's file, CRC-32 and whether it was optimised
     // (empty for bvhlab's own).
-    t.csv = "scene,accel,shadows,prims,leaves,nodes,sah,t_b_ms,t_r_us,n_it,n_tr,n_q,render_ms,settings,plugin,"
-            "plugin_crc32,plugin_optimized,failed\n";
+    t.csv = "scene,accel,shadows,prims,leaves,nodes,sah,t_b_ms,t_r_us,";
+    for (const QueryCounter& c : kQueryCounters)
+        if (c.column) t.csv += fmt::format("{},", c.key);
+    t.csv += "n_q,render_ms,settings,plugin,plugin_crc32,plugin_optimized,failed\n";
     for (const Row& r : rows) {
         std::vector<std::string> settings;
         const json plugin = r.structure.is_object() ? r.structure.at("plugin") : json();
         if (r.structure.is_object())
             for (const auto& [key, value] : r.structure.at("keys").items())
                 settings.push_back(key + "=" + value.get<std::string>());
-        t.csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", csvText(r.scene), csvText(r.accel),
+        t.csv += fmt::format("{},{},{},{},{},{},{},{},{},", csvText(r.scene), csvText(r.accel),
                              r.failed.empty() ? (r.shadows ? "true" : "false") : "", csvCell(r.prims),
-                             csvCell(r.leaves), csvCell(r.nodes), csvCell(r.sah), csvCell(r.buildMs), csvCell(r.trUs),
-                             csvCell(r.nIt), csvCell(r.nTr), csvCell(r.nQ), csvCell(r.renderMs),
+                             csvCell(r.leaves), csvCell(r.nodes), csvCell(r.sah), csvCell(r.buildMs), csvCell(r.trUs));
+        for (const QueryCounter& c : kQueryCounters)
+            if (c.column) t.csv += fmt::format("{},", csvCell(r.counters.value(c.key, json())));
+        t.csv += fmt::format("{},{},{},{},{},{},{}\n", csvCell(r.nQ), csvCell(r.renderMs),
                              csvText(fmt::format("{}", fmt::join(settings, ";"))),
                              plugin.is_null() ? "" : csvText(plugin.at("file").get<std::string>()),
                              plugin.is_null() ? "" : plugin.at("crc32").get<std::string>(),
@@ -313,10 +329,11 @@ BatchTables makeBatchTables(const std::vector<json>& jobs, size_t batchJobs) {
             j["rows"].push_back({{"scene", r.scene}, {"accel", r.accel}, {"failed", r.failed}});
             continue;
         }
-        j["rows"].push_back({{"scene", r.scene}, {"accel", r.accel}, {"shadows", r.shadows}, {"prims", r.prims},
-                             {"leaves", r.leaves}, {"nodes", r.nodes}, {"sah", r.sah}, {"t_b_ms", r.buildMs},
-                             {"t_r_us", r.trUs}, {"n_it", r.nIt}, {"n_tr", r.nTr}, {"n_q", r.nQ},
-                             {"render_ms", r.renderMs}, {"structure", r.structure}});
+        json row = {{"scene", r.scene}, {"accel", r.accel}, {"shadows", r.shadows}, {"prims", r.prims},
+                    {"leaves", r.leaves}, {"nodes", r.nodes}, {"sah", r.sah}, {"t_b_ms", r.buildMs},
+                    {"t_r_us", r.trUs}, {"n_q", r.nQ}, {"render_ms", r.renderMs}, {"structure", r.structure}};
+        row.update(r.counters);
+        j["rows"].push_back(std::move(row));
     }
     for (const json& job : jobs) {
         if (jobFailed(job)) {

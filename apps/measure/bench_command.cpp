@@ -38,6 +38,7 @@
 #include "framework/render/renderer.h"
 #include "framework/report/build_stats_json.h"
 #include "framework/report/provenance.h"
+#include "framework/report/query_counters_json.h"
 
 #include <fmt/core.h>
 #include <fmt/ranges.h>
@@ -248,9 +249,8 @@ std::vector<nlohmann::json> measureRounds(const Scene& scene, const RaySets& ray
             row[raySets[set].asked.kind] = {
                 {"t_r_us", median(k.usPerQuery[set])},
                 {"t_r_us_all", k.usPerQuery[set]},
-                {"queries", k.counters[set].queries},
-                {"n_it", counted ? nlohmann::json(double(k.counters[set].intersectionTests) / q) : nlohmann::json()},
-                {"n_tr", counted ? nlohmann::json(double(k.counters[set].traversalSteps) / q) : nlohmann::json()}};
+                {"queries", k.counters[set].queries}};
+            row[raySets[set].asked.kind].update(queryCountersJson(k.counters[set], q, counted));
             if (!k.kept.empty()) {
                 row["embree_batch_api"][raySets[set].asked.kind] = k.kept[set];
                 for (const auto& [api, series] : k.byApi[set]) row[raySets[set].asked.kind]["t_r_us_by_api"][api] = median(series);

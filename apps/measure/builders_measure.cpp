@@ -6,6 +6,7 @@
 #include "apps/runtime/timing.h"
 #include "framework/report/build_stats_json.h"
 #include "framework/report/provenance.h"
+#include "framework/report/query_counters_json.h"
 
 #include <fmt/core.h>
 
@@ -75,9 +76,8 @@ json measureBuilderConfig(const BuildersScene& b, const AccelConfig& config, con
         const double q = std::max<double>(1.0, double(r.counters.queries));
         result[kBuilderRaySets[s]] = {{"rays", sets[s]->size()},
                                       {"t_r_us", r.usPerQuery},
-                                      {"t_r_cpu_us", r.cpuUsPerQuery},
-                                      {"n_it", counted ? json(double(r.counters.intersectionTests) / q) : json()},
-                                      {"n_tr", counted ? json(double(r.counters.traversalSteps) / q) : json()}};
+                                      {"t_r_cpu_us", r.cpuUsPerQuery}};
+        result[kBuilderRaySets[s]].update(queryCountersJson(r.counters, q, counted));
     }
     // The bare loop, Embree as its users call it (the bench's embree-bare), on the baseline's tree.
     const auto* native = dynamic_cast<const NativeBatchApis*>(accel);

@@ -14,6 +14,7 @@
 #include "framework/render/render_keys.h"
 #include "framework/report/build_stats_json.h"
 #include "framework/report/provenance.h"
+#include "framework/report/query_counters_json.h"
 
 #include <fmt/core.h>
 #include <tbb/parallel_for.h>
@@ -221,11 +222,9 @@ json measureTradeoffConfig(const TradeoffScene& t, const AccelConfig& config, co
         const PassResult r = tracePasses(*accel, rays, asked.anyHit, asked.coherence, settings.threads, settings.passes,
                                          QueryKind::Batch);
         const double q = std::max<double>(1.0, double(r.counters.queries));
-        return json{{"rays", rays.size()},
-                    {"t_r_us", r.usPerQuery},
-                    {"t_r_cpu_us", r.cpuUsPerQuery},
-                    {"n_it", counted ? json(double(r.counters.intersectionTests) / q) : json()},
-                    {"n_tr", counted ? json(double(r.counters.traversalSteps) / q) : json()}};
+        json result{{"rays", rays.size()}, {"t_r_us", r.usPerQuery}, {"t_r_cpu_us", r.cpuUsPerQuery}};
+        result.update(queryCountersJson(r.counters, q, counted));
+        return result;
     };
     json primary = pass(t.rays.primary, kRaySetQueries[0]), shadow = pass(t.rays.shadow, kRaySetQueries[1]);
     // The first few disagreements are kept with the full ray (as `bvhlab raycast` reads it), so

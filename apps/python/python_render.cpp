@@ -49,8 +49,7 @@ py::object renderStatsDict(const StatsRow& row) {
     py::object stats = pythonFromJson(statsJson(row));
     if (row.hasCounters) return stats;
     for (const char* query : {"primary", "shadow"})
-        for (const char* counter : {"n_it", "n_tr", "n_it_sphere", "n_it_cone"})
-            stats[query][counter] = std::numeric_limits<double>::quiet_NaN();
+        for (const QueryCounter& c : kQueryCounters) stats[query][c.key] = std::numeric_limits<double>::quiet_NaN();
     return stats;
 }
 

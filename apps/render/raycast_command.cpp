@@ -70,8 +70,10 @@ void addRaycastCommand(CLI::App& app) {
                               {countedHits, countedOccluded, {}});
                 progress.finish();
                 const bool counted = built.accel->hasCounters();
-                counts = fmt::format("  N_IT {}  N_TR {}", counted ? fmt::format("{:.2f}", total.intersectionTests / n) : "n/a",
-                                     counted ? fmt::format("{:.2f}", total.traversalSteps / n) : "n/a");
+                for (const QueryCounter& c : kQueryCounters)
+                    if (c.column)
+                        counts += fmt::format("  {} {}", c.column,
+                                              counted ? fmt::format("{:.2f}", double(total.*c.count) / n) : "n/a");
             }
             // An any-hit answer is written as a hit at t = 0 on primitive 0 (docs/file-formats.md).
             for (size_t i = 0; i < occluded.size(); ++i)

@@ -29,6 +29,7 @@
 #include "framework/render/spd_tracer.h"
 #include "framework/report/build_stats_json.h"
 #include "framework/report/provenance.h"
+#include "framework/report/query_counters_json.h"
 
 #include <fmt/core.h>
 #include <nlohmann/json.hpp>
@@ -53,18 +54,13 @@ nlohmann::json accelJson(const std::string& label, const BuildStats& build, cons
     const uint64_t rays = r.counts.allRays();
     QueryCounters all = r.closest;
     all += r.shadow;
-    const auto counter = [&](uint64_t v) { return counted ? nlohmann::json(perRay(v, rays)) : nlohmann::json(); };
-    return {{"accel", label},
+    nlohmann::json accel = {{"accel", label},
             {"build_ms", build.buildMs},
             {"figures", figuresJson(build.figures)},  // the structure's own (a grid's N_V, N_EV, N_OIV)
             {"trace_ms", r.traceMs},
             {"threads", r.threads},
             {"invariants", invariantsJson(r.counts)},
-            {"n_it", counter(all.intersectionTests)},
-            {"n_ts", counter(all.traversalSteps)},
-            {"n_it_triangle", counter(all.triangleTests())},
-            {"n_it_sphere", counter(all.sphereTests)},
-            {"n_it_cone", counter(all.coneTests)},
+            {"n_it_triangle", counted ? nlohmann::json(perRay(all.triangleTests(), rays)) : nlohmann::json()},
             {"skipped",
              {{"shadow_backfacing", r.counts.shadowRaysSkippedBackfacing},
               {"cut_by_depth", r.counts.raysCutByDepth},
@@ -72,6 +68,8 @@ nlohmann::json accelJson(const std::string& label, const BuildStats& build, cons
             {"reflection_rays", r.counts.reflectionRays},
             {"refraction_rays", r.counts.refractionRays},
             {"havran", std::move(havran)}};  // the column of his tables this run stands beside, or null
+    accel.update(queryCountersJson(all, double(rays), counted));
+    return accel;
 }
 
 // The column of Havran's tables that a run of the octree plugin stands beside: the table of its
@@ -130,7 +128,7 @@ std::string octreeMarkdown(const nlohmann::json& accels) {
             nlohmann::json mine;
             if (name == "N_IT" && !a["n_it"].is_null() && required > 0.0)
                 mine = a["n_it"].get<double>() * rays / required;
-            else if (name == "N_TS") mine = a["n_ts"];
+            else if (name == "N_TS") mine = a["n_tr"];
             else if (a["figures"].contains(name)) mine = a["figures"][name]["value"];
             const bool whole = name == "N_IN" || name == "N_V" || name == "N_EV" || name == "N_OIV";
             const auto number = [&](double v) { return whole ? fmt::format("{:.0f}", v) : fmt::format("{:.2f}", v); };
@@ -181,7 +179,7 @@ std::string markdown(const nlohmann::json& results) {
             }
             const auto cell = [](const nlohmann::json& v) { return v.is_null() ? std::string("n/a") : fmt::format("{:.2f}", v.get<double>()); };
             md += fmt::format("| {} | {} | {} | {:.1f} | {:.0f} |\n", a["accel"].get<std::string>(), cell(a["n_it"]),
-                              cell(a["n_ts"]), a["build_ms"].get<double>(), a["trace_ms"].get<double>());
+                              cell(a["n_tr"]), a["build_ms"].get<double>(), a["trace_ms"].get<double>());
         }
         md += "\n" + octreeMarkdown(scene["accels"]);
     }

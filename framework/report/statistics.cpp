@@ -1,6 +1,7 @@
 #include "framework/report/statistics.h"
 
 #include "framework/report/build_stats_json.h"
+#include "framework/report/query_counters_json.h"
 
 #include <fmt/format.h>
 
@@ -19,15 +20,7 @@ nlohmann::json queryJson(const QueryStats& q, bool hasCounters) {
     const bool traced = q.counters.queries > 0;
     nlohmann::json j = {{"queries", q.counters.queries}};
     j["t_r_us"] = traced ? nlohmann::json(q.usPerQuery()) : nlohmann::json();
-    j["n_it"] = traced && hasCounters ? nlohmann::json(perQuery(q.counters.intersectionTests, q.counters.queries))
-                                      : nlohmann::json();
-    j["n_tr"] = traced && hasCounters ? nlohmann::json(perQuery(q.counters.traversalSteps, q.counters.queries))
-                                      : nlohmann::json();
-    // N_IT by primitive kind, as the SPD's README reports tests.
-    j["n_it_sphere"] = traced && hasCounters ? nlohmann::json(perQuery(q.counters.sphereTests, q.counters.queries))
-                                             : nlohmann::json();
-    j["n_it_cone"] = traced && hasCounters ? nlohmann::json(perQuery(q.counters.coneTests, q.counters.queries))
-                                           : nlohmann::json();
+    j.update(queryCountersJson(q.counters, double(q.counters.queries), traced && hasCounters));
     return j;
 }
 
@@ -35,22 +28,25 @@ nlohmann::json queryJson(const QueryStats& q, bool hasCounters) {
 
 std::string formatStatsTable(const StatsRow& row) {
     const BuildStats& b = row.build;
-    std::string out = fmt::format("{:<14} {:<9} {:>9} {:>9} {:>9} {:>10} {:>8} {:>9} {:>9} {:>8} {:>8} {:>10} {:>10}\n",
-                                  "scene", "accel", "#Prims", "#Leaves", "#Nodes", "SAH", "EPO", "T_B ms", "T_R us",
-                                  "N_IT", "N_TR", "N_Q", "render ms");
+    // The counters with a column (kQueryCounters) stand between T_R and N_Q.
+    std::string out = fmt::format("{:<14} {:<9} {:>9} {:>9} {:>9} {:>10} {:>8} {:>9} {:>9}", "scene", "accel",
+                                  "#Prims", "#Leaves", "#Nodes", "SAH", "EPO", "T_B ms", "T_R us");
+    for (const QueryCounter& c : kQueryCounters)
+        if (c.column) out += fmt::format(" {:>8}", c.column);
+    out += fmt::format(" {:>10} {:>10}\n", "N_Q", "render ms");
     auto line = [&](const char* label, const QueryStats& q, bool first) {
         const bool traced = q.counters.queries > 0, counted = traced && row.hasCounters;
-        const std::string nit = counted ? fmt::format("{:.2f}", perQuery(q.counters.intersectionTests, q.counters.queries)) : "n/a";
-        const std::string ntr = counted ? fmt::format("{:.2f}", perQuery(q.counters.traversalSteps, q.counters.queries)) : "n/a";
         const std::string tr = traced ? fmt::format("{:.3f}", q.usPerQuery()) : "n/a";
-        out += fmt::format("{:<14} {:<9} {:>9} {:>9} {:>9} {:>10} {:>8} {:>9} {:>9} {:>8} {:>8} {:>10} {:>10}\n",
-                           first ? row.scene : label, first ? row.accel : "",
-                           first ? fmt::format("{}", row.prims) : "", first ? orNa(b.leaves, "{}") : "",
-                           first ? orNa(b.nodes, "{}") : "",
+        out += fmt::format("{:<14} {:<9} {:>9} {:>9} {:>9} {:>10} {:>8} {:>9} {:>9}", first ? row.scene : label,
+                           first ? row.accel : "", first ? fmt::format("{}", row.prims) : "",
+                           first ? orNa(b.leaves, "{}") : "", first ? orNa(b.nodes, "{}") : "",
                            first ? (b.sah ? fmt::format("{:.3f}", b.sah->cost) : "n/a") : "",
-                           first ? orNa(b.epo, "{:.3f}") : "",
-                           first ? fmt::format("{:.1f}", b.buildMs) : "", tr, nit, ntr,
-                           q.counters.queries, first ? fmt::format("{:.1f}", row.render.renderMs) : "");
+                           first ? orNa(b.epo, "{:.3f}") : "", first ? fmt::format("{:.1f}", b.buildMs) : "", tr);
+        for (const QueryCounter& c : kQueryCounters)
+            if (c.column)
+                out += fmt::format(" {:>8}", counted ? fmt::format("{:.2f}", perQuery(q.counters.*c.count, q.counters.queries))
+                                                     : "n/a");
+        out += fmt::format(" {:>10} {:>10}\n", q.counters.queries, first ? fmt::format("{:.1f}", row.render.renderMs) : "");
     };
     // The first line is the closest-hit queries (camera rays and mirror bounces), the second
     // the shadow rays alone (any-hit queries toward the lights), as the report's rows.

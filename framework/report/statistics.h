@@ -28,7 +28,7 @@ std::string formatStatsTable(const StatsRow& row);
 // JSON with keys scene, accel, prims, degenerate, degenerate_spheres, degenerate_cones,
 // skipped_polygons, ear_clipped_polygons, build_ms, render_ms, threads, the tree's statistics
 // (buildStatsJson: nodes, leaves, sah, epo, leaf_sizes, figures...) and objects primary/shadow
-// {queries, n_it, n_it_sphere, n_it_cone, n_tr, t_r_us}; unavailable values are null.
+// {queries, t_r_us and the counters of kQueryCounters: n_it, n_tr, ...}; unavailable values are null.
 nlohmann::json statsJson(const StatsRow& row);
 
 }  // namespace bvhlab

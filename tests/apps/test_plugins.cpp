@@ -70,6 +70,24 @@ TEST(Plugins, APluginBuiltWithOtherEnumValuesIsRefusedNamingThem) {
         << r.output;
 }
 
+// added_counter.so is scan.so compiled against the plugin API with a query counter added, as
+// counters.h says to add one: the same ABI, so bvhlab loads it, and it counts as scan.so does.
+TEST(Plugins, APluginBuiltWithAQueryCounterAddedLoadsAndCountsAsBefore) {
+    const Result added = render("--plugin " + kPlugins + "/added_counter.so -DASDS::type=scan");
+    ASSERT_EQ(added.exitCode, 0) << added.output;
+    EXPECT_EQ(added.output.find("another ABI"), std::string::npos) << added.output;
+    const nlohmann::json withCounter = renderedJson();
+    const Result before = render("--plugin " + kPlugins + "/scan-1/scan.so -DASDS::type=scan");
+    ASSERT_EQ(before.exitCode, 0) << before.output;
+    const nlohmann::json asBefore = renderedJson();
+    EXPECT_GT(withCounter["primary"]["n_it"].get<double>(), 0.0);
+    for (const char* query : {"primary", "shadow"}) {
+        nlohmann::json counted = withCounter[query], expected = asBefore[query];
+        counted.erase("t_r_us"), expected.erase("t_r_us");  // times: not compared
+        EXPECT_EQ(counted, expected) << query;
+    }
+}
+
 TEST(Plugins, APluginOfAnOlderBvhlabIsRefusedAskingForARebuild) {
     const Result r = render("--plugin " + kPlugins + "/older_api.so");
     EXPECT_EQ(r.exitCode, 1) << r.output;

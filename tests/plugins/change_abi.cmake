@@ -1,7 +1,9 @@
-# cmake -DHEADERS=framework/api/bvhlab -DOUTPUT=DIR/bvhlab -DCHANGE=field|enum -P tests/plugins/change_abi.cmake:
+# cmake -DHEADERS=framework/api/bvhlab -DOUTPUT=DIR/bvhlab -DCHANGE=field|enum|counter -P tests/plugins/change_abi.cmake:
 # copies the plugin API's headers into OUTPUT, changed: `field` adds a field to Ray, `enum` swaps
-# the values of KeyType::Int and KeyType::Float. The headers of another ABI, for plugins that
-# bvhlab must refuse to load (tests/CMakeLists.txt: changed_abi.so, swapped_enum.so).
+# the values of KeyType::Int and KeyType::Float: the headers of another ABI, for plugins that
+# bvhlab must refuse to load (tests/CMakeLists.txt: changed_abi.so, swapped_enum.so). `counter`
+# adds a query counter as counters.h says to: the same ABI, for a plugin that bvhlab must load
+# (added_counter.so).
 file(REMOVE_RECURSE ${OUTPUT})
 file(COPY ${HEADERS}/ DESTINATION ${OUTPUT})
 
@@ -20,6 +22,12 @@ if(CHANGE STREQUAL "field")
 elseif(CHANGE STREQUAL "enum")
   change(settings.h "    Int,       // with an inclusive range\n    Float,     // with an inclusive range\n"
                     "    Float,     // with an inclusive range\n    Int,       // with an inclusive range\n")
+elseif(CHANGE STREQUAL "counter")
+  change(counters.h "    uint64_t unused[kQueryCounterSlots - 5] = {};"
+                    "    uint64_t boxTests = 0;\n    uint64_t unused[kQueryCounterSlots - 6] = {};")
+  change(counters.h "    coneTests += o.coneTests;\n" "    coneTests += o.coneTests;\n    boxTests += o.boxTests;\n")
+  change(counters.h "&QueryCounters::coneTests, \"the part of N_IT that tested cones and cylinders\"},\n"
+                    "&QueryCounters::coneTests, \"the part of N_IT that tested cones and cylinders\"},\n    {\"n_box\", nullptr, &QueryCounters::boxTests, \"boxes tested\"},\n")
 else()
-  message(FATAL_ERROR "change_abi.cmake: CHANGE must be field or enum, not '${CHANGE}'")
+  message(FATAL_ERROR "change_abi.cmake: CHANGE must be field, enum or counter, not '${CHANGE}'")
 endif()
