@@ -8,33 +8,33 @@ using namespace bvhlab;
 
 namespace {
 
-enum class Shape { Round, Square };
-constexpr std::string_view kShapeWords[] = {"round", "square"};
+enum class PartShape { Round, Square };
+constexpr std::string_view kPartShapeWords[] = {"round", "square"};
 
 struct PartConfig {
     int count = 7;
     uint32_t limit = 1'000'000;
     float scale = 1e-5f;
     bool flag = true;
-    Shape shape = Shape::Square;
+    PartShape shape = PartShape::Square;
 };
 
-constexpr FieldKey<&PartConfig::count> kCount{"Part::count", 1, 10, "a count"};
-constexpr FieldKey<&PartConfig::limit> kLimit{"Part::limit", 0, 2147483647, "a limit"};
-constexpr FieldKey<&PartConfig::scale> kScale{"Part::scale", 0, 1, "a scale"};
-constexpr FieldKey<&PartConfig::flag> kFlag{"Part::flag", "a switch"};
-constexpr FieldKey<&PartConfig::shape> kShape{"Part::shape", kShapeWords, "a shape"};
-constexpr std::tuple kPartKeys{&kCount, &kLimit, &kScale, &kFlag, &kShape};
+constexpr FieldKey<&PartConfig::count> kPartCount{"Part::count", 1, 10, "a count"};
+constexpr FieldKey<&PartConfig::limit> kPartLimit{"Part::limit", 0, 2147483647, "a limit"};
+constexpr FieldKey<&PartConfig::scale> kPartScale{"Part::scale", 0, 1, "a scale"};
+constexpr FieldKey<&PartConfig::flag> kPartFlag{"Part::flag", "a switch"};
+constexpr FieldKey<&PartConfig::shape> kPartShape{"Part::shape", kPartShapeWords, "a shape"};
+constexpr std::tuple kPartKeys{&kPartCount, &kPartLimit, &kPartScale, &kPartFlag, &kPartShape};
 
-struct Settings {
+struct PartSettings {
     PartConfig part;
 };
 
 }  // namespace
 
 TEST(FieldKey, TypeAndDefaultAreTheFields) {
-    const EnvKey count = kCount.declaration(), limit = kLimit.declaration(), scale = kScale.declaration(),
-                 flag = kFlag.declaration(), shape = kShape.declaration();
+    const EnvKey count = kPartCount.declaration(), limit = kPartLimit.declaration(), scale = kPartScale.declaration(),
+                 flag = kPartFlag.declaration(), shape = kPartShape.declaration();
     EXPECT_EQ(count.type, KeyType::Int);
     EXPECT_EQ(count.defaultValue, "7");
     EXPECT_EQ(count.max, 10.0);
@@ -57,7 +57,7 @@ TEST(FieldKey, ShortestTextReadsBack) {
 }
 
 TEST(FieldKey, BindingsReadAnEnvIntoThePart) {
-    const KeyBindings<Settings> bindings(kPartKeys, [](Settings& s) -> PartConfig& { return s.part; });
+    const KeyBindings<PartSettings> bindings(kPartKeys, [](PartSettings& s) -> PartConfig& { return s.part; });
     EnvRegistry registry;
     bindings.registerWith(registry);
     std::vector<std::string> names;
@@ -65,22 +65,22 @@ TEST(FieldKey, BindingsReadAnEnvIntoThePart) {
     EXPECT_EQ(names, (std::vector<std::string>{"Part::count", "Part::limit", "Part::scale", "Part::flag", "Part::shape"}));
 
     Env env(registry);
-    Settings defaults;
+    PartSettings defaults;
     bindings.read(env, defaults);
     EXPECT_EQ(defaults.part.count, PartConfig{}.count);
     EXPECT_EQ(defaults.part.scale, PartConfig{}.scale);
-    EXPECT_EQ(defaults.part.shape, Shape::Square);
+    EXPECT_EQ(defaults.part.shape, PartShape::Square);
 
-    env.set(kCount, "3", "test");
-    env.set(kLimit, "5", "test");
-    env.set(kScale, "0.25", "test");
-    env.set(kFlag, "false", "test");
-    env.set(kShape, "round", "test");
-    Settings read;
+    env.set(kPartCount, "3", "test");
+    env.set(kPartLimit, "5", "test");
+    env.set(kPartScale, "0.25", "test");
+    env.set(kPartFlag, "false", "test");
+    env.set(kPartShape, "round", "test");
+    PartSettings read;
     bindings.read(env, read);
     EXPECT_EQ(read.part.count, 3);
     EXPECT_EQ(read.part.limit, 5u);
     EXPECT_EQ(read.part.scale, 0.25f);
     EXPECT_FALSE(read.part.flag);
-    EXPECT_EQ(read.part.shape, Shape::Round);
+    EXPECT_EQ(read.part.shape, PartShape::Round);
 }
