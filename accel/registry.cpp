@@ -23,13 +23,13 @@ std::string wideDescription(const std::string& builder, int width) {
 }
 
 // The accelerator of a builder over one layout: NAME (binary), NAME4 or NAME8. `makeBuilder`
-// gives the builder with the env's values and the layout's leaf block.
-using BuilderMaker = std::function<BuilderRecord(const Env&, uint32_t leafBlock)>;
+// gives the builder with the env's values (a plugin's reads its own keys there).
+using BuilderMaker = std::function<BuilderRecord(const Env&)>;
 
 template <typename Layout>
-std::unique_ptr<Accelerator> makeBvhAccelerator(const BuilderMaker& makeBuilder, const Env& env, uint32_t leafBlock) {
+std::unique_ptr<Accelerator> makeBvhAccelerator(const BuilderMaker& makeBuilder, const Env& env) {
     const BvhSettings settings = bvhSettingsFromEnv(env);
-    return std::make_unique<BvhAccelerator<Layout>>(makeBuilder(env, leafBlock), settings.build, settings.traversal,
+    return std::make_unique<BvhAccelerator<Layout>>(makeBuilder(env), settings.build, settings.traversal,
                                                     settings.stats);
 }
 
@@ -38,11 +38,11 @@ std::vector<AcceleratorInfo> bvhInfos(const std::string& name, const std::string
                                       const BuilderMaker& makeBuilder) {
     bvhCommonKeys().appendNames(keys);
     std::vector<AcceleratorInfo> infos = {
-        {name, description, keys, [makeBuilder](const Env& env) { return makeBvhAccelerator<BinaryBvh>(makeBuilder, env, 1); }, {}}};
+        {name, description, keys, [makeBuilder](const Env& env) { return makeBvhAccelerator<BinaryBvh>(makeBuilder, env); }, {}}};
     for (int width : wideLayouts) {
         auto create = [makeBuilder, width](const Env& env) {
-            return width == 4 ? makeBvhAccelerator<WideBvh<4>>(makeBuilder, env, TriangleBlock::kLanes)
-                              : makeBvhAccelerator<WideBvh<8>>(makeBuilder, env, TriangleBlock::kLanes);
+            return width == 4 ? makeBvhAccelerator<WideBvh<4>>(makeBuilder, env)
+                              : makeBvhAccelerator<WideBvh<8>>(makeBuilder, env);
         };
         infos.push_back({name + std::to_string(width), wideDescription(name, width), keys, create, {}});
     }
@@ -65,7 +65,7 @@ std::vector<AcceleratorInfo> ownInfos() {
         std::vector<std::string> keys;
         for (const BvhKeys* own : entry.keys) own->appendNames(keys);
         for (AcceleratorInfo& info : bvhInfos(builder.name, entry.description, keys,
-                                              entry.wideLayouts, [&builder](const Env&, uint32_t) { return builder; }))
+                                              entry.wideLayouts, [&builder](const Env&) { return builder; }))
             infos.push_back(std::move(info));
     }
     return infos;
@@ -105,9 +105,7 @@ void addAccelerator(AcceleratorInfo info) {
 
 void addBvhBuilder(const LoadedBuilder& builder, const std::string& description, const std::string& plugin) {
     for (AcceleratorInfo& info : bvhInfos(builder.name, description, builder.keys, {4, 8},
-                                          [builder](const Env& env, uint32_t leafBlock) {
-                                              return pluginBuilderRecord(builder, env, leafBlock);
-                                          })) {
+                                          [builder](const Env& env) { return pluginBuilderRecord(builder, env); })) {
         info.plugin = plugin;
         addAccelerator(std::move(info));
     }

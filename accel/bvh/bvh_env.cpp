@@ -1,85 +1,56 @@
 #include "accel/bvh/bvh_env.h"
 
-#include "accel/bvh/traverse/traversal_kernels.h"
-
 #include <span>
 
 namespace bvhlab {
 
+namespace {
+
+// Where each Config's keys land in the settings.
+BuildConfig& shared(BvhSettings& s) { return s.build.shared; }
+BvhBuildConfig& build(BvhSettings& s) { return s.build; }
+InsertionConfig& insertion(BvhSettings& s) { return s.build.insertion; }
+TraversalConfig& traversal(BvhSettings& s) { return s.traversal; }
+BvhStatsConfig& stats(BvhSettings& s) { return s.stats; }
+BvhSettings& settings(BvhSettings& s) { return s; }
+
+}  // namespace
+
 const BvhKeys& bvhCommonKeys() {
-    using namespace keys::BVH;
-    static const BvhKeys bound = {
-        {maxLeaf, [](BvhSettings& s, int v) { s.build.shared.maxLeaf = v; }},
-        {leafCap, [](BvhSettings& s, int v) { s.build.shared.leafCap = v; }},
-        {cTraversal, [](BvhSettings& s, float v) { s.build.shared.cTraversal = v; }},
-        {cIntersect, [](BvhSettings& s, float v) { s.build.shared.cIntersect = v; }},
-        {keys::BVH::simd, [](BvhSettings& s, bool v) { s.build.shared.simd = v; }},
-        {robust, [](BvhSettings& s, bool v) { s.traversal.robust = v; }},
-        {threads, [](BvhSettings& s, int v) { s.build.shared.threads = v; }},
-        {epoMaxTriangles, [](BvhSettings& s, int v) { s.stats.epoMaxTriangles = uint32_t(v); }},
-        {optimize,
-         [](BvhSettings& s, const std::string& v) {
-             s.build.optimize = v == "insertion" ? BvhOptimize::Insertion : BvhOptimize::None;
-         }},
-        {optimizeIterations, [](BvhSettings& s, int v) { s.build.insertion.iterations = v; }},
-        {packetFallback, [](BvhSettings& s, int v) { s.traversal.packetFallback = v; }},
-        {isa,
-         [](BvhSettings& s, const std::string& v) {
-             for (Isa i : {Isa::Auto, Isa::Scalar, Isa::Avx2, Isa::Avx512})
-                 if (v == isaName(i)) s.traversal.isa = i;
-         }},
-        {batchTraversal,
-         [](BvhSettings& s, const std::string& v) {
-             for (BatchTraversal p : {BatchTraversal::Auto, BatchTraversal::Packets, BatchTraversal::Coherent,
-                                     BatchTraversal::Stream, BatchTraversal::Single})
-                 if (v == batchTraversalName(p)) s.traversal.batchTraversal = p;
-         }},
-        {singleStep,
-         [](BvhSettings& s, const std::string& v) {
-             for (SingleStep step : {SingleStep::Offsets, SingleStep::Octant})
-                 if (v == singleStepName(step)) s.traversal.singleStep = step;
-         }},
-    };
+    static const BvhKeys bound = BvhKeys::join({
+        {kBuildKeys, shared},
+        {kTraversalTestKeys, traversal},
+        {kBvhThreadsKeys, settings},
+        {kBvhStatsKeys, stats},
+        {kBvhOptimizeKeys, build},
+        {kInsertionKeys, insertion},
+        {kTraversalPathKeys, traversal},
+    });
     return bound;
 }
 
 const BvhKeys& sahTerminationKeys() {
-    static const BvhKeys bound = {
-        {keys::BVH::sahTermination, [](BvhSettings& s, bool v) { s.build.shared.sahTermination = v; }},
-    };
+    static const BvhKeys bound(kSahTerminationKeys, shared);
     return bound;
 }
 
 const BvhKeys& spatialMedianKeys() {
-    static const BvhKeys bound = {
-        {keys::BVH::tdbvhSplit,
-         [](BvhSettings& s, const std::string& v) {
-             s.build.spatialMedian.splitBox = v == "nodebox" ? MedianSplitBox::NodeBox : MedianSplitBox::CentroidBox;
-         }},
-    };
+    static const BvhKeys bound(kSpatialMedianKeys, [](BvhSettings& s) -> auto& { return s.build.spatialMedian; });
     return bound;
 }
 
 const BvhKeys& binnedSahKeys() {
-    static const BvhKeys bound = {
-        {keys::BVH::bins, [](BvhSettings& s, int v) { s.build.binnedSah.bins = v; }},
-        {keys::BVH::allAxes, [](BvhSettings& s, bool v) { s.build.binnedSah.allAxes = v; }},
-    };
+    static const BvhKeys bound(kBinnedSahKeys, [](BvhSettings& s) -> auto& { return s.build.binnedSah; });
     return bound;
 }
 
 const BvhKeys& sbvhKeys() {
-    static const BvhKeys bound = {
-        {keys::BVH::sbvhAlpha, [](BvhSettings& s, float v) { s.build.sbvh.alpha = v; }},
-        {keys::BVH::sbvhGrowth, [](BvhSettings& s, float v) { s.build.sbvh.growth = v; }},
-    };
+    static const BvhKeys bound(kSbvhKeys, [](BvhSettings& s) -> auto& { return s.build.sbvh; });
     return bound;
 }
 
 const BvhKeys& plocKeys() {
-    static const BvhKeys bound = {
-        {keys::BVH::plocRadius, [](BvhSettings& s, int v) { s.build.ploc.radius = v; }},
-    };
+    static const BvhKeys bound(kPlocKeys, [](BvhSettings& s) -> auto& { return s.build.ploc; });
     return bound;
 }
 
@@ -100,7 +71,7 @@ void registerBvhKeys(EnvRegistry& registry) {
 BvhSettings bvhSettingsFromEnv(const Env& env) {
     BvhSettings settings;
     for (const BvhKeys* keys : allKeys()) keys->read(env, settings);
-    if (settings.build.shared.threads == 0) settings.build.shared.threads = env.get(keys::SetRayTracing::threads);
+    settings.build.shared.threads = settings.threads != 0 ? settings.threads : env.get(keys::SetRayTracing::threads);
     return settings;
 }
 

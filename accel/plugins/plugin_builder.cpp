@@ -12,8 +12,9 @@ namespace bvhlab {
 
 namespace {
 
-BuilderSettings builderSettings(const PluginSettings& keys, uint32_t leafBlock, const BuildConfig& config) {
-    return {keys, leafBlock, config.cTraversal, config.cIntersect};
+// The leaf block is the layout's, as bvhlab's SAH builders charge it (BuildConfig::sahBlockShift).
+BuilderSettings builderSettings(const PluginSettings& keys, const BuildConfig& config) {
+    return {keys, 1u << config.sahBlockShift, config.cTraversal, config.cIntersect};
 }
 
 class PluginSplitRule final : public BvhSplitRule {
@@ -35,24 +36,23 @@ private:
 
 }  // namespace
 
-BuilderRecord pluginBuilderRecord(const LoadedBuilder& plugin, const Env& env, uint32_t leafBlock) {
+BuilderRecord pluginBuilderRecord(const LoadedBuilder& plugin, const Env& env) {
     BuilderRecord builder{plugin.name, {}, {}, true};
     const std::shared_ptr<const Env> settingsEnv = std::make_shared<Env>(env);
     const std::string owner = fmt::format("builder '{}'", plugin.name);
     if (plugin.splitRule) {
-        builder.splitRule = [plugin, settingsEnv, leafBlock, owner](const BvhBuildConfig& config) {
+        builder.splitRule = [plugin, settingsEnv, owner](const BvhBuildConfig& config) {
             const EnvPluginSettings keys(*settingsEnv, plugin.keys, owner);
-            std::unique_ptr<SplitRule> rule(plugin.splitRule(builderSettings(keys, leafBlock, config.shared)));
+            std::unique_ptr<SplitRule> rule(plugin.splitRule(builderSettings(keys, config.shared)));
             if (!rule) throw std::runtime_error(fmt::format("{}: its split rule factory returned nothing", owner));
             return std::unique_ptr<BvhSplitRule>(std::make_unique<PluginSplitRule>(config.shared, std::move(rule)));
         };
     } else {
-        builder.wholeTree = [plugin, settingsEnv, leafBlock, owner](const BvhBuildConfig& config,
-                                                                    const PrimitiveSet& prims) {
+        builder.wholeTree = [plugin, settingsEnv, owner](const BvhBuildConfig& config, const PrimitiveSet& prims) {
             return buildFromMerges(plugin.name, config.shared, prims, [&](std::span<const PrimRef> refs) {
                 const EnvPluginSettings keys(*settingsEnv, plugin.keys, owner);
                 std::vector<Merge> merges(refs.empty() ? 0 : refs.size() - 1);
-                plugin.mergeTree(refs, merges, builderSettings(keys, leafBlock, config.shared));
+                plugin.mergeTree(refs, merges, builderSettings(keys, config.shared));
                 std::vector<uint32_t> children;
                 for (const Merge& m : merges) children.insert(children.end(), {m.left, m.right});
                 return children;

@@ -23,7 +23,7 @@ struct LoadedBuilder {
     void (*mergeTree)(View<const PrimRef>, View<Merge>, const BuilderSettings&) = nullptr;
 };
 
-// `env` (copied) holds the values of the builder's keys; leafBlock as BuilderSettings says.
-BuilderRecord pluginBuilderRecord(const LoadedBuilder& builder, const Env& env, uint32_t leafBlock);
+// `env` (copied) holds the values of the builder's keys.
+BuilderRecord pluginBuilderRecord(const LoadedBuilder& builder, const Env& env);
 
 }  // namespace bvhlab

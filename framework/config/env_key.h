@@ -62,11 +62,17 @@ public:
     // What the registry holds; a Choice key whose words are known only at run time (ASDS::type:
     // the accelerators) is given them here.
     EnvKey declaration(std::vector<std::string> runtimeChoices = {}) const {
-        EnvKey key{std::string(name_), Type, std::string(default_), std::string(description_), min_, max_, {}};
+        EnvKey key{std::string(name_), Type, defaultText_ ? defaultText_(choices_) : std::string(default_),
+                   std::string(description_), min_, max_, {}};
         for (std::string_view c : choices_) key.choices.emplace_back(c);
         for (std::string& c : runtimeChoices) key.choices.push_back(std::move(c));
         return key;
     }
+
+protected:
+    // A key declared by the field it fills (field_key.h) has no default text: the field's
+    // initialiser, written out by this function (given the words of an enum) when declared.
+    std::string (*defaultText_)(std::span<const std::string_view> choices) = nullptr;
 
 private:
     std::string_view name_, default_, description_;

@@ -1,5 +1,5 @@
 // bvhlab's side of the accelerator interface (<bvhlab/accelerator.h>, the plugin API): the
-// statistics of a build as one struct, gathered from what a structure reports by name.
+// statistics of a build as one struct, filled by bvhlab's own structures, by name from a plugin's.
 #pragma once
 
 #include <bvhlab/math.h>
@@ -61,15 +61,15 @@ struct BuildStats {
     std::vector<NamedFigure> figures;
 };
 
-// The statistics of `accel`'s last build, gathered by name; the times left 0. Throws
-// std::invalid_argument naming a statistic it does not know, or given twice.
+// The statistics of `accel`'s last build, the times left 0: a BuildStatsAccelerator's as they are,
+// another's (a plugin's) gathered by name; std::invalid_argument for a name unknown or given twice.
 BuildStats statisticsOf(const Accelerator& accel);
 
-// Writes `stats` by name.
+// Writes `stats` by name (a BuildStatsAccelerator asked through the plugin interface).
 void writeStatistics(const BuildStats& stats, BuildStatistics& out);
 
-// An accelerator that computes its statistics as one BuildStats (bvhlab's own do) and reports
-// them by name.
+// An accelerator that computes its statistics as one BuildStats (bvhlab's own do): statisticsOf
+// takes them as they are; through the plugin interface they are reported by name.
 class BuildStatsAccelerator : public Accelerator {
 public:
     // The statistics of the last build, the times left 0.

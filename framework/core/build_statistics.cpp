@@ -69,6 +69,7 @@ private:
 }  // namespace
 
 BuildStats statisticsOf(const Accelerator& accel) {
+    if (const auto* own = dynamic_cast<const BuildStatsAccelerator*>(&accel)) return own->buildStats();
     StatsCollector collector(accel);
     accel.statistics(collector);
     return std::move(collector.stats);

@@ -1,7 +1,6 @@
 // docs/env-keys.md lists exactly the registered keys and accelerators (regenerate it with
 // `bvhlab keys > docs/env-keys.md`), env/global.env uses only known keys, every path of the
 // repository that a doc names exists, and docs/plugins.md describes the whole plugin API.
-#include "accel/bvh/bvh_env.h"
 #include "accel/registry.h"
 #include "apps/runtime/program_keys.h"
 #include "tests/support/cli_run.h"
@@ -43,15 +42,6 @@ TEST(Docs, EveryDeclaredDefaultIsValid) {
         Env env(programKeys());
         EXPECT_NO_THROW(env.set(name, key.defaultValue, "default")) << name << " = '" << key.defaultValue << "'";
     }
-}
-
-// BvhBuildConfig's member defaults (used by code that builds without an env) are the keys'.
-TEST(Docs, BvhConfigDefaultsAreTheKeysDefaults) {
-    BvhBuildConfig fromKeys = bvhSettingsFromEnv(Env(programKeys())).build;
-    const BvhBuildConfig members;
-    // BVH::threads 0 is all hardware threads; a build without an env takes one.
-    fromKeys.shared.threads = members.shared.threads;
-    EXPECT_TRUE(fromKeys == members);
 }
 
 // Every path of the repository that the docs, the README and the CMake files name exists

@@ -1,11 +1,15 @@
 // What every BVH builder shares: the leaf rules, the SAH's constants, SIMD and threads. Each
-// builder's own options are a Config of its own, next to it (madmann91/bvh v2's way).
+// builder's own options are a Config of its own, next to it (madmann91/bvh v2's way), and so
+// are the BVH:: env keys that fill them (field_key.h).
 #pragma once
+
+#include "framework/config/field_key.h"
 
 #include <bvhlab/math.h>
 
 #include <algorithm>
 #include <cstdint>
+#include <tuple>
 
 namespace bvhlab {
 
@@ -30,6 +34,31 @@ struct BuildConfig {
 
     bool operator==(const BuildConfig&) const = default;
 };
+
+namespace keys::BVH {
+inline constexpr FieldKey<&BuildConfig::maxLeaf> maxLeaf{
+    "BVH::maxLeaf", 1, 64,
+    "ranges of this many primitives or fewer become leaves; 1, with sahTermination off and leafCap 1, = the "
+    "report's BVH"};
+inline constexpr FieldKey<&BuildConfig::leafCap> leafCap{
+    "BVH::leafCap", 1, 256,
+    "largest leaf made when SAH termination stops or all centres coincide (raised to maxLeaf if below)"};
+inline constexpr FieldKey<&BuildConfig::sahTermination> sahTermination{
+    "BVH::sahTermination", "sahbvh/sweepbvh: leaf when C_trav + C_isect*(A_L*N_L + A_R*N_R)/A >= C_isect*N"};
+inline constexpr FieldKey<&BuildConfig::cTraversal> cTraversal{
+    "BVH::cTraversal", 0, 1e6, "SAH cost of an inner node: used by the SAH builders and by the reported SAH cost"};
+inline constexpr FieldKey<&BuildConfig::cIntersect> cIntersect{
+    "BVH::cIntersect", 1e-6, 1e6,
+    "SAH cost of a ray-triangle test: used by the SAH builders and by the reported SAH cost"};
+inline constexpr FieldKey<&BuildConfig::simd> simd{
+    "BVH::simd", "SSE in the build's hot loops (bounds, centres, binning, partition); false = scalar, same tree"};
+}  // namespace keys::BVH
+
+// The keys every builder reads (the threads come from BvhSettings::threads, bvh_env.h), and the
+// one only the SAH builders read.
+inline constexpr std::tuple kBuildKeys{&keys::BVH::maxLeaf, &keys::BVH::leafCap, &keys::BVH::cTraversal,
+                                       &keys::BVH::cIntersect, &keys::BVH::simd};
+inline constexpr std::tuple kSahTerminationKeys{&keys::BVH::sahTermination};
 
 // The SAH leaf test: a split of cost `splitCost` = A_L*N_L + A_R*N_R of n primitives in
 // `bounds` pays off when C_trav + C_isect * splitCost / A < C_isect * N.

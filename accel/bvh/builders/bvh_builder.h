@@ -13,6 +13,8 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <string_view>
+#include <tuple>
 
 namespace bvhlab {
 
@@ -21,6 +23,7 @@ enum class BvhOptimize {
     None,
     Insertion,  // insertion_optimizer.h (Bittner et al. 2013)
 };
+inline constexpr std::string_view kBvhOptimizeWords[] = {"none", "insertion"};
 
 struct BvhBuildConfig {
     BuildConfig shared;
@@ -33,6 +36,14 @@ struct BvhBuildConfig {
 
     bool operator==(const BvhBuildConfig&) const = default;
 };
+
+namespace keys::BVH {
+inline constexpr FieldKey<&BvhBuildConfig::optimize> optimize{
+    "BVH::optimize", kBvhOptimizeWords,
+    "after the builder: none, or insertion (Bittner et al. 2013: inner nodes taken out and their children "
+    "reinserted where the SAH grows least; the leaves stay; timed as part of the build)"};
+}  // namespace keys::BVH
+inline constexpr std::tuple kBvhOptimizeKeys{&keys::BVH::optimize};
 
 // A builder's record: its name and how it makes the binary tree, by a split rule under the shared
 // recursion (BvhSplitRule) or by a whole tree of its own (sbvh's growing ranges, ploc's clustering).

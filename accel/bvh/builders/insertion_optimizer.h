@@ -6,6 +6,9 @@
 #pragma once
 
 #include "accel/bvh/layout/binary_bvh.h"
+#include "framework/config/field_key.h"
+
+#include <tuple>
 
 namespace bvhlab {
 
@@ -15,6 +18,14 @@ struct InsertionConfig {
 
     bool operator==(const InsertionConfig&) const = default;
 };
+
+namespace keys::BVH {
+inline constexpr FieldKey<&InsertionConfig::iterations> optimizeIterations{
+    "BVH::optimizeIterations", 1, 100,
+    "insertion: at most this many passes over all inner nodes, fewer once a pass lowers the inner nodes' area by "
+    "under 1 %"};
+}  // namespace keys::BVH
+inline constexpr std::tuple kInsertionKeys{&keys::BVH::optimizeIterations};
 
 // Optimises `bvh` in place by at most `passes` passes (fewer when one gains under 1 %): the
 // nodes are emitted again depth-first, the leaf arrays reordered to the new leaf order. With

@@ -11,6 +11,7 @@
 #include "accel/bvh/builders/split_rule.h"
 
 #include <optional>
+#include <tuple>
 #include <vector>
 
 namespace bvhlab {
@@ -22,6 +23,14 @@ struct BinnedSahConfig {
 
     bool operator==(const BinnedSahConfig&) const = default;
 };
+
+namespace keys::BVH {
+inline constexpr FieldKey<&BinnedSahConfig::bins> bins{"BVH::bins", 2, 256,
+                                                       "sahbvh: bins per axis (Wald 2007: 16 suffices)"};
+inline constexpr FieldKey<&BinnedSahConfig::allAxes> allAxes{
+    "BVH::allAxes", "sahbvh: bin all three axes and take the best, not only the widest"};
+}  // namespace keys::BVH
+inline constexpr std::tuple kBinnedSahKeys{&keys::BVH::bins, &keys::BVH::allAxes};
 
 // The cheapest plane of a binning, and the rule that sends a primitive to its left.
 struct ObjectPlane {

@@ -12,6 +12,8 @@
 
 #include <bvhlab/prim_ref.h>
 
+#include <tuple>
+
 namespace bvhlab {
 
 struct PlocConfig {
@@ -20,6 +22,13 @@ struct PlocConfig {
 
     bool operator==(const PlocConfig&) const = default;
 };
+
+namespace keys::BVH {
+inline constexpr FieldKey<&PlocConfig::radius> plocRadius{
+    "BVH::plocRadius", 1, 256,
+    "ploc: clusters on either side (Morton order) among which each cluster looks for its nearest neighbour"};
+}  // namespace keys::BVH
+inline constexpr std::tuple kPlocKeys{&keys::BVH::plocRadius};
 
 // The BinaryBvh of ploc over the valid triangles, its leaves formed by SAH (cluster_tree.h).
 BinaryBvh buildPlocBvh(const BuildConfig& config, const PlocConfig& ploc, const PrimitiveSet& prims);

@@ -20,6 +20,7 @@
 #include "accel/bvh/builders/spatial_binning.h"
 
 #include <span>
+#include <tuple>
 #include <vector>
 
 namespace bvhlab {
@@ -32,6 +33,17 @@ struct SbvhConfig {
 
     bool operator==(const SbvhConfig&) const = default;
 };
+
+namespace keys::BVH {
+inline constexpr FieldKey<&SbvhConfig::alpha> sbvhAlpha{
+    "BVH::sbvhAlpha", 0, 1,
+    "sbvh: try spatial splits only where the object split's children overlap by more than this fraction of the "
+    "root's area (Stich et al. 2009: 1e-5; 0 = everywhere, 1 = never)"};
+inline constexpr FieldKey<&SbvhConfig::growth> sbvhGrowth{
+    "BVH::sbvhGrowth", 0, 10,
+    "sbvh: spatial splits may add at most this many references per triangle (0.3 = 30 % more); none once spent"};
+}  // namespace keys::BVH
+inline constexpr std::tuple kSbvhKeys{&keys::BVH::sbvhAlpha, &keys::BVH::sbvhGrowth};
 
 // A node under construction: its references, their boxes, and how many new references its
 // subtree may still make. The budget is split between children in proportion to their

@@ -7,19 +7,30 @@
 
 #include "accel/bvh/builders/split_rule.h"
 
+#include <string_view>
+#include <tuple>
+
 namespace bvhlab {
 
 enum class MedianSplitBox {
-    NodeBox,      // halve the box of the primitives (classic spatial median)
     CentroidBox,  // halve the box of their centres (pbrt's "middle"; never an empty side unless
                   // rounding puts the midpoint on the lowest centre)
+    NodeBox,      // halve the box of the primitives (classic spatial median)
 };
+inline constexpr std::string_view kMedianSplitBoxWords[] = {"centroidbox", "nodebox"};
 
 struct SpatialMedianConfig {
     MedianSplitBox splitBox = MedianSplitBox::CentroidBox;  // which box's longest axis is halved
 
     bool operator==(const SpatialMedianConfig&) const = default;
 };
+
+namespace keys::BVH {
+inline constexpr FieldKey<&SpatialMedianConfig::splitBox> tdbvhSplit{
+    "BVH::tdbvhSplit", kMedianSplitBoxWords,
+    "tdbvh: halve the longest axis of the box of the centres, or of the node's box"};
+}  // namespace keys::BVH
+inline constexpr std::tuple kSpatialMedianKeys{&keys::BVH::tdbvhSplit};
 
 class SpatialMedianBuilder final : public BvhSplitRule {
 public:

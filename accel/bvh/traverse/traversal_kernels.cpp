@@ -7,34 +7,10 @@
 
 namespace bvhlab {
 
-const char* isaName(Isa isa) {
-    switch (isa) {
-    case Isa::Auto: return "auto";
-    case Isa::Scalar: return "scalar";
-    case Isa::Avx2: return "avx2";
-    case Isa::Avx512: return "avx512";
-    }
-    return "?";
-}
-
-const char* batchTraversalName(BatchTraversal path) {
-    switch (path) {
-    case BatchTraversal::Auto: return "auto";
-    case BatchTraversal::Packets: return "packets";
-    case BatchTraversal::Coherent: return "coherent";
-    case BatchTraversal::Single: return "single";
-    case BatchTraversal::Stream: return "stream";
-    }
-    return "?";
-}
-
-const char* singleStepName(SingleStep step) {
-    switch (step) {
-    case SingleStep::Offsets: return "offsets";
-    case SingleStep::Octant: return "octant";
-    }
-    return "?";
-}
+// The words of the BVH:: keys (traversal_config.h), literals: each ends in a NUL.
+const char* isaName(Isa isa) { return kIsaWords[size_t(isa)].data(); }
+const char* batchTraversalName(BatchTraversal path) { return kBatchTraversalWords[size_t(path)].data(); }
+const char* singleStepName(SingleStep step) { return kSingleStepWords[size_t(step)].data(); }
 
 int isaVectorBits(Isa isa) {
     switch (isa) {
