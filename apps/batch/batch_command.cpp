@@ -119,6 +119,33 @@ nlohmann::json jobResultKey(const AccelConfig& config, const Env& env) {
     return resultKey(config.name, env, {{"command", "batch"}, {"renders", {"no_shadows", "shadows"}}});
 }
 
+// What a batch runs: its scenes with their layered envs, the accelerators, and its settings.
+struct BatchPlan {
+    std::vector<SceneArgument> scenes;
+    std::vector<Env> sceneEnvs;
+    std::vector<AccelConfig> accels;
+    BatchSettings settings;
+};
+
+// A job of the batch: the index-th in table order (scene by scene, an accelerator each), run by a shard.
+struct BatchJob {
+    const BatchPlan& plan;
+    size_t index = 0;
+    Shard shard;
+
+    size_t sceneIndex() const { return index / plan.accels.size(); }
+    size_t accelIndex() const { return index % plan.accels.size(); }
+    const SceneArgument& scene() const { return plan.scenes[sceneIndex()]; }
+    const Env& sceneEnv() const { return plan.sceneEnvs[sceneIndex()]; }
+    const AccelConfig& accel() const { return plan.accels[accelIndex()]; }
+    std::string name() const { return batchJobName(scene().id, accel().label); }
+    // Its place in the batch, as its job file records it.
+    json order() const {
+        return {{"scene", sceneIndex()}, {"accel", accelIndex()}, {"job", index}, {"jobs", plan.scenes.size() * plan.accels.size()}};
+    }
+    std::string shardName() const { return fmt::format("{}/{}", shard.index, shard.count); }
+};
+
 // A job's framebuffer step counts, kept until the scene's heat maps are drawn at one scale.
 struct FinishedJob {
     nlohmann::json job;
@@ -140,15 +167,17 @@ FinishedJob finishedJobFromJson(const json& j) {
 }
 
 // One job: build once, render without and with shadows, write images and the job file.
-FinishedJob runJob(const Options& options, const Scene& scene, const SceneLoadInfo& loadInfo, const Env& sceneEnv,
-                   const SceneArgument& entry, const AccelConfig& config, const BatchSettings& batch, const json& order,
-                   const Shard& shard, Progress& progress, const std::string& jobLabel) {
+// `scene` is the job's scene loaded as `loadInfo` says; `jobLabel` names the job in its progress.
+FinishedJob runJob(const Options& options, const BatchJob& job, const Scene& scene, const SceneLoadInfo& loadInfo,
+                   Progress& progress, const std::string& jobLabel) {
     const std::filesystem::path out = options.out;
+    const SceneArgument& entry = job.scene();
+    const AccelConfig& config = job.accel();
     const std::string& accel = config.label;
-    const std::string name = batchJobName(entry.id, accel);
+    const std::string name = job.name();
     const std::string label = fmt::format("{} {} {}", jobLabel, entry.id, accel);
 
-    const Env env = jobEnv(options, sceneEnv, config);
+    const Env env = jobEnv(options, job.sceneEnv(), config);
     const int threads = env.get(keys::SetRayTracing::threads);
 
     progress.phase(label + ": building");
@@ -183,11 +212,11 @@ FinishedJob runJob(const Options& options, const Scene& scene, const SceneLoadIn
         runs[shadows ? "shadows" : "no_shadows"] = run;
     }
 
-    json job = {{"format", "bvhlab-batch-job-1"},
+    json record = {{"format", "bvhlab-batch-job-1"},
                 {"job", name},
                 {"scene", entry.id},
-                {"settings", batch.scene(entry.id)->hash},  // the key the tables check
-                {"batch", batch.hash},
+                {"settings", job.plan.settings.scene(entry.id)->hash},  // the key the tables check
+                {"batch", job.plan.settings.hash},
                 {"scene_name", scene.name},
                 {"scene_env", entry.envFile.empty() ? json()
                                                     : json(std::filesystem::absolute(entry.envFile).lexically_normal().string())},
@@ -197,8 +226,8 @@ FinishedJob runJob(const Options& options, const Scene& scene, const SceneLoadIn
                 {"scene_load_ms", loadInfo.ms},
                 {"accel", accel},
                 {"build_shared", true},  // one build served both renders
-                {"order", order},
-                {"shard", fmt::format("{}/{}", shard.index, shard.count)},
+                {"order", job.order()},
+                {"shard", job.shardName()},
                 {"threads", threads},
                 {"image", {{"width", camera.width()}, {"height", camera.height()}, {"samples", settings.samples}}},
                 {"runs", runs},
@@ -206,23 +235,22 @@ FinishedJob runJob(const Options& options, const Scene& scene, const SceneLoadIn
                 {"result_key", jobResultKey(config, env)},
                 {"run", runJson()},
                 {"provenance", provenanceJson()}};
-    writeFileAtomically(out / "jobs" / (name + ".json"), job.dump(2) + "\n");
-    finished.job = std::move(job);
+    writeFileAtomically(out / "jobs" / (name + ".json"), record.dump(2) + "\n");
+    finished.job = std::move(record);
     return finished;
 }
 
 // The job file of a job that failed: what ran (its result key, which a rerun does not keep: the
 // job failed) and why it left no results; the tables show it as a failed row.
-json failedJobRecord(const SceneArgument& entry, const AccelConfig& config, const BatchSettings& batch, const json& order,
-                     const Shard& shard, const json& resultKey, const JobOutcome& outcome) {
+json failedJobRecord(const BatchJob& job, const json& resultKey, const JobOutcome& outcome) {
     return {{"format", "bvhlab-batch-job-1"},
-            {"job", batchJobName(entry.id, config.label)},
-            {"scene", entry.id},
-            {"settings", batch.scene(entry.id)->hash},
-            {"batch", batch.hash},
-            {"accel", config.label},
-            {"order", order},
-            {"shard", fmt::format("{}/{}", shard.index, shard.count)},
+            {"job", job.name()},
+            {"scene", job.scene().id},
+            {"settings", job.plan.settings.scene(job.scene().id)->hash},
+            {"batch", job.plan.settings.hash},
+            {"accel", job.accel().label},
+            {"order", job.order()},
+            {"shard", job.shardName()},
             {"failed", outcome.failure()},
             {"result_key", resultKey},
             {"seconds", outcome.seconds},
@@ -330,14 +358,6 @@ void mergeShards(const std::vector<std::string>& dirs, const std::filesystem::pa
     }
 }
 
-// What a batch runs: its scenes with their layered envs, the accelerators, and its settings.
-struct BatchPlan {
-    std::vector<SceneArgument> scenes;
-    std::vector<Env> sceneEnvs;
-    std::vector<AccelConfig> accels;
-    BatchSettings settings;
-};
-
 // Every env file is read and every scene file looked for up front, so that a typo in the last
 // one fails now, not in an hour (or on the cluster).
 BatchPlan planBatch(Options& options) {
@@ -374,15 +394,13 @@ json runJobHere(const Options& options, const BatchPlan& plan, const Shard& shar
     if (space == std::string::npos || !parseNumber(std::string_view(job).substr(0, space), j) ||
         std::find(mine.begin(), mine.end(), j) == mine.end())
         throw InputError(fmt::format("{} {}: not a job of this shard", kChildJobOption, job));
-    const size_t s = j / plan.accels.size(), a = j % plan.accels.size();
+    const BatchJob batchJob{plan, j, shard};
     const std::string jobLabel = fmt::format("[job {}]", job.substr(space + 1));
     Progress progress;
-    progress.phase(fmt::format("{} {}: loading the scene", jobLabel, plan.scenes[s].id));
+    progress.phase(fmt::format("{} {}: loading the scene", jobLabel, batchJob.scene().id));
     SceneLoadInfo info;
-    const Scene scene = loadSceneFor(plan.sceneEnvs[s], true, &info);
-    const json order = {{"scene", s}, {"accel", a}, {"job", j}, {"jobs", plan.scenes.size() * plan.accels.size()}};
-    return finishedJobJson(runJob(options, scene, info, plan.sceneEnvs[s], plan.scenes[s], plan.accels[a], plan.settings,
-                                  order, shard, progress, jobLabel));
+    const Scene scene = loadSceneFor(batchJob.sceneEnv(), true, &info);
+    return finishedJobJson(runJob(options, batchJob, scene, info, progress, jobLabel));
 }
 
 // Runs this shard's jobs of the batch into `out`, each in a process of its own.
@@ -433,10 +451,10 @@ void runJobs(const Options& options, const BatchPlan& plan, const Shard& shard, 
             ++failed;
             fmt::print(stderr, "[job {}/{}] {} {}: failed: {}\n", jobNumber, resume.toMeasure(), scenes[s].id, accels[a].label,
                        outcome.failure());
-            const json order = {{"scene", s}, {"accel", a}, {"job", j}, {"jobs", totalJobs}};
-            writeFileAtomically(out / "jobs" / (batchJobName(scenes[s].id, accels[a].label) + ".json"),
-                                failedJobRecord(scenes[s], accels[a], plan.settings, order, shard,
-                                                jobResultKey(accels[a], jobEnv(options, sceneEnvs[s], accels[a])), outcome)
+            const BatchJob batchJob{plan, j, shard};
+            writeFileAtomically(out / "jobs" / (batchJob.name() + ".json"),
+                                failedJobRecord(batchJob, jobResultKey(accels[a], jobEnv(options, sceneEnvs[s], accels[a])),
+                                                outcome)
                                     .dump(2) + "\n");
         }
         if (sceneEnvs[s].get(keys::Output::heatmap) && !finished.empty())
@@ -565,10 +583,7 @@ void addBatchCommand(CLI::App& app) {
     addChildJobOptions(*command, options->child);
     command->callback([options, shard] {
         options->shardGiven = shard->count() > 0;
-        size_t failed = 0;
-        const int code = runGuarded([&] { failed = runBatch(*options); });
-        if (code != 0) throw CLI::RuntimeError(code);
-        if (failed) throw CLI::RuntimeError(kSomeJobsFailedExitCode);
+        runJobsGuarded([&] { return runBatch(*options); });
     });
 }
 

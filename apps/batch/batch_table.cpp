@@ -185,6 +185,137 @@ std::string readText(const std::filesystem::path& file) {
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
+// Markdown in the report's layout.
+std::string batchMarkdown(const std::vector<json>& jobs, const std::vector<Row>& rows, size_t batchJobs,
+                          const std::vector<std::string>& settings, const std::vector<std::string>& warnings,
+                          size_t failedJobs) {
+    std::set<std::string> scenes, accels;
+    size_t fromCache = 0;
+    for (const json& job : jobs) {
+        scenes.insert(job.at("scene").get<std::string>());
+        accels.insert(job.at("accel").get<std::string>());
+        fromCache += job.value("scene_from_cache", false);
+    }
+    std::string md;
+    md += fmt::format("# bvhlab batch: {} scenes x {} accelerators, without and with shadows\n\n", scenes.size(),
+                      accels.size());
+    md += fmt::format("Settings: {}.\n\n", fmt::join(settings, ", "));
+    md += fmt::format("Structures, with their own settings:\n{}\n\n", fmt::join(structureLines(jobs), "\n"));
+    for (const std::string& w : warnings) md += fmt::format("**Warning:** {}.\n\n", w);
+    std::string counterColumns, counterAlignment, counterBlanks;
+    for (const QueryCounter& c : kQueryCounters)
+        if (c.column) counterColumns += fmt::format(" {} |", c.column), counterAlignment += "--:|", counterBlanks += " |";
+    md += fmt::format("| scene | accel | | #Prims | #Leaves | #Nodes | SAH | T_B [ms] | T_R [µs] |{} N_Q | render [ms] |\n",
+                      counterColumns);
+    md += fmt::format("|:--|:--|:--|--:|--:|--:|--:|--:|--:|{}--:|--:|\n", counterAlignment);
+    for (const Row& r : rows) {
+        if (!r.failed.empty()) {
+            md += fmt::format("| {} | {} | failed: {} | | | | | | |{} | |\n", r.scene, r.accel, markdownText(r.failed),
+                              counterBlanks);
+            continue;
+        }
+        if (!r.shadows)
+            md += fmt::format("| {} | {}{} | | {} | {} | {} | {} | {} ", r.scene, r.accel,
+                              unoptimised(r.structure) ? " (unoptimised)" : "", cell(r.prims, "{}"),
+                              cell(r.leaves, "{}"), cell(r.nodes, "{}"), cell(r.sah, "{:.2f}"), cell(r.buildMs, "{:.1f}"));
+        else
+            md += "| | | + shadows | | | | | ";
+        md += fmt::format("| {} |", cell(r.trUs, "{:.3f}"));
+        for (const QueryCounter& c : kQueryCounters)
+            if (c.column) md += fmt::format(" {} |", cell(r.counters.at(c.key), "{:.2f}"));
+        md += fmt::format(" {} | {} |\n", cell(r.nQ, "{}"), cell(r.renderMs, "{:.1f}"));
+    }
+    md += "\nT_B: build time. T_R: µs per query (thread time inside the query loops / queries). N_IT, N_TR: "
+          "ray-triangle tests and nodes visited per query. N_Q: queries. SAH: normalised by the root box, with "
+          "C_trav and C_isect as set. Render time: wall, build excluded. \"+ shadows\": the same build rendered "
+          "with a shadow ray per light; T_R, N_IT and N_TR averaged over all its queries (primary and shadow "
+          "together), N_Q counting them all (results.json keeps them apart). n/a: not available (Embree shows "
+          "no tree and counts nothing). failed: the job crashed, threw or ran out of time (--job-timeout), "
+          "and left no results.\n\n";
+    md += fmt::format("Jobs: {}{}{} (one build each, serving both renders); the scene came from the scene cache in {} "
+                      "of them.",
+                      jobs.size(), jobs.size() < batchJobs ? fmt::format(" of the batch's {}", batchJobs) : "",
+                      failedJobs ? fmt::format(", {} of them failed", failedJobs) : "", fromCache);
+    if (!jobs.empty()) {
+        const json& p = jobs.front().value("provenance", json::object());
+        md += fmt::format(" Commit {}, {}, {}.", p.value("git_commit", std::string("?")), p.value("cpu", std::string("?")),
+                          p.value("compiler", std::string("?")));
+    }
+    md += "\n";
+    return md;
+}
+
+// CSV: every column on both rows; a failed job's one row has only its reason. The structure's
+// own settings as KEY=value;KEY=value, its plugin's file, CRC-32 and whether it was optimised
+// (empty for bvhlab's own).
+std::string batchCsv(const std::vector<Row>& rows) {
+    std::string csv = "scene,accel,shadows,prims,leaves,nodes,sah,t_b_ms,t_r_us,";
+    for (const QueryCounter& c : kQueryCounters)
+        if (c.column) csv += fmt::format("{},", c.key);
+    csv += "n_q,render_ms,settings,plugin,plugin_crc32,plugin_optimized,failed\n";
+    for (const Row& r : rows) {
+        std::vector<std::string> settings;
+        const json plugin = r.structure.is_object() ? r.structure.at("plugin") : json();
+        if (r.structure.is_object())
+            for (const auto& [key, value] : r.structure.at("keys").items())
+                settings.push_back(key + "=" + value.get<std::string>());
+        csv += fmt::format("{},{},{},{},{},{},{},{},{},", csvText(r.scene), csvText(r.accel),
+                           r.failed.empty() ? (r.shadows ? "true" : "false") : "", csvCell(r.prims),
+                           csvCell(r.leaves), csvCell(r.nodes), csvCell(r.sah), csvCell(r.buildMs), csvCell(r.trUs));
+        for (const QueryCounter& c : kQueryCounters)
+            if (c.column) csv += fmt::format("{},", csvCell(r.counters.value(c.key, json())));
+        csv += fmt::format("{},{},{},{},{},{},{}\n", csvCell(r.nQ), csvCell(r.renderMs),
+                             csvText(fmt::format("{}", fmt::join(settings, ";"))),
+                             plugin.is_null() ? "" : csvText(plugin.at("file").get<std::string>()),
+                             plugin.is_null() ? "" : plugin.at("crc32").get<std::string>(),
+                             plugin.is_null() ? "" : plugin.at("optimized").get<bool>() ? "true" : "false",
+                             csvText(r.failed));
+    }
+    return csv;
+}
+
+// JSON: the table's rows, and per job primary and shadow queries apart.
+json batchJson(const std::vector<json>& jobs, const std::vector<Row>& rows, const std::vector<std::string>& settings,
+               const std::vector<std::string>& warnings, size_t failedJobs) {
+    json j = {{"format", "bvhlab-batch-results-1"}, {"settings", settings}, {"warnings", warnings},
+              {"failed_jobs", failedJobs}, {"rows", json::array()}, {"jobs", json::array()}};
+    for (const Row& r : rows) {
+        if (!r.failed.empty()) {
+            j["rows"].push_back({{"scene", r.scene}, {"accel", r.accel}, {"failed", r.failed}});
+            continue;
+        }
+        json row = {{"scene", r.scene}, {"accel", r.accel}, {"shadows", r.shadows}, {"prims", r.prims},
+                    {"leaves", r.leaves}, {"nodes", r.nodes}, {"sah", r.sah}, {"t_b_ms", r.buildMs},
+                    {"t_r_us", r.trUs}, {"n_q", r.nQ}, {"render_ms", r.renderMs}, {"structure", r.structure}};
+        row.update(r.counters);
+        j["rows"].push_back(std::move(row));
+    }
+    for (const json& job : jobs) {
+        if (jobFailed(job)) {
+            j["jobs"].push_back({{"job", job.at("job")}, {"scene", job.at("scene")}, {"accel", job.at("accel")},
+                                 {"failed", job.at("failed")}});
+            continue;
+        }
+        json summary = {{"job", job.at("job")},
+                        {"scene", job.at("scene")},
+                        {"accel", job.at("accel")},
+                        {"scene_file", job.value("scene_file", std::string())},
+                        {"scene_from_cache", job.value("scene_from_cache", false)}};
+        for (const char* key : {"prims", "degenerate", "leaves", "nodes", "sah", "build_ms", "bytes", "max_depth"})
+            summary[key] = job["runs"]["no_shadows"].value(key, json());
+        for (const char* name : {"no_shadows", "shadows"}) {
+            const json& run = job["runs"][name];
+            summary[name] = {{"render_ms", run["render_ms"]},
+                             {"primary", run["primary"]},
+                             {"shadow", run["shadow"]},
+                             {"all", allQueries(run)},
+                             {"images", run.value("images", json::object())}};
+        }
+        j["jobs"].push_back(std::move(summary));
+    }
+    return j;
+}
+
 }  // namespace
 
 std::string batchJobName(const std::string& scene, const std::string& accel) {
@@ -238,126 +369,9 @@ BatchTables makeBatchTables(const std::vector<json>& jobs, size_t batchJobs) {
         }
     }
 
-    // Markdown in the report's layout.
-    std::set<std::string> scenes, accels;
-    size_t fromCache = 0;
-    for (const json& job : jobs) {
-        scenes.insert(job.at("scene").get<std::string>());
-        accels.insert(job.at("accel").get<std::string>());
-        fromCache += job.value("scene_from_cache", false);
-    }
-    std::string& md = t.markdown;
-    md += fmt::format("# bvhlab batch: {} scenes x {} accelerators, without and with shadows\n\n", scenes.size(),
-                      accels.size());
-    md += fmt::format("Settings: {}.\n\n", fmt::join(settings, ", "));
-    md += fmt::format("Structures, with their own settings:\n{}\n\n", fmt::join(structureLines(jobs), "\n"));
-    for (const std::string& w : t.warnings) md += fmt::format("**Warning:** {}.\n\n", w);
-    std::string counterColumns, counterAlignment, counterBlanks;
-    for (const QueryCounter& c : kQueryCounters)
-        if (c.column) counterColumns += fmt::format(" {} |", c.column), counterAlignment += "--:|", counterBlanks += " |";
-    md += fmt::format("| scene | accel | | #Prims | #Leaves | #Nodes | SAH | T_B [ms] | T_R [µs] |{} N_Q | render [ms] |\n",
-                      counterColumns);
-    md += fmt::format("|:--|:--|:--|--:|--:|--:|--:|--:|--:|{}--:|--:|\n", counterAlignment);
-    for (const Row& r : rows) {
-        if (!r.failed.empty()) {
-            md += fmt::format("| {} | {} | failed: {} | | | | | | |{} | |\n", r.scene, r.accel, markdownText(r.failed),
-                              counterBlanks);
-            continue;
-        }
-        if (!r.shadows)
-            md += fmt::format("| {} | {}{} | | {} | {} | {} | {} | {} ", r.scene, r.accel,
-                              unoptimised(r.structure) ? " (unoptimised)" : "", cell(r.prims, "{}"),
-                              cell(r.leaves, "{}"), cell(r.nodes, "{}"), cell(r.sah, "{:.2f}"), cell(r.buildMs, "{:.1f}"));
-        else
-            md += "| | | + shadows | | | | | ";
-        md += fmt::format("| {} |", cell(r.trUs, "{:.3f}"));
-        for (const QueryCounter& c : kQueryCounters)
-            if (c.column) md += fmt::format(" {} |", cell(r.counters.at(c.key), "{:.2f}"));
-        md += fmt::format(" {} | {} |\n", cell(r.nQ, "{}"), cell(r.renderMs, "{:.1f}"));
-    }
-    md += "\nT_B: build time. T_R: µs per query (thread time inside the query loops / queries). N_IT, N_TR: "
-          "ray-triangle tests and nodes visited per query. N_Q: queries. SAH: normalised by the root box, with "
-          "C_trav and C_isect as set. Render time: wall, build excluded. \"+ shadows\": the same build rendered "
-          "with a shadow ray per light; T_R, N_IT and N_TR averaged over all its queries (primary and shadow "
-          "together), N_Q counting them all (results.json keeps them apart). n/a: not available (Embree shows "
-          "no tree and counts nothing). failed: the job crashed, threw or ran out of time (--job-timeout), "
-          "and left no results.\n\n";
-    md += fmt::format("Jobs: {}{}{} (one build each, serving both renders); the scene came from the scene cache in {} "
-                      "of them.",
-                      jobs.size(), jobs.size() < batchJobs ? fmt::format(" of the batch's {}", batchJobs) : "",
-                      t.failedJobs ? fmt::format(", {} of them failed", t.failedJobs) : "", fromCache);
-    if (!jobs.empty()) {
-        const json& p = jobs.front().value("provenance", json::object());
-        md += fmt::format(" Commit {}, {}, {}.", p.value("git_commit", std::string("?")), p.value("cpu", std::string("?")),
-                          p.value("compiler", std::string("?")));
-    }
-    md += "\n";
-
-    // CSV: every column on both rows.
-    // CSV: every column on both rows; a failed job's one row has only its reason. The structure's
-    // own settings as KEY=value;KEY=value, its plugin's file, CRC-32 and whether it was optimised
-    // (empty for bvhlab's own).
-    t.csv = "scene,accel,shadows,prims,leaves,nodes,sah,t_b_ms,t_r_us,";
-    for (const QueryCounter& c : kQueryCounters)
-        if (c.column) t.csv += fmt::format("{},", c.key);
-    t.csv += "n_q,render_ms,settings,plugin,plugin_crc32,plugin_optimized,failed\n";
-    for (const Row& r : rows) {
-        std::vector<std::string> settings;
-        const json plugin = r.structure.is_object() ? r.structure.at("plugin") : json();
-        if (r.structure.is_object())
-            for (const auto& [key, value] : r.structure.at("keys").items())
-                settings.push_back(key + "=" + value.get<std::string>());
-        t.csv += fmt::format("{},{},{},{},{},{},{},{},{},", csvText(r.scene), csvText(r.accel),
-                             r.failed.empty() ? (r.shadows ? "true" : "false") : "", csvCell(r.prims),
-                             csvCell(r.leaves), csvCell(r.nodes), csvCell(r.sah), csvCell(r.buildMs), csvCell(r.trUs));
-        for (const QueryCounter& c : kQueryCounters)
-            if (c.column) t.csv += fmt::format("{},", csvCell(r.counters.value(c.key, json())));
-        t.csv += fmt::format("{},{},{},{},{},{},{}\n", csvCell(r.nQ), csvCell(r.renderMs),
-                             csvText(fmt::format("{}", fmt::join(settings, ";"))),
-                             plugin.is_null() ? "" : csvText(plugin.at("file").get<std::string>()),
-                             plugin.is_null() ? "" : plugin.at("crc32").get<std::string>(),
-                             plugin.is_null() ? "" : plugin.at("optimized").get<bool>() ? "true" : "false",
-                             csvText(r.failed));
-    }
-
-    // JSON: the table's rows, and per job primary and shadow queries apart.
-    json& j = t.json;
-    j = {{"format", "bvhlab-batch-results-1"}, {"settings", settings}, {"warnings", t.warnings},
-         {"failed_jobs", t.failedJobs}, {"rows", json::array()}, {"jobs", json::array()}};
-    for (const Row& r : rows) {
-        if (!r.failed.empty()) {
-            j["rows"].push_back({{"scene", r.scene}, {"accel", r.accel}, {"failed", r.failed}});
-            continue;
-        }
-        json row = {{"scene", r.scene}, {"accel", r.accel}, {"shadows", r.shadows}, {"prims", r.prims},
-                    {"leaves", r.leaves}, {"nodes", r.nodes}, {"sah", r.sah}, {"t_b_ms", r.buildMs},
-                    {"t_r_us", r.trUs}, {"n_q", r.nQ}, {"render_ms", r.renderMs}, {"structure", r.structure}};
-        row.update(r.counters);
-        j["rows"].push_back(std::move(row));
-    }
-    for (const json& job : jobs) {
-        if (jobFailed(job)) {
-            j["jobs"].push_back({{"job", job.at("job")}, {"scene", job.at("scene")}, {"accel", job.at("accel")},
-                                 {"failed", job.at("failed")}});
-            continue;
-        }
-        json summary = {{"job", job.at("job")},
-                        {"scene", job.at("scene")},
-                        {"accel", job.at("accel")},
-                        {"scene_file", job.value("scene_file", std::string())},
-                        {"scene_from_cache", job.value("scene_from_cache", false)}};
-        for (const char* key : {"prims", "degenerate", "leaves", "nodes", "sah", "build_ms", "bytes", "max_depth"})
-            summary[key] = job["runs"]["no_shadows"].value(key, json());
-        for (const char* name : {"no_shadows", "shadows"}) {
-            const json& run = job["runs"][name];
-            summary[name] = {{"render_ms", run["render_ms"]},
-                             {"primary", run["primary"]},
-                             {"shadow", run["shadow"]},
-                             {"all", allQueries(run)},
-                             {"images", run.value("images", json::object())}};
-        }
-        j["jobs"].push_back(std::move(summary));
-    }
+    t.markdown = batchMarkdown(jobs, rows, batchJobs, settings, t.warnings, t.failedJobs);
+    t.csv = batchCsv(rows);
+    t.json = batchJson(jobs, rows, settings, t.warnings, t.failedJobs);
     return t;
 }
 

@@ -71,4 +71,11 @@ int runGuarded(const std::function<void()>& body) {
     return 1;
 }
 
+void runJobsGuarded(const std::function<size_t()>& run) {
+    size_t failed = 0;
+    const int code = runGuarded([&] { failed = run(); });
+    if (code != 0) throw CLI::RuntimeError(code);
+    if (failed) throw CLI::RuntimeError(kSomeJobsFailedExitCode);
+}
+
 }  // namespace bvhlab

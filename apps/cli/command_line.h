@@ -42,4 +42,8 @@ int runGuarded(const std::function<void()>& body);
 // their count is on stderr and in the command's JSON.
 inline constexpr int kSomeJobsFailedExitCode = 3;
 
+// A command's callback around `run`, which returns how many of its jobs failed: an exception
+// ends it with runGuarded's exit code, failed jobs with kSomeJobsFailedExitCode.
+void runJobsGuarded(const std::function<size_t()>& run);
+
 }  // namespace bvhlab

@@ -49,6 +49,7 @@
 #include <algorithm>
 #include <chrono>
 #include <map>
+#include <span>
 #include <sstream>
 
 namespace bvhlab {
@@ -129,17 +130,9 @@ double pairedRatio(const std::vector<double>& values, const std::vector<double>&
 // rtcIntersect1) or in batches (the faster of its stream and packet APIs).
 const char* yardstick(QueryKind kind) { return kind == QueryKind::Single ? "embree-bare" : "embree-batch"; }
 
-// Every structure of one scene at one thread count, measured in rounds: a round builds each
-// structure once, then traces each ray set once with each contender (every structure through
-// each kind of query, and Embree's own APIs), always in the same order. A slowdown of the shared
-// machine thus hits all contenders of a round alike, and the medians of the per-round ratios to
-// Embree hold where absolute times drift by tens of percent.
-std::vector<nlohmann::json> measureRounds(const Scene& scene, const RaySets& rays, const Env& sceneEnv,
-                                          const std::vector<ContestConfig>& configs, const std::vector<QueryKind>& kinds,
-                                          int threads, int builds, int passes) {
-    const NamedRaySet raySets[] = {
-        {&rays.primary, kRaySetQueries[0]}, {&rays.shadow, kRaySetQueries[1]}, {&rays.incoherent, kRaySetQueries[2]}};
-    constexpr size_t kSets = std::size(raySets);
+// Every structure of the contest and the nothing rows, with the scene's env, its overrides and
+// the thread count; not built yet.
+std::vector<Structure> contestStructures(const std::vector<ContestConfig>& configs, const Env& sceneEnv, int threads) {
     std::vector<Structure> structures(configs.size() + std::size(kNothingRows));
     for (size_t c = 0; c < structures.size(); ++c) {
         Structure& k = structures[c];
@@ -152,7 +145,11 @@ std::vector<nlohmann::json> measureRounds(const Scene& scene, const RaySets& ray
         }
         k.env.set(keys::SetRayTracing::threads, std::to_string(threads), "bvhlab bench --threads");
     }
-    tbb::task_arena arena(threads);
+    return structures;
+}
+
+// Builds every structure once a round, `builds` rounds; the last build of each is kept.
+void buildInRounds(std::vector<Structure>& structures, const Scene& scene, tbb::task_arena& arena, int builds) {
     for (int round = 0; round < builds; ++round) {
         for (Structure& k : structures) {
             k.accel.reset();  // the new structure replaces the old one, not beside it
@@ -162,8 +159,11 @@ std::vector<nlohmann::json> measureRounds(const Scene& scene, const RaySets& ray
             k.buildMs.push_back(k.stats.buildMs);
         }
     }
-    // embree-bare and embree-batch at each ISA: contenders of their own in every round, their
-    // build embree's at that ISA.
+}
+
+// embree-bare and embree-batch at each ISA: contenders of their own in every round, their
+// build embree's at that ISA.
+std::vector<EmbreeYardstick> embreeYardsticks(const std::vector<Structure>& structures) {
     std::vector<EmbreeYardstick> yardsticks;
     for (const Structure& k : structures) {
         if (k.config.label != labelAtIsa("embree", k.isa)) continue;
@@ -174,49 +174,62 @@ std::vector<nlohmann::json> measureRounds(const Scene& scene, const RaySets& ray
         if (!y.apis) throw std::logic_error("bvhlab bench: embree has no NativeBatchApis");
         y.batchApis = y.apis->batchApis();  // fewer packets at a lower ISA
     }
+    return yardsticks;
+}
 
+bool isBatchYardstick(const Contender& k) { return k.native && k.queries == QueryKind::Batch; }
+
+// Every structure through each kind of query, and Embree's own APIs, in the order of every round.
+std::vector<Contender> contestContenders(const std::vector<Structure>& structures, std::vector<EmbreeYardstick>& yardsticks,
+                                         const std::vector<QueryKind>& kinds, size_t sets) {
     std::vector<Contender> contenders;
     for (QueryKind kind : kinds) {
         for (const Structure& k : structures) contenders.emplace_back(k.config.label, kind, &k);
         for (EmbreeYardstick& y : yardsticks)
             contenders.emplace_back(labelAtIsa(yardstick(kind), y.isa), kind, y.structure, &y);
     }
-    const auto isBatchYardstick = [](const Contender& k) { return k.native && k.queries == QueryKind::Batch; };
     for (Contender& k : contenders) {
-        k.usPerQuery.resize(kSets);
-        k.counters.resize(kSets);
-        if (isBatchYardstick(k)) k.byApi.resize(kSets);
+        k.usPerQuery.resize(sets);
+        k.counters.resize(sets);
+        if (isBatchYardstick(k)) k.byApi.resize(sets);
     }
-    for (size_t set = 0; set < kSets; ++set) {
-        const NamedRaySet& s = raySets[set];
-        // Embree's prepared rays of this set only (a copy per API, and another to reset from).
-        const auto asked = [&](QueryKind kind) { return std::find(kinds.begin(), kinds.end(), kind) != kinds.end(); };
-        for (EmbreeYardstick& y : yardsticks) {
-            y.bare.reset();
-            y.prepared.clear();
-            if (asked(QueryKind::Single)) y.bare = y.apis->prepareNativeBatch(*s.rays);
-            if (asked(QueryKind::Batch))
-                for (const std::string& api : y.batchApis) y.prepared[api] = y.apis->prepareBatchApi(*s.rays, api, s.asked.coherence);
-        }
-        for (int round = 0; round < passes; ++round) {
-            for (Contender& k : contenders) {
-                PassResult r;
-                if (isBatchYardstick(k)) {
-                    for (const std::string& api : k.native->batchApis) {
-                        r = traceNativePasses(*k.native->prepared[api], s.asked.anyHit, threads, 1);
-                        k.byApi[set][api].push_back(r.usPerQuery);
-                    }
-                } else if (k.native) {
-                    r = traceNativePasses(*k.native->bare, s.asked.anyHit, threads, 1);
-                } else {
-                    r = tracePasses(*k.structure->accel, *s.rays, s.asked.anyHit, s.asked.coherence, threads, 1, k.queries,
-                                    /*count=*/round == 0);
+    return contenders;
+}
+
+// Traces ray set `set` with every contender once a round, `passes` rounds.
+void traceInRounds(std::vector<Contender>& contenders, std::vector<EmbreeYardstick>& yardsticks, const NamedRaySet& s,
+                   size_t set, const std::vector<QueryKind>& kinds, int threads, int passes) {
+    // Embree's prepared rays of this set only (a copy per API, and another to reset from).
+    const auto asked = [&](QueryKind kind) { return std::find(kinds.begin(), kinds.end(), kind) != kinds.end(); };
+    for (EmbreeYardstick& y : yardsticks) {
+        y.bare.reset();
+        y.prepared.clear();
+        if (asked(QueryKind::Single)) y.bare = y.apis->prepareNativeBatch(*s.rays);
+        if (asked(QueryKind::Batch))
+            for (const std::string& api : y.batchApis) y.prepared[api] = y.apis->prepareBatchApi(*s.rays, api, s.asked.coherence);
+    }
+    for (int round = 0; round < passes; ++round) {
+        for (Contender& k : contenders) {
+            PassResult r;
+            if (isBatchYardstick(k)) {
+                for (const std::string& api : k.native->batchApis) {
+                    r = traceNativePasses(*k.native->prepared[api], s.asked.anyHit, threads, 1);
+                    k.byApi[set][api].push_back(r.usPerQuery);
                 }
-                if (!isBatchYardstick(k)) k.usPerQuery[set].push_back(r.usPerQuery);
-                if (round == 0) k.counters[set] = r.counters;
+            } else if (k.native) {
+                r = traceNativePasses(*k.native->bare, s.asked.anyHit, threads, 1);
+            } else {
+                r = tracePasses(*k.structure->accel, *s.rays, s.asked.anyHit, s.asked.coherence, threads, 1, k.queries,
+                                /*count=*/round == 0);
             }
+            if (!isBatchYardstick(k)) k.usPerQuery[set].push_back(r.usPerQuery);
+            if (round == 0) k.counters[set] = r.counters;
         }
     }
+}
+
+// embree-batch keeps, per ray set, the batch API with the lowest median.
+void keepFastestApis(std::vector<Contender>& contenders) {
     for (Contender& k : contenders)
         for (size_t set = 0; set < k.byApi.size(); ++set) {
             const auto fastest = std::min_element(k.byApi[set].begin(), k.byApi[set].end(), [](const auto& a, const auto& b) {
@@ -225,57 +238,81 @@ std::vector<nlohmann::json> measureRounds(const Scene& scene, const RaySets& ray
             k.kept.push_back(fastest->first);
             k.usPerQuery[set] = fastest->second;
         }
+}
 
+// A contender's row: its builds, its medians per ray set, and its ratios to the yardsticks.
+nlohmann::json contenderRow(const Contender& k, const std::vector<Contender>& contenders, const Scene& scene,
+                            std::span<const NamedRaySet> raySets, int threads) {
     auto find = [&](const std::string& label, QueryKind kind) -> const Contender* {
         const auto it = std::find_if(contenders.begin(), contenders.end(),
-                                     [&](const Contender& k) { return k.label == label && k.queries == kind; });
+                                     [&](const Contender& c) { return c.label == label && c.queries == kind; });
         return it == contenders.end() ? nullptr : &*it;
     };
-    std::vector<nlohmann::json> rows;
-    for (const Contender& k : contenders) {
-        const Structure& structure = *k.structure;
-        const bool counted = !k.native && structure.accel->hasCounters();
-        nlohmann::json row = {{"scene", scene.name},
-                              {"accel", k.label},
-                              {"isa", structure.isa},
-                              {"queries", toString(k.queries)},
-                              {"threads", threads},
-                              {"prims", scene.triangleCount()},
-                              {"build_ms", median(structure.buildMs)},
-                              {"build_ms_all", structure.buildMs}};
-        row.update(buildStatsJson(structure.stats));
-        for (size_t set = 0; set < kSets; ++set) {
-            const double q = std::max<double>(1.0, double(k.counters[set].queries));
-            row[raySets[set].asked.kind] = {
-                {"t_r_us", median(k.usPerQuery[set])},
-                {"t_r_us_all", k.usPerQuery[set]},
-                {"queries", k.counters[set].queries}};
-            row[raySets[set].asked.kind].update(queryCountersJson(k.counters[set], q, counted));
-            if (!k.kept.empty()) {
-                row["embree_batch_api"][raySets[set].asked.kind] = k.kept[set];
-                for (const auto& [api, series] : k.byApi[set]) row[raySets[set].asked.kind]["t_r_us_by_api"][api] = median(series);
-            }
+    const Structure& structure = *k.structure;
+    const bool counted = !k.native && structure.accel->hasCounters();
+    nlohmann::json row = {{"scene", scene.name},
+                          {"accel", k.label},
+                          {"isa", structure.isa},
+                          {"queries", toString(k.queries)},
+                          {"threads", threads},
+                          {"prims", scene.triangleCount()},
+                          {"build_ms", median(structure.buildMs)},
+                          {"build_ms_all", structure.buildMs}};
+    row.update(buildStatsJson(structure.stats));
+    for (size_t set = 0; set < raySets.size(); ++set) {
+        const double q = std::max<double>(1.0, double(k.counters[set].queries));
+        row[raySets[set].asked.kind] = {
+            {"t_r_us", median(k.usPerQuery[set])},
+            {"t_r_us_all", k.usPerQuery[set]},
+            {"queries", k.counters[set].queries}};
+        row[raySets[set].asked.kind].update(queryCountersJson(k.counters[set], q, counted));
+        if (!k.kept.empty()) {
+            row["embree_batch_api"][raySets[set].asked.kind] = k.kept[set];
+            for (const auto& [api, series] : k.byApi[set]) row[raySets[set].asked.kind]["t_r_us_by_api"][api] = median(series);
         }
-        // Medians of the per-round ratios: to embree-bare and embree-batch (whichever this run
-        // measured), and to embree and embree-robust asked as this row is; all at the row's ISA.
-        const std::pair<const char*, QueryKind> references[] = {{"embree-bare", QueryKind::Single},
-                                                                {"embree-batch", QueryKind::Batch},
-                                                                {"embree", k.queries},
-                                                                {"embree-robust", k.queries}};
-        for (const auto& [name, kind] : references) {
-            const std::string label = labelAtIsa(name, structure.isa);
-            const Contender* ref = find(label, kind);
-            if (!ref) continue;
-            nlohmann::json ratios = {{"build", pairedRatio(structure.buildMs, ref->structure->buildMs)}};
-            for (size_t set = 0; set < kSets; ++set) {
-                ratios[raySets[set].asked.kind] = raySets[set].rays->empty()
-                                                ? nlohmann::json()
-                                                : nlohmann::json(pairedRatio(k.usPerQuery[set], ref->usPerQuery[set]));
-            }
-            row["ratio_to_" + label] = ratios;
-        }
-        rows.push_back(std::move(row));
     }
+    // Medians of the per-round ratios: to embree-bare and embree-batch (whichever this run
+    // measured), and to embree and embree-robust asked as this row is; all at the row's ISA.
+    const std::pair<const char*, QueryKind> references[] = {{"embree-bare", QueryKind::Single},
+                                                            {"embree-batch", QueryKind::Batch},
+                                                            {"embree", k.queries},
+                                                            {"embree-robust", k.queries}};
+    for (const auto& [name, kind] : references) {
+        const std::string label = labelAtIsa(name, structure.isa);
+        const Contender* ref = find(label, kind);
+        if (!ref) continue;
+        nlohmann::json ratios = {{"build", pairedRatio(structure.buildMs, ref->structure->buildMs)}};
+        for (size_t set = 0; set < raySets.size(); ++set) {
+            ratios[raySets[set].asked.kind] = raySets[set].rays->empty()
+                                            ? nlohmann::json()
+                                            : nlohmann::json(pairedRatio(k.usPerQuery[set], ref->usPerQuery[set]));
+        }
+        row["ratio_to_" + label] = ratios;
+    }
+    return row;
+}
+
+// Every structure of one scene at one thread count, measured in rounds: a round builds each
+// structure once, then traces each ray set once with each contender (every structure through
+// each kind of query, and Embree's own APIs), always in the same order. A slowdown of the shared
+// machine thus hits all contenders of a round alike, and the medians of the per-round ratios to
+// Embree hold where absolute times drift by tens of percent.
+std::vector<nlohmann::json> measureRounds(const Scene& scene, const RaySets& rays, const Env& sceneEnv,
+                                          const std::vector<ContestConfig>& configs, const std::vector<QueryKind>& kinds,
+                                          int threads, int builds, int passes) {
+    const NamedRaySet raySets[] = {
+        {&rays.primary, kRaySetQueries[0]}, {&rays.shadow, kRaySetQueries[1]}, {&rays.incoherent, kRaySetQueries[2]}};
+    constexpr size_t kSets = std::size(raySets);
+    std::vector<Structure> structures = contestStructures(configs, sceneEnv, threads);
+    tbb::task_arena arena(threads);
+    buildInRounds(structures, scene, arena, builds);
+    std::vector<EmbreeYardstick> yardsticks = embreeYardsticks(structures);
+    std::vector<Contender> contenders = contestContenders(structures, yardsticks, kinds, kSets);
+    for (size_t set = 0; set < kSets; ++set) traceInRounds(contenders, yardsticks, raySets[set], set, kinds, threads, passes);
+    keepFastestApis(contenders);
+
+    std::vector<nlohmann::json> rows;
+    for (const Contender& k : contenders) rows.push_back(contenderRow(k, contenders, scene, raySets, threads));
     return rows;
 }
 
@@ -297,6 +334,31 @@ std::string isaOf(const nlohmann::json& row) { return row.value("isa", std::stri
 // row's ISA.
 std::string yardstickOf(const nlohmann::json& row) {
     return labelAtIsa(yardstick(row["queries"] == "single" ? QueryKind::Single : QueryKind::Batch), isaOf(row));
+}
+
+// The geometric means over scenes of each configuration's ratios (rows by "ACCEL QUERIES threads=N").
+std::string geometricMeanLines(const std::map<std::string, std::vector<nlohmann::json>>& byConfig, size_t accelWidth) {
+    std::string out = "\ngeometric means over scenes of the ratios to embree-bare (single rows) or embree-batch (batch rows), "
+                      "to embree-robust asked the same way in brackets:\n";
+    for (const auto& [config, rows] : byConfig) {
+        out += fmt::format("  {:<{}}", config, accelWidth + 21);
+        for (const char* kind : {"build", "primary", "shadow", "incoherent"}) {
+            double logE = 0, logER = 0;
+            int n = 0;
+            for (const nlohmann::json& row : rows) {
+                const nlohmann::json& e = ratiosTo(row, yardstickOf(row))[kind];
+                const nlohmann::json& er = ratiosTo(row, labelAtIsa("embree-robust", isaOf(row)))[kind];
+                if (!e.is_null() && !er.is_null()) {
+                    logE += std::log(e.get<double>());
+                    logER += std::log(er.get<double>());
+                    ++n;
+                }
+            }
+            out += n ? fmt::format("  {} {:.2f} ({:.2f})", kind, std::exp(logE / n), std::exp(logER / n)) : "";
+        }
+        out += "\n";
+    }
+    return out;
 }
 
 // One line per scene x threads x structure x kind of query, then the geometric means of the
@@ -345,26 +407,7 @@ std::string benchTable(const nlohmann::json& results, const std::vector<std::str
                              row["threads"].get<int>())]
             .push_back(row);
     }
-    out += "\ngeometric means over scenes of the ratios to embree-bare (single rows) or embree-batch (batch rows), "
-           "to embree-robust asked the same way in brackets:\n";
-    for (const auto& [config, rows] : byConfig) {
-        out += fmt::format("  {:<{}}", config, accelWidth + 21);
-        for (const char* kind : {"build", "primary", "shadow", "incoherent"}) {
-            double logE = 0, logER = 0;
-            int n = 0;
-            for (const nlohmann::json& row : rows) {
-                const nlohmann::json& e = ratiosTo(row, yardstickOf(row))[kind];
-                const nlohmann::json& er = ratiosTo(row, labelAtIsa("embree-robust", isaOf(row)))[kind];
-                if (!e.is_null() && !er.is_null()) {
-                    logE += std::log(e.get<double>());
-                    logER += std::log(er.get<double>());
-                    ++n;
-                }
-            }
-            out += n ? fmt::format("  {} {:.2f} ({:.2f})", kind, std::exp(logE / n), std::exp(logER / n)) : "";
-        }
-        out += "\n";
-    }
+    out += geometricMeanLines(byConfig, accelWidth);
     if (results.contains("isa_pairs")) {
         const nlohmann::json& pairs = results["isa_pairs"];
         for (const std::string isa : pairs["isas"])
@@ -388,202 +431,256 @@ std::string benchTable(const nlohmann::json& results, const std::vector<std::str
     return out;
 }
 
+struct BenchOptions {
+    EnvOptions env;
+    std::vector<std::string> scenes;
+    std::string accels = "tdbvh,sahbvh,embree,embree:Embree::robust=true";
+    std::string threads = "1,0";
+    std::string queries = "single,batch";
+    std::string isaPairs;
+    int builds = 5, passes = 5;
+    std::string out = "out/bench.json";
+    bool fresh = false;
+    bool referenceRows = false;
+    double jobTimeout = 0;
+    ChildJob child;
+};
+
+void addBenchOptions(CLI::App& command, BenchOptions& options) {
+    addEnvOptions(command, options.env);
+    addScenesOption(command, options.scenes, "", "env/scenes.list");
+    command.add_option("--accel", options.accels,
+                       "comma-separated NAME or NAME:Key=value:... (embree, embree-robust, embree-bare, embree-batch, "
+                       "nothing and nothing-guarded are always added)")
+        ->capture_default_str();
+    command.add_option("--queries", options.queries,
+                       "single (ray by ray, against embree-bare), batch (the batch calls, against embree-batch) or both, "
+                       "comma-separated")
+        ->capture_default_str();
+    command.add_option("--isa-pairs", options.isaPairs,
+                       "ISAs at which to time ours against Embree beside the headline pair (each at the best ISA the "
+                       "CPU runs), comma-separated: avx2, avx512. Each structure that reads BVH::isa or Embree::isa "
+                       "is timed again as LABEL@ISA with that key set, against Embree's rows at ISA; one that is the "
+                       "CPU's best is the headline pair, timed once");
+    command.add_option("--threads", options.threads, "threads N (0 = all hardware threads), or a comma-separated list of them to measure each")
+        ->capture_default_str();
+    command.add_option("--builds", options.builds, "builds per structure (median)")->capture_default_str()->check(CLI::Range(1, 1000));
+    command.add_option("--passes", options.passes, "passes over each ray set (median)")->capture_default_str()->check(CLI::Range(1, 1000));
+    command.add_option("--out", options.out, "JSON results")->capture_default_str();
+    command.add_flag("--reference-rows", options.referenceRows,
+                     "show the reference rows in the table too (those --accel did not choose: Embree through our "
+                     "interface and its own, the nothing rows); the JSON always has them");
+    command.add_flag("--fresh", options.fresh,
+                     "measure every scene again; without it, a scene whose rows --out holds with the same result key "
+                     "(program, structures and their plugins, scene, rounds) is kept as a whole");
+    addJobTimeoutOption(command, options.jobTimeout);
+    addChildJobOptions(command, options.child);
+}
+
+// The structures of --accel with Embree through our interface added, named and checked.
+std::vector<AccelConfig> benchConfigs(BenchOptions& options) {
+    std::vector<AccelConfig> configs = parseAccelConfigList(options.accels);
+    for (const char* reference : {"embree", "embree:Embree::robust=true"})
+        if (std::none_of(configs.begin(), configs.end(), [&](const AccelConfig& c) { return c.label == parseAccelConfig(reference).label; }))
+            configs.push_back(parseAccelConfig(reference));
+    for (const AccelConfig& c : configs)
+        if (std::find(std::begin(kNothingRows), std::end(kNothingRows), c.label) != std::end(kNothingRows))
+            throw InputError(fmt::format("--accel {}: the bench's own row of that name", c.label));
+    nameAccelerators(configs, options.env);
+    checkAccelConfigs(configs, options.env.load());
+    return configs;
+}
+
+std::vector<int> parseThreadCounts(const std::string& text) {
+    std::vector<int> threadCounts;
+    for (const std::string& item : splitCommaList(text)) {
+        int t = -1;
+        if (!parseNumber(item, t) || t < 0 || t > 1024)
+            throw InputError(fmt::format("--threads {}: '{}' is not a thread count 0..1024 (0 = all)", text, item));
+        threadCounts.push_back(t > 0 ? t : tbb::info::default_concurrency());
+    }
+    if (threadCounts.empty()) throw InputError("--threads: no thread count given");
+    return threadCounts;
+}
+
+std::vector<QueryKind> parseQueryKinds(const std::string& text) {
+    std::vector<QueryKind> kinds;
+    for (const std::string& item : splitCommaList(text)) {
+        const QueryKind kind = item == "single" ? QueryKind::Single : QueryKind::Batch;
+        if ((item != "single" && item != "batch") || std::find(kinds.begin(), kinds.end(), kind) != kinds.end())
+            throw InputError(fmt::format("--queries {}: '{}' is not single or batch (or is given twice)", text, item));
+        kinds.push_back(kind);
+    }
+    if (kinds.empty()) throw InputError("--queries: no kind of query given (single, batch)");
+    return kinds;
+}
+
+// What a bench measures, from its options: every scene, each with every structure of the contest
+// at every thread count and kind of query.
+struct BenchPlan {
+    IsaPairs pairs;
+    std::vector<ContestConfig> contest;  // each structure, then its copies at the ISAs of --isa-pairs
+    std::vector<AccelConfig> contestAccels;  // the same, for the result key
+    std::vector<int> threadCounts;
+    std::vector<QueryKind> kinds;
+    std::vector<SceneArgument> scenes;
+};
+
+BenchPlan planBench(BenchOptions& options) {
+    BenchPlan plan;
+    const std::vector<AccelConfig> configs = benchConfigs(options);
+    // Each structure, then its copies at the ISAs of --isa-pairs: the rows of a pair side by side.
+    plan.pairs = parseIsaPairs(options.isaPairs);
+    for (const AccelConfig& config : configs) {
+        plan.contest.push_back({config, "best"});
+        for (const std::string& isa : plan.pairs.isas)
+            if (const std::optional<AccelConfig> copy = configAtIsa(config, isa)) plan.contest.push_back({*copy, isa});
+    }
+    for (const ContestConfig& c : plan.contest) plan.contestAccels.push_back(c.accel);
+    plan.threadCounts = parseThreadCounts(options.threads);
+    plan.kinds = parseQueryKinds(options.queries);
+    plan.scenes = expandSceneList(options.scenes, options.env);
+    // Every scene file looked for up front: a typo in the last one fails now, not as its job.
+    for (const SceneArgument& scene : plan.scenes) sceneFileOf(scene.load(options.env));
+    return plan;
+}
+
+// The job of scene `s`, in its own process: every structure at every thread count.
+nlohmann::json measureBenchScene(const BenchOptions& options, const BenchPlan& plan, size_t s) {
+    nlohmann::json rows = nlohmann::json::array();
+    Progress progress;
+    const Env env = plan.scenes[s].load(options.env);
+    const Scene scene = loadSceneFor(env);
+    const RaySets rays = [&] {
+        auto reference = createAccelerator("embree", env);
+        reference->build(scene.primitives());
+        return sceneRaySets(scene, env, *reference);
+    }();
+    progress.phase(fmt::format("[{}/{}] {}: {} primary, {} shadow, {} incoherent rays", s + 1, plan.scenes.size(),
+                               scene.name, rays.primary.size(), rays.shadow.size(), rays.incoherent.size()));
+
+    for (int threads : plan.threadCounts) {
+        for (nlohmann::json& row :
+             measureRounds(scene, rays, env, plan.contest, plan.kinds, threads, options.builds, options.passes)) {
+            const std::string reference = yardstickOf(row);
+            const nlohmann::json& ratio = ratiosTo(row, reference)["primary"];
+            if (Progress::defaultStyle() != Progress::Style::Quiet)  // a progress line: --quiet drops it
+                fmt::print(stderr, "  {} threads={} {} {}: build {:.1f} ms, primary {:.3f} us/query ({:.2f}x {})\n",
+                           scene.name, threads, row["accel"].get<std::string>(), row["queries"].get<std::string>(),
+                           row["build_ms"].get<double>(), row["primary"]["t_r_us"].get<double>(),
+                           ratio.is_null() ? 0.0 : ratio.get<double>(), reference);
+            rows.push_back(std::move(row));
+        }
+    }
+    return rows;
+}
+
+// What a scene's result key holds of the bench's own settings (bench_resume.h).
+nlohmann::json benchMeasurement(const BenchOptions& options, const BenchPlan& plan) {
+    nlohmann::json measurement = {{"command", "bench"}, {"builds", options.builds}, {"passes", options.passes},
+                                  {"threads", plan.threadCounts}, {"queries", nlohmann::json::array()}};
+    for (QueryKind kind : plan.kinds) measurement["queries"].push_back(toString(kind));
+    return measurement;
+}
+
+// Measures the scenes into `results`, each in a process of its own, and writes them to `out`
+// after each scene; a scene --out holds with its result key is kept instead. Returns how many
+// scenes failed.
+size_t measureScenes(const BenchOptions& options, const BenchPlan& plan, nlohmann::json& results,
+                     const std::filesystem::path& out) {
+    const std::vector<SceneArgument>& scenes = plan.scenes;
+    // Each scene's result key first (bench_resume.h): the scenes --out holds with it are kept.
+    const nlohmann::json measurement = benchMeasurement(options, plan);
+    const EarlierBench earlier(options.fresh ? std::filesystem::path() : out);
+    std::vector<nlohmann::json> keys;
+    std::vector<bool> keep;
+    ResumeCount resume;
+    for (const SceneArgument& scene : scenes) {
+        keys.push_back(benchSceneKey(plan.contestAccels, scene.load(options.env), measurement));
+        const StoredResult stored = options.fresh ? StoredResult{false, "of --fresh"} : earlier.check(scene.id, keys.back());
+        resume.add(stored);
+        keep.push_back(stored.keep);
+    }
+    fmt::print(stderr, "bench: {}\n", resume.summary("scenes", "measure"));
+
+    size_t failed = 0;
+    for (size_t s = 0; s < scenes.size(); ++s) {
+        if (keep[s]) {
+            results["scenes"].push_back(earlier.scene(scenes[s].id));
+            for (nlohmann::json& row : earlier.rows(scenes[s].id)) results["rows"].push_back(std::move(row));
+            continue;
+        }
+        const JobOutcome outcome = runJobInChild(std::to_string(s), options.jobTimeout);
+        if (outcome.passed()) {
+            for (nlohmann::json row : outcome.result) {
+                row["scene_id"] = scenes[s].id;
+                // What ran: the structure with its own settings and plugin (none for Embree's own
+                // APIs and the nothing rows, which are no structure of --accel).
+                row["structure"] = keys[s]["structures"].value(row["accel"].get<std::string>(), nlohmann::json());
+                results["rows"].push_back(std::move(row));
+            }
+            const std::string name = outcome.result.empty() ? scenes[s].id : outcome.result[0]["scene"].get<std::string>();
+            results["scenes"].push_back({{"id", scenes[s].id}, {"name", name}, {"result_key", keys[s]}});
+        } else {
+            ++failed;
+            fmt::print(stderr, "[{}/{}] {}: failed: {}\n", s + 1, scenes.size(), scenes[s].id, outcome.failure());
+            results["rows"].push_back({{"scene", scenes[s].id}, {"scene_id", scenes[s].id}, {"failed", outcome.failure()}});
+        }
+        // Written after each scene, so that an interrupted bench keeps the scenes it finished.
+        writeFileAtomically(out, results.dump(2) + "\n");
+    }
+    return failed;
+}
+
+// The rows the table shows: those --accel chose with their ISA pairs, with --reference-rows every row.
+std::vector<std::string> shownRows(const BenchOptions& options, const BenchPlan& plan, const nlohmann::json& results) {
+    std::vector<std::string> shown;
+    for (const AccelConfig& config : parseAccelConfigList(options.accels)) {
+        shown.push_back(config.label);
+        for (const std::string& isa : plan.pairs.isas) shown.push_back(labelAtIsa(config.label, isa));
+    }
+    if (options.referenceRows)
+        for (const nlohmann::json& row : results["rows"])
+            if (!row.contains("failed")) shown.push_back(row["accel"].get<std::string>());
+    return shown;
+}
+
+// The bench the options ask for; returns how many scenes failed.
+size_t runBench(BenchOptions& options) {
+    const BenchPlan plan = planBench(options);
+    if (options.child.isChild()) {
+        size_t s = 0;
+        if (!parseNumber(options.child.job, s) || s >= plan.scenes.size())
+            throw InputError(fmt::format("{} {}: not a scene of this bench", kChildJobOption, options.child.job));
+        options.child.run([&] { return measureBenchScene(options, plan, s); });
+        return 0;
+    }
+
+    const IsaPairs& pairs = plan.pairs;
+    nlohmann::json results = {{"provenance", provenanceJson()},
+                              {"run", runJson()},
+                              {"builds", options.builds},
+                              {"passes", options.passes},
+                              {"scenes", nlohmann::json::array()},
+                              {"rows", nlohmann::json::array()},
+                              {"isa_pairs", {{"best", pairs.best}, {"isas", pairs.isas}, {"note", pairs.note}}}};
+    const std::filesystem::path out = prepareOutputFile(options.out);
+    const size_t failed = measureScenes(options, plan, results, out);
+    results["failed_jobs"] = failed;
+    writeFileAtomically(out, results.dump(2) + "\n");
+    fmt::print("{}", benchTable(results, shownRows(options, plan, results)));
+    fmt::print(stderr, "wrote {}\n", out.string());
+    if (failed) fmt::print(stderr, "bench: {} of {} scenes failed\n", failed, plan.scenes.size());
+    return failed;
+}
+
 }  // namespace
 
 void addBenchCommand(CLI::App& app) {
-    struct Options {
-        EnvOptions env;
-        std::vector<std::string> scenes;
-        std::string accels = "tdbvh,sahbvh,embree,embree:Embree::robust=true";
-        std::string threads = "1,0";
-        std::string queries = "single,batch";
-        std::string isaPairs;
-        int builds = 5, passes = 5;
-        std::string out = "out/bench.json";
-        bool fresh = false;
-        bool referenceRows = false;
-        double jobTimeout = 0;
-        ChildJob child;
-    };
-    auto options = std::make_shared<Options>();
+    auto options = std::make_shared<BenchOptions>();
     CLI::App* command = app.add_subcommand("bench", "time builds and queries against Embree (medians, ratios)");
-    addEnvOptions(*command, options->env);
-    addScenesOption(*command, options->scenes, "", "env/scenes.list");
-    command->add_option("--accel", options->accels,
-                        "comma-separated NAME or NAME:Key=value:... (embree, embree-robust, embree-bare, embree-batch, "
-                        "nothing and nothing-guarded are always added)")
-        ->capture_default_str();
-    command->add_option("--queries", options->queries,
-                        "single (ray by ray, against embree-bare), batch (the batch calls, against embree-batch) or both, "
-                        "comma-separated")
-        ->capture_default_str();
-    command->add_option("--isa-pairs", options->isaPairs,
-                        "ISAs at which to time ours against Embree beside the headline pair (each at the best ISA the "
-                        "CPU runs), comma-separated: avx2, avx512. Each structure that reads BVH::isa or Embree::isa "
-                        "is timed again as LABEL@ISA with that key set, against Embree's rows at ISA; one that is the "
-                        "CPU's best is the headline pair, timed once");
-    command->add_option("--threads", options->threads, "threads N (0 = all hardware threads), or a comma-separated list of them to measure each")
-        ->capture_default_str();
-    command->add_option("--builds", options->builds, "builds per structure (median)")->capture_default_str()->check(CLI::Range(1, 1000));
-    command->add_option("--passes", options->passes, "passes over each ray set (median)")->capture_default_str()->check(CLI::Range(1, 1000));
-    command->add_option("--out", options->out, "JSON results")->capture_default_str();
-    command->add_flag("--reference-rows", options->referenceRows,
-                      "show the reference rows in the table too (those --accel did not choose: Embree through our "
-                      "interface and its own, the nothing rows); the JSON always has them");
-    command->add_flag("--fresh", options->fresh,
-                      "measure every scene again; without it, a scene whose rows --out holds with the same result key "
-                      "(program, structures and their plugins, scene, rounds) is kept as a whole");
-    addJobTimeoutOption(*command, options->jobTimeout);
-    addChildJobOptions(*command, options->child);
-    command->callback([options] {
-        size_t failed = 0;
-        const int code = runGuarded([&] {
-            std::vector<AccelConfig> configs = parseAccelConfigList(options->accels);
-            for (const char* reference : {"embree", "embree:Embree::robust=true"})
-                if (std::none_of(configs.begin(), configs.end(), [&](const AccelConfig& c) { return c.label == parseAccelConfig(reference).label; }))
-                    configs.push_back(parseAccelConfig(reference));
-            for (const AccelConfig& c : configs)
-                if (std::find(std::begin(kNothingRows), std::end(kNothingRows), c.label) != std::end(kNothingRows))
-                    throw InputError(fmt::format("--accel {}: the bench's own row of that name", c.label));
-            nameAccelerators(configs, options->env);
-            checkAccelConfigs(configs, options->env.load());
-            // Each structure, then its copies at the ISAs of --isa-pairs: the rows of a pair side by side.
-            const IsaPairs pairs = parseIsaPairs(options->isaPairs);
-            std::vector<ContestConfig> contest;
-            std::vector<AccelConfig> contestAccels;  // the same, for the result key
-            for (const AccelConfig& config : configs) {
-                contest.push_back({config, "best"});
-                for (const std::string& isa : pairs.isas)
-                    if (const std::optional<AccelConfig> copy = configAtIsa(config, isa)) contest.push_back({*copy, isa});
-            }
-            for (const ContestConfig& c : contest) contestAccels.push_back(c.accel);
-            std::vector<int> threadCounts;
-            for (const std::string& item : splitCommaList(options->threads)) {
-                int t = -1;
-                if (!parseNumber(item, t) || t < 0 || t > 1024)
-                    throw InputError(fmt::format("--threads {}: '{}' is not a thread count 0..1024 (0 = all)",
-                                                 options->threads, item));
-                threadCounts.push_back(t > 0 ? t : tbb::info::default_concurrency());
-            }
-            if (threadCounts.empty()) throw InputError("--threads: no thread count given");
-            std::vector<QueryKind> kinds;
-            for (const std::string& item : splitCommaList(options->queries)) {
-                const QueryKind kind = item == "single" ? QueryKind::Single : QueryKind::Batch;
-                if ((item != "single" && item != "batch") || std::find(kinds.begin(), kinds.end(), kind) != kinds.end())
-                    throw InputError(fmt::format("--queries {}: '{}' is not single or batch (or is given twice)",
-                                                 options->queries, item));
-                kinds.push_back(kind);
-            }
-            if (kinds.empty()) throw InputError("--queries: no kind of query given (single, batch)");
-
-            const std::vector<SceneArgument> scenes = expandSceneList(options->scenes, options->env);
-            // Every scene file looked for up front: a typo in the last one fails now, not as its job.
-            for (const SceneArgument& scene : scenes) sceneFileOf(scene.load(options->env));
-            // The job of scene `s`, in its own process: every structure at every thread count.
-            const auto measureScene = [&](size_t s) {
-                nlohmann::json rows = nlohmann::json::array();
-                Progress progress;
-                const Env env = scenes[s].load(options->env);
-                const Scene scene = loadSceneFor(env);
-                const RaySets rays = [&] {
-                    auto reference = createAccelerator("embree", env);
-                    reference->build(scene.primitives());
-                    return sceneRaySets(scene, env, *reference);
-                }();
-                progress.phase(fmt::format("[{}/{}] {}: {} primary, {} shadow, {} incoherent rays", s + 1, scenes.size(),
-                                           scene.name, rays.primary.size(), rays.shadow.size(), rays.incoherent.size()));
-
-                for (int threads : threadCounts) {
-                    for (nlohmann::json& row : measureRounds(scene, rays, env, contest, kinds, threads, options->builds,
-                                                             options->passes)) {
-                        const std::string reference = yardstickOf(row);
-                        const nlohmann::json& ratio = ratiosTo(row, reference)["primary"];
-                        if (Progress::defaultStyle() != Progress::Style::Quiet)  // a progress line: --quiet drops it
-                            fmt::print(stderr, "  {} threads={} {} {}: build {:.1f} ms, primary {:.3f} us/query ({:.2f}x {})\n",
-                                       scene.name, threads, row["accel"].get<std::string>(),
-                                       row["queries"].get<std::string>(), row["build_ms"].get<double>(),
-                                       row["primary"]["t_r_us"].get<double>(), ratio.is_null() ? 0.0 : ratio.get<double>(),
-                                       reference);
-                        rows.push_back(std::move(row));
-                    }
-                }
-                return rows;
-            };
-            if (options->child.isChild()) {
-                size_t s = 0;
-                if (!parseNumber(options->child.job, s) || s >= scenes.size())
-                    throw InputError(fmt::format("{} {}: not a scene of this bench", kChildJobOption, options->child.job));
-                options->child.run([&] { return measureScene(s); });
-                return;
-            }
-
-            nlohmann::json results = {{"provenance", provenanceJson()},
-                                      {"run", runJson()},
-                                      {"builds", options->builds},
-                                      {"passes", options->passes},
-                                      {"scenes", nlohmann::json::array()},
-                                      {"rows", nlohmann::json::array()},
-                                      {"isa_pairs", {{"best", pairs.best}, {"isas", pairs.isas}, {"note", pairs.note}}}};
-            const std::filesystem::path out = prepareOutputFile(options->out);
-
-            // Each scene's result key first (bench_resume.h): the scenes --out holds with it are kept.
-            nlohmann::json measurement = {{"command", "bench"}, {"builds", options->builds}, {"passes", options->passes},
-                                          {"threads", threadCounts}, {"queries", nlohmann::json::array()}};
-            for (QueryKind kind : kinds) measurement["queries"].push_back(toString(kind));
-            const EarlierBench earlier(options->fresh ? std::filesystem::path() : out);
-            std::vector<nlohmann::json> keys;
-            std::vector<bool> keep;
-            ResumeCount resume;
-            for (const SceneArgument& scene : scenes) {
-                keys.push_back(benchSceneKey(contestAccels, scene.load(options->env), measurement));
-                const StoredResult stored = options->fresh ? StoredResult{false, "of --fresh"} : earlier.check(scene.id, keys.back());
-                resume.add(stored);
-                keep.push_back(stored.keep);
-            }
-            fmt::print(stderr, "bench: {}\n", resume.summary("scenes", "measure"));
-
-            for (size_t s = 0; s < scenes.size(); ++s) {
-                if (keep[s]) {
-                    results["scenes"].push_back(earlier.scene(scenes[s].id));
-                    for (nlohmann::json& row : earlier.rows(scenes[s].id)) results["rows"].push_back(std::move(row));
-                    continue;
-                }
-                const JobOutcome outcome = runJobInChild(std::to_string(s), options->jobTimeout);
-                if (outcome.passed()) {
-                    for (nlohmann::json row : outcome.result) {
-                        row["scene_id"] = scenes[s].id;
-                        // What ran: the structure with its own settings and plugin (none for Embree's own
-                        // APIs and the nothing rows, which are no structure of --accel).
-                        row["structure"] = keys[s]["structures"].value(row["accel"].get<std::string>(), nlohmann::json());
-                        results["rows"].push_back(std::move(row));
-                    }
-                    const std::string name = outcome.result.empty() ? scenes[s].id : outcome.result[0]["scene"].get<std::string>();
-                    results["scenes"].push_back({{"id", scenes[s].id}, {"name", name}, {"result_key", keys[s]}});
-                } else {
-                    ++failed;
-                    fmt::print(stderr, "[{}/{}] {}: failed: {}\n", s + 1, scenes.size(), scenes[s].id, outcome.failure());
-                    results["rows"].push_back({{"scene", scenes[s].id}, {"scene_id", scenes[s].id}, {"failed", outcome.failure()}});
-                }
-                // Written after each scene, so that an interrupted bench keeps the scenes it finished.
-                writeFileAtomically(out, results.dump(2) + "\n");
-            }
-            results["failed_jobs"] = failed;
-            writeFileAtomically(out, results.dump(2) + "\n");
-            std::vector<std::string> shown;
-            for (const AccelConfig& config : parseAccelConfigList(options->accels)) {
-                shown.push_back(config.label);
-                for (const std::string& isa : pairs.isas) shown.push_back(labelAtIsa(config.label, isa));
-            }
-            if (options->referenceRows)
-                for (const nlohmann::json& row : results["rows"])
-                    if (!row.contains("failed")) shown.push_back(row["accel"].get<std::string>());
-            fmt::print("{}", benchTable(results, shown));
-            fmt::print(stderr, "wrote {}\n", out.string());
-            if (failed) fmt::print(stderr, "bench: {} of {} scenes failed\n", failed, scenes.size());
-        });
-        if (code != 0) throw CLI::RuntimeError(code);
-        if (failed) throw CLI::RuntimeError(kSomeJobsFailedExitCode);
-    });
+    addBenchOptions(*command, *options);
+    command->callback([options] { runJobsGuarded([&] { return runBench(*options); }); });
 }
 
 }  // namespace bvhlab

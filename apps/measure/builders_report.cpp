@@ -2,14 +2,13 @@
 // per-configuration JSON files alone (so a resumed run reports everything measured so far).
 #include "apps/measure/builders.h"
 #include "apps/measure/failed_config.h"
+#include "apps/measure/measured_configs.h"
 #include "apps/measure/rank_statistics.h"
 #include "apps/runtime/atomic_write.h"
-#include "apps/runtime/output_paths.h"
 
 #include <fmt/core.h>
 
 #include <cmath>
-#include <fstream>
 #include <map>
 
 namespace bvhlab {
@@ -50,9 +49,19 @@ struct Row {
     bool pareto[kSets] = {false, false, false};
 };
 
+using RowsByLabel = std::map<std::string, Row>;
+
+using Measured = MeasuredConfigs<Row>;
+
+// The ratios over the scenes: geometric means of the per-scene ratios, with their Pareto front.
+struct Summary {
+    RowsByLabel means;
+    std::map<std::string, int> sceneCount;
+};
+
 // The labels on the front of (x, y) over the rows with both.
 template <typename X, typename Y>
-std::vector<std::string> frontOf(const std::map<std::string, Row>& rows, X x, Y y) {
+std::vector<std::string> frontOf(const RowsByLabel& rows, X x, Y y) {
     std::vector<std::string> labels;
     std::vector<double> xs, ys;
     for (const auto& [label, row] : rows)
@@ -64,49 +73,75 @@ std::vector<std::string> frontOf(const std::map<std::string, Row>& rows, X x, Y 
 
 std::string rho(const std::optional<double>& r) { return r ? fmt::format("{:+.2f}", *r) : "n/a"; }
 
-}  // namespace
+std::string triple(const double (&v)[kSets], int digits) {
+    return fmt::format("{} / {} / {}", fixed(v[0], digits), fixed(v[1], digits), fixed(v[2], digits));
+}
 
-std::string writeBuildersReport(const std::filesystem::path& dir, const std::vector<std::string>& sceneIds,
-                                const std::vector<AccelConfig>& configs, const TradeoffSettings& settings) {
-    const TimeKeys keys(settings.threads);
-    std::map<std::string, std::map<std::string, Row>> rows;  // scene -> label -> row
-    std::map<std::string, std::map<std::string, json>> failures;  // scene -> label -> its failure
-    for (const std::string& scene : sceneIds)
-        for (const AccelConfig& config : configs) {
-            const std::filesystem::path file = dir / scene / (labelAsFileName(config.label) + ".json");
-            if (!std::filesystem::exists(file)) continue;
-            std::ifstream in(file);
-            json stored = json::parse(in);
-            if (isFailedConfig(stored)) {
-                failures[scene][config.label] = std::move(stored);
-                continue;
-            }
-            Row& row = rows[scene][config.label];
-            row.stored = std::move(stored);
-            row.build = number(row.stored[keys.build]);
-            row.sah = number(row.stored["sah"]);
-            row.epo = number(row.stored["epo"]);
-            for (size_t s = 0; s < kSets; ++s) row.trace[s] = number(row.stored[kBuilderRaySets[s]][keys.trace]);
+// The initials of the ray sets on whose front a row lies ("ps": primary and shadow).
+std::string paretoMarks(const bool (&p)[kSets]) {
+    std::string m;
+    for (size_t s = 0; s < kSets; ++s) m += p[s] ? std::string(1, kBuilderRaySets[s][0]) : "";
+    return m;
+}
+
+Row rowOf(json stored, const TimeKeys& keys) {
+    Row row;
+    row.stored = std::move(stored);
+    row.build = number(row.stored[keys.build]);
+    row.sah = number(row.stored["sah"]);
+    row.epo = number(row.stored["epo"]);
+    for (size_t s = 0; s < kSets; ++s) row.trace[s] = number(row.stored[kBuilderRaySets[s]][keys.trace]);
+    return row;
+}
+
+// Each row of one scene against the yardsticks of that scene, and the front of T_B against T_R.
+void compareWithinScene(RowsByLabel& byLabel, const TimeKeys& keys) {
+    const Row* base = byLabel.count(kBuildersBaseline) ? &byLabel[kBuildersBaseline] : nullptr;
+    const Row* high = byLabel.count(kBuildersHigh) ? &byLabel[kBuildersHigh] : nullptr;
+    for (auto& [label, row] : byLabel) {
+        if (base) row.buildRatio = row.build / base->build;
+        for (size_t s = 0; s < kSets; ++s) {
+            if (base) row.toBaseline[s] = row.trace[s] / base->trace[s];
+            if (high) row.toHigh[s] = row.trace[s] / high->trace[s];
+            if (base && base->stored.contains("bare"))
+                row.toBare[s] = row.trace[s] / number(base->stored["bare"][kBuilderRaySets[s]][keys.trace]);
         }
-    for (auto& [scene, byLabel] : rows) {
-        const Row* base = byLabel.count(kBuildersBaseline) ? &byLabel[kBuildersBaseline] : nullptr;
-        const Row* high = byLabel.count(kBuildersHigh) ? &byLabel[kBuildersHigh] : nullptr;
-        for (auto& [label, row] : byLabel) {
-            if (base) row.buildRatio = row.build / base->build;
-            for (size_t s = 0; s < kSets; ++s) {
-                if (base) row.toBaseline[s] = row.trace[s] / base->trace[s];
-                if (high) row.toHigh[s] = row.trace[s] / high->trace[s];
-                if (base && base->stored.contains("bare"))
-                    row.toBare[s] = row.trace[s] / number(base->stored["bare"][kBuilderRaySets[s]][keys.trace]);
-            }
-        }
-        for (size_t s = 0; s < kSets; ++s)
-            for (const std::string& label :
-                 frontOf(byLabel, [](const Row& r) { return r.build; }, [s](const Row& r) { return r.trace[s]; }))
-                byLabel[label].pareto[s] = true;
     }
+    for (size_t s = 0; s < kSets; ++s)
+        for (const std::string& label :
+             frontOf(byLabel, [](const Row& r) { return r.build; }, [s](const Row& r) { return r.trace[s]; }))
+            byLabel[label].pareto[s] = true;
+}
 
-    // builders.csv
+Summary summarise(const Measured& measured, const std::vector<std::string>& sceneIds,
+                  const std::vector<AccelConfig>& configs) {
+    Summary summary;
+    for (const AccelConfig& config : configs) {
+        std::vector<double> build, toBase[kSets], toHigh[kSets], toBare[kSets];
+        int& scenes = summary.sceneCount[config.label];
+        for (const std::string& scene : sceneIds) {
+            const Row* r = measured.row(scene, config.label);
+            if (!r) continue;
+            ++scenes;
+            build.push_back(r->buildRatio);
+            for (size_t s = 0; s < kSets; ++s)
+                toBase[s].push_back(r->toBaseline[s]), toHigh[s].push_back(r->toHigh[s]), toBare[s].push_back(r->toBare[s]);
+        }
+        if (!scenes) continue;
+        Row& m = summary.means[config.label];
+        m.buildRatio = geoMean(build);
+        for (size_t s = 0; s < kSets; ++s)
+            m.toBaseline[s] = geoMean(toBase[s]), m.toHigh[s] = geoMean(toHigh[s]), m.toBare[s] = geoMean(toBare[s]);
+    }
+    for (size_t s = 0; s < kSets; ++s)
+        for (const std::string& label : frontOf(
+                 summary.means, [](const Row& r) { return r.buildRatio; }, [s](const Row& r) { return r.toBaseline[s]; }))
+            summary.means[label].pareto[s] = true;
+    return summary;
+}
+
+std::string buildersCsv(const Measured& measured, const std::vector<std::string>& sceneIds,
+                        const std::vector<AccelConfig>& configs) {
     std::string csv = "scene,config,accel,threads,prims,builds,build_ms,build_cpu_ms,build_ratio_embree_medium,sah,epo,"
                       "nodes,leaves,avg_leaf,max_leaf";
     for (const char* set : kBuilderRaySets)
@@ -120,12 +155,13 @@ std::string writeBuildersReport(const std::filesystem::path& dir, const std::vec
     };
     for (const std::string& scene : sceneIds)
         for (const AccelConfig& config : configs) {
-            if (failures[scene].count(config.label)) {
-                csv += failedConfigCsvRow(failures[scene][config.label], csvHeader);
+            if (const json* failure = measured.failure(scene, config.label)) {
+                csv += failedConfigCsvRow(*failure, csvHeader);
                 continue;
             }
-            if (!rows[scene].count(config.label)) continue;
-            const Row& r = rows[scene][config.label];
+            const Row* row = measured.row(scene, config.label);
+            if (!row) continue;
+            const Row& r = *row;
             const json& j = r.stored;
             csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}", scene, config.label, j["accel"].get<std::string>(),
                                cell(j["threads"], 0), cell(j["prims"], 0), j["build_ms_all"].size(), cell(j["build_ms"], 3),
@@ -139,56 +175,29 @@ std::string writeBuildersReport(const std::filesystem::path& dir, const std::vec
             }
             csv += ",\n";  // not failed
         }
-    writeFileAtomically(dir / "builders.csv", csv);
+    return csv;
+}
 
-    // Over the scenes: geometric means of the per-scene ratios, and their Pareto front.
-    std::map<std::string, Row> summary;
-    std::map<std::string, int> sceneCount;
-    for (const AccelConfig& config : configs) {
-        std::vector<double> build, toBase[kSets], toHigh[kSets], toBare[kSets];
-        for (const std::string& scene : sceneIds) {
-            if (!rows[scene].count(config.label)) continue;
-            const Row& r = rows[scene][config.label];
-            ++sceneCount[config.label];
-            build.push_back(r.buildRatio);
-            for (size_t s = 0; s < kSets; ++s)
-                toBase[s].push_back(r.toBaseline[s]), toHigh[s].push_back(r.toHigh[s]), toBare[s].push_back(r.toBare[s]);
-        }
-        if (!sceneCount[config.label]) continue;
-        Row& m = summary[config.label];
-        m.buildRatio = geoMean(build);
-        for (size_t s = 0; s < kSets; ++s)
-            m.toBaseline[s] = geoMean(toBase[s]), m.toHigh[s] = geoMean(toHigh[s]), m.toBare[s] = geoMean(toBare[s]);
-    }
-    for (size_t s = 0; s < kSets; ++s)
-        for (const std::string& label :
-             frontOf(summary, [](const Row& r) { return r.buildRatio; }, [s](const Row& r) { return r.toBaseline[s]; }))
-            summary[label].pareto[s] = true;
-    std::string summaryCsv = "config,scenes,build_ratio_embree_medium";
+std::string summaryCsv(const Summary& summary, const std::vector<AccelConfig>& configs) {
+    std::string csv = "config,scenes,build_ratio_embree_medium";
     for (const char* set : kBuilderRaySets)
-        summaryCsv += fmt::format(",ratio_embree_medium_{0},ratio_embree_high_{0},ratio_embree_bare_{0},pareto_{0}", set);
-    summaryCsv += "\n";
+        csv += fmt::format(",ratio_embree_medium_{0},ratio_embree_high_{0},ratio_embree_bare_{0},pareto_{0}", set);
+    csv += "\n";
     for (const AccelConfig& config : configs) {
-        if (!summary.count(config.label)) continue;
-        const Row& m = summary[config.label];
-        summaryCsv += fmt::format("{},{},{}", config.label, sceneCount[config.label], fixed(m.buildRatio, 4));
+        if (!summary.means.count(config.label)) continue;
+        const Row& m = summary.means.at(config.label);
+        csv += fmt::format("{},{},{}", config.label, summary.sceneCount.at(config.label), fixed(m.buildRatio, 4));
         for (size_t s = 0; s < kSets; ++s)
-            summaryCsv += fmt::format(",{},{},{},{}", fixed(m.toBaseline[s], 4), fixed(m.toHigh[s], 4), fixed(m.toBare[s], 4),
-                                      m.pareto[s] ? 1 : 0);
-        summaryCsv += "\n";
+            csv += fmt::format(",{},{},{},{}", fixed(m.toBaseline[s], 4), fixed(m.toHigh[s], 4), fixed(m.toBare[s], 4),
+                               m.pareto[s] ? 1 : 0);
+        csv += "\n";
     }
-    writeFileAtomically(dir / "builders_summary.csv", summaryCsv);
+    return csv;
+}
 
-    // builders.md
-    auto triple = [](const double (&v)[kSets], int digits) {
-        return fmt::format("{} / {} / {}", fixed(v[0], digits), fixed(v[1], digits), fixed(v[2], digits));
-    };
-    auto marks = [](const bool (&p)[kSets]) {
-        std::string m;
-        for (size_t s = 0; s < kSets; ++s) m += p[s] ? std::string(1, kBuilderRaySets[s][0]) : "";
-        return m;
-    };
-    std::string md = fmt::format(
+// builders.md's first paragraph: what was measured, and how.
+std::string settingsParagraph(const TradeoffSettings& settings) {
+    return fmt::format(
         "Settings: threads {}; T_B median of up to {} builds (fewer once they took {:.0f} s); T_R median of {} pass(es) "
         "over the primary, shadow and incoherent rays of a {} image; T_B is wall time (the structure's own timer, "
         "which leaves out the statistics and EPO computed after a build), T_R {}. Ratios (p / s / i: primary / "
@@ -197,110 +206,137 @@ std::string writeBuildersReport(const std::filesystem::path& dir, const std::vec
         settings.threads, settings.builds, settings.buildBudgetMs * 1e-3, settings.passes,
         settings.raySize > 0 ? fmt::format("{}x{}", settings.raySize, settings.raySize) : std::string("scene-sized"),
         settings.threads == 1 ? "CPU time of the process" : "wall time", kBuildersBaseline, kBuildersHigh, kBuildersBaseline);
-    md += "| scene | config | T_B [ms] | T_B / medium | SAH | EPO | leaves | T_R p / s / i [µs] | / medium | / high | / bare "
-          "| Pareto |\n|---|---|---:|---:|---:|---:|---:|---|---|---|---|---|\n";
+}
+
+std::string sceneTable(const Measured& measured, const std::vector<std::string>& sceneIds,
+                       const std::vector<AccelConfig>& configs) {
+    std::string md = "| scene | config | T_B [ms] | T_B / medium | SAH | EPO | leaves | T_R p / s / i [µs] | / medium | / high | / bare "
+                     "| Pareto |\n|---|---|---:|---:|---:|---:|---:|---|---|---|---|---|\n";
     for (const std::string& scene : sceneIds)
         for (const AccelConfig& config : configs) {
-            if (failures[scene].count(config.label)) {
-                md += failedConfigMarkdownRow(failures[scene][config.label], 12);
+            if (const json* failure = measured.failure(scene, config.label)) {
+                md += failedConfigMarkdownRow(*failure, 12);
                 continue;
             }
-            if (!rows[scene].count(config.label)) continue;
-            const Row& r = rows[scene][config.label];
+            const Row* row = measured.row(scene, config.label);
+            if (!row) continue;
+            const Row& r = *row;
             md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", scene, config.label,
                               fixed(r.build, 1), fixed(r.buildRatio, 2), fixed(r.sah, 2), fixed(r.epo, 3),
                               r.stored["leaves"].is_number() ? std::to_string(r.stored["leaves"].get<long long>()) : "",
                               triple(r.trace, 3), triple(r.toBaseline, 2), triple(r.toHigh, 2), triple(r.toBare, 2),
-                              marks(r.pareto));
+                              paretoMarks(r.pareto));
         }
+    return md;
+}
 
-    md += structuresMeasured(dir, sceneIds, configs);
-
-    md += "\nOver the scenes measured (geometric means of the per-scene ratios; Pareto over these means):\n\n"
-          "| config | scenes | T_B / medium | T_R / medium p / s / i | T_R / high | T_R / bare | Pareto |\n"
-          "|---|---:|---:|---|---|---|---|\n";
+std::string summaryTable(const Summary& summary, const std::vector<AccelConfig>& configs) {
+    std::string md = "\nOver the scenes measured (geometric means of the per-scene ratios; Pareto over these means):\n\n"
+                     "| config | scenes | T_B / medium | T_R / medium p / s / i | T_R / high | T_R / bare | Pareto |\n"
+                     "|---|---:|---:|---|---|---|---|\n";
     for (const AccelConfig& config : configs) {
-        if (!summary.count(config.label)) continue;
-        const Row& m = summary[config.label];
-        md += fmt::format("| {} | {} | {} | {} | {} | {} | {} |\n", config.label, sceneCount[config.label],
+        if (!summary.means.count(config.label)) continue;
+        const Row& m = summary.means.at(config.label);
+        md += fmt::format("| {} | {} | {} | {} | {} | {} | {} |\n", config.label, summary.sceneCount.at(config.label),
                           fixed(m.buildRatio, 2), triple(m.toBaseline, 2), triple(m.toHigh, 2), triple(m.toBare, 2),
-                          marks(m.pareto));
+                          paretoMarks(m.pareto));
     }
+    return md;
+}
 
-    // The trace bar sbvh8 is held to: Embree HIGH, scene by scene.
-    md += "\nsbvh8 faster than embree-high (scenes won / scenes with both):";
+// The trace bar sbvh8 is held to: Embree HIGH, scene by scene.
+std::string sbvh8AgainstHigh(const Measured& measured, const std::vector<std::string>& sceneIds) {
+    std::string md = "\nsbvh8 faster than embree-high (scenes won / scenes with both):";
     for (size_t s = 0; s < kSets; ++s) {
         int won = 0, both = 0;
         for (const std::string& scene : sceneIds) {
-            auto& byLabel = rows[scene];
-            if (!byLabel.count("sbvh8") || !byLabel.count(kBuildersHigh)) continue;
+            const Row* sbvh8 = measured.row(scene, "sbvh8");
+            const Row* high = measured.row(scene, kBuildersHigh);
+            if (!sbvh8 || !high) continue;
             ++both;
-            won += byLabel["sbvh8"].trace[s] < byLabel[kBuildersHigh].trace[s];
+            won += sbvh8->trace[s] < high->trace[s];
         }
         md += fmt::format(" {} {}/{}{}", kBuilderRaySets[s], won, both, s + 1 < kSets ? "," : "\n");
     }
+    return md;
+}
 
-    // How well the tree metrics order our builders as T_R does (Embree's trees are invisible),
-    // within one layout: the 8-wide traversal is faster at a higher SAH (leaves charged by blocks
-    // of eight), so across layouts the metric would rank the layout, not the tree.
-    // SAH+EPO is (1 - a) SAH/SAH~ + a EPO/EPO~ with ~ the scene's geometric mean over the group:
-    // a = 0.5 stated, and the a in 0, 0.05, ..., 1 that ranks best over the pooled scenes (fitted
-    // on the same data, so an upper bound of what the combination can do here).
-    struct Layout {
-        const char* name;
-        bool wide;
-    };
-    const Layout layouts[] = {{"binary", false}, {"8-wide", true}};
-    auto normalised = [&](const std::map<std::string, Row>& byLabel, bool wide, std::vector<double>& sah,
-                          std::vector<double>& epo, std::vector<double> (&trace)[kSets]) {
-        std::vector<double> s0, e0, t0[kSets];
-        for (const auto& [label, r] : byLabel)
-            if (r.stored.at("accel").get<std::string>().ends_with('8') == wide && std::isfinite(r.sah) && std::isfinite(r.epo) && r.epo > 0) {
-                s0.push_back(r.sah), e0.push_back(r.epo);
-                for (size_t s = 0; s < kSets; ++s) t0[s].push_back(r.trace[s]);
-            }
-        const double gs = geoMean(s0), ge = geoMean(e0);
-        for (size_t i = 0; i < s0.size(); ++i) sah.push_back(s0[i] / gs), epo.push_back(e0[i] / ge);
-        for (size_t s = 0; s < kSets; ++s) {
-            const double gt = geoMean(t0[s]);
-            for (double t : t0[s]) trace[s].push_back(t / gt);
+// How well the tree metrics order our builders as T_R does (Embree's trees are invisible),
+// within one layout: the 8-wide traversal is faster at a higher SAH (leaves charged by blocks
+// of eight), so across layouts the metric would rank the layout, not the tree.
+// SAH+EPO is (1 - a) SAH/SAH~ + a EPO/EPO~ with ~ the scene's geometric mean over the group:
+// a = 0.5 stated, and the a in 0, 0.05, ..., 1 that ranks best over the pooled scenes (fitted
+// on the same data, so an upper bound of what the combination can do here).
+struct Layout {
+    const char* name;
+    bool wide;
+};
+constexpr Layout kLayouts[] = {{"binary", false}, {"8-wide", true}};
+
+// The tree metrics and T_R of the builders of one layout, each over its geometric mean.
+struct NormalisedMetrics {
+    std::vector<double> sah, epo, trace[kSets];
+};
+
+NormalisedMetrics normalised(const RowsByLabel& byLabel, bool wide) {
+    std::vector<double> s0, e0, t0[kSets];
+    for (const auto& [label, r] : byLabel)
+        if (r.stored.at("accel").get<std::string>().ends_with('8') == wide && std::isfinite(r.sah) && std::isfinite(r.epo) && r.epo > 0) {
+            s0.push_back(r.sah), e0.push_back(r.epo);
+            for (size_t s = 0; s < kSets; ++s) t0[s].push_back(r.trace[s]);
         }
-    };
-    auto combine = [](const std::vector<double>& sah, const std::vector<double>& epo, double a) {
-        std::vector<double> c(sah.size());
-        for (size_t i = 0; i < c.size(); ++i) c[i] = (1.0 - a) * sah[i] + a * epo[i];
-        return c;
-    };
-    struct Pool {
-        std::vector<double> sah, epo, trace[kSets];
-    } pools[std::size(layouts)];
-    md += "\nSpearman's rank correlation of the tree metric with T_R over our builders of one layout (those with SAH "
-          "and EPO), per scene (p / s / i):\n\n| scene | layout | builders | SAH | SAH+EPO (a = 0.5) | EPO |\n"
-          "|---|---|---:|---|---|---|\n";
+    NormalisedMetrics metrics;
+    const double gs = geoMean(s0), ge = geoMean(e0);
+    for (size_t i = 0; i < s0.size(); ++i) metrics.sah.push_back(s0[i] / gs), metrics.epo.push_back(e0[i] / ge);
+    for (size_t s = 0; s < kSets; ++s) {
+        const double gt = geoMean(t0[s]);
+        for (double t : t0[s]) metrics.trace[s].push_back(t / gt);
+    }
+    return metrics;
+}
+
+std::vector<double> combine(const std::vector<double>& sah, const std::vector<double>& epo, double a) {
+    std::vector<double> c(sah.size());
+    for (size_t i = 0; i < c.size(); ++i) c[i] = (1.0 - a) * sah[i] + a * epo[i];
+    return c;
+}
+
+// The per-scene table; `pools` gathers each layout's metrics over the scenes.
+std::string rankCorrelationPerScene(const Measured& measured, const std::vector<std::string>& sceneIds,
+                                    NormalisedMetrics (&pools)[std::size(kLayouts)]) {
+    std::string md = "\nSpearman's rank correlation of the tree metric with T_R over our builders of one layout (those with SAH "
+                     "and EPO), per scene (p / s / i):\n\n| scene | layout | builders | SAH | SAH+EPO (a = 0.5) | EPO |\n"
+                     "|---|---|---:|---|---|---|\n";
+    const RowsByLabel none;
     for (const std::string& scene : sceneIds)
-        for (size_t g = 0; g < std::size(layouts); ++g) {
-            std::vector<double> sah, epo, trace[kSets];
-            normalised(rows[scene], layouts[g].wide, sah, epo, trace);
-            if (sah.size() < 2) continue;
-            const std::vector<double> both = combine(sah, epo, 0.5);
+        for (size_t g = 0; g < std::size(kLayouts); ++g) {
+            const auto byLabel = measured.rows.find(scene);
+            const NormalisedMetrics m = normalised(byLabel == measured.rows.end() ? none : byLabel->second, kLayouts[g].wide);
+            if (m.sah.size() < 2) continue;
+            const std::vector<double> both = combine(m.sah, m.epo, 0.5);
             std::string cells[3];
             for (size_t s = 0; s < kSets; ++s) {
                 const char* sep = s ? " / " : "";
-                cells[0] += sep + rho(spearman(sah, trace[s]));
-                cells[1] += sep + rho(spearman(both, trace[s]));
-                cells[2] += sep + rho(spearman(epo, trace[s]));
+                cells[0] += sep + rho(spearman(m.sah, m.trace[s]));
+                cells[1] += sep + rho(spearman(both, m.trace[s]));
+                cells[2] += sep + rho(spearman(m.epo, m.trace[s]));
             }
-            md += fmt::format("| {} | {} | {} | {} | {} | {} |\n", scene, layouts[g].name, sah.size(), cells[0], cells[1],
+            md += fmt::format("| {} | {} | {} | {} | {} | {} |\n", scene, kLayouts[g].name, m.sah.size(), cells[0], cells[1],
                               cells[2]);
-            Pool& pool = pools[g];
-            pool.sah.insert(pool.sah.end(), sah.begin(), sah.end());
-            pool.epo.insert(pool.epo.end(), epo.begin(), epo.end());
-            for (size_t s = 0; s < kSets; ++s) pool.trace[s].insert(pool.trace[s].end(), trace[s].begin(), trace[s].end());
+            NormalisedMetrics& pool = pools[g];
+            pool.sah.insert(pool.sah.end(), m.sah.begin(), m.sah.end());
+            pool.epo.insert(pool.epo.end(), m.epo.begin(), m.epo.end());
+            for (size_t s = 0; s < kSets; ++s)
+                pool.trace[s].insert(pool.trace[s].end(), m.trace[s].begin(), m.trace[s].end());
         }
-    md += "\nPooled over the scenes (each value over its scene's geometric mean in its layout):\n\n"
-          "| layout | pairs | ray set | SAH | SAH+EPO (a = 0.5) | SAH+EPO, fitted a | EPO |\n|---|---:|---|---|---|---|---|\n";
-    for (size_t g = 0; g < std::size(layouts); ++g) {
-        const Pool& pool = pools[g];
+    return md;
+}
+
+std::string rankCorrelationPooled(const NormalisedMetrics (&pools)[std::size(kLayouts)]) {
+    std::string md = "\nPooled over the scenes (each value over its scene's geometric mean in its layout):\n\n"
+                     "| layout | pairs | ray set | SAH | SAH+EPO (a = 0.5) | SAH+EPO, fitted a | EPO |\n|---|---:|---|---|---|---|---|\n";
+    for (size_t g = 0; g < std::size(kLayouts); ++g) {
+        const NormalisedMetrics& pool = pools[g];
         for (size_t s = 0; s < kSets; ++s) {
             double bestA = 0.0;
             std::optional<double> best;
@@ -309,12 +345,33 @@ std::string writeBuildersReport(const std::filesystem::path& dir, const std::vec
                 const std::optional<double> r = spearman(combine(pool.sah, pool.epo, a), pool.trace[s]);
                 if (r && (!best || *r > *best)) best = r, bestA = a;
             }
-            md += fmt::format("| {} | {} | {} | {} | {} | {} (a = {:.2f}) | {} |\n", layouts[g].name, pool.sah.size(),
+            md += fmt::format("| {} | {} | {} | {} | {} | {} (a = {:.2f}) | {} |\n", kLayouts[g].name, pool.sah.size(),
                               kBuilderRaySets[s], rho(spearman(pool.sah, pool.trace[s])),
                               rho(spearman(combine(pool.sah, pool.epo, 0.5), pool.trace[s])), rho(best), bestA,
                               rho(spearman(pool.epo, pool.trace[s])));
         }
     }
+    return md;
+}
+
+}  // namespace
+
+std::string writeBuildersReport(const std::filesystem::path& dir, const std::vector<std::string>& sceneIds,
+                                const std::vector<AccelConfig>& configs, const TradeoffSettings& settings) {
+    const TimeKeys keys(settings.threads);
+    Measured measured =
+        readMeasuredConfigs<Row>(dir, sceneIds, configs, [&](json stored) { return rowOf(std::move(stored), keys); });
+    for (auto& [scene, byLabel] : measured.rows) compareWithinScene(byLabel, keys);
+    const Summary summary = summarise(measured, sceneIds, configs);
+    writeFileAtomically(dir / "builders.csv", buildersCsv(measured, sceneIds, configs));
+    writeFileAtomically(dir / "builders_summary.csv", summaryCsv(summary, configs));
+
+    NormalisedMetrics pools[std::size(kLayouts)];
+    std::string md = settingsParagraph(settings) + sceneTable(measured, sceneIds, configs) +
+                     structuresMeasured(dir, sceneIds, configs) + summaryTable(summary, configs) +
+                     sbvh8AgainstHigh(measured, sceneIds);
+    md += rankCorrelationPerScene(measured, sceneIds, pools);  // fills the pools first
+    md += rankCorrelationPooled(pools);
     writeFileAtomically(dir / "builders.md", md);
     return md;
 }

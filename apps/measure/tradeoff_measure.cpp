@@ -206,80 +206,111 @@ TradeoffScene prepareTradeoffScene(const std::string& id, const Env& sceneEnv, c
     return t;
 }
 
-json measureTradeoffConfig(const TradeoffScene& t, const AccelConfig& config, const TradeoffSettings& settings) {
-    const Env env = accelConfigEnv(config, t.env);
-    TimedBuilds built = timedBuilds(t.scene, config, env, settings);
-    const std::unique_ptr<Accelerator>& accel = built.accel;
-    const BuildStats& stats = built.stats;
-    const std::vector<double>& buildMs = built.buildMs;
-    const std::vector<double>& buildCpuMs = built.buildCpuMs;
-    const bool counted = accel->hasCounters();
-    const double buildMedian = median(buildMs), buildCpuMedian = median(buildCpuMs);
+namespace {
 
-    // T_R on the ray sets (through the batch calls, as the tradeoff has always measured it), and
-    // the answers compared with Embree's on the same rays.
-    auto pass = [&](const std::vector<Ray>& rays, const RaySetQuery& asked) {
-        const PassResult r = tracePasses(*accel, rays, asked.anyHit, asked.coherence, settings.threads, settings.passes,
-                                         QueryKind::Batch);
-        const double q = std::max<double>(1.0, double(r.counters.queries));
-        json result{{"rays", rays.size()}, {"t_r_us", r.usPerQuery}, {"t_r_cpu_us", r.cpuUsPerQuery}};
-        result.update(queryCountersJson(r.counters, q, counted));
-        return result;
-    };
-    json primary = pass(t.rays.primary, kRaySetQueries[0]), shadow = pass(t.rays.shadow, kRaySetQueries[1]);
-    // The first few disagreements are kept with the full ray (as `bvhlab raycast` reads it), so
-    // that a referee (naive, Embree's robust mode) can say who is right.
-    constexpr size_t kExamples = 5;
-    auto rayJson = [](const Ray& r) {
-        return json{{"org", {r.org.x, r.org.y, r.org.z}}, {"dir", {r.dir.x, r.dir.y, r.dir.z}}, {"tmin", r.tmin}, {"tmax", r.tmax}};
-    };
-    auto hitJson = [](const Hit& h) { return h.found() ? json{{"t", h.t}, {"primitive", h.primitive}} : json(); };
-    size_t primaryMismatches = 0, shadowMismatches = 0;
-    json primaryExamples = json::array(), shadowExamples = json::array();
+// T_R on one ray set, through the batch calls (as the tradeoff has always measured it).
+json traceRaySet(const Accelerator& accel, const std::vector<Ray>& rays, const RaySetQuery& asked,
+                 const TradeoffSettings& settings) {
+    const bool counted = accel.hasCounters();
+    const PassResult r = tracePasses(accel, rays, asked.anyHit, asked.coherence, settings.threads, settings.passes,
+                                     QueryKind::Batch);
+    const double q = std::max<double>(1.0, double(r.counters.queries));
+    json result{{"rays", rays.size()}, {"t_r_us", r.usPerQuery}, {"t_r_cpu_us", r.cpuUsPerQuery}};
+    result.update(queryCountersJson(r.counters, q, counted));
+    return result;
+}
+
+// The answers compared with Embree's on the same rays. The first few disagreements are kept with
+// the full ray (as `bvhlab raycast` reads it), so that a referee (naive, Embree's robust mode)
+// can say who is right.
+constexpr size_t kMismatchExamples = 5;
+
+json rayJson(const Ray& r) {
+    return json{{"org", {r.org.x, r.org.y, r.org.z}}, {"dir", {r.dir.x, r.dir.y, r.dir.z}}, {"tmin", r.tmin}, {"tmax", r.tmax}};
+}
+
+json hitJson(const Hit& h) { return h.found() ? json{{"t", h.t}, {"primitive", h.primitive}} : json(); }
+
+void addPrimaryMismatches(const Accelerator& accel, const TradeoffScene& t, json& primary) {
+    size_t mismatches = 0;
+    json examples = json::array();
     QueryCounters unused;
     for (size_t i = 0; i < t.rays.primary.size(); ++i) {
         Hit hit;
-        accel->findNearest(t.rays.primary[i], hit, unused);
+        accel.findNearest(t.rays.primary[i], hit, unused);
         if (hitsAgree(hit, t.referenceHits[i])) continue;
-        if (++primaryMismatches <= kExamples)
-            primaryExamples.push_back({{"ray_index", i}, {"ray", rayJson(t.rays.primary[i])}, {"hit", hitJson(hit)},
-                                       {"embree", hitJson(t.referenceHits[i])}});
+        if (++mismatches <= kMismatchExamples)
+            examples.push_back({{"ray_index", i}, {"ray", rayJson(t.rays.primary[i])}, {"hit", hitJson(hit)},
+                                {"embree", hitJson(t.referenceHits[i])}});
     }
-    for (size_t i = 0; i < t.rays.shadow.size(); ++i) {
-        const bool occluded = accel->isOccluded(t.rays.shadow[i], unused);
-        if (occluded == bool(t.referenceOccluded[i])) continue;
-        if (++shadowMismatches <= kExamples)
-            shadowExamples.push_back({{"ray_index", i}, {"ray", rayJson(t.rays.shadow[i])}, {"occluded", occluded},
-                                      {"embree", bool(t.referenceOccluded[i])}});
-    }
-    primary["mismatches"] = primaryMismatches;
-    primary["mismatch_examples"] = primaryExamples;
-    shadow["mismatches"] = shadowMismatches;
-    shadow["mismatch_examples"] = shadowExamples;
+    primary["mismatches"] = mismatches;
+    primary["mismatch_examples"] = examples;
+}
 
-    // The spp series: time to image and image error.
+void addShadowMismatches(const Accelerator& accel, const TradeoffScene& t, json& shadow) {
+    size_t mismatches = 0;
+    json examples = json::array();
+    QueryCounters unused;
+    for (size_t i = 0; i < t.rays.shadow.size(); ++i) {
+        const bool occluded = accel.isOccluded(t.rays.shadow[i], unused);
+        if (occluded == bool(t.referenceOccluded[i])) continue;
+        if (++mismatches <= kMismatchExamples)
+            examples.push_back({{"ray_index", i}, {"ray", rayJson(t.rays.shadow[i])}, {"occluded", occluded},
+                                {"embree", bool(t.referenceOccluded[i])}});
+    }
+    shadow["mismatches"] = mismatches;
+    shadow["mismatch_examples"] = examples;
+}
+
+// The spp series: time to image (the median build's and the render's) and image error; and the
+// 1 spp image against Embree's.
+struct SppSeries {
+    json series = json::array();
+    json sameImage;
+};
+
+SppSeries renderSeries(const Accelerator& accel, const TradeoffScene& t, const Env& env, const TradeoffSettings& settings,
+                       double buildMedian, double buildCpuMedian) {
     RenderSettings renderSettings = RenderSettings::fromEnv(env, t.scene, t.seriesCamera);
     renderSettings.threads = settings.threads;
-    json series = json::array(), sameImage;
+    SppSeries out;
     for (int spp : settings.sppSeries()) {
         RenderStats rs;
         const double cpu = processCpuMs();
-        const std::vector<Vec3> image = renderImage(t.scene, *accel, t.seriesCamera, renderSettings, spp, &rs);
+        const std::vector<Vec3> image = renderImage(t.scene, accel, t.seriesCamera, renderSettings, spp, &rs);
         const double renderCpu = processCpuMs() - cpu;
         const ImageError e = imageError(image, t.referenceImage);
-        series.push_back({{"spp", spp},
-                          {"render_ms", rs.renderMs},
-                          {"render_cpu_ms", renderCpu},
-                          {"queries", rs.primary.counters.queries + rs.shadow.counters.queries},
-                          {"time_to_image_ms", buildMedian + rs.renderMs},
-                          {"time_to_image_cpu_ms", buildCpuMedian + renderCpu},
-                          {"rmse", e.rmse},
-                          {"psnr", finiteOrNull(e.psnr)}});
+        out.series.push_back({{"spp", spp},
+                              {"render_ms", rs.renderMs},
+                              {"render_cpu_ms", renderCpu},
+                              {"queries", rs.primary.counters.queries + rs.shadow.counters.queries},
+                              {"time_to_image_ms", buildMedian + rs.renderMs},
+                              {"time_to_image_cpu_ms", buildCpuMedian + renderCpu},
+                              {"rmse", e.rmse},
+                              {"psnr", finiteOrNull(e.psnr)}});
         if (spp == 1) {
             const ImageError same = imageError(image, t.embreeImage1Spp);
-            sameImage = {{"rmse", same.rmse}, {"pixels_differing", same.pixelsDiffering}};
+            out.sameImage = {{"rmse", same.rmse}, {"pixels_differing", same.pixelsDiffering}};
         }
     }
+    return out;
+}
+
+}  // namespace
+
+json measureTradeoffConfig(const TradeoffScene& t, const AccelConfig& config, const TradeoffSettings& settings) {
+    const Env env = accelConfigEnv(config, t.env);
+    TimedBuilds built = timedBuilds(t.scene, config, env, settings);
+    const Accelerator& accel = *built.accel;
+    const std::vector<double>& buildMs = built.buildMs;
+    const std::vector<double>& buildCpuMs = built.buildCpuMs;
+    const double buildMedian = median(buildMs), buildCpuMedian = median(buildCpuMs);
+
+    json primary = traceRaySet(accel, t.rays.primary, kRaySetQueries[0], settings);
+    json shadow = traceRaySet(accel, t.rays.shadow, kRaySetQueries[1], settings);
+    addPrimaryMismatches(accel, t, primary);
+    addShadowMismatches(accel, t, shadow);
+    const SppSeries series = renderSeries(accel, t, env, settings, buildMedian, buildCpuMedian);
 
     const size_t colon = config.label.find("-K");
     json result = {{"scene", t.id},
@@ -296,11 +327,11 @@ json measureTradeoffConfig(const TradeoffScene& t, const AccelConfig& config, co
                    {"shadow", shadow},
                    {"series_width", t.seriesCamera.width},
                    {"series_height", t.seriesCamera.height},
-                   {"series", series},
-                   {"same_image_1spp", sameImage},
+                   {"series", series.series},
+                   {"same_image_1spp", series.sameImage},
                    {"provenance", provenanceJson()},
                    {"run", runJson()}};
-    result.update(buildStatsJson(stats));
+    result.update(buildStatsJson(built.stats));
     return result;
 }
 

@@ -1,6 +1,7 @@
 // `bvhlab tradeoff`: the CSV files and Markdown tables, made from the per-configuration JSON
 // files alone (so a resumed run reports everything measured so far).
 #include "apps/measure/failed_config.h"
+#include "apps/measure/measured_configs.h"
 #include "apps/measure/tradeoff.h"
 #include "apps/runtime/atomic_write.h"
 #include "apps/runtime/output_paths.h"
@@ -79,6 +80,224 @@ struct Row {
     }
 };
 
+using Measured = MeasuredConfigs<Row>;
+
+// Each configuration's SAH against sweepbvh's on the same scene.
+void addGapsToSweep(Measured& measured) {
+    for (auto& [scene, byConfig] : measured.rows) {
+        const json sweep = byConfig.count("sweepbvh") ? byConfig["sweepbvh"].at("sah") : json();
+        for (auto& [label, row] : byConfig) {
+            const json r = ratio(row.at("sah"), sweep);
+            row.gap = r.is_null() ? json() : json(r.get<double>() - 1.0);
+        }
+    }
+}
+
+// The row whose image error stands for the scene's: Embree's, or the first measured.
+const Row& referenceRow(const std::map<std::string, Row>& byConfig) {
+    const auto embree = byConfig.find("embree");
+    return embree != byConfig.end() ? embree->second : byConfig.begin()->second;
+}
+
+// The spread of the RMSE over the structures of one scene at the i-th sample count, if any has one.
+std::optional<double> rmseSpread(const std::map<std::string, Row>& byConfig, size_t i) {
+    double lo = INFINITY, hi = -INFINITY;
+    for (const auto& [label, row] : byConfig)
+        if (row.series(i, "rmse").is_number()) {
+            lo = std::min(lo, row.series(i, "rmse").get<double>());
+            hi = std::max(hi, row.series(i, "rmse").get<double>());
+        }
+    return hi >= lo ? std::optional<double>(hi - lo) : std::nullopt;
+}
+
+std::vector<std::string> tradeoffCsvCells(const std::string& scene, const std::string& label, const Row& r, int maxSpp) {
+    const json& p = r.stored["primary"];
+    const json& s = r.stored["shadow"];
+    return {scene, label, cell(r.at("accel")), cell(r.at("bins")), cell(r.at("prims")),
+            std::to_string(r.stored["build_ms_all"].size()), cell(r.at("build_ms"), "{:.3f}"),
+            cell(r.at("build_cpu_ms"), "{:.3f}"), cell(r.at("sah"), "{:.6f}"), cell(r.gap, "{:.6f}"),
+            cell(r.at("nodes")), cell(r.at("leaves")), cell(p["rays"]), cell(p["t_r_us"], "{:.4f}"),
+            cell(p["t_r_cpu_us"], "{:.4f}"), cell(p["n_it"], "{:.3f}"), cell(p["n_tr"], "{:.3f}"), cell(s["rays"]),
+            cell(s["t_r_us"], "{:.4f}"), cell(s["t_r_cpu_us"], "{:.4f}"), cell(s["n_it"], "{:.3f}"),
+            cell(s["n_tr"], "{:.3f}"), cell(r.at("series_width")), cell(r.at("series_height")),
+            std::to_string(maxSpp), cell(r.series(0, "render_ms"), "{:.3f}"), cell(r.lastSeries("render_ms"), "{:.3f}"),
+            cell(r.series(0, "render_cpu_ms"), "{:.3f}"), cell(r.lastSeries("render_cpu_ms"), "{:.3f}"),
+            cell(r.series(0, "time_to_image_ms"), "{:.3f}"), cell(r.lastSeries("time_to_image_ms"), "{:.3f}"),
+            cell(r.series(0, "time_to_image_cpu_ms"), "{:.3f}"), cell(r.lastSeries("time_to_image_cpu_ms"), "{:.3f}"),
+            cell(p["mismatches"]), cell(s["mismatches"]),
+            cell(r.stored["same_image_1spp"].value("pixels_differing", json())), ""};
+}
+
+std::string tradeoffCsv(const Measured& measured, const std::vector<std::string>& sceneIds,
+                        const std::vector<AccelConfig>& configs, int maxSpp) {
+    std::string csv =
+        "scene,config,accel,bins,prims,builds,build_ms,build_cpu_ms,sah,sah_gap,nodes,leaves,primary_rays,"
+        "t_r_primary_us,t_r_primary_cpu_us,n_it_primary,n_tr_primary,shadow_rays,t_r_shadow_us,t_r_shadow_cpu_us,"
+        "n_it_shadow,n_tr_shadow,series_width,series_height,max_spp,render_1spp_ms,render_max_ms,render_1spp_cpu_ms,"
+        "render_max_cpu_ms,time_to_image_1spp_ms,time_to_image_max_ms,time_to_image_1spp_cpu_ms,"
+        "time_to_image_max_cpu_ms,mismatches_primary,mismatches_shadow,pixels_differing_1spp,failed\n";
+    const std::string csvHeader = csv;
+    for (const std::string& scene : sceneIds)
+        for (const AccelConfig& config : configs) {
+            if (const json* failure = measured.failure(scene, config.label)) {
+                csv += failedConfigCsvRow(*failure, csvHeader);
+                continue;
+            }
+            const Row* r = measured.row(scene, config.label);
+            if (!r) continue;
+            const std::vector<std::string> cells = tradeoffCsvCells(scene, config.label, *r, maxSpp);
+            for (size_t i = 0; i < cells.size(); ++i) csv += (i ? "," : "") + cells[i];
+            csv += '\n';
+        }
+    return csv;
+}
+
+// image_error.csv: the error is the scene's (every structure makes the same image; the
+// spread over structures shows how far that holds), the render time each structure's.
+std::string imageErrorCsv(const Measured& measured, const std::vector<std::string>& sceneIds,
+                          const std::vector<AccelConfig>& configs, const std::vector<int>& spps) {
+    std::string errors = "scene,spp,rmse,psnr,rmse_spread";
+    for (const AccelConfig& config : configs) errors += ",render_ms_" + config.label;
+    for (const AccelConfig& config : configs) errors += ",render_cpu_ms_" + config.label;
+    errors += "\n";
+    for (const std::string& scene : sceneIds) {
+        const auto byConfig = measured.rows.find(scene);
+        if (byConfig == measured.rows.end() || byConfig->second.empty()) continue;
+        const Row& ref = referenceRow(byConfig->second);
+        for (size_t i = 0; i < spps.size(); ++i) {
+            const std::optional<double> spread = rmseSpread(byConfig->second, i);
+            errors += fmt::format("{},{},{},{},{}", scene, spps[i], cell(ref.series(i, "rmse"), "{:.7f}"),
+                                  cell(ref.series(i, "psnr"), "{:.4f}"), spread ? fmt::format("{:.3g}", *spread) : "");
+            for (const char* key : {"render_ms", "render_cpu_ms"})
+                for (const AccelConfig& config : configs) {
+                    errors += ',';
+                    if (const Row* r = measured.row(scene, config.label)) errors += cell(r->series(i, key), "{:.3f}");
+                }
+            errors += "\n";
+        }
+    }
+    return errors;
+}
+
+// tradeoff.md's first paragraph: what was measured, and how.
+std::string settingsParagraph(const Measured& measured, const TradeoffSettings& settings, int maxSpp) {
+    const auto& rows = measured.rows;
+    const int w = rows.empty() || rows.begin()->second.empty() ? settings.seriesSize
+                                                                : rows.begin()->second.begin()->second.at("series_width").get<int>();
+    return fmt::format(
+        "Settings: threads {}; builds: median of up to {} (fewer once they took {:.0f} s); T_R: median of {} pass(es) "
+        "over the primary and shadow rays of a {} image; images {}x{} at 1..{} spp, reference {} spp (Embree). Times "
+        "are CPU time of the process (one thread at work), which leaves out what the shared machine gave to others; "
+        "wall times are in tradeoff.csv. Time to image = T_B + render.\n\n",
+        settings.threads, settings.builds, settings.buildBudgetMs * 1e-3, settings.passes,
+        settings.raySize > 0 ? fmt::format("{}x{}", settings.raySize, settings.raySize) : std::string("scene-sized"), w, w,
+        maxSpp, settings.referenceSpp);
+}
+
+std::string sceneTable(const Measured& measured, const std::vector<std::string>& sceneIds,
+                       const std::vector<AccelConfig>& configs, int maxSpp) {
+    std::vector<std::vector<std::string>> sceneRows;
+    for (const std::string& scene : sceneIds)
+        for (const AccelConfig& config : configs) {
+            if (const json* failure = measured.failure(scene, config.label)) {
+                sceneRows.push_back(failedConfigCells(*failure, 10, "n/a"));
+                continue;
+            }
+            const Row* row = measured.row(scene, config.label);
+            if (!row) continue;
+            const Row& r = *row;
+            sceneRows.push_back({scene, config.label, shown(r.at("build_cpu_ms"), "{:.1f}"), shown(r.at("sah"), "{:.2f}"),
+                                 r.gap.is_null() ? "n/a" : fmt::format("{:+.2f}", 100.0 * r.gap.get<double>()),
+                                 shown(r.stored["primary"]["t_r_cpu_us"], "{:.3f}"),
+                                 shown(r.stored["shadow"]["t_r_cpu_us"], "{:.3f}"),
+                                 shown(r.series(0, "time_to_image_cpu_ms"), "{:.0f}"),
+                                 shown(r.lastSeries("time_to_image_cpu_ms"), "{:.0f}"),
+                                 fmt::format("{} / {}", cell(r.stored["primary"]["mismatches"]),
+                                             cell(r.stored["shadow"]["mismatches"]))});
+        }
+    return markdownTable({"scene", "config", "T_B [ms]", "SAH", "gap [%]", "T_R primary [µs]", "T_R shadow [µs]",
+                          "image 1 spp [ms]", fmt::format("image {} spp [ms]", maxSpp), "mismatches primary / shadow"},
+                         {"---", "---", "---:", "---:", "---:", "---:", "---:", "---:", "---:", "---:"}, sceneRows);
+}
+
+// The configuration build times are taken against: sahbvh-K16, or the first sahbvh measured.
+std::string buildYardstick(const std::vector<AccelConfig>& configs) {
+    std::string k16 = "sahbvh-K16";
+    if (std::none_of(configs.begin(), configs.end(), [&](const AccelConfig& c) { return c.label == k16; }))
+        for (const AccelConfig& c : configs)
+            if (c.name == "sahbvh") { k16 = c.label; break; }
+    return k16;
+}
+
+// One configuration's row of the summary over the scenes, or nothing where no scene has it.
+std::optional<std::vector<std::string>> summaryRow(const Measured& measured, const std::vector<std::string>& sceneIds,
+                                                   const std::string& label, const std::string& k16) {
+    std::vector<json> build, trp, trs, img1, imgMax;
+    double gapSum = 0.0, gapMax = -INFINITY;
+    int gaps = 0, scenes = 0;
+    long long mismatches = 0;
+    for (const std::string& scene : sceneIds) {
+        const Row* row = measured.row(scene, label);
+        if (!row) continue;
+        ++scenes;
+        const Row& r = *row;
+        if (r.gap.is_number()) gapSum += r.gap.get<double>(), gapMax = std::max(gapMax, r.gap.get<double>()), ++gaps;
+        if (const Row* k = measured.row(scene, k16)) build.push_back(ratio(r.at("build_cpu_ms"), k->at("build_cpu_ms")));
+        if (const Row* sweep = measured.row(scene, "sweepbvh")) {
+            trp.push_back(ratio(r.stored["primary"]["t_r_cpu_us"], sweep->stored["primary"]["t_r_cpu_us"]));
+            trs.push_back(ratio(r.stored["shadow"]["t_r_cpu_us"], sweep->stored["shadow"]["t_r_cpu_us"]));
+        }
+        if (const Row* embree = measured.row(scene, "embree")) {
+            img1.push_back(ratio(r.series(0, "time_to_image_cpu_ms"), embree->series(0, "time_to_image_cpu_ms")));
+            imgMax.push_back(ratio(r.lastSeries("time_to_image_cpu_ms"), embree->lastSeries("time_to_image_cpu_ms")));
+        }
+        mismatches += r.stored["primary"].value("mismatches", 0LL) + r.stored["shadow"].value("mismatches", 0LL);
+    }
+    if (!scenes) return std::nullopt;
+    return std::vector<std::string>{label, std::to_string(scenes),
+                                    gaps ? fmt::format("{:+.2f}", 100.0 * gapSum / gaps) : "n/a",
+                                    gaps ? fmt::format("{:+.2f}", 100.0 * gapMax) : "n/a", shown(geoMean(build), "{:.2f}"),
+                                    shown(geoMean(trp), "{:.2f}"), shown(geoMean(trs), "{:.2f}"), shown(geoMean(img1), "{:.2f}"),
+                                    shown(geoMean(imgMax), "{:.2f}"), std::to_string(mismatches)};
+}
+
+// The summary: gaps averaged; times as geometric means of per-scene ratios.
+std::string summaryTable(const Measured& measured, const std::vector<std::string>& sceneIds,
+                         const std::vector<AccelConfig>& configs, int maxSpp) {
+    const std::string k16 = buildYardstick(configs);
+    std::vector<std::vector<std::string>> summaryRows;
+    for (const AccelConfig& config : configs)
+        if (auto row = summaryRow(measured, sceneIds, config.label, k16)) summaryRows.push_back(std::move(*row));
+    return "\nOver the scenes measured (gaps: mean and max; times: geometric mean of the per-scene ratios):\n\n" +
+           markdownTable({"config", "scenes", "gap mean [%]", "gap max [%]", fmt::format("T_B / T_B({})", k16),
+                          "T_R primary / sweepbvh", "T_R shadow / sweepbvh", "image 1 spp / embree",
+                          fmt::format("image {} spp / embree", maxSpp), "mismatches"},
+                         {"---", "---:", "---:", "---:", "---:", "---:", "---:", "---:", "---:", "---:"}, summaryRows);
+}
+
+std::string imageErrorTable(const Measured& measured, const std::vector<std::string>& sceneIds,
+                            const std::vector<int>& spps) {
+    std::string md = "\nImage error against the reference: PSNR [dB] per samples per pixel (the same for every structure; "
+                     "largest RMSE spread over structures in the last column)\n\n| scene |";
+    for (int spp : spps) md += fmt::format(" {} |", spp);
+    md += " spread |\n|---|";
+    for (size_t i = 0; i <= spps.size(); ++i) md += "---:|";
+    md += "\n";
+    for (const std::string& scene : sceneIds) {
+        const auto byConfig = measured.rows.find(scene);
+        if (byConfig == measured.rows.end() || byConfig->second.empty()) continue;
+        const Row& ref = referenceRow(byConfig->second);
+        double spread = 0.0;
+        md += fmt::format("| {} |", scene);
+        for (size_t i = 0; i < spps.size(); ++i) {
+            md += fmt::format(" {} |", shown(ref.series(i, "psnr"), "{:.1f}"));
+            if (const std::optional<double> s = rmseSpread(byConfig->second, i)) spread = std::max(spread, *s);
+        }
+        md += fmt::format(" {:.1e} |\n", spread);
+    }
+    return md;
+}
+
 }  // namespace
 
 std::string structuresMeasured(const std::filesystem::path& dir, const std::vector<std::string>& sceneIds,
@@ -99,193 +318,17 @@ std::string structuresMeasured(const std::filesystem::path& dir, const std::vect
 
 std::string writeTradeoffReport(const std::filesystem::path& dir, const std::vector<std::string>& sceneIds,
                                 const std::vector<AccelConfig>& configs, const TradeoffSettings& settings) {
-    // scene -> config label -> row
-    std::map<std::string, std::map<std::string, Row>> rows;
-    std::map<std::string, std::map<std::string, json>> failures;  // scene -> config label -> its failure
-    for (const std::string& scene : sceneIds)
-        for (const AccelConfig& config : configs) {
-            const std::filesystem::path file = dir / scene / (labelAsFileName(config.label) + ".json");
-            if (!std::filesystem::exists(file)) continue;
-            std::ifstream in(file);
-            json stored = json::parse(in);
-            if (isFailedConfig(stored)) failures[scene][config.label] = std::move(stored);
-            else rows[scene][config.label].stored = std::move(stored);
-        }
-    for (auto& [scene, byConfig] : rows) {
-        const json sweep = byConfig.count("sweepbvh") ? byConfig["sweepbvh"].at("sah") : json();
-        for (auto& [label, row] : byConfig) {
-            const json r = ratio(row.at("sah"), sweep);
-            row.gap = r.is_null() ? json() : json(r.get<double>() - 1.0);
-        }
-    }
-
+    Measured measured = readMeasuredConfigs<Row>(dir, sceneIds, configs, [](json stored) { return Row{std::move(stored), json()}; });
+    addGapsToSweep(measured);
     const std::vector<int> spps = settings.sppSeries();
     const int maxSpp = spps.back();
-
-    // tradeoff.csv
-    std::string csv =
-        "scene,config,accel,bins,prims,builds,build_ms,build_cpu_ms,sah,sah_gap,nodes,leaves,primary_rays,"
-        "t_r_primary_us,t_r_primary_cpu_us,n_it_primary,n_tr_primary,shadow_rays,t_r_shadow_us,t_r_shadow_cpu_us,"
-        "n_it_shadow,n_tr_shadow,series_width,series_height,max_spp,render_1spp_ms,render_max_ms,render_1spp_cpu_ms,"
-        "render_max_cpu_ms,time_to_image_1spp_ms,time_to_image_max_ms,time_to_image_1spp_cpu_ms,"
-        "time_to_image_max_cpu_ms,mismatches_primary,mismatches_shadow,pixels_differing_1spp,failed\n";
-    const std::string csvHeader = csv;
-    for (const std::string& scene : sceneIds)
-        for (const AccelConfig& config : configs) {
-            if (failures[scene].count(config.label)) {
-                csv += failedConfigCsvRow(failures[scene][config.label], csvHeader);
-                continue;
-            }
-            if (!rows[scene].count(config.label)) continue;
-            const Row& r = rows[scene][config.label];
-            const json& p = r.stored["primary"];
-            const json& s = r.stored["shadow"];
-            const std::vector<std::string> cells = {
-                scene, config.label, cell(r.at("accel")), cell(r.at("bins")), cell(r.at("prims")),
-                std::to_string(r.stored["build_ms_all"].size()), cell(r.at("build_ms"), "{:.3f}"),
-                cell(r.at("build_cpu_ms"), "{:.3f}"), cell(r.at("sah"), "{:.6f}"), cell(r.gap, "{:.6f}"),
-                cell(r.at("nodes")), cell(r.at("leaves")), cell(p["rays"]), cell(p["t_r_us"], "{:.4f}"),
-                cell(p["t_r_cpu_us"], "{:.4f}"), cell(p["n_it"], "{:.3f}"), cell(p["n_tr"], "{:.3f}"), cell(s["rays"]),
-                cell(s["t_r_us"], "{:.4f}"), cell(s["t_r_cpu_us"], "{:.4f}"), cell(s["n_it"], "{:.3f}"),
-                cell(s["n_tr"], "{:.3f}"), cell(r.at("series_width")), cell(r.at("series_height")),
-                std::to_string(maxSpp), cell(r.series(0, "render_ms"), "{:.3f}"), cell(r.lastSeries("render_ms"), "{:.3f}"),
-                cell(r.series(0, "render_cpu_ms"), "{:.3f}"), cell(r.lastSeries("render_cpu_ms"), "{:.3f}"),
-                cell(r.series(0, "time_to_image_ms"), "{:.3f}"), cell(r.lastSeries("time_to_image_ms"), "{:.3f}"),
-                cell(r.series(0, "time_to_image_cpu_ms"), "{:.3f}"), cell(r.lastSeries("time_to_image_cpu_ms"), "{:.3f}"),
-                cell(p["mismatches"]), cell(s["mismatches"]),
-                cell(r.stored["same_image_1spp"].value("pixels_differing", json())), ""};
-            for (size_t i = 0; i < cells.size(); ++i) csv += (i ? "," : "") + cells[i];
-            csv += '\n';
-        }
-    writeFileAtomically(dir / "tradeoff.csv", csv);
-
-    // image_error.csv: the error is the scene's (every structure makes the same image; the
-    // spread over structures shows how far that holds), the render time each structure's.
-    std::string errors = "scene,spp,rmse,psnr,rmse_spread";
-    for (const AccelConfig& config : configs) errors += ",render_ms_" + config.label;
-    for (const AccelConfig& config : configs) errors += ",render_cpu_ms_" + config.label;
-    errors += "\n";
-    for (const std::string& scene : sceneIds) {
-        if (rows[scene].empty()) continue;
-        const Row& ref = rows[scene].count("embree") ? rows[scene]["embree"] : rows[scene].begin()->second;
-        for (size_t i = 0; i < spps.size(); ++i) {
-            double lo = INFINITY, hi = -INFINITY;
-            for (const auto& [label, row] : rows[scene])
-                if (row.series(i, "rmse").is_number()) {
-                    lo = std::min(lo, row.series(i, "rmse").get<double>());
-                    hi = std::max(hi, row.series(i, "rmse").get<double>());
-                }
-            errors += fmt::format("{},{},{},{},{}", scene, spps[i], cell(ref.series(i, "rmse"), "{:.7f}"),
-                                  cell(ref.series(i, "psnr"), "{:.4f}"), hi >= lo ? fmt::format("{:.3g}", hi - lo) : "");
-            for (const char* key : {"render_ms", "render_cpu_ms"})
-                for (const AccelConfig& config : configs) {
-                    errors += ',';
-                    if (rows[scene].count(config.label)) errors += cell(rows[scene][config.label].series(i, key), "{:.3f}");
-                }
-            errors += "\n";
-        }
-    }
-    writeFileAtomically(dir / "image_error.csv", errors);
+    writeFileAtomically(dir / "tradeoff.csv", tradeoffCsv(measured, sceneIds, configs, maxSpp));
+    writeFileAtomically(dir / "image_error.csv", imageErrorCsv(measured, sceneIds, configs, spps));
 
     // tradeoff.md: per scene, the summary over scenes, the image error.
-    const int w = rows.empty() || rows.begin()->second.empty() ? settings.seriesSize
-                                                                : rows.begin()->second.begin()->second.at("series_width").get<int>();
-    std::string md = fmt::format(
-        "Settings: threads {}; builds: median of up to {} (fewer once they took {:.0f} s); T_R: median of {} pass(es) "
-        "over the primary and shadow rays of a {} image; images {}x{} at 1..{} spp, reference {} spp (Embree). Times "
-        "are CPU time of the process (one thread at work), which leaves out what the shared machine gave to others; "
-        "wall times are in tradeoff.csv. Time to image = T_B + render.\n\n",
-        settings.threads, settings.builds, settings.buildBudgetMs * 1e-3, settings.passes,
-        settings.raySize > 0 ? fmt::format("{}x{}", settings.raySize, settings.raySize) : std::string("scene-sized"), w, w,
-        maxSpp, settings.referenceSpp);
-    std::vector<std::vector<std::string>> sceneRows;
-    for (const std::string& scene : sceneIds)
-        for (const AccelConfig& config : configs) {
-            if (failures[scene].count(config.label)) {
-                sceneRows.push_back(failedConfigCells(failures[scene][config.label], 10, "n/a"));
-                continue;
-            }
-            if (!rows[scene].count(config.label)) continue;
-            const Row& r = rows[scene][config.label];
-            sceneRows.push_back({scene, config.label, shown(r.at("build_cpu_ms"), "{:.1f}"), shown(r.at("sah"), "{:.2f}"),
-                                 r.gap.is_null() ? "n/a" : fmt::format("{:+.2f}", 100.0 * r.gap.get<double>()),
-                                 shown(r.stored["primary"]["t_r_cpu_us"], "{:.3f}"),
-                                 shown(r.stored["shadow"]["t_r_cpu_us"], "{:.3f}"),
-                                 shown(r.series(0, "time_to_image_cpu_ms"), "{:.0f}"),
-                                 shown(r.lastSeries("time_to_image_cpu_ms"), "{:.0f}"),
-                                 fmt::format("{} / {}", cell(r.stored["primary"]["mismatches"]),
-                                             cell(r.stored["shadow"]["mismatches"]))});
-        }
-    md += markdownTable({"scene", "config", "T_B [ms]", "SAH", "gap [%]", "T_R primary [µs]", "T_R shadow [µs]",
-                         "image 1 spp [ms]", fmt::format("image {} spp [ms]", maxSpp), "mismatches primary / shadow"},
-                        {"---", "---", "---:", "---:", "---:", "---:", "---:", "---:", "---:", "---:"}, sceneRows);
-
-    md += structuresMeasured(dir, sceneIds, configs);
-
-    // The summary: gaps averaged; times as geometric means of per-scene ratios.
-    std::string k16 = "sahbvh-K16";
-    if (std::none_of(configs.begin(), configs.end(), [&](const AccelConfig& c) { return c.label == k16; }))
-        for (const AccelConfig& c : configs)
-            if (c.name == "sahbvh") { k16 = c.label; break; }
-    md += "\nOver the scenes measured (gaps: mean and max; times: geometric mean of the per-scene ratios):\n\n";
-    std::vector<std::vector<std::string>> summaryRows;
-    for (const AccelConfig& config : configs) {
-        std::vector<json> build, trp, trs, img1, imgMax;
-        double gapSum = 0.0, gapMax = -INFINITY;
-        int gaps = 0, scenes = 0;
-        long long mismatches = 0;
-        for (const std::string& scene : sceneIds) {
-            auto& byConfig = rows[scene];
-            if (!byConfig.count(config.label)) continue;
-            ++scenes;
-            const Row& r = byConfig[config.label];
-            if (r.gap.is_number()) gapSum += r.gap.get<double>(), gapMax = std::max(gapMax, r.gap.get<double>()), ++gaps;
-            if (byConfig.count(k16)) build.push_back(ratio(r.at("build_cpu_ms"), byConfig[k16].at("build_cpu_ms")));
-            if (byConfig.count("sweepbvh")) {
-                trp.push_back(ratio(r.stored["primary"]["t_r_cpu_us"], byConfig["sweepbvh"].stored["primary"]["t_r_cpu_us"]));
-                trs.push_back(ratio(r.stored["shadow"]["t_r_cpu_us"], byConfig["sweepbvh"].stored["shadow"]["t_r_cpu_us"]));
-            }
-            if (byConfig.count("embree")) {
-                img1.push_back(ratio(r.series(0, "time_to_image_cpu_ms"), byConfig["embree"].series(0, "time_to_image_cpu_ms")));
-                imgMax.push_back(ratio(r.lastSeries("time_to_image_cpu_ms"), byConfig["embree"].lastSeries("time_to_image_cpu_ms")));
-            }
-            mismatches += r.stored["primary"].value("mismatches", 0LL) + r.stored["shadow"].value("mismatches", 0LL);
-        }
-        if (!scenes) continue;
-        summaryRows.push_back({config.label, std::to_string(scenes),
-                               gaps ? fmt::format("{:+.2f}", 100.0 * gapSum / gaps) : "n/a",
-                               gaps ? fmt::format("{:+.2f}", 100.0 * gapMax) : "n/a", shown(geoMean(build), "{:.2f}"),
-                               shown(geoMean(trp), "{:.2f}"), shown(geoMean(trs), "{:.2f}"), shown(geoMean(img1), "{:.2f}"),
-                               shown(geoMean(imgMax), "{:.2f}"), std::to_string(mismatches)});
-    }
-    md += markdownTable({"config", "scenes", "gap mean [%]", "gap max [%]", fmt::format("T_B / T_B({})", k16),
-                         "T_R primary / sweepbvh", "T_R shadow / sweepbvh", "image 1 spp / embree",
-                         fmt::format("image {} spp / embree", maxSpp), "mismatches"},
-                        {"---", "---:", "---:", "---:", "---:", "---:", "---:", "---:", "---:", "---:"}, summaryRows);
-
-    md += "\nImage error against the reference: PSNR [dB] per samples per pixel (the same for every structure; "
-          "largest RMSE spread over structures in the last column)\n\n| scene |";
-    for (int spp : spps) md += fmt::format(" {} |", spp);
-    md += " spread |\n|---|";
-    for (size_t i = 0; i <= spps.size(); ++i) md += "---:|";
-    md += "\n";
-    for (const std::string& scene : sceneIds) {
-        if (rows[scene].empty()) continue;
-        const Row& ref = rows[scene].count("embree") ? rows[scene]["embree"] : rows[scene].begin()->second;
-        double spread = 0.0;
-        md += fmt::format("| {} |", scene);
-        for (size_t i = 0; i < spps.size(); ++i) {
-            md += fmt::format(" {} |", shown(ref.series(i, "psnr"), "{:.1f}"));
-            double lo = INFINITY, hi = -INFINITY;
-            for (const auto& [label, row] : rows[scene])
-                if (row.series(i, "rmse").is_number()) {
-                    lo = std::min(lo, row.series(i, "rmse").get<double>());
-                    hi = std::max(hi, row.series(i, "rmse").get<double>());
-                }
-            if (hi >= lo) spread = std::max(spread, hi - lo);
-        }
-        md += fmt::format(" {:.1e} |\n", spread);
-    }
+    const std::string md = settingsParagraph(measured, settings, maxSpp) + sceneTable(measured, sceneIds, configs, maxSpp) +
+                           structuresMeasured(dir, sceneIds, configs) + summaryTable(measured, sceneIds, configs, maxSpp) +
+                           imageErrorTable(measured, sceneIds, spps);
     writeFileAtomically(dir / "tradeoff.md", md);
     return md;
 }

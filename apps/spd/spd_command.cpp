@@ -35,6 +35,7 @@
 #include <nlohmann/json.hpp>
 
 #include <iterator>
+#include <map>
 #include <optional>
 #include <utility>
 
@@ -186,139 +187,168 @@ std::string markdown(const nlohmann::json& results) {
     return md;
 }
 
+struct SpdOptions {
+    EnvOptions env;
+    std::vector<std::string> scenes;
+    std::string accels;
+    std::string out = "out/spd";
+    double jobTimeout = 0;
+    ChildJob child;
+};
+
+void addSpdOptions(CLI::App& command, SpdOptions& options) {
+    addEnvOptions(command, options.env);
+    addThreadsOption(command, options.env);
+    command.add_option("scenes", options.scenes, "NFF scene files (SPD scenes have their own viewpoint and lights)")
+        ->required();
+    command.add_option("--accel", options.accels,
+                       "comma-separated NAME or NAME:Key=value:... (default: ASDS::type); the first one's invariants "
+                       "are compared with Havran's");
+    command.add_option("--out", options.out, "output folder: spd.json, spd.md, SCENE.ACCEL.png")->capture_default_str();
+    addJobTimeoutOption(command, options.jobTimeout);
+    addChildJobOptions(command, options.child);
+}
+
+// An spd run: its structures, the env every scene starts from, Havran's figures and the rules.
+struct SpdRun {
+    const SpdOptions& options;
+    std::filesystem::path out;
+    std::vector<AccelConfig> configs;
+    Env base;
+    std::map<std::string, HavranScene> havran;
+    SpdRules rules;
+
+    Env sceneEnv(size_t s) const {
+        Env env = base;
+        env.set(keys::Scene::file, std::filesystem::absolute(options.scenes[s]).string(), "bvhlab spd");
+        return env;
+    }
+
+    bool twoSided(const Scene& scene) const {
+        const std::vector<std::string> names = splitCommaList(base.get(keys::Spd::twoSidedScenes));
+        return std::find(names.begin(), names.end(), scene.name) != names.end();
+    }
+
+    // One job, in a process of its own: structure `c` on scene `s`, built, traced, its image written.
+    nlohmann::json runJob(size_t s, size_t c) {
+        const Env env = sceneEnv(s);
+        const Scene scene = loadSceneFor(env);
+        rules.twoSided = twoSided(scene);
+        const AccelConfig& config = configs[c];
+        Progress progress;
+        const Env accelEnv = accelConfigEnv(config, env);
+        progress.phase(fmt::format("{} {}: building", scene.name, config.label));
+        auto accel = createAccelerator(config.name, accelEnv);
+        const BuildStats build = [&] {
+            const BuildWatch watch(fmt::format("{} on {}", config.label, scene.name));
+            return timedBuild(*accel, scene.primitives());
+        }();
+        const uint64_t rows = uint64_t(scene.camera ? scene.camera->height + 1 : 0);
+        progress.phase(fmt::format("{} {}: tracing", scene.name, config.label), rows);
+        Framebuffer fb(scene.camera ? scene.camera->width : 1, scene.camera ? scene.camera->height : 1);
+        const SpdResult result = traceSpd(scene, *accel, rules, fb, [&](uint64_t rays) { progress.advance(1, rays); });
+        progress.finish();
+        writePng(out / fmt::format("{}.{}.png", scene.name, labelAsFileName(config.label)), fb);
+        // The figures after the trace: a structure's per-ray figures (an octree's N_ETS)
+        // count the queries since its build.
+        BuildStats traced = build;
+        traced.figures = statisticsOf(*accel).figures;
+        nlohmann::json havranColumn;
+        if (const auto column = havranOctreeColumn(config, accelEnv); column && havran.count(scene.name))
+            havranColumn = havranOctreeJson(havran.at(scene.name), column->first, column->second);
+        return accelJson(config.label, traced, result, accel->hasCounters(), std::move(havranColumn));
+    }
+
+    // The job a child process was given, "S/C".
+    nlohmann::json runChildJob(const std::string& job) {
+        const size_t slash = job.find('/');
+        size_t s = 0, c = 0;
+        if (slash == std::string::npos || !parseNumber(std::string_view(job).substr(0, slash), s) ||
+            !parseNumber(std::string_view(job).substr(slash + 1), c) || s >= options.scenes.size() ||
+            c >= configs.size())
+            throw InputError(fmt::format("{} {}: not a job of this spd run", kChildJobOption, job));
+        return runJob(s, c);
+    }
+
+    // Scene `s` with Havran's figures for it and each structure's job, run in a process of its
+    // own; `failed` counts the jobs that failed.
+    nlohmann::json sceneResults(size_t s, size_t& failed) const {
+        const Scene scene = loadSceneFor(sceneEnv(s));
+        nlohmann::json sceneJson = {
+            {"scene", scene.name}, {"two_sided", twoSided(scene)}, {"accels", nlohmann::json::array()}};
+        if (const auto it = havran.find(scene.name); it != havran.end()) {
+            const HavranScene& h = it->second;
+            sceneJson["havran"]["invariants"] = h.invariants;
+            for (const auto& [key, best] : {std::pair{"best_grid", h.bestGrid}, std::pair{"best_octree", h.bestOctree}})
+                sceneJson["havran"][key] = best ? nlohmann::json{{"n_it", best->nIt}, {"n_ts", best->nTs}} : nlohmann::json();
+        } else {
+            sceneJson["havran"] = nlohmann::json::object();
+        }
+        for (size_t c = 0; c < configs.size(); ++c) {
+            const JobOutcome outcome = runJobInChild(fmt::format("{}/{}", s, c), options.jobTimeout);
+            if (outcome.passed()) {
+                sceneJson["accels"].push_back(outcome.result);
+                continue;
+            }
+            ++failed;
+            fmt::print(stderr, "{} {}: failed: {}\n", scene.name, configs[c].label, outcome.failure());
+            sceneJson["accels"].push_back({{"accel", configs[c].label}, {"failed", outcome.failure()}});
+        }
+        return sceneJson;
+    }
+};
+
+SpdRun prepareSpdRun(SpdOptions& options) {
+    const std::filesystem::path out =
+        options.child.isChild() ? std::filesystem::path(options.out) : prepareOutputFolder(options.out);
+    std::vector<AccelConfig> configs = parseAccelConfigList(options.accels);
+    nameAccelerators(configs, options.env);
+    const Env base = chooseScene("", "", options.env).load(options.env);
+    if (configs.empty()) configs = parseAccelConfigList(base.get(keys::ASDS::type));
+    checkAccelConfigs(configs, base);
+    const std::filesystem::path reference = base.get(keys::Spd::reference);
+    if (!std::filesystem::is_directory(reference))
+        throw InputError(fmt::format("Havran's statistics (havran_stats_grids.txt, havran_stats_octrees.txt): "
+                                     "no folder {}; {}",
+                                     reference.string(), base.howToSet(keys::Spd::reference)));
+    auto havran = readHavranReference(reference);
+    SpdRules rules;
+    rules.maxDepth = base.get(keys::Spd::maxDepth);
+    rules.threads = base.get(keys::SetRayTracing::threads);
+    return SpdRun{options, out, std::move(configs), base, std::move(havran), rules};
+}
+
+// The run the options ask for; returns how many of its jobs failed.
+size_t runSpd(SpdOptions& options) {
+    SpdRun run = prepareSpdRun(options);
+    if (options.child.isChild()) {
+        options.child.run([&] { return run.runChildJob(options.child.job); });
+        return 0;
+    }
+    nlohmann::json results = {{"provenance", provenanceJson()},
+                              {"run", runJson()},
+                              {"rules", {{"max_depth", run.rules.maxDepth}}},
+                              {"scenes", nlohmann::json::array()}};
+    size_t failed = 0;
+    for (size_t s = 0; s < options.scenes.size(); ++s) results["scenes"].push_back(run.sceneResults(s, failed));
+    results["failed_jobs"] = failed;
+    writeFileAtomically(run.out / "spd.json", results.dump(2) + "\n");
+    const std::string md = markdown(results);
+    writeFileAtomically(run.out / "spd.md", md);
+    fmt::print("{}", md);
+    fmt::print(stderr, "wrote {}/spd.{{json,md}} and the images\n", run.out.string());
+    if (failed) fmt::print(stderr, "spd: {} failed jobs\n", failed);
+    return failed;
+}
+
 }  // namespace
 
 void addSpdCommand(CLI::App& app) {
-    struct Options {
-        EnvOptions env;
-        std::vector<std::string> scenes;
-        std::string accels;
-        std::string out = "out/spd";
-        double jobTimeout = 0;
-        ChildJob child;
-    };
-    auto options = std::make_shared<Options>();
+    auto options = std::make_shared<SpdOptions>();
     CLI::App* command = app.add_subcommand(
         "spd", "trace SPD scenes by the SPD rules; Havran's ray invariants and N_IT, N_TS beside his (DIR/spd.md)");
-    addEnvOptions(*command, options->env);
-    addThreadsOption(*command, options->env);
-    command->add_option("scenes", options->scenes, "NFF scene files (SPD scenes have their own viewpoint and lights)")
-        ->required();
-    command->add_option("--accel", options->accels,
-                        "comma-separated NAME or NAME:Key=value:... (default: ASDS::type); the first one's invariants "
-                        "are compared with Havran's");
-    command->add_option("--out", options->out, "output folder: spd.json, spd.md, SCENE.ACCEL.png")->capture_default_str();
-    addJobTimeoutOption(*command, options->jobTimeout);
-    addChildJobOptions(*command, options->child);
-    command->callback([options] {
-        size_t failed = 0;
-        const int code = runGuarded([&] {
-            const std::filesystem::path out =
-                options->child.isChild() ? std::filesystem::path(options->out) : prepareOutputFolder(options->out);
-            std::vector<AccelConfig> configs = parseAccelConfigList(options->accels);
-            nameAccelerators(configs, options->env);
-            const Env base = chooseScene("", "", options->env).load(options->env);
-            if (configs.empty()) configs = parseAccelConfigList(base.get(keys::ASDS::type));
-            checkAccelConfigs(configs, base);
-            const std::filesystem::path reference = base.get(keys::Spd::reference);
-            if (!std::filesystem::is_directory(reference))
-                throw InputError(fmt::format("Havran's statistics (havran_stats_grids.txt, havran_stats_octrees.txt): "
-                                             "no folder {}; {}",
-                                             reference.string(), base.howToSet(keys::Spd::reference)));
-            const auto havran = readHavranReference(reference);
-            SpdRules rules;
-            rules.maxDepth = base.get(keys::Spd::maxDepth);
-            rules.threads = base.get(keys::SetRayTracing::threads);
-
-            nlohmann::json results = {{"provenance", provenanceJson()},
-                                      {"run", runJson()},
-                                      {"rules", {{"max_depth", rules.maxDepth}}},
-                                      {"scenes", nlohmann::json::array()}};
-            const auto sceneEnv = [&](size_t s) {
-                Env env = base;
-                env.set(keys::Scene::file, std::filesystem::absolute(options->scenes[s]).string(), "bvhlab spd");
-                return env;
-            };
-            const auto twoSided = [&](const Scene& scene) {
-                const std::vector<std::string> names = splitCommaList(base.get(keys::Spd::twoSidedScenes));
-                return std::find(names.begin(), names.end(), scene.name) != names.end();
-            };
-            // One job, in a process of its own: structure `c` on scene `s`, built, traced, its image written.
-            const auto runJob = [&](size_t s, size_t c) {
-                const Env env = sceneEnv(s);
-                const Scene scene = loadSceneFor(env);
-                rules.twoSided = twoSided(scene);
-                const AccelConfig& config = configs[c];
-                Progress progress;
-                const Env accelEnv = accelConfigEnv(config, env);
-                progress.phase(fmt::format("{} {}: building", scene.name, config.label));
-                auto accel = createAccelerator(config.name, accelEnv);
-                const BuildStats build = [&] {
-                    const BuildWatch watch(fmt::format("{} on {}", config.label, scene.name));
-                    return timedBuild(*accel, scene.primitives());
-                }();
-                const uint64_t rows = uint64_t(scene.camera ? scene.camera->height + 1 : 0);
-                progress.phase(fmt::format("{} {}: tracing", scene.name, config.label), rows);
-                Framebuffer fb(scene.camera ? scene.camera->width : 1, scene.camera ? scene.camera->height : 1);
-                const SpdResult result = traceSpd(scene, *accel, rules, fb, [&](uint64_t rays) { progress.advance(1, rays); });
-                progress.finish();
-                writePng(out / fmt::format("{}.{}.png", scene.name, labelAsFileName(config.label)), fb);
-                // The figures after the trace: a structure's per-ray figures (an octree's N_ETS)
-                // count the queries since its build.
-                BuildStats traced = build;
-                traced.figures = statisticsOf(*accel).figures;
-                nlohmann::json havranColumn;
-                if (const auto column = havranOctreeColumn(config, accelEnv); column && havran.count(scene.name))
-                    havranColumn = havranOctreeJson(havran.at(scene.name), column->first, column->second);
-                return accelJson(config.label, traced, result, accel->hasCounters(), std::move(havranColumn));
-            };
-            if (options->child.isChild()) {
-                const std::string& job = options->child.job;
-                const size_t slash = job.find('/');
-                size_t s = 0, c = 0;
-                if (slash == std::string::npos || !parseNumber(std::string_view(job).substr(0, slash), s) ||
-                    !parseNumber(std::string_view(job).substr(slash + 1), c) || s >= options->scenes.size() ||
-                    c >= configs.size())
-                    throw InputError(fmt::format("{} {}: not a job of this spd run", kChildJobOption, job));
-                options->child.run([&] { return runJob(s, c); });
-                return;
-            }
-
-            for (size_t s = 0; s < options->scenes.size(); ++s) {
-                const Scene scene = loadSceneFor(sceneEnv(s));
-                nlohmann::json sceneJson = {
-                    {"scene", scene.name}, {"two_sided", twoSided(scene)}, {"accels", nlohmann::json::array()}};
-                if (const auto it = havran.find(scene.name); it != havran.end()) {
-                    const HavranScene& h = it->second;
-                    sceneJson["havran"]["invariants"] = h.invariants;
-                    for (const auto& [key, best] : {std::pair{"best_grid", h.bestGrid}, std::pair{"best_octree", h.bestOctree}})
-                        sceneJson["havran"][key] = best ? nlohmann::json{{"n_it", best->nIt}, {"n_ts", best->nTs}} : nlohmann::json();
-                } else {
-                    sceneJson["havran"] = nlohmann::json::object();
-                }
-                for (size_t c = 0; c < configs.size(); ++c) {
-                    const JobOutcome outcome = runJobInChild(fmt::format("{}/{}", s, c), options->jobTimeout);
-                    if (outcome.passed()) {
-                        sceneJson["accels"].push_back(outcome.result);
-                        continue;
-                    }
-                    ++failed;
-                    fmt::print(stderr, "{} {}: failed: {}\n", scene.name, configs[c].label, outcome.failure());
-                    sceneJson["accels"].push_back({{"accel", configs[c].label}, {"failed", outcome.failure()}});
-                }
-                results["scenes"].push_back(sceneJson);
-            }
-            results["failed_jobs"] = failed;
-            writeFileAtomically(out / "spd.json", results.dump(2) + "\n");
-            const std::string md = markdown(results);
-            writeFileAtomically(out / "spd.md", md);
-            fmt::print("{}", md);
-            fmt::print(stderr, "wrote {}/spd.{{json,md}} and the images\n", out.string());
-            if (failed) fmt::print(stderr, "spd: {} failed jobs\n", failed);
-        });
-        if (code != 0) throw CLI::RuntimeError(code);
-        if (failed) throw CLI::RuntimeError(kSomeJobsFailedExitCode);
-    });
+    addSpdOptions(*command, *options);
+    command->callback([options] { runJobsGuarded([&] { return runSpd(*options); }); });
 }
 
 }  // namespace bvhlab

@@ -84,6 +84,37 @@ private:
         return shade(ray, hit, depth, ts, eye);
     }
 
+    // The light of every point light that reaches `position` (normal `n`, seen from `view`),
+    // each asked by a shadow ray from `shadowOrigin`.
+    Vec3 directLight(const Vec3& position, const Vec3& n, const Vec3& view, const Material& material,
+                     const Vec3& shadowOrigin, SpdThreadState& ts) const {
+        SpdCounts& counts = ts.result.counts;
+        Vec3 color{0.0f};
+        for (const PointLight& light : scene_.lights) {
+            const Vec3 toLight = light.position - position;
+            const float cosine = glm::dot(n, toLight);
+            // SPD rule 10: no shadow ray where the normal points away from the light.
+            if (cosine <= 0.0f) {
+                ++counts.shadowRaysSkippedBackfacing;
+                continue;
+            }
+            ++counts.shadowRays;
+            // t = 1 is the light itself.
+            if (accel_.isOccluded({shadowOrigin, light.position - shadowOrigin, 0.0f, 1.0f - 1e-5f}, ts.result.shadow)) {
+                ++counts.usedIntShadRays;
+                continue;
+            }
+            const Vec3 l = toLight / std::sqrt(glm::dot(toLight, toLight));
+            const float diffuse = glm::dot(n, l);
+            // Phong: the highlight around the mirror direction of the light, for reflective surfaces.
+            const float highlight = material.mirror > 0.0f
+                                        ? std::pow(std::max(0.0f, glm::dot(glm::reflect(-l, n), view)), material.shine)
+                                        : 0.0f;
+            color += lightIntensity_ * (material.diffuse * diffuse + Vec3(material.mirror * highlight)) * light.intensity;
+        }
+        return color;
+    }
+
     // The colour seen along `ray`, whose closest hit is `hit`.
     Vec3 shade(const Ray& ray, const Hit& hit, int depth, SpdThreadState& ts, Sample* eye) const {
         SpdCounts& counts = ts.result.counts;
@@ -106,7 +137,6 @@ private:
             eye->normal = n;
         }
 
-        Vec3 color{0.0f};
         // The shadow ray starts on the side its normal faces, except from the inside of a
         // transmitting polygon: there it starts inside, as the ray came, and the polygon it
         // would leave through occludes it (a closed glass solid lets no shadow ray out of its
@@ -114,28 +144,7 @@ private:
         // the glass, as Havran's counts for mount's glass spheres show).
         const bool insideGlassPolygon = transmits && !surface.outside && hit.primitive < scene_.triangleCount();
         const Vec3 shadowOrigin = facesRay || insideGlassPolygon ? surface.originAbove() : surface.originBelow();
-        for (const PointLight& light : scene_.lights) {
-            const Vec3 toLight = light.position - surface.position;
-            const float cosine = glm::dot(n, toLight);
-            // SPD rule 10: no shadow ray where the normal points away from the light.
-            if (cosine <= 0.0f) {
-                ++counts.shadowRaysSkippedBackfacing;
-                continue;
-            }
-            ++counts.shadowRays;
-            // t = 1 is the light itself.
-            if (accel_.isOccluded({shadowOrigin, light.position - shadowOrigin, 0.0f, 1.0f - 1e-5f}, ts.result.shadow)) {
-                ++counts.usedIntShadRays;
-                continue;
-            }
-            const Vec3 l = toLight / std::sqrt(glm::dot(toLight, toLight));
-            const float diffuse = glm::dot(n, l);
-            // Phong: the highlight around the mirror direction of the light, for reflective surfaces.
-            const float highlight = material.mirror > 0.0f
-                                        ? std::pow(std::max(0.0f, glm::dot(glm::reflect(-l, n), view)), material.shine)
-                                        : 0.0f;
-            color += lightIntensity_ * (material.diffuse * diffuse + Vec3(material.mirror * highlight)) * light.intensity;
-        }
+        Vec3 color = directLight(surface.position, n, view, material, shadowOrigin, ts);
 
         // SPD rules 7-9: reflection from reflective surfaces and from transmitting ones ("a ray
         // hitting a transmitting object spawns a reflection ray as well", whatever its Ks),

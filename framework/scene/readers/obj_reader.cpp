@@ -71,6 +71,28 @@ InputError tinyobjError(const std::filesystem::path& file, std::string message) 
     return inputError(file, line, message);
 }
 
+// What tinyobj reads of the file: vertices and normals, faces by shape, materials, and its
+// messages (warnings, and errors that did not stop it).
+struct TinyobjFile {
+    tinyobj::attrib_t attrib;
+    std::vector<tinyobj::shape_t> shapes;
+    std::vector<tinyobj::material_t> materials;
+    std::string messages;
+};
+
+TinyobjFile loadWithTinyobj(const std::filesystem::path& file, const std::string& bytes) {
+    TinyobjFile obj;
+    std::string warnings, errors;
+    std::istringstream stream(bytes);
+    tinyobj::MaterialFileReader mtlReader(file.parent_path().string());  // mtllib is relative to the .obj
+    if (!tinyobj::LoadObj(&obj.attrib, &obj.shapes, &obj.materials, &warnings, &errors, &stream, &mtlReader,
+                          /*triangulate=*/false, /*default_vcols_fallback=*/false)) {
+        throw tinyobjError(file, errors);
+    }
+    obj.messages = warnings + errors;
+    return obj;
+}
+
 }  // namespace
 
 Scene readObj(const std::filesystem::path& file, const std::string& bytes) {
@@ -81,16 +103,10 @@ Scene readObj(const std::filesystem::path& file, const std::string& bytes) {
                                               "starts {}", quoted(scan.firstOther)));
     }
 
-    tinyobj::attrib_t attrib;
-    std::vector<tinyobj::shape_t> shapes;
-    std::vector<tinyobj::material_t> objMaterials;
-    std::string warnings, errors;
-    std::istringstream stream(bytes);
-    tinyobj::MaterialFileReader mtlReader(file.parent_path().string());  // mtllib is relative to the .obj
-    if (!tinyobj::LoadObj(&attrib, &shapes, &objMaterials, &warnings, &errors, &stream, &mtlReader,
-                          /*triangulate=*/false, /*default_vcols_fallback=*/false)) {
-        throw tinyobjError(file, errors);
-    }
+    const TinyobjFile obj = loadWithTinyobj(file, bytes);
+    const tinyobj::attrib_t& attrib = obj.attrib;
+    const std::vector<tinyobj::shape_t>& shapes = obj.shapes;
+    const std::vector<tinyobj::material_t>& objMaterials = obj.materials;
 
     Scene scene;
     scene.positions = std::move(scan.positions);
@@ -150,7 +166,7 @@ Scene readObj(const std::filesystem::path& file, const std::string& bytes) {
     if (!everyCornerHasNormal) scene.normals.clear();
 
     // tinyobj's warnings (a missing .mtl, an unknown material) do not stop the load.
-    std::istringstream warningLines(warnings + errors);
+    std::istringstream warningLines(obj.messages);
     for (std::string w; std::getline(warningLines, w);) {
         if (!w.empty()) scene.report.warnings.push_back(fmt::format("{}: {}", file.string(), w));
     }

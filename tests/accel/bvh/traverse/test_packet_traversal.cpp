@@ -200,23 +200,30 @@ void expectRaySetsAsSingle(const Accelerator& accel, bool robust, Match axisPara
     expectBatchAsSingle(accel, axisAndGrazingRays(5), "axis-parallel and grazing", boundary);
 }
 
-// Every ray set on `soup`, for a layout, robustness and fallback threshold (0: packets to
-// the leaves; 2: the default; 64: every ray alone from the root), on the batch path `path`.
+// Every ray set on `soup`, for a layout, through the batch path `traversal` sets, robust and not.
+template <typename Layout>
+void expectTraversalAsSingle(const Soup& soup, Match axisParallel, TraversalConfig traversal) {
+    for (const bool robust : {true, false}) {
+        SCOPED_TRACE(std::string(batchTraversalName(traversal.batchTraversal)) + ", robust " + std::to_string(robust));
+        traversal.robust = robust;
+        BvhAccelerator<Layout> accel(builderRecord("sahbvh"), BvhBuildConfig{}, traversal);
+        accel.build(soup.prims());
+        expectRaySetsAsSingle(accel, robust, axisParallel);
+    }
+}
+
+// The same on the packet path `path` at each fallback threshold (0: packets to the leaves;
+// 2: the default; 64: every ray alone from the root).
 template <typename Layout>
 void expectPacketsAsSingle(const Soup& soup, Match axisParallel = Match::Bits,
                            BatchTraversal path = BatchTraversal::Packets) {
-    for (const bool robust : {true, false})
-        for (const int fallback : {0, 2, 64}) {
-            SCOPED_TRACE(std::string(batchTraversalName(path)) + ", robust " + std::to_string(robust) + ", fallback " +
-                         std::to_string(fallback));
-            TraversalConfig traversal;
-            traversal.robust = robust;
-            traversal.packetFallback = fallback;
-            traversal.batchTraversal = path;
-            BvhAccelerator<Layout> accel(builderRecord("sahbvh"), BvhBuildConfig{}, traversal);
-            accel.build(soup.prims());
-            expectRaySetsAsSingle(accel, robust, axisParallel);
-        }
+    for (const int fallback : {0, 2, 64}) {
+        SCOPED_TRACE("fallback " + std::to_string(fallback));
+        TraversalConfig traversal;
+        traversal.packetFallback = fallback;
+        traversal.batchTraversal = path;
+        expectTraversalAsSingle<Layout>(soup, axisParallel, traversal);
+    }
 }
 
 TEST(PacketTraversal, Wide8AnswersAsSingleRays) { expectPacketsAsSingle<WideBvh<8>>(randomScene(1)); }
@@ -319,18 +326,12 @@ TEST(PacketTraversal, SixteenRayPacketsAnswerAsSingleRays) { expectSixteenRayPac
 TEST(CoherentTraversal, SixteenRayPacketsAnswerAsSingleRays) { expectSixteenRayPacketsAsSingle<PacketKind::Coherent>(); }
 
 
-// Every ray set on `soup` through streams, for a layout and robustness.
+// Every ray set on `soup` through streams, for a layout.
 template <typename Layout>
 void expectStreamsAsSingle(const Soup& soup, Match axisParallel = Match::Bits) {
-    for (const bool robust : {true, false}) {
-        SCOPED_TRACE("streams, robust " + std::to_string(robust));
-        TraversalConfig traversal;
-        traversal.robust = robust;
-        traversal.batchTraversal = BatchTraversal::Stream;
-        BvhAccelerator<Layout> accel(builderRecord("sahbvh"), BvhBuildConfig{}, traversal);
-        accel.build(soup.prims());
-        expectRaySetsAsSingle(accel, robust, axisParallel);
-    }
+    TraversalConfig traversal;
+    traversal.batchTraversal = BatchTraversal::Stream;
+    expectTraversalAsSingle<Layout>(soup, axisParallel, traversal);
 }
 
 TEST(StreamTraversal, Wide8AnswersAsSingleRays) { expectStreamsAsSingle<WideBvh<8>>(randomScene(1)); }
