@@ -1,6 +1,6 @@
-// Creates accelerators by name. `ASDS::type` in env chooses one; adding an accelerator
-// means one entry in registry.cpp, adding a BVH builder one entry in accel/bvh/builder_table.cpp
-// (see docs/adding-an-accelerator.md).
+// Creates accelerators by name. `ASDS::type` in env chooses one. An accelerator of bvhlab's own
+// is an entry in registry.cpp besides its folder and library, a BVH builder an entry in
+// accel/bvh/builder_table.cpp besides its file (docs/adding-an-accelerator.md lists every file).
 #pragma once
 
 #include "accel/plugins/plugin_builder.h"

@@ -34,8 +34,9 @@ const std::map<std::string, std::vector<std::string>> kMayInclude = {
     {"accel/octree", {}},  // a plugin: <bvhlab/...> only
     {"accel/bvh/simd", {"framework/core"}},
     {"accel/bvh/layout", {"framework/core", "accel/bvh/simd"}},
-    {"accel/bvh/builders", {"framework/core", "accel/bvh/simd", "accel/bvh/layout"}},
-    {"accel/bvh/traverse", {"framework/core", "accel/bvh/simd", "accel/bvh/layout"}},
+    // Builders and traversal may use framework/config: their env keys sit beside the Config fields they fill.
+    {"accel/bvh/builders", {"framework/core", "framework/config", "accel/bvh/simd", "accel/bvh/layout"}},
+    {"accel/bvh/traverse", {"framework/core", "framework/config", "accel/bvh/simd", "accel/bvh/layout"}},
     {"accel/bvh",
      {"framework/core", "framework/config", "accel/bvh/simd", "accel/bvh/layout", "accel/bvh/builders",
       "accel/bvh/traverse"}},

@@ -50,7 +50,7 @@ def main():
             print(f"| {scene} | {label} | ({int(f['res_x'])},{int(f['res_y'])},{int(f['res_z'])}) "
                   f"| {int(f['N_V'])} ({pct(f['N_V'], nv)}) | {int(f['N_EV'])} ({pct(f['N_EV'], nev)}) "
                   f"| {int(f['N_OIV'])} ({pct(f['N_OIV'], noiv)}) | {a['n_it']:.2f} ({pct(a['n_it'], nit)}) "
-                  f"| {a['n_ts']:.2f} ({pct(a['n_ts'], nts)}) |")
+                  f"| {a['n_tr']:.2f} ({pct(a['n_tr'], nts)}) |")
 
 
 if __name__ == "__main__":

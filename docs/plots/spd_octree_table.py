@@ -30,7 +30,7 @@ def ours(accel, row):
         inv = accel["invariants"]
         return accel["n_it"] * inv["AllRays"] / inv["IntersRequired"]
     if row == "N_TS":
-        return accel["n_ts"]
+        return accel["n_tr"]
     return accel["figures"][row]["value"]
 
 
