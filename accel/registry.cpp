@@ -3,10 +3,10 @@
 #include "accel/bvh/builder_table.h"
 #include "accel/bvh/bvh_accelerator.h"
 #include "accel/bvh/bvh_env.h"
-#include "accel/plugins/plugin_builder.h"
 #include "accel/embree/embree_accelerator.h"
-#include "accel/plugins/guarded_accelerator.h"
 #include "accel/naive/naive_accelerator.h"
+#include "accel/plugins/guarded_accelerator.h"
+#include "accel/plugins/plugin_builder.h"
 #include "framework/core/error.h"
 
 #include <fmt/ranges.h>
@@ -16,10 +16,11 @@ namespace bvhlab {
 namespace {
 
 std::string wideDescription(const std::string& builder, int width) {
-    return fmt::format("{}'s tree (leaves charged by blocks of eight) in {}-wide nodes, {} child boxes tested at "
-                       "once, leaves eight triangles at once, in the SIMD kernels BVH::isa chooses at run time; N_TR "
-                       "counts wide steps",
-                       builder, width, width == 4 ? "four" : "eight");
+    return fmt::format(
+        "{}'s tree (leaves charged by blocks of eight) in {}-wide nodes, {} child boxes tested at "
+        "once, leaves eight triangles at once, in the SIMD kernels BVH::isa chooses at run time; N_TR "
+        "counts wide steps",
+        builder, width, width == 4 ? "four" : "eight");
 }
 
 // The accelerator of a builder over one layout: NAME (binary), NAME4 or NAME8. `makeBuilder`
@@ -38,7 +39,11 @@ std::vector<AcceleratorInfo> bvhInfos(const std::string& name, const std::string
                                       const BuilderMaker& makeBuilder) {
     bvhCommonKeys().appendNames(keys);
     std::vector<AcceleratorInfo> infos = {
-        {name, description, keys, [makeBuilder](const Env& env) { return makeBvhAccelerator<BinaryBvh>(makeBuilder, env); }, {}}};
+        {name,
+         description,
+         keys,
+         [makeBuilder](const Env& env) { return makeBvhAccelerator<BinaryBvh>(makeBuilder, env); },
+         {}}};
     for (int width : wideLayouts) {
         auto create = [makeBuilder, width](const Env& env) {
             return width == 4 ? makeBvhAccelerator<WideBvh<4>>(makeBuilder, env)
@@ -54,18 +59,23 @@ std::vector<AcceleratorInfo> ownInfos() {
     std::vector<std::string> embreeKeyNames;
     embreeKeys().appendNames(embreeKeyNames);
     std::vector<AcceleratorInfo> infos = {
-        {"naive", "brute force: tests every triangle; the reference the others are tested against", {},
-         [](const Env&) { return std::make_unique<NaiveAccelerator>(); }, {}},
-        {"embree", "Intel Embree 3 (rtcIntersect1/rtcOccluded1): the speed reference; no counters, no visible tree",
+        {"naive",
+         "brute force: tests every triangle; the reference the others are tested against",
+         {},
+         [](const Env&) { return std::make_unique<NaiveAccelerator>(); },
+         {}},
+        {"embree",
+         "Intel Embree 3 (rtcIntersect1/rtcOccluded1): the speed reference; no counters, no visible tree",
          embreeKeyNames,
-         [](const Env& env) { return std::make_unique<EmbreeAccelerator>(env); }, {}},
+         [](const Env& env) { return std::make_unique<EmbreeAccelerator>(env); },
+         {}},
     };
     for (const BuilderTableEntry& entry : bvhBuilderTable()) {
         const BuilderRecord& builder = entry.builder;
         std::vector<std::string> keys;
         for (const BvhKeys* own : entry.keys) own->appendNames(keys);
-        for (AcceleratorInfo& info : bvhInfos(builder.name, entry.description, keys,
-                                              entry.wideLayouts, [&builder](const Env&) { return builder; }))
+        for (AcceleratorInfo& info : bvhInfos(builder.name, entry.description, keys, entry.wideLayouts,
+                                              [&builder](const Env&) { return builder; }))
             infos.push_back(std::move(info));
     }
     return infos;
@@ -97,7 +107,8 @@ void addAccelerator(AcceleratorInfo info) {
                                      taken->plugin.empty() ? "bvhlab" : taken->plugin));
     info.create = [create = std::move(info.create), plugin = info.plugin, name = info.name](const Env& env) {
         std::unique_ptr<Accelerator> accel = guardPlugin(plugin, name, "its factory", [&] { return create(env); });
-        if (!accel) throw PluginError(fmt::format("plugin {}, accelerator '{}': its factory returned nothing", plugin, name));
+        if (!accel)
+            throw PluginError(fmt::format("plugin {}, accelerator '{}': its factory returned nothing", plugin, name));
         return guardAccelerator(std::move(accel), plugin, name);
     };
     registeredInfos().push_back(std::move(info));

@@ -20,7 +20,7 @@ inline constexpr ChoiceKey type{"ASDS::type", "sahbvh8", {}, "acceleration struc
 inline constexpr TextKey plugins{"ASDS::plugins", "",
                                  "plugin files to load, comma-separated (relative to the env file's folder); "
                                  "docs/plugins.md"};
-}
+}  // namespace keys::ASDS
 
 struct AcceleratorInfo {
     std::string name;

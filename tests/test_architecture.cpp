@@ -110,9 +110,8 @@ TEST(Architecture, IncludesFollowTheLayers) {
                 }
                 const auto allowed = kMayInclude.find(folder);
                 ASSERT_NE(allowed, kMayInclude.end()) << folder << " has no entry in the layer table";
-                const bool ok = targetFolder == folder ||
-                                std::find(allowed->second.begin(), allowed->second.end(), targetFolder) !=
-                                    allowed->second.end();
+                const bool ok = targetFolder == folder || std::find(allowed->second.begin(), allowed->second.end(),
+                                                                    targetFolder) != allowed->second.end();
                 EXPECT_TRUE(ok) << name << " includes " << target << ", which " << folder << " may not use";
             }
         }
@@ -129,7 +128,8 @@ TEST(Architecture, TheRuntimeAndThePythonModuleDoNotIncludeCli11) {
         for (const fs::path& file : sourcesUnder(source / folder)) {
             ++files;
             for (const std::string& target : includes(file, false))
-                EXPECT_FALSE(target.starts_with("CLI/")) << fs::relative(file, source).string() << " includes <" << target << ">";
+                EXPECT_FALSE(target.starts_with("CLI/"))
+                    << fs::relative(file, source).string() << " includes <" << target << ">";
         }
     EXPECT_GT(files, 20u);
 }
@@ -143,7 +143,8 @@ TEST(Architecture, TestsOfFrameworkAndAccelIncludeNoAppHeader) {
         for (const fs::path& file : sourcesUnder(source / top)) {
             ++checked;
             for (const std::string& target : includes(file, true))
-                EXPECT_FALSE(target.starts_with("apps/")) << fs::relative(file, source).generic_string() << " includes " << target;
+                EXPECT_FALSE(target.starts_with("apps/"))
+                    << fs::relative(file, source).generic_string() << " includes " << target;
         }
     EXPECT_GT(checked, 30u);
 }
@@ -166,8 +167,8 @@ TEST(Architecture, ThePluginApiAndThePluginsIncludeOnlyThePluginApi) {
             const bool bvhlab = target.starts_with("bvhlab/") && fs::exists(api / target.substr(7));
             const bool glm = target.starts_with("glm/");
             const bool standard = target.find('/') == std::string::npos && target.find('.') == std::string::npos;
-            EXPECT_TRUE(bvhlab || glm || standard) << fs::relative(file, source).string() << " includes <" << target
-                                                   << ">";
+            EXPECT_TRUE(bvhlab || glm || standard)
+                << fs::relative(file, source).string() << " includes <" << target << ">";
         }
     };
     size_t headers = 0;

@@ -28,7 +28,9 @@ std::unique_ptr<BvhSplitRule> binnedSah(const BvhBuildConfig& c) {
     return std::make_unique<BinnedSahBuilder>(c.shared, c.binnedSah);
 }
 std::unique_ptr<BvhSplitRule> sweepSah(const BvhBuildConfig& c) { return std::make_unique<SweepSahBuilder>(c.shared); }
-BinaryBvh sbvh(const BvhBuildConfig& c, const PrimitiveSet& prims) { return buildSbvh(c.shared, c.binnedSah, c.sbvh, prims); }
+BinaryBvh sbvh(const BvhBuildConfig& c, const PrimitiveSet& prims) {
+    return buildSbvh(c.shared, c.binnedSah, c.sbvh, prims);
+}
 BinaryBvh ploc(const BvhBuildConfig& c, const PrimitiveSet& prims) { return buildPlocBvh(c.shared, c.ploc, prims); }
 
 }  // namespace

@@ -15,9 +15,9 @@ namespace bvhlab {
 
 struct BuilderTableEntry {
     BuilderRecord builder;
-    std::string description;             // of the binary accelerator, NAME
-    std::vector<const BvhKeys*> keys;    // the BVH:: keys it reads besides bvhCommonKeys()
-    std::vector<int> wideLayouts;        // 4 and/or 8: NAME4, NAME8 too
+    std::string description;           // of the binary accelerator, NAME
+    std::vector<const BvhKeys*> keys;  // the BVH:: keys it reads besides bvhCommonKeys()
+    std::vector<int> wideLayouts;      // 4 and/or 8: NAME4, NAME8 too
 };
 
 const std::vector<BuilderTableEntry>& bvhBuilderTable();

@@ -25,10 +25,14 @@ struct LayoutWidth<WideBvh<N>> {
 }  // namespace
 
 template <typename Layout>
-BvhAccelerator<Layout>::BvhAccelerator(BuilderRecord builder, const BvhBuildConfig& build, const TraversalConfig& traversal,
-                                       const BvhStatsConfig& stats)
-    : builder_(std::move(builder)), build_(build), traversal_(traversal), kernels_(traversalKernels<Layout>(traversal)),
-      stats_(stats), name_(builder_.name) {
+BvhAccelerator<Layout>::BvhAccelerator(BuilderRecord builder, const BvhBuildConfig& build,
+                                       const TraversalConfig& traversal, const BvhStatsConfig& stats)
+    : builder_(std::move(builder)),
+      build_(build),
+      traversal_(traversal),
+      kernels_(traversalKernels<Layout>(traversal)),
+      stats_(stats),
+      name_(builder_.name) {
     if constexpr (LayoutWidth<Layout>::value > 2) {
         name_ += std::to_string(LayoutWidth<Layout>::value);
         // The leaves test a block of triangles at a time: the SAH charges them so.
@@ -69,7 +73,8 @@ BuildStats BvhAccelerator<Layout>::buildStats() const {
     fillTreeStats(binary, build_.shared.cTraversal, build_.shared.cIntersect, stats);
     stats.leafBound = build_.shared.effectiveLeafCap();  // every builder's leaves, and the collapse's
     if (!binary.empty() && binary.leafTriangles.size() <= stats_.epoMaxTriangles)
-        stats.epo = endPointOverlap(binary.nodes, binary.leafTriangles, build_.shared.cTraversal, build_.shared.cIntersect, build_.shared.threads);
+        stats.epo = endPointOverlap(binary.nodes, binary.leafTriangles, build_.shared.cTraversal,
+                                    build_.shared.cIntersect, build_.shared.threads);
     stats.primitives = triangles_;
     stats.bytes = tree_.bytes();
     if (!quadrics_.empty()) {
@@ -89,8 +94,10 @@ BuildStats BvhAccelerator<Layout>::buildStats() const {
 
 template <typename Layout>
 const BinaryBvh& BvhAccelerator<Layout>::binaryTree() const {
-    if constexpr (std::is_same_v<Layout, BinaryBvh>) return tree_;
-    else return binary_;
+    if constexpr (std::is_same_v<Layout, BinaryBvh>)
+        return tree_;
+    else
+        return binary_;
 }
 
 // The triangles' tree first, then the quadrics' up to the closest hit found so far. One query
@@ -100,14 +107,16 @@ const BinaryBvh& BvhAccelerator<Layout>::binaryTree() const {
 template <typename Layout>
 bool BvhAccelerator<Layout>::findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const {
     const bool found = kernels_.forCounters(counters).findNearest(tree_, ray, hit, counters);
-    if (quadrics_.empty()) [[likely]] return found;
+    if (quadrics_.empty()) [[likely]]
+        return found;
     return findNearestQuadric(ray, found, hit, counters);
 }
 
 template <typename Layout>
 bool BvhAccelerator<Layout>::isOccluded(const Ray& ray, QueryCounters& counters) const {
     if (kernels_.forCounters(counters).isOccluded(tree_, ray, counters)) return true;
-    if (quadrics_.empty()) [[likely]] return false;
+    if (quadrics_.empty()) [[likely]]
+        return false;
     return isOccludedQuadric(ray, counters);
 }
 
@@ -121,9 +130,8 @@ void BvhAccelerator<Layout>::findNearestBatch(View<const Ray> rays, View<Hit> hi
 }
 
 template <typename Layout>
-void BvhAccelerator<Layout>::isOccludedBatch(View<const Ray> rays, View<uint8_t> occluded,
-                                             QueryCounters& counters, View<RayCost> costs,
-                                             RayCoherence coherence) const {
+void BvhAccelerator<Layout>::isOccludedBatch(View<const Ray> rays, View<uint8_t> occluded, QueryCounters& counters,
+                                             View<RayCost> costs, RayCoherence coherence) const {
     if (quadrics_.empty()) [[likely]]
         return kernels_.forCounters(counters, !costs.empty())
             .isOccludedBatch(tree_, rays, occluded, counters, costs, traversal_, coherence);

@@ -78,7 +78,7 @@ private:
     mutable BinaryBvh binary_;
     mutable std::optional<BuildStats> statistics_;
     size_t triangles_ = 0;  // valid triangles built over
-    QuadricBvh quadrics_;  // the spheres and cones, when the scene has any (quadric_leaves.h)
+    QuadricBvh quadrics_;   // the spheres and cones, when the scene has any (quadric_leaves.h)
 };
 
 // Instantiated for these layouts.

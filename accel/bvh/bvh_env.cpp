@@ -35,22 +35,26 @@ const BvhKeys& sahTerminationKeys() {
 }
 
 const BvhKeys& spatialMedianKeys() {
-    static const BvhKeys bound(kSpatialMedianKeys, [](BvhSettings& s) -> auto& { return s.build.spatialMedian; });
+    static const BvhKeys bound(
+        kSpatialMedianKeys, [](BvhSettings & s) -> auto& { return s.build.spatialMedian; });
     return bound;
 }
 
 const BvhKeys& binnedSahKeys() {
-    static const BvhKeys bound(kBinnedSahKeys, [](BvhSettings& s) -> auto& { return s.build.binnedSah; });
+    static const BvhKeys bound(
+        kBinnedSahKeys, [](BvhSettings & s) -> auto& { return s.build.binnedSah; });
     return bound;
 }
 
 const BvhKeys& sbvhKeys() {
-    static const BvhKeys bound(kSbvhKeys, [](BvhSettings& s) -> auto& { return s.build.sbvh; });
+    static const BvhKeys bound(
+        kSbvhKeys, [](BvhSettings & s) -> auto& { return s.build.sbvh; });
     return bound;
 }
 
 const BvhKeys& plocKeys() {
-    static const BvhKeys bound(kPlocKeys, [](BvhSettings& s) -> auto& { return s.build.ploc; });
+    static const BvhKeys bound(
+        kPlocKeys, [](BvhSettings & s) -> auto& { return s.build.ploc; });
     return bound;
 }
 

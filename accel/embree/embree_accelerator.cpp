@@ -9,8 +9,8 @@
 #include <algorithm>
 #include <atomic>
 #include <bit>
-#include <cstddef>
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <limits>
 #include <mutex>
@@ -31,22 +31,32 @@ constexpr size_t kMaxPrimitives = std::numeric_limits<uint32_t>::max() / 3;
 
 const char* errorName(RTCError code) {
     switch (code) {
-    case RTC_ERROR_NONE: return "RTC_ERROR_NONE";
-    case RTC_ERROR_UNKNOWN: return "RTC_ERROR_UNKNOWN";
-    case RTC_ERROR_INVALID_ARGUMENT: return "RTC_ERROR_INVALID_ARGUMENT";
-    case RTC_ERROR_INVALID_OPERATION: return "RTC_ERROR_INVALID_OPERATION";
-    case RTC_ERROR_OUT_OF_MEMORY: return "RTC_ERROR_OUT_OF_MEMORY";
-    case RTC_ERROR_UNSUPPORTED_CPU: return "RTC_ERROR_UNSUPPORTED_CPU";
-    case RTC_ERROR_CANCELLED: return "RTC_ERROR_CANCELLED";
+        case RTC_ERROR_NONE:
+            return "RTC_ERROR_NONE";
+        case RTC_ERROR_UNKNOWN:
+            return "RTC_ERROR_UNKNOWN";
+        case RTC_ERROR_INVALID_ARGUMENT:
+            return "RTC_ERROR_INVALID_ARGUMENT";
+        case RTC_ERROR_INVALID_OPERATION:
+            return "RTC_ERROR_INVALID_OPERATION";
+        case RTC_ERROR_OUT_OF_MEMORY:
+            return "RTC_ERROR_OUT_OF_MEMORY";
+        case RTC_ERROR_UNSUPPORTED_CPU:
+            return "RTC_ERROR_UNSUPPORTED_CPU";
+        case RTC_ERROR_CANCELLED:
+            return "RTC_ERROR_CANCELLED";
     }
     return "unknown RTCError";
 }
 
 RTCBuildQuality toRtc(EmbreeQuality quality) {
     switch (quality) {
-    case EmbreeQuality::Low: return RTC_BUILD_QUALITY_LOW;
-    case EmbreeQuality::Medium: return RTC_BUILD_QUALITY_MEDIUM;
-    case EmbreeQuality::High: return RTC_BUILD_QUALITY_HIGH;
+        case EmbreeQuality::Low:
+            return RTC_BUILD_QUALITY_LOW;
+        case EmbreeQuality::Medium:
+            return RTC_BUILD_QUALITY_MEDIUM;
+        case EmbreeQuality::High:
+            return RTC_BUILD_QUALITY_HIGH;
     }
     return RTC_BUILD_QUALITY_MEDIUM;
 }
@@ -81,8 +91,8 @@ struct ConeGeometry {
             QuadricHitT<float> h;
             if (!intersectCone(r, cone, r.tmin, r.tmax, h)) continue;
             RTCRayN_tfar(ray, args->N, i) = h.t;
-            const RTCHit rtcHit{h.normal.x, h.normal.y, h.normal.z, 0.0f, 0.0f, args->primID, args->geomID,
-                                {args->context->instID[0]}};
+            const RTCHit rtcHit{h.normal.x, h.normal.y,   h.normal.z,   0.0f,
+                                0.0f,       args->primID, args->geomID, {args->context->instID[0]}};
             rtcCopyHitToHitN(hit, &rtcHit, args->N, i);
         }
     }
@@ -138,8 +148,7 @@ inline Segments segmentsOf(const Ray& ray) {
     }
     if (std::isfinite(ray.tmin)) {
         const Vec3 moved = ray.org + ray.tmin * ray.dir;
-        if (withinEmbreeRange(moved))
-            s.part[s.count++] = {moved, 0.0f, std::min(ray.tmax, 0.0f) - ray.tmin, ray.tmin};
+        if (withinEmbreeRange(moved)) s.part[s.count++] = {moved, 0.0f, std::min(ray.tmax, 0.0f) - ray.tmin, ray.tmin};
     }
     if (ray.tmax >= 0.0f && withinEmbreeRange(ray.org)) s.part[s.count++] = {ray.org, 0.0f, ray.tmax, 0.0f};
     return s;
@@ -200,8 +209,8 @@ void check(State& state, RTCDevice device, const char* call) {
     }
     if (code == RTC_ERROR_NONE) code = threadCode;
     if (code == RTC_ERROR_NONE) return;
-    throw EmbreeError(fmt::format("Embree error in {}: {}{}{}", call, errorName(code), message.empty() ? "" : ": ",
-                                  message));
+    throw EmbreeError(
+        fmt::format("Embree error in {}: {}{}{}", call, errorName(code), message.empty() ? "" : ": ", message));
 }
 
 }  // namespace
@@ -234,8 +243,8 @@ void EmbreeAccelerator::build(const PrimitiveSet& prims) {
     const std::span<const uint32_t> validTriangles = prims.validTriangles();
     const size_t count = validTriangles.size();
     if (count > kMaxPrimitives)
-        throw EmbreeError(fmt::format("Embree: {} primitives exceed the {} this binding can index", count,
-                                      kMaxPrimitives));
+        throw EmbreeError(
+            fmt::format("Embree: {} primitives exceed the {} this binding can index", count, kMaxPrimitives));
 
     // Drop the previous structure first: a failed build leaves an empty (always missing) one.
     scene_.reset();
@@ -274,11 +283,11 @@ void EmbreeAccelerator::build(const PrimitiveSet& prims) {
         rtcSetGeometryBuildQuality(geometry.get(), quality);
         // Embree-allocated buffers: Embree over-allocates the vertex buffer so that its last
         // element can be read with a 16-byte load (the padding rule shared buffers must obey).
-        auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-            geometry.get(), RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 3 * count));
+        auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry.get(), RTC_BUFFER_TYPE_VERTEX, 0,
+                                                                     RTC_FORMAT_FLOAT3, 3 * sizeof(float), 3 * count));
         check(*state_, device, "rtcSetNewGeometryBuffer(vertex)");
-        auto* indices = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
-            geometry.get(), RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), count));
+        auto* indices = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(geometry.get(), RTC_BUFFER_TYPE_INDEX, 0,
+                                                                       RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), count));
         check(*state_, device, "rtcSetNewGeometryBuffer(index)");
         // Embree's primID i is our primitive valid[i]; its vertices are copied in order, so
         // Embree's u, v are the weights of v1 and v2 as in our Hit convention.
@@ -294,7 +303,8 @@ void EmbreeAccelerator::build(const PrimitiveSet& prims) {
         check(*state_, device, "rtcAttachGeometry");
     }
     if (!spheres.empty()) {
-        std::unique_ptr<RTCGeometryTy, GeometryDeleter> geometry(rtcNewGeometry(device, RTC_GEOMETRY_TYPE_SPHERE_POINT));
+        std::unique_ptr<RTCGeometryTy, GeometryDeleter> geometry(
+            rtcNewGeometry(device, RTC_GEOMETRY_TYPE_SPHERE_POINT));
         check(*state_, device, "rtcNewGeometry(sphere)");
         rtcSetGeometryBuildQuality(geometry.get(), quality);
         auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
@@ -359,13 +369,15 @@ namespace {
 // time and joined by & rather than &&, so that a query branches once on all of it; NaN fails
 // every comparison but !=, and fails `within` before that.
 inline bool takenAsIs(const Ray& r) {
-    static_assert(sizeof(Ray) == 32 && offsetof(Ray, dir) == 12 && offsetof(Ray, tmin) == 24 && offsetof(Ray, tmax) == 28);
+    static_assert(sizeof(Ray) == 32 && offsetof(Ray, dir) == 12 && offsetof(Ray, tmin) == 24 &&
+                  offsetof(Ray, tmax) == 28);
     const __m128 a = _mm_loadu_ps(&r.org.x);  // org x y z, dir x
     const __m128 b = _mm_loadu_ps(&r.dir.y);  // dir y z, tmin, tmax
     const __m128 sign = _mm_set1_ps(-0.0f), large = _mm_set1_ps(kEmbreeLarge), zero = _mm_setzero_ps();
     const int withinA = _mm_movemask_ps(_mm_cmple_ps(_mm_andnot_ps(sign, a), large));
     const int withinB = _mm_movemask_ps(_mm_cmple_ps(_mm_andnot_ps(sign, b), large));
-    const int nonzero = (_mm_movemask_ps(_mm_cmpneq_ps(a, zero)) & 0b1000) | (_mm_movemask_ps(_mm_cmpneq_ps(b, zero)) & 0b11);
+    const int nonzero =
+        (_mm_movemask_ps(_mm_cmpneq_ps(a, zero)) & 0b1000) | (_mm_movemask_ps(_mm_cmpneq_ps(b, zero)) & 0b11);
     return (withinA == 0b1111) & ((withinB & 0b11) == 0b11) & (nonzero != 0) & (r.tmin >= 0.0f) & (r.tmin <= r.tmax);
 }
 
@@ -520,13 +532,14 @@ void EmbreeAccelerator::findNearestBatch(View<const Ray> rays, View<Hit> hits, Q
         });
 }
 
-void EmbreeAccelerator::isOccludedBatch(View<const Ray> rays, View<uint8_t> occluded,
-                                        QueryCounters& counters, View<RayCost> costs,
-                                        RayCoherence coherence) const {
+void EmbreeAccelerator::isOccludedBatch(View<const Ray> rays, View<uint8_t> occluded, QueryCounters& counters,
+                                        View<RayCost> costs, RayCoherence coherence) const {
     std::fill(costs.begin(), costs.end(), RayCost{});
     streamInChunks<RTCRay>(
         bool(scene_), rays, coherence, counters, [&](size_t i) { occluded[i] = isOccluded(rays[i], counters) ? 1 : 0; },
-        [](const Ray& ray, RTCRay& rtc) { toRtc(Segment{ray.org, ray.tmin, ray.tmax, 0.0f}, ray.dir, rtc); },
+        [](const Ray& ray, RTCRay& rtc) {
+            toRtc(Segment{ray.org, ray.tmin, ray.tmax, 0.0f}, ray.dir, rtc);
+        },
         [&](RTCIntersectContext* context, RTCRay* chunk, size_t n) {
             rtcOccluded1M(scene_.get(), context, chunk, unsigned(n), sizeof(RTCRay));
         },
@@ -555,15 +568,19 @@ public:
         size_t hits = 0;  // Embree's answers are read, as any caller reads them
         if (!stream_) {
             for (size_t i = begin; i < end; ++i) {
-                if (anyHit) rtcOccluded1(scene_, &context, &rays_[i].ray);
-                else rtcIntersect1(scene_, &context, &rays_[i]);
+                if (anyHit)
+                    rtcOccluded1(scene_, &context, &rays_[i].ray);
+                else
+                    rtcIntersect1(scene_, &context, &rays_[i]);
                 hits += hit(i);
             }
             return hits;
         }
         if (end == begin) return 0;
-        if (anyHit) rtcOccluded1M(scene_, &context, &rays_[begin].ray, unsigned(end - begin), sizeof(RTCRayHit));
-        else rtcIntersect1M(scene_, &context, &rays_[begin], unsigned(end - begin), sizeof(RTCRayHit));
+        if (anyHit)
+            rtcOccluded1M(scene_, &context, &rays_[begin].ray, unsigned(end - begin), sizeof(RTCRayHit));
+        else
+            rtcIntersect1M(scene_, &context, &rays_[begin], unsigned(end - begin), sizeof(RTCRayHit));
         for (size_t i = begin; i < end; ++i) hits += hit(i);
         return hits;
     }
@@ -587,14 +604,22 @@ struct PacketApi;
 template <>
 struct PacketApi<8> {
     using RayHit = RTCRayHit8;
-    static void intersect(const int* valid, RTCScene s, RTCIntersectContext* c, RayHit* r) { rtcIntersect8(valid, s, c, r); }
-    static void occluded(const int* valid, RTCScene s, RTCIntersectContext* c, RayHit* r) { rtcOccluded8(valid, s, c, &r->ray); }
+    static void intersect(const int* valid, RTCScene s, RTCIntersectContext* c, RayHit* r) {
+        rtcIntersect8(valid, s, c, r);
+    }
+    static void occluded(const int* valid, RTCScene s, RTCIntersectContext* c, RayHit* r) {
+        rtcOccluded8(valid, s, c, &r->ray);
+    }
 };
 template <>
 struct PacketApi<16> {
     using RayHit = RTCRayHit16;
-    static void intersect(const int* valid, RTCScene s, RTCIntersectContext* c, RayHit* r) { rtcIntersect16(valid, s, c, r); }
-    static void occluded(const int* valid, RTCScene s, RTCIntersectContext* c, RayHit* r) { rtcOccluded16(valid, s, c, &r->ray); }
+    static void intersect(const int* valid, RTCScene s, RTCIntersectContext* c, RayHit* r) {
+        rtcIntersect16(valid, s, c, r);
+    }
+    static void occluded(const int* valid, RTCScene s, RTCIntersectContext* c, RayHit* r) {
+        rtcOccluded16(valid, s, c, &r->ray);
+    }
 };
 
 // The rays as SoA packets of W consecutive rays, one packet call each. The last packet's lanes
@@ -626,15 +651,18 @@ public:
 
     size_t trace(size_t begin, size_t end, bool anyHit) override {
         if (begin % W != 0)
-            throw std::logic_error(fmt::format("Embree's {}-ray packets: a range must start at a multiple of {}, not {}", W, W, begin));
+            throw std::logic_error(
+                fmt::format("Embree's {}-ray packets: a range must start at a multiple of {}, not {}", W, W, begin));
         RTCIntersectContext context;
         rtcInitIntersectContext(&context);
         if (coherent_) context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
         const size_t last = prepared_.size() - 1;
         for (size_t p = begin / W; p * W < end; ++p) {
             const int* valid = p == last ? last_.lanes : all_.lanes;
-            if (anyHit) Api::occluded(valid, scene_, &context, &packets_[p]);
-            else Api::intersect(valid, scene_, &context, &packets_[p]);
+            if (anyHit)
+                Api::occluded(valid, scene_, &context, &packets_[p]);
+            else
+                Api::intersect(valid, scene_, &context, &packets_[p]);
         }
         size_t hits = 0;
         for (size_t i = begin; i < end; ++i) hits += hit(i);
@@ -685,8 +713,8 @@ std::unique_ptr<EmbreePreparedRays> EmbreeAccelerator::prepareRays(const std::ve
     if (!scene_) throw std::logic_error("EmbreeAccelerator::prepareRays before build()");
     const std::vector<std::string> batch = batchApis();
     if (api != "single" && std::find(batch.begin(), batch.end(), api) == batch.end())
-        throw std::invalid_argument(fmt::format("Embree's ray API '{}': not single or one of this machine's {}", api,
-                                                fmt::join(batch, ", ")));
+        throw std::invalid_argument(
+            fmt::format("Embree's ray API '{}': not single or one of this machine's {}", api, fmt::join(batch, ", ")));
     std::vector<RTCRayHit> prepared(rays.size());
     for (size_t i = 0; i < rays.size(); ++i) {
         if (!takenAsIs(rays[i]))

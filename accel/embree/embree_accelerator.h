@@ -100,7 +100,8 @@ public:
     // The rays prepared for `api`, "single" or one of batchApis() (else std::invalid_argument),
     // refused as prepareNativeBatch refuses them; `coherent` sets
     // RTC_INTERSECT_CONTEXT_FLAG_COHERENT in the context of every call (else INCOHERENT).
-    std::unique_ptr<EmbreePreparedRays> prepareRays(const std::vector<Ray>& rays, std::string_view api, bool coherent) const;
+    std::unique_ptr<EmbreePreparedRays> prepareRays(const std::vector<Ray>& rays, std::string_view api,
+                                                    bool coherent) const;
 
     const EmbreeConfig& config() const { return config_; }
     // The device's configuration string, e.g. "threads=1" or "threads=1,max_isa=avx2".
@@ -138,7 +139,7 @@ private:
     bool findNearestInParts(const Ray& ray, Hit& hit) const;
     bool isOccludedInParts(const Ray& ray) const;
     std::vector<Cone> cones_;  // the user geometry's primitives, read by its callbacks
-    size_t primitives_ = 0;  // the last build's, for statistics()
+    size_t primitives_ = 0;    // the last build's, for statistics()
     std::optional<size_t> bytes_;
 };
 

@@ -13,8 +13,9 @@ inline constexpr std::string_view kQualities[] = {"low", "medium", "high"};
 inline constexpr ChoiceKey quality{
     "Embree::quality", "medium", kQualities,
     "Embree build quality: low (two-level, fastest build), medium (default), high (spatial splits)"};
-inline constexpr BoolKey robust{"Embree::robust", "false",
-                                "RTC_SCENE_FLAG_ROBUST: robust traversal, no optimisations that reduce arithmetic accuracy"};
+inline constexpr BoolKey robust{
+    "Embree::robust", "false",
+    "RTC_SCENE_FLAG_ROBUST: robust traversal, no optimisations that reduce arithmetic accuracy"};
 inline constexpr IntKey threads{
     "Embree::threads", "0", 0, 1024,
     "Embree build threads; 0 = as SetRayTracing::threads. Process-wide: limits TBB while the device lives"};
@@ -30,7 +31,7 @@ enum class EmbreeQuality { Low, Medium, High };
 struct EmbreeConfig {
     EmbreeQuality quality = EmbreeQuality::Medium;
     bool robust = false;
-    int threads = 0;  // as passed to rtcNewDevice: 0 = all hardware threads
+    int threads = 0;     // as passed to rtcNewDevice: 0 = all hardware threads
     std::string maxIsa;  // as passed to rtcNewDevice's max_isa: empty = no limit (Embree::isa=auto)
 
     // Embree::quality, Embree::robust, Embree::threads (0 = SetRayTracing::threads) and Embree::isa.

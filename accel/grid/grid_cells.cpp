@@ -105,9 +105,13 @@ public:
         const DVec3 lo = g_.lower + DVec3(x, y, z) * g_.cellSize - margin_;
         const DVec3 hi = g_.lower + DVec3(x + 1, y + 1, z + 1) * g_.cellSize + margin_;
         switch (prims_.kind(prim)) {
-        case PrimitiveKind::Triangle: return triangleOverlapsBox(prims_.triangles[prim], lo, hi);
-        case PrimitiveKind::Sphere: return sphereOverlapsBox(*prims_.quadric(prim).sphere(), lo, hi);
-        case PrimitiveKind::Cone: default: return true;  // its box covers the cell (range())
+            case PrimitiveKind::Triangle:
+                return triangleOverlapsBox(prims_.triangles[prim], lo, hi);
+            case PrimitiveKind::Sphere:
+                return sphereOverlapsBox(*prims_.quadric(prim).sphere(), lo, hi);
+            case PrimitiveKind::Cone:
+            default:
+                return true;  // its box covers the cell (range())
         }
     }
 
@@ -165,7 +169,8 @@ GridCells buildGridCells(const PrimitiveSet& prims, const GridParameters& parame
         if (parameters.fixed) {
             const double scale = std::cbrt(d / density);
             const GridResolution& f = *parameters.fixed;
-            setResolution(g, {std::max(1, int(f.x * scale)), std::max(1, int(f.y * scale)), std::max(1, int(f.z * scale))});
+            setResolution(
+                g, {std::max(1, int(f.x * scale)), std::max(1, int(f.y * scale)), std::max(1, int(f.z * scale))});
         } else {
             setResolution(g, gridResolution(parameters.setting, d, objects, extent));
         }

@@ -43,7 +43,7 @@ struct GridCells {
         return (size_t(z) * size_t(res.y) + size_t(y)) * size_t(res.x) + size_t(x);
     }
     uint64_t cells() const { return res.cells(); }
-    uint64_t emptyCells() const;  // Havran's N_EV
+    uint64_t emptyCells() const;                         // Havran's N_EV
     uint64_t references() const { return refs.size(); }  // Havran's N_OIV
     size_t maxCellReferences() const;
     size_t bytes() const { return cellStart.size() * sizeof(uint32_t) + refs.size() * sizeof(uint32_t); }

@@ -31,7 +31,8 @@ Accelerator* createGrid(const PluginSettings& settings) {
 BVHLAB_PLUGIN(registrar) {
     using namespace bvhlab;
     registrar.addAccelerator(
-        {"grid", "Havran's uniform grid: Woo's resolution, 3D-DDA, no mailboxes (a plugin: accel/grid/, docs/spd.md)",
+        {"grid",
+         "Havran's uniform grid: Woo's resolution, 3D-DDA, no mailboxes (a plugin: accel/grid/, docs/spd.md)",
          {keys::Grid::density, keys::Grid::setting, keys::Grid::objects, keys::Grid::resolution, keys::Grid::overlap},
          createGrid});
 }

@@ -47,21 +47,21 @@ GridResolution gridResolution(GridSetting setting, double density, double object
     for (int a = 0; a < 3; ++a) anyFlat |= (flat[a] = !(size[a] > kFlatAxis * longest));
 
     switch (setting) {
-    case GridSetting::Regular: {
-        const int r = cellsOf(density * std::cbrt(objects));
-        return {flat[0] ? 1 : r, flat[1] ? 1 : r, flat[2] ? 1 : r};
-    }
-    case GridSetting::Heterogeneous: {
-        if (anyFlat) return woo(cellsWanted, size, flat);
-        const double v = cellsWanted;
-        const int x = cellsOf(std::cbrt(v * size.x * size.x / (size.y * size.z)));
-        const int y = cellsOf(std::sqrt(v * size.y / (double(x) * size.z)));
-        const int z = cellsOf(v / (double(x) * double(y)));
-        return {x, y, z};
-    }
-    case GridSetting::Woo:
-    default:
-        return woo(cellsWanted, size, flat);
+        case GridSetting::Regular: {
+            const int r = cellsOf(density * std::cbrt(objects));
+            return {flat[0] ? 1 : r, flat[1] ? 1 : r, flat[2] ? 1 : r};
+        }
+        case GridSetting::Heterogeneous: {
+            if (anyFlat) return woo(cellsWanted, size, flat);
+            const double v = cellsWanted;
+            const int x = cellsOf(std::cbrt(v * size.x * size.x / (size.y * size.z)));
+            const int y = cellsOf(std::sqrt(v * size.y / (double(x) * size.z)));
+            const int z = cellsOf(v / (double(x) * double(y)));
+            return {x, y, z};
+        }
+        case GridSetting::Woo:
+        default:
+            return woo(cellsWanted, size, flat);
     }
 }
 

@@ -29,13 +29,16 @@ void KdTreeAccelerator::statistics(BuildStatistics& out) const {
     out.set("sah_c_trav", 1.0);
     out.set("sah_c_isect", 1.0);
     out.figure("empty_leaves", double(tree_.emptyLeaves), "leaves that hold no primitive");
-    out.figure("references", references, "primitive references in the leaves (a primitive is in each leaf it overlaps)");
+    out.figure("references", references,
+               "primitive references in the leaves (a primitive is in each leaf it overlaps)");
     out.figure("references_per_primitive", prims_.valid.empty() ? 0.0 : references / double(prims_.valid.size()),
                "references over primitives");
     out.figure("sah_kt_ki", sahCost(tree_, parameters_.cTraversal / parameters_.cIntersect, 1.0),
                "the SAH the build minimised, K_T / K_I per traversal step and 1 per primitive test");
-    out.figure("max_depth_key", double(tree_.maxDepth), "the depth bound the build kept to (KdTree::maxDepth or its rule)");
-    out.figure("events_swept", double(tree_.eventsSwept), "events over all nodes' sweeps: the build's work, O(N log N)");
+    out.figure("max_depth_key", double(tree_.maxDepth),
+               "the depth bound the build kept to (KdTree::maxDepth or its rule)");
+    out.figure("events_swept", double(tree_.eventsSwept),
+               "events over all nodes' sweeps: the build's work, O(N log N)");
     std::vector<size_t> leavesOfSize(tree_.maxLeafReferences + 1, 0);
     for (const KdNode& n : tree_.nodes)
         if (n.isLeaf()) ++leavesOfSize[n.references()];

@@ -145,10 +145,13 @@ private:
         forEachPrimitive(events, [&](uint32_t prim) { side_[prim] = kBoth; });
         for (const Event& e : events.axis[plane.axis]) {
             const uint32_t type = e.type();
-            if (type == kEnd && e.pos <= plane.pos) side_[e.prim()] = kLeftOnly;
-            else if (type == kStart && e.pos >= plane.pos) side_[e.prim()] = kRightOnly;
+            if (type == kEnd && e.pos <= plane.pos)
+                side_[e.prim()] = kLeftOnly;
+            else if (type == kStart && e.pos >= plane.pos)
+                side_[e.prim()] = kRightOnly;
             else if (type == kPlanar)
-                side_[e.prim()] = (e.pos < plane.pos || (e.pos == plane.pos && plane.planarLeft)) ? kLeftOnly : kRightOnly;
+                side_[e.prim()] =
+                    (e.pos < plane.pos || (e.pos == plane.pos && plane.planarLeft)) ? kLeftOnly : kRightOnly;
         }
         NodeEvents& clippedLeft = clippedLeft_;
         NodeEvents& clippedRight = clippedRight_;
@@ -174,8 +177,10 @@ private:
             onlyRight.reserve(rightCount + clippedRight.axis[a].size());
             for (const Event& e : events.axis[a]) {
                 const uint8_t s = side_[e.prim()];
-                if (s == kLeftOnly) onlyLeft.push_back(e);
-                else if (s == kRightOnly) onlyRight.push_back(e);
+                if (s == kLeftOnly)
+                    onlyLeft.push_back(e);
+                else if (s == kRightOnly)
+                    onlyRight.push_back(e);
             }
             mergeSorted(onlyLeft, clippedLeft.axis[a]);
             mergeSorted(onlyRight, clippedRight.axis[a]);
@@ -215,8 +220,8 @@ private:
     double clipMargin_ = 0.0;
     std::vector<std::array<NodeEvents, 2>> levels_;
     NodeEvents clippedLeft_, clippedRight_;  // a split's straddling primitives, clipped to each child
-    std::vector<uint8_t> side_;  // per primitive, during one node's split
-    size_t referenceBudget_ = 0;  // past it, nodes become leaves: bounded memory on any input
+    std::vector<uint8_t> side_;              // per primitive, during one node's split
+    size_t referenceBudget_ = 0;             // past it, nodes become leaves: bounded memory on any input
 };
 
 Bounds3 primitiveBounds(const PrimitiveSet& prims, uint32_t prim) {

@@ -26,10 +26,10 @@ struct KdTreeParameters {
 int autoMaxDepth(size_t primitives);
 
 struct KdTree {
-    Bounds3 bounds;                   // the root's box: the valid primitives' bounds
-    std::vector<KdNode> nodes;        // depth first; empty when nothing was built
+    Bounds3 bounds;                    // the root's box: the valid primitives' bounds
+    std::vector<KdNode> nodes;         // depth first; empty when nothing was built
     std::vector<uint32_t> references;  // the leaves' primitives
-    int maxDepth = 0;                 // the bound the build kept to
+    int maxDepth = 0;                  // the bound the build kept to
     // The build's figures.
     size_t leaves = 0, emptyLeaves = 0, maxLeafReferences = 0;
     int deepestLeaf = 0;

@@ -60,7 +60,8 @@ Bounds3 clippedTriangleBounds(const Triangle& tri, const Bounds3& box, double ma
     DVec3 lo = polygon.v[0], hi = polygon.v[0];
     for (int i = 1; i < polygon.n; ++i) lo = math::min(lo, polygon.v[i]), hi = math::max(hi, polygon.v[i]);
     // Rounded outward: the double computation's own error is far below the traversal's margin.
-    const Bounds3 b(Vec3(roundDown(lo.x), roundDown(lo.y), roundDown(lo.z)), Vec3(roundUp(hi.x), roundUp(hi.y), roundUp(hi.z)));
+    const Bounds3 b(Vec3(roundDown(lo.x), roundDown(lo.y), roundDown(lo.z)),
+                    Vec3(roundUp(hi.x), roundUp(hi.y), roundUp(hi.z)));
     return keptInside(b, box);
 }
 

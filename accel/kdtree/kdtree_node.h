@@ -8,7 +8,7 @@
 
 namespace bvhlab::kdtree {
 
-inline constexpr uint32_t kLeafTag = 3;           // the low two bits of a leaf; an inner node's are its axis
+inline constexpr uint32_t kLeafTag = 3;                // the low two bits of a leaf; an inner node's are its axis
 inline constexpr uint32_t kMaxIndex = (1u << 30) - 1;  // the upper 30 bits: a child index or a count
 
 class KdNode {

@@ -23,10 +23,10 @@ Accelerator* createKdTree(const PluginSettings& settings) {
 
 BVHLAB_PLUGIN(registrar) {
     using namespace bvhlab;
-    registrar.addAccelerator({"kdtree",
-                              "SAH kd-tree of Wald and Havran 2006 (O(N log N) event sweep, perfect splits, empty-space "
-                              "bonus), Havran's TA_B^rec traversal (a plugin: accel/kdtree/, docs/builders.md)",
-                              {keys::KdTree::cTraversal, keys::KdTree::cIntersect, keys::KdTree::emptyBonus,
-                               keys::KdTree::maxDepth},
-                              createKdTree});
+    registrar.addAccelerator(
+        {"kdtree",
+         "SAH kd-tree of Wald and Havran 2006 (O(N log N) event sweep, perfect splits, empty-space "
+         "bonus), Havran's TA_B^rec traversal (a plugin: accel/kdtree/, docs/builders.md)",
+         {keys::KdTree::cTraversal, keys::KdTree::cIntersect, keys::KdTree::emptyBonus, keys::KdTree::maxDepth},
+         createKdTree});
 }

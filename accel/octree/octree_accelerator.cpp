@@ -57,8 +57,10 @@ void OctreeAccelerator::walk(const Ray& ray, QueryCounters& counters, Visit&& vi
             empty += node.objects == 0;
             return visit(tree_.leafReferences(node), exit);
         };
-        if (traversal_ == Traversal::Octree84) walkOctree84(tree_, clipped, counters.traversalSteps, counted);
-        else walkOctree93(tree_, clipped, counters.traversalSteps, counted);
+        if (traversal_ == Traversal::Octree84)
+            walkOctree84(tree_, clipped, counters.traversalSteps, counted);
+        else
+            walkOctree93(tree_, clipped, counters.traversalSteps, counted);
     }
     if (counters.counting) {
         countedQueries_.fetch_add(1, std::memory_order_relaxed);
@@ -71,7 +73,8 @@ void OctreeAccelerator::walk(const Ray& ray, QueryCounters& counters, Visit&& vi
 bool OctreeAccelerator::findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const {
     ++counters.queries;
     if (!ray.isValid() || tree_.nodes.empty()) return false;
-    return findNearestAlong(prims_, ray, counters, [&](auto&& visit) { walk(ray, counters, visit); }, hit);
+    return findNearestAlong(
+        prims_, ray, counters, [&](auto&& visit) { walk(ray, counters, visit); }, hit);
 }
 
 bool OctreeAccelerator::isOccluded(const Ray& ray, QueryCounters& counters) const {

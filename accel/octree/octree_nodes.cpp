@@ -46,9 +46,12 @@ double adaptiveSplit(View<const Bounds3> boxes, View<const uint32_t> objects, co
         if (!(position > lo[axis] && position < hi[axis])) continue;
         uint64_t left = 0, right = 0, cut = 0;
         for (uint32_t p : objects) {
-            if (double(boxes[p].upper[axis]) < position) ++left;
-            else if (double(boxes[p].lower[axis]) > position) ++right;
-            else ++cut;
+            if (double(boxes[p].upper[axis]) < position)
+                ++left;
+            else if (double(boxes[p].lower[axis]) > position)
+                ++right;
+            else
+                ++cut;
         }
         const double t = position - lo[axis];
         const double cost = double(left + cut) * (t * 2.0 * (sb + sc) + sb * sc) +

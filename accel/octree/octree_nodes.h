@@ -36,8 +36,8 @@ inline constexpr uint64_t kReferencesPerPrimitive = 32;
 struct OctreeParameters {
     Subdivision subdivision = Subdivision::Centre;
     int maxDepth = 5;
-    int maxObjects = 1;      // MO
-    bool polygons = true;    // a fan of triangles is one object (false: every primitive is one)
+    int maxObjects = 1;    // MO
+    bool polygons = true;  // a fan of triangles is one object (false: every primitive is one)
 };
 
 // An inner node's children are nodes[firstChild + c], c's bit a set for the side above split[a];
@@ -53,8 +53,8 @@ struct OctreeNode {
 };
 
 struct Octree {
-    DVec3 lower{0.0}, upper{0.0};  // the root's box
-    std::vector<OctreeNode> nodes;   // empty: nothing to trace
+    DVec3 lower{0.0}, upper{0.0};   // the root's box
+    std::vector<OctreeNode> nodes;  // empty: nothing to trace
     std::vector<uint32_t> refs;     // primitives, leaf by leaf
     uint64_t objects = 0;           // built over
     uint64_t objectReferences = 0;  // Havran's N_OIV

@@ -24,7 +24,8 @@ public:
 template <typename Body>
 auto guardPlugin(const std::string& plugin, const std::string& accelerator, std::string_view what, Body&& body) {
     auto fail = [&](std::string_view message) {
-        return PluginError(fmt::format("plugin {}, accelerator '{}': {} threw: {}", plugin, accelerator, what, message));
+        return PluginError(
+            fmt::format("plugin {}, accelerator '{}': {} threw: {}", plugin, accelerator, what, message));
     };
     try {
         return body();

@@ -65,8 +65,8 @@ void checkAdditions(const std::string& file, const OpenedPlugin& plugin) {
         if (!a.create) throw inputError(file, 0, fmt::format("accelerator '{}' has no factory", a.name));
     for (const PluginBuilderEntry& b : plugin.builders)
         if (bool(b.builder.splitRule) == bool(b.builder.mergeTree))
-            throw inputError(file, 0,
-                             fmt::format("builder '{}' must give exactly one of splitRule and mergeTree", b.builder.name));
+            throw inputError(
+                file, 0, fmt::format("builder '{}' must give exactly one of splitRule and mergeTree", b.builder.name));
 }
 
 }  // namespace
@@ -112,11 +112,14 @@ std::string abiMismatch(View<const AbiFigure> plugin) {
     const std::optional<uint64_t> library = valueIn(plugin, toolchain[1]);
     const std::optional<uint64_t> libraryAbi = valueIn(plugin, toolchain[2]);
     auto libraryName = [](uint64_t library) {
-        return library == abi::kLibstdcxx ? "libstdc++" : library == abi::kLibcxx ? "libc++" : "another standard library";
+        return library == abi::kLibstdcxx ? "libstdc++"
+               : library == abi::kLibcxx  ? "libc++"
+                                          : "another standard library";
     };
     std::vector<std::string> causes;
     if (itanium && *itanium != abi::kItaniumAbi)
-        causes.push_back("it was not compiled for the Itanium C++ ABI, which bvhlab follows: build it with GCC or Clang");
+        causes.push_back(
+            "it was not compiled for the Itanium C++ ABI, which bvhlab follows: build it with GCC or Clang");
     if (library && *library != abi::kStandardLibrary)
         causes.push_back(fmt::format("it was built with {}; bvhlab uses {}: build it with {}{}", libraryName(*library),
                                      libraryName(abi::kStandardLibrary), libraryName(abi::kStandardLibrary),
@@ -149,9 +152,10 @@ std::string abiMismatch(View<const AbiFigure> plugin) {
         constexpr size_t kShown = 8;
         const size_t more = differences.size() > kShown ? differences.size() - kShown : 0;
         differences.resize(differences.size() - more);
-        causes.push_back(fmt::format("it was built against other headers ({}{}): rebuild it against this bvhlab's "
-                                     "include/bvhlab (docs/plugins.md)",
-                                     fmt::join(differences, "; "), more ? fmt::format("; and {} more", more) : ""));
+        causes.push_back(
+            fmt::format("it was built against other headers ({}{}): rebuild it against this bvhlab's "
+                        "include/bvhlab (docs/plugins.md)",
+                        fmt::join(differences, "; "), more ? fmt::format("; and {} more", more) : ""));
     }
     if (causes.empty()) return "";
     return fmt::format("built against another ABI (plugin ABI {}, bvhlab ABI {}): {}", abiFingerprint(plugin),

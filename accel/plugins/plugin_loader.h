@@ -56,8 +56,8 @@ struct OpenedPlugin {
     std::vector<EnvKey> keys() const;                   // every key it declares
 };
 
-// Opens `file` (absolute) and asks its entry point what it adds. Throws InputError naming the file when it cannot be opened, is not a bvhlab
-// plugin, was built against another ABI (both fingerprints and where they differ named), its
+// Opens `file` (absolute) and asks its entry point what it adds. Throws InputError naming the file when it cannot be
+// opened, is not a bvhlab plugin, was built against another ABI (both fingerprints and where they differ named), its
 // entry point throws, or what it adds is malformed: no accelerator and no builder, a name that is
 // not one word, a name or key given twice, a key that is not `Section::key` or not well declared,
 // an accelerator without a factory, a builder without exactly one of its two functions. On a

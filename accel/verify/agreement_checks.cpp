@@ -31,7 +31,8 @@ const SceneCase& sceneCase(const NamedSceneFactory& factory, const std::vector<R
     auto& slot = cache[{factory.name, rayScale}];
     if (slot) {
         if (judged && slot->reference.empty())
-            for (const auto& [kind, rays] : slot->rays) slot->reference.push_back(computeOracleReference(*slot->oracle, rays));
+            for (const auto& [kind, rays] : slot->rays)
+                slot->reference.push_back(computeOracleReference(*slot->oracle, rays));
         return *slot;
     }
     slot = std::make_unique<SceneCase>();
@@ -47,7 +48,8 @@ const SceneCase& sceneCase(const NamedSceneFactory& factory, const std::vector<R
     }
     if (!extraRays.empty()) slot->rays.emplace_back(RayKind::Outside, extraRays);
     if (judged)
-        for (const auto& [kind, rays] : slot->rays) slot->reference.push_back(computeOracleReference(*slot->oracle, rays));
+        for (const auto& [kind, rays] : slot->rays)
+            slot->reference.push_back(computeOracleReference(*slot->oracle, rays));
     return *slot;
 }
 
@@ -71,9 +73,10 @@ CheckResult compareOnScenes(const Subject& subject, const CheckOptions& options,
         ++result.scenes;
         for (size_t k = 0; k < c.rays.size(); ++k) {
             const auto& [kind, rays] = c.rays[k];
-            const std::string label = fmt::format("{}/{}", factory.name, k < std::size(kAllRayKinds) ? rayKindName(kind) : "aimed");
-            const ComparisonReport r = compareWithReference(*accel, nearest ? c.reference[k] : unjudged, *c.oracle, rays,
-                                                            options.maxExamples, occlusion);
+            const std::string label =
+                fmt::format("{}/{}", factory.name, k < std::size(kAllRayKinds) ? rayKindName(kind) : "aimed");
+            const ComparisonReport r = compareWithReference(*accel, nearest ? c.reference[k] : unjudged, *c.oracle,
+                                                            rays, options.maxExamples, occlusion);
             const size_t failures = (nearest ? r.nearestFailures() : 0) + (occlusion ? r.occlusionFailures() : 0);
             result.cases += r.rays;
             if (isExternal(subject.name) && double(failures) <= kExternalBound * double(r.rays)) {
@@ -88,7 +91,9 @@ CheckResult compareOnScenes(const Subject& subject, const CheckOptions& options,
             reportProgress(options, ++done, total);
         }
     }
-    if (reported) result.note = fmt::format("{} known deviations reported (within {:g} % of each ray set)", reported, 100 * kExternalBound);
+    if (reported)
+        result.note =
+            fmt::format("{} known deviations reported (within {:g} % of each ray set)", reported, 100 * kExternalBound);
     return result;
 }
 

@@ -83,7 +83,8 @@ Scene makeTorusMesh(int majorSegments, int minorSegments) {
 
 Scene makeClosedTrioScene(int icosphereSubdivisions, int cubeN, int torusMajor, int torusMinor) {
     Scene scene;
-    scene.name = fmt::format("trio(icosphere{},cube{},torus{}x{})", icosphereSubdivisions, cubeN, torusMajor, torusMinor);
+    scene.name =
+        fmt::format("trio(icosphere{},cube{},torus{}x{})", icosphereSubdivisions, cubeN, torusMajor, torusMinor);
     addIcosphere(scene, Vec3(-4.0f, 0.1f, 0.0f), 1.2f, icosphereSubdivisions, 0);
     addSubdividedBox(scene, Vec3(-1.2f, -1.0f, -1.0f), Vec3(1.1f, 1.0f, 1.25f), cubeN, 0);
     addTorus(scene, Vec3(4.5f, 0.0f, 0.3f), 1.5f, 0.5f, torusMajor, torusMinor, 0);

@@ -90,19 +90,23 @@ ComparisonReport compareWithReference(const Accelerator& accel, const Reference&
             report.accelVsOracle += !agree(a, ref.oracle[i].toHit());
             if (!agree(a, n)) {
                 ++report.disagreements;
-                if (accelWrong && naiveWrong) ++report.bothWrong;
-                else if (accelWrong) ++report.accelOnlyWrong;
-                else if (naiveWrong) ++report.naiveOnlyWrong;
-                else ++report.ambiguous;
+                if (accelWrong && naiveWrong)
+                    ++report.bothWrong;
+                else if (accelWrong)
+                    ++report.accelOnlyWrong;
+                else if (naiveWrong)
+                    ++report.naiveOnlyWrong;
+                else
+                    ++report.ambiguous;
             }
             if (accelWrong && !withNaive)
-                example(i, fmt::format("structure {} [{}: {}]; reference {}", describe(a), verdictName(ja.verdict), ja.reason,
-                                       describe(ref.oracle[i])));
+                example(i, fmt::format("structure {} [{}: {}]; reference {}", describe(a), verdictName(ja.verdict),
+                                       ja.reason, describe(ref.oracle[i])));
             else if (accelWrong || naiveWrong)
                 example(i, fmt::format("accelerator {} [{}: {}]; naive {} [{}{}{}]; oracle {}", describe(a),
-                                       verdictName(ja.verdict), ja.reason, describe(n), verdictName(ref.naiveVerdict[i]),
-                                       naiveWrong ? ": " : "", naiveWrong ? ref.naiveReason[i] : "",
-                                       describe(ref.oracle[i])));
+                                       verdictName(ja.verdict), ja.reason, describe(n),
+                                       verdictName(ref.naiveVerdict[i]), naiveWrong ? ": " : "",
+                                       naiveWrong ? ref.naiveReason[i] : "", describe(ref.oracle[i])));
         }
         if (!occlusion) continue;
 
@@ -133,8 +137,8 @@ ComparisonReport compareWithReference(const Accelerator& accel, const Reference&
             shorter.tmax = a.t * (1.0f - 1e-3f);
             if (shorter.tmin <= shorter.tmax && accel.isOccluded(shorter, occCounters)) {
                 ++report.shrunkOcclusion;
-                occlusionExample(i, fmt::format("isOccluded true with tmax = {:.9g} below the nearest hit {}", shorter.tmax,
-                                       describe(a)));
+                occlusionExample(i, fmt::format("isOccluded true with tmax = {:.9g} below the nearest hit {}",
+                                                shorter.tmax, describe(a)));
             }
         }
     }

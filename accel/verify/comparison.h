@@ -12,10 +12,10 @@ namespace bvhlab::verify {
 
 // What naive and the oracle answer on a ray set; computed once, shared by every accelerator.
 struct Reference {
-    std::vector<Hit> naive;            // naive findNearest
-    std::vector<Verdict> naiveVerdict; // the judge on naive's answer
+    std::vector<Hit> naive;             // naive findNearest
+    std::vector<Verdict> naiveVerdict;  // the judge on naive's answer
     std::vector<std::string> naiveReason;
-    std::vector<OracleHit> oracle;     // double brute-force nearest
+    std::vector<OracleHit> oracle;  // double brute-force nearest
 };
 Reference computeReference(const Accelerator& naive, const Oracle& oracle, std::span<const Ray> rays);
 // The oracle's answers alone (naive's left empty): the structure is compared with the oracle,
@@ -36,12 +36,12 @@ struct ComparisonReport {
     size_t naiveWrong = 0;
     size_t accelVsOracle = 0;  // !agree(accel, oracle), any verdict
     // Interface contract:
-    size_t returnMismatch = 0;     // return value != hit.found(), or `hit` modified on a miss
-    size_t occlusionMismatch = 0;  // isOccluded != findNearest found (outside the tie caveat)
-    size_t occlusionTies = 0;      // skipped by the tie caveat
-    size_t shrunkOcclusion = 0;    // isOccluded true with tmax just below the nearest t
-    size_t queriesMiscounted = 0;  // counters.queries did not go up by exactly 1 per query
-    size_t occludedMiscounted = 0; // of them, by isOccluded
+    size_t returnMismatch = 0;      // return value != hit.found(), or `hit` modified on a miss
+    size_t occlusionMismatch = 0;   // isOccluded != findNearest found (outside the tie caveat)
+    size_t occlusionTies = 0;       // skipped by the tie caveat
+    size_t shrunkOcclusion = 0;     // isOccluded true with tmax just below the nearest t
+    size_t queriesMiscounted = 0;   // counters.queries did not go up by exactly 1 per query
+    size_t occludedMiscounted = 0;  // of them, by isOccluded
     // The first few problems, with full ray, t and prim: of findNearest (and the judge), and of isOccluded.
     std::vector<std::string> examples, occlusionExamples;
 

@@ -64,14 +64,20 @@ bool sameQueries(const QueryCounters& a, const QueryCounters& b) {
 
 const std::vector<CheckInfo>& conformanceChecks() {
     static const std::vector<CheckInfo> checks = {
-        {"agreement", "closest hit against the double-precision reference on every generated scene and ray kind", agreement},
+        {"agreement", "closest hit against the double-precision reference on every generated scene and ray kind",
+         agreement},
         {"any-hit", "isOccluded answers as the closest hit does, and nothing blocks a ray before it", anyHit},
         {"batch", "findNearestBatch/isOccludedBatch answer and count as the single-ray calls", batch},
-        {"mixed-primitives", "triangles, spheres and cones against a double brute force (if supported)", mixedPrimitives},
-        {"degenerate-triangles", "degenerate triangles mixed in are never hit; rays aimed at them", degenerateTriangles},
+        {"mixed-primitives", "triangles, spheres and cones against a double brute force (if supported)",
+         mixedPrimitives},
+        {"degenerate-triangles", "degenerate triangles mixed in are never hit; rays aimed at them",
+         degenerateTriangles},
         {"watertight", "probes at the edges and vertices of closed meshes do not leak (if promised)", watertight},
-        {"builds-at-the-edge", "bounded time, memory and depth on degenerate inputs, answers as naive's", buildsAtTheEdge},
-        {"cost", fmt::format("N_IT + N_TR per ray against sahbvh's on a mid-size scene: a warning past {:g}x", kCostFactor), cost},
+        {"builds-at-the-edge", "bounded time, memory and depth on degenerate inputs, answers as naive's",
+         buildsAtTheEdge},
+        {"cost",
+         fmt::format("N_IT + N_TR per ray against sahbvh's on a mid-size scene: a warning past {:g}x", kCostFactor),
+         cost},
     };
     return checks;
 }

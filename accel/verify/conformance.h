@@ -23,11 +23,11 @@ struct Subject {
 };
 
 struct CheckOptions {
-    double rayScale = 1.0;          // multiplies every ray and probe count
-    size_t edgePrimitives = 100000; // of each builders' edge case
-    double edgeMaxSeconds = 0.0;    // a slower edge build fails; 0: the default bound
-    size_t maxExamples = 3;         // failures shown per check
-    int threads = 0;                // builds and probes; 0 = all hardware threads
+    double rayScale = 1.0;           // multiplies every ray and probe count
+    size_t edgePrimitives = 100000;  // of each builders' edge case
+    double edgeMaxSeconds = 0.0;     // a slower edge build fails; 0: the default bound
+    size_t maxExamples = 3;          // failures shown per check
+    int threads = 0;                 // builds and probes; 0 = all hardware threads
     // Called as the check goes, with units done (scenes, ray sets) of `total`.
     std::function<void(uint64_t done, uint64_t total)> progress;
 };
@@ -39,8 +39,8 @@ struct CheckResult {
     size_t cases = 0;     // rays, probes or builds checked
     size_t failures = 0;  // of them, answers (or builds) that break what the structure promises
     bool skipped = false;
-    bool warning = false; // passed, but worth a look (the cost check past its bound)
-    std::string note;     // why skipped, or what was reported and not failed
+    bool warning = false;  // passed, but worth a look (the cost check past its bound)
+    std::string note;      // why skipped, or what was reported and not failed
     // The first few failures, each naming the check, the scene, the ray (org, dir, tmin, tmax,
     // "%.9g") and the structure's and the reference's answers.
     std::vector<std::string> examples;

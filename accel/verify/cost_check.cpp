@@ -45,7 +45,8 @@ CheckResult cost(const Subject& subject, const CheckOptions& options) {
         return result;
     }
     std::vector<Ray> rays = generateRays(RayKind::Outside, scene.primitives(), scene.bounds, scaled(2000, options), 1);
-    const std::vector<Ray> inside = generateRays(RayKind::Inside, scene.primitives(), scene.bounds, scaled(1000, options), 2);
+    const std::vector<Ray> inside =
+        generateRays(RayKind::Inside, scene.primitives(), scene.bounds, scaled(1000, options), 2);
     rays.insert(rays.end(), inside.begin(), inside.end());
     const auto reference = createAccelerator("sahbvh", Env(verifyKeys()));
     reference->build(scene.primitives());

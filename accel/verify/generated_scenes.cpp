@@ -99,10 +99,16 @@ Scene makeCoincidentScene(size_t groups, size_t copies, bool slid, uint64_t seed
                    d = Vec3(c + rng.unitVector() * size);
         for (size_t k = 0; k < copies; ++k) {
             switch (k % 4) {
-            case 0:
-            case 1: addLooseTriangle(scene, a, b, d); break;  // identical
-            case 2: addLooseTriangle(scene, a, d, b); break;  // reversed winding
-            default: addLooseTriangle(scene, b, d, a); break;  // rotated vertex order
+                case 0:
+                case 1:
+                    addLooseTriangle(scene, a, b, d);
+                    break;  // identical
+                case 2:
+                    addLooseTriangle(scene, a, d, b);
+                    break;  // reversed winding
+                default:
+                    addLooseTriangle(scene, b, d, a);
+                    break;  // rotated vertex order
             }
         }
         // Coplanar, overlapping: the same triangle slid within its plane.
@@ -145,7 +151,10 @@ Scene makeCollinearCentroidsScene(size_t n, uint64_t seed) {
 Scene makeCentroidsOnPlaneScene(size_t count, uint32_t seed) {
     // Braced, so that x is drawn before y on every compiler.
     return makeTrianglesAroundScene(
-        "centroids_plane", count, seed, [](VerifyRng& rng) { return D3{rng.uniform(-10, 10), rng.uniform(-10, 10), 0.0}; },
+        "centroids_plane", count, seed,
+        [](VerifyRng& rng) {
+            return D3{rng.uniform(-10, 10), rng.uniform(-10, 10), 0.0};
+        },
         [](VerifyRng& rng) { return rng.uniform(0.1, 1.0); });
 }
 
@@ -161,11 +170,13 @@ Scene makeHugeAmongTinyScene(size_t n, uint64_t seed) {
     scene.name = fmt::format("huge+tiny{}", n);
     scene.positions.reserve(3 * n + 3);
     scene.indices.reserve(n + 1);
-    addLooseTriangle(scene, Vec3(-1000.0f, -900.0f, -800.0f), Vec3(1100.0f, -700.0f, 950.0f), Vec3(-50.0f, 1000.0f, 20.0f));
+    addLooseTriangle(scene, Vec3(-1000.0f, -900.0f, -800.0f), Vec3(1100.0f, -700.0f, 950.0f),
+                     Vec3(-50.0f, 1000.0f, 20.0f));
     for (size_t i = 0; i < n; ++i) {
         const DVec3 c(rng.uniform(-100, 100), rng.uniform(-100, 100), rng.uniform(-100, 100));
         const double s = 1e-3;
-        addLooseTriangle(scene, Vec3(c + s * rng.unitVector()), Vec3(c + s * rng.unitVector()), Vec3(c + s * rng.unitVector()));
+        addLooseTriangle(scene, Vec3(c + s * rng.unitVector()), Vec3(c + s * rng.unitVector()),
+                         Vec3(c + s * rng.unitVector()));
     }
     scene.finalize();
     return scene;
@@ -177,7 +188,10 @@ Scene makeDegenerateMixScene(size_t count, uint32_t seed) {
     scene.name = "degenerate_mix";
     const Bounds3 box(Vec3(-10.0f), Vec3(10.0f));
     // Small integers / 4: sums of these are exact, so the segments below are exactly collinear.
-    auto grid = [&] { return Vec3(float(int(rng.index(64)) - 32), float(int(rng.index(64)) - 32), float(int(rng.index(64)) - 32)) * 0.25f; };
+    auto grid = [&] {
+        return Vec3(float(int(rng.index(64)) - 32), float(int(rng.index(64)) - 32), float(int(rng.index(64)) - 32)) *
+               0.25f;
+    };
     const float inf = std::numeric_limits<float>::infinity();
     for (size_t i = 0; i < count; ++i) {
         if (!rng.chance(0.25)) {
@@ -185,14 +199,27 @@ Scene makeDegenerateMixScene(size_t count, uint32_t seed) {
             continue;
         }
         const Vec3 p = grid(), q = grid();
-        const Vec3 d = Vec3(float(int(rng.index(5)) - 2), float(int(rng.index(5)) - 2), float(int(rng.index(5)) - 2)) * 0.25f;
+        const Vec3 d =
+            Vec3(float(int(rng.index(5)) - 2), float(int(rng.index(5)) - 2), float(int(rng.index(5)) - 2)) * 0.25f;
         switch (rng.index(6)) {
-        case 0: addLooseTriangle(scene, p, p, p); break;                  // a point
-        case 1: addLooseTriangle(scene, p, p + d, p + 2.0f * d); break;  // an exact segment
-        case 2: addLooseTriangle(scene, p, q, p); break;                  // a repeated vertex
-        case 3: addLooseTriangle(scene, p, q, Vec3(q.x, kNaNf, q.z)); break;
-        case 4: addLooseTriangle(scene, Vec3(inf, p.y, p.z), p, q); break;
-        default: addLooseTriangle(scene, p, Vec3(kNaNf), q); break;
+            case 0:
+                addLooseTriangle(scene, p, p, p);
+                break;  // a point
+            case 1:
+                addLooseTriangle(scene, p, p + d, p + 2.0f * d);
+                break;  // an exact segment
+            case 2:
+                addLooseTriangle(scene, p, q, p);
+                break;  // a repeated vertex
+            case 3:
+                addLooseTriangle(scene, p, q, Vec3(q.x, kNaNf, q.z));
+                break;
+            case 4:
+                addLooseTriangle(scene, Vec3(inf, p.y, p.z), p, q);
+                break;
+            default:
+                addLooseTriangle(scene, p, Vec3(kNaNf), q);
+                break;
         }
     }
     scene.finalize();

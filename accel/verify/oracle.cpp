@@ -31,11 +31,11 @@ constexpr double kErrorUlps = 64.0;
 
 struct TriangleGeometry {
     D3 v0, v1, v2;
-    D3 normal;         // unnormalised, cross(v1 - v0, v2 - v0)
-    double normalLen;  // twice the area
-    double cosine;     // |cos| of the angle between the ray and the normal
-    double tolLateral; // absolute distance
-    double tolT;       // in units of t
+    D3 normal;          // unnormalised, cross(v1 - v0, v2 - v0)
+    double normalLen;   // twice the area
+    double cosine;      // |cos| of the angle between the ray and the normal
+    double tolLateral;  // absolute distance
+    double tolT;        // in units of t
 };
 
 TriangleGeometry geometryOf(const Triangle& tri, const Ray& ray) {
@@ -99,8 +99,7 @@ std::pair<double, double> barycentricOf(const TriangleGeometry& g, const D3& p) 
 }
 
 double minAltitude(const TriangleGeometry& g) {
-    const double longest =
-        std::max({glm::length(g.v1 - g.v0), glm::length(g.v2 - g.v1), glm::length(g.v0 - g.v2)});
+    const double longest = std::max({glm::length(g.v1 - g.v0), glm::length(g.v2 - g.v1), glm::length(g.v0 - g.v2)});
     return g.normalLen / longest;
 }
 
@@ -108,16 +107,20 @@ double minAltitude(const TriangleGeometry& g) {
 
 const char* verdictName(Verdict v) {
     switch (v) {
-    case Verdict::Right: return "right";
-    case Verdict::Ambiguous: return "ambiguous";
-    case Verdict::Wrong: return "WRONG";
+        case Verdict::Right:
+            return "right";
+        case Verdict::Ambiguous:
+            return "ambiguous";
+        case Verdict::Wrong:
+            return "WRONG";
     }
     return "?";
 }
 
 Oracle::Oracle(const PrimitiveSet& prims) : prims_(prims), valid_(prims.triangles.size(), 0) {
     if (prims.hasQuadrics())
-        throw std::invalid_argument("Oracle: triangles only (scenes with spheres and cones: test_mixed_primitives.cpp)");
+        throw std::invalid_argument(
+            "Oracle: triangles only (scenes with spheres and cones: test_mixed_primitives.cpp)");
     for (uint32_t p : prims.valid) valid_.at(p) = 1;
 }
 
@@ -176,7 +179,8 @@ Judgement Oracle::judge(const Ray& ray, const Hit& answer, const OracleHit& near
         if (!isValidPrimitive(p))
             return {Verdict::Wrong, fmt::format("primitive {} is not a valid (non-degenerate, built) primitive", p)};
         if (!(answer.t >= ray.tmin && answer.t <= ray.tmax))
-            return {Verdict::Wrong, fmt::format("t = {:.9g} is outside [{:.9g}, {:.9g}]", answer.t, ray.tmin, ray.tmax)};
+            return {Verdict::Wrong,
+                    fmt::format("t = {:.9g} is outside [{:.9g}, {:.9g}]", answer.t, ray.tmin, ray.tmax)};
         claimed = geometryOf(prims_.triangles[p], ray);
         const D3 q = org + double(answer.t) * dir;
         const double dist = glm::length(q - closestPointOnTriangle(q, claimed.v0, claimed.v1, claimed.v2));
@@ -186,7 +190,8 @@ Judgement Oracle::judge(const Ray& ray, const Hit& answer, const OracleHit& near
             return {Verdict::Wrong, fmt::format("the point at t = {:.9g} is {:.3g} from triangle {} (bound {:.3g})",
                                                 answer.t, dist, p, tol)};
         if (!(answer.u >= -1e-6f && answer.v >= -1e-6f && answer.u + answer.v <= 1.0f + 1e-5f))
-            return {Verdict::Wrong, fmt::format("u = {:.9g}, v = {:.9g} are not barycentric weights", answer.u, answer.v)};
+            return {Verdict::Wrong,
+                    fmt::format("u = {:.9g}, v = {:.9g} are not barycentric weights", answer.u, answer.v)};
         const auto [bu, bv] = barycentricOf(claimed, q);
         const double tolBary = 2.0 * tol / minAltitude(claimed) + 1e-5;
         if (std::abs(bu - answer.u) > tolBary || std::abs(bv - answer.v) > tolBary)
@@ -204,8 +209,7 @@ Judgement Oracle::judge(const Ray& ray, const Hit& answer, const OracleHit& near
         const bool awayFromEdges = boundaryDistance(g, h.u, h.v) * g.cosine > 2.0 * g.tolLateral;
         const bool awayFromEnds = h.t - double(ray.tmin) > g.tolT && double(ray.tmax) - h.t > g.tolT;
         if (!awayFromEdges || !awayFromEnds) continue;
-        if (!answer.found())
-            return {Verdict::Wrong, fmt::format("missed an unambiguous hit: {}", describe(h))};
+        if (!answer.found()) return {Verdict::Wrong, fmt::format("missed an unambiguous hit: {}", describe(h))};
         const double margin = g.tolT + claimed.tolT + 1e-4 * std::max(1.0, std::abs(double(answer.t)));
         if (h.t < double(answer.t) - margin)
             return {Verdict::Wrong, fmt::format("missed an unambiguous closer hit: {}", describe(h))};

@@ -1,9 +1,9 @@
 #include "accel/verify/conformance_checks.h"
 
+#include <bvhlab/triangle.h>
 #include "accel/verify/generated_scenes.h"
 #include "accel/verify/oracle.h"
 #include "accel/verify/verify_rng.h"
-#include <bvhlab/triangle.h>
 
 #include <fmt/format.h>
 
@@ -84,11 +84,14 @@ std::vector<Ray> mixedRays(const Scene& scene, uint32_t seed, double scale) {
         rays.push_back({s.centre + 0.5f * std::abs(s.radius) * rng.pointWithin(1.0), Vec3(rng.unitVector())});
     }
     for (int i = 0; i < n(200); ++i)  // short intervals, inside and behind the origin
-        rays.push_back({outside(), Vec3(rng.unitVector()), -20.0f * float(rng.uniform()), 40.0f * float(rng.uniform())});
+        rays.push_back(
+            {outside(), Vec3(rng.unitVector()), -20.0f * float(rng.uniform()), 40.0f * float(rng.uniform())});
     return rays;
 }
 
-std::string describeReference(const MixedReference& r) { return r.found() ? fmt::format("t={:.17g} prim={}", r.t, r.primitive) : "miss"; }
+std::string describeReference(const MixedReference& r) {
+    return r.found() ? fmt::format("t={:.17g} prim={}", r.t, r.primitive) : "miss";
+}
 
 // Batch: findNearestBatch / isOccludedBatch against the single-ray calls.
 
@@ -117,8 +120,9 @@ CheckResult mixedPrimitives(const Subject& subject, const CheckOptions& options)
     }
     if (stats.primitives != prims.valid.size()) {
         ++result.failures;
-        addExample(result, options, scene.name,
-                   fmt::format("built over {} primitives, the scene has {} valid ones", stats.primitives, prims.valid.size()));
+        addExample(
+            result, options, scene.name,
+            fmt::format("built over {} primitives, the scene has {} valid ones", stats.primitives, prims.valid.size()));
     }
     const std::vector<Ray> rays = mixedRays(scene, 11, options.rayScale);
     for (size_t i = 0; i < rays.size(); ++i) {
@@ -132,7 +136,8 @@ CheckResult mixedPrimitives(const Subject& subject, const CheckOptions& options)
         const bool found = accel->findNearest(ray, hit, counters);
         const bool occluded = accel->isOccluded(ray, counters);
         std::string problem;
-        if (found != reference.found() || (found && !(std::abs(hit.t - reference.t) <= 1e-4 * std::max(1.0, reference.t))))
+        if (found != reference.found() ||
+            (found && !(std::abs(hit.t - reference.t) <= 1e-4 * std::max(1.0, reference.t))))
             problem = "closest hit";
         else if (occluded != reference.found())
             problem = fmt::format("isOccluded = {}", occluded);
@@ -145,7 +150,8 @@ CheckResult mixedPrimitives(const Subject& subject, const CheckOptions& options)
             PrimitiveSet only = prims;
             const uint32_t one[] = {hit.primitive};
             only.valid = one;
-            if (!nearestInDouble(only, at).found()) problem = fmt::format("primitive {} is not hit there", hit.primitive);
+            if (!nearestInDouble(only, at).found())
+                problem = fmt::format("primitive {} is not hit there", hit.primitive);
         }
         if (problem.empty()) continue;
         ++result.failures;
@@ -184,10 +190,10 @@ CheckResult batch(const Subject& subject, const CheckOptions& options) {
         for (size_t begin = 0, step = 0; begin < rays.size(); ++step) {
             const size_t n = std::min(rays.size() - begin, step % 4 == 0 ? size_t(1) : step % 4 == 1 ? 0 : 333 * step);
             const auto part = std::span(rays).subspan(begin, n);
-            accel->findNearestBatch(part, std::span(hits).subspan(begin, n), batched, std::span(costs).subspan(begin, n),
-                                   coherence);
+            accel->findNearestBatch(part, std::span(hits).subspan(begin, n), batched,
+                                    std::span(costs).subspan(begin, n), coherence);
             accel->isOccludedBatch(part, std::span(occluded).subspan(begin, n), batchedOcc,
-                                  std::span(occCosts).subspan(begin, n), coherence);
+                                   std::span(occCosts).subspan(begin, n), coherence);
             begin += n;
         }
         for (size_t i = 0; i < rays.size(); ++i) {
@@ -200,22 +206,26 @@ CheckResult batch(const Subject& subject, const CheckOptions& options) {
                 problem = fmt::format("isOccludedBatch {}; isOccluded {}", int(occluded[i]), int(expectedOcc[i]));
             if (problem.empty()) continue;
             ++result.failures;
-            addExample(result, options, scene.name, fmt::format("{} ray #{} {}: {}", hint, i, describe(rays[i]), problem));
+            addExample(result, options, scene.name,
+                       fmt::format("{} ray #{} {}: {}", hint, i, describe(rays[i]), problem));
         }
         const auto counterProblem = [&](const std::string& what) {
             ++result.failures;
             addExample(result, options, scene.name, what);
         };
         if (!same(batched, single))
-            counterProblem(fmt::format("{} findNearestBatch counted {}; findNearest {}", hint, describeCounters(batched), describeCounters(single)));
+            counterProblem(fmt::format("{} findNearestBatch counted {}; findNearest {}", hint,
+                                       describeCounters(batched), describeCounters(single)));
         if (!same(batchedOcc, singleOcc))
-            counterProblem(fmt::format("{} isOccludedBatch counted {}; isOccluded {}", hint, describeCounters(batchedOcc), describeCounters(singleOcc)));
-        for (const auto& [list, total, what] : {std::tuple{&costs, &batched, "findNearestBatch"}, std::tuple{&occCosts, &batchedOcc, "isOccludedBatch"}}) {
+            counterProblem(fmt::format("{} isOccludedBatch counted {}; isOccluded {}", hint,
+                                       describeCounters(batchedOcc), describeCounters(singleOcc)));
+        for (const auto& [list, total, what] : {std::tuple{&costs, &batched, "findNearestBatch"},
+                                                std::tuple{&occCosts, &batchedOcc, "isOccludedBatch"}}) {
             uint64_t tests = 0, steps = 0;
             for (const RayCost& c : *list) tests += c.intersectionTests, steps += c.traversalSteps;
             if (tests != total->intersectionTests || steps != total->traversalSteps)
-                counterProblem(fmt::format("{} {}: per-ray costs add up to N_IT {}, N_TR {}; its counters {}", hint, what, tests, steps,
-                                           describeCounters(*total)));
+                counterProblem(fmt::format("{} {}: per-ray costs add up to N_IT {}, N_TR {}; its counters {}", hint,
+                                           what, tests, steps, describeCounters(*total)));
         }
     }
     return result;

@@ -28,9 +28,12 @@ Vec3 scaleDirection(VerifyRng& rng, const D3& dir) {
     const double l = glm::length(dir);
     if (!(l > 0)) return Vec3(dir);
     switch (rng.index(3)) {
-    case 0: return Vec3(dir);                        // as computed (length = distance to target)
-    case 1: return Vec3(dir / l);                    // unit
-    default: return Vec3(dir / l * rng.logUniform(1e-2, 1e2));  // arbitrary
+        case 0:
+            return Vec3(dir);  // as computed (length = distance to target)
+        case 1:
+            return Vec3(dir / l);  // unit
+        default:
+            return Vec3(dir / l * rng.logUniform(1e-2, 1e2));  // arbitrary
     }
 }
 
@@ -124,58 +127,58 @@ Ray grazingRay(VerifyRng& rng, const PrimitiveSet& prims, double radius) {
 Ray intervalRay(VerifyRng& rng, const PrimitiveSet& prims, const Bounds3& bounds) {
     const size_t mode = prims.valid.empty() ? 1 + rng.index(4) : rng.index(5);
     switch (mode) {
-    case 0: {
-        // Very short ray ending just before or just after a surface point (or starting there).
-        const Triangle& tri = randomValidTriangle(rng, prims);
-        const D3 v0(tri.v0), v1(tri.v1), v2(tri.v2);
-        const D3 n = glm::normalize(glm::cross(v1 - v0, v2 - v0));
-        D3 dir = rng.unitVector();
-        while (std::abs(glm::dot(dir, n)) < 0.2) dir = rng.unitVector();
-        const double a = rng.uniform(0.1, 0.45), b = rng.uniform(0.1, 0.45);
-        const D3 target = v0 + a * (v1 - v0) + b * (v2 - v0);
-        const double size = std::max(glm::length(v1 - v0), glm::length(v2 - v0));
-        const double delta = size * rng.logUniform(1e-5, 1.0);
-        Ray r = Ray(Vec3(target - dir * delta), Vec3(dir));
-        const double f = rng.logUniform(1e-6, 1e-2) * (rng.chance(0.5) ? 1 : -1);
-        if (rng.chance(0.7)) {
-            r.tmax = float(delta * (1 + f));  // ends just past / just before the surface
-        } else {
-            r.tmin = float(delta * (1 + f));  // starts just past / just before it
+        case 0: {
+            // Very short ray ending just before or just after a surface point (or starting there).
+            const Triangle& tri = randomValidTriangle(rng, prims);
+            const D3 v0(tri.v0), v1(tri.v1), v2(tri.v2);
+            const D3 n = glm::normalize(glm::cross(v1 - v0, v2 - v0));
+            D3 dir = rng.unitVector();
+            while (std::abs(glm::dot(dir, n)) < 0.2) dir = rng.unitVector();
+            const double a = rng.uniform(0.1, 0.45), b = rng.uniform(0.1, 0.45);
+            const D3 target = v0 + a * (v1 - v0) + b * (v2 - v0);
+            const double size = std::max(glm::length(v1 - v0), glm::length(v2 - v0));
+            const double delta = size * rng.logUniform(1e-5, 1.0);
+            Ray r = Ray(Vec3(target - dir * delta), Vec3(dir));
+            const double f = rng.logUniform(1e-6, 1e-2) * (rng.chance(0.5) ? 1 : -1);
+            if (rng.chance(0.7)) {
+                r.tmax = float(delta * (1 + f));  // ends just past / just before the surface
+            } else {
+                r.tmin = float(delta * (1 + f));  // starts just past / just before it
+            }
+            return r;
         }
-        return r;
-    }
-    case 1: {
-        // tmin > 0 on an outside ray (t = 1 at a point inside the bounds).
-        Ray r = outsideRay(rng, bounds);
-        const D3 toCenter = D3(bounds.center()) - D3(r.org);
-        const double tCenter = glm::length(toCenter) / glm::length(D3(r.dir));
-        r.tmin = float(tCenter * rng.uniform(0.0, 1.5));
-        r.tmax = rng.chance(0.3) ? kInfinity : float(r.tmin + tCenter * rng.uniform(0.0, 1.0));
-        return r;
-    }
-    case 2: {
-        // tmin == tmax: a single point of the ray.
-        Ray r = outsideRay(rng, bounds);
-        r.tmin = r.tmax = float(rng.uniform(0.0, 2.0) * glm::length(D3(bounds.center()) - D3(r.org)) /
-                                glm::length(D3(r.dir)));
-        return r;
-    }
-    case 3: {
-        // Negative tmin from inside: hits behind the origin count.
-        Ray r = insideRay(rng, bounds);
-        const double scale = boundsRadius(bounds) / glm::length(D3(r.dir));
-        r.tmin = -float(scale * rng.uniform(0.0, 2.0));
-        r.tmax = rng.chance(0.5) ? kInfinity : float(scale * rng.uniform(-0.5, 2.0));
-        if (r.tmax < r.tmin) std::swap(r.tmin, r.tmax);
-        return r;
-    }
-    default: {
-        // tmin > tmax: an empty interval, must miss.
-        Ray r = outsideRay(rng, bounds);
-        r.tmin = float(rng.uniform(0.5, 2.0));
-        r.tmax = std::nextafter(r.tmin, -kInfinity) * float(rng.uniform(0.0, 1.0));
-        return r;
-    }
+        case 1: {
+            // tmin > 0 on an outside ray (t = 1 at a point inside the bounds).
+            Ray r = outsideRay(rng, bounds);
+            const D3 toCenter = D3(bounds.center()) - D3(r.org);
+            const double tCenter = glm::length(toCenter) / glm::length(D3(r.dir));
+            r.tmin = float(tCenter * rng.uniform(0.0, 1.5));
+            r.tmax = rng.chance(0.3) ? kInfinity : float(r.tmin + tCenter * rng.uniform(0.0, 1.0));
+            return r;
+        }
+        case 2: {
+            // tmin == tmax: a single point of the ray.
+            Ray r = outsideRay(rng, bounds);
+            r.tmin = r.tmax =
+                float(rng.uniform(0.0, 2.0) * glm::length(D3(bounds.center()) - D3(r.org)) / glm::length(D3(r.dir)));
+            return r;
+        }
+        case 3: {
+            // Negative tmin from inside: hits behind the origin count.
+            Ray r = insideRay(rng, bounds);
+            const double scale = boundsRadius(bounds) / glm::length(D3(r.dir));
+            r.tmin = -float(scale * rng.uniform(0.0, 2.0));
+            r.tmax = rng.chance(0.5) ? kInfinity : float(scale * rng.uniform(-0.5, 2.0));
+            if (r.tmax < r.tmin) std::swap(r.tmin, r.tmax);
+            return r;
+        }
+        default: {
+            // tmin > tmax: an empty interval, must miss.
+            Ray r = outsideRay(rng, bounds);
+            r.tmin = float(rng.uniform(0.5, 2.0));
+            r.tmax = std::nextafter(r.tmin, -kInfinity) * float(rng.uniform(0.0, 1.0));
+            return r;
+        }
     }
 }
 
@@ -183,15 +186,19 @@ Ray invalidRay(VerifyRng& rng, const Bounds3& bounds) {
     Ray r = outsideRay(rng, bounds);
     float* fields[8] = {&r.org.x, &r.org.y, &r.org.z, &r.dir.x, &r.dir.y, &r.dir.z, &r.tmin, &r.tmax};
     switch (rng.index(4)) {
-    case 0: *fields[rng.index(8)] = kNaNf; break;  // one NaN
-    case 1:
-        *fields[rng.index(8)] = kNaNf;
-        *fields[rng.index(8)] = kNaNf;
-        break;
-    case 2:
-        for (float* f : fields) *f = kNaNf;
-        break;
-    default: r.dir = Vec3(0.0f); break;  // zero direction
+        case 0:
+            *fields[rng.index(8)] = kNaNf;
+            break;  // one NaN
+        case 1:
+            *fields[rng.index(8)] = kNaNf;
+            *fields[rng.index(8)] = kNaNf;
+            break;
+        case 2:
+            for (float* f : fields) *f = kNaNf;
+            break;
+        default:
+            r.dir = Vec3(0.0f);
+            break;  // zero direction
     }
     return r;
 }
@@ -200,14 +207,22 @@ Ray invalidRay(VerifyRng& rng, const Bounds3& bounds) {
 
 const char* rayKindName(RayKind kind) {
     switch (kind) {
-    case RayKind::Outside: return "outside";
-    case RayKind::Inside: return "inside";
-    case RayKind::EdgeAimed: return "edge";
-    case RayKind::VertexAimed: return "vertex";
-    case RayKind::AxisParallel: return "axis";
-    case RayKind::Grazing: return "grazing";
-    case RayKind::Interval: return "interval";
-    case RayKind::Invalid: return "invalid";
+        case RayKind::Outside:
+            return "outside";
+        case RayKind::Inside:
+            return "inside";
+        case RayKind::EdgeAimed:
+            return "edge";
+        case RayKind::VertexAimed:
+            return "vertex";
+        case RayKind::AxisParallel:
+            return "axis";
+        case RayKind::Grazing:
+            return "grazing";
+        case RayKind::Interval:
+            return "interval";
+        case RayKind::Invalid:
+            return "invalid";
     }
     return "?";
 }
@@ -228,25 +243,34 @@ std::vector<Ray> generateRays(RayKind kind, const PrimitiveSet& prims, const Bou
     rays.reserve(count);
     for (size_t i = 0; i < count; ++i) {
         switch (kind) {
-        case RayKind::Outside: rays.push_back(outsideRay(rng, bounds)); break;
-        case RayKind::Inside: rays.push_back(insideRay(rng, bounds)); break;
-        case RayKind::EdgeAimed:
-            rays.push_back(haveTriangles ? edgeRay(rng, prims, radius) : outsideRay(rng, bounds));
-            break;
-        case RayKind::VertexAimed:
-            rays.push_back(haveTriangles ? vertexRay(rng, prims, radius) : outsideRay(rng, bounds));
-            break;
-        case RayKind::AxisParallel: rays.push_back(axisRay(rng, prims, bounds)); break;
-        case RayKind::Grazing:
-            rays.push_back(haveTriangles ? grazingRay(rng, prims, radius) : outsideRay(rng, bounds));
-            break;
-        case RayKind::Interval: rays.push_back(intervalRay(rng, prims, bounds)); break;
-        case RayKind::Invalid: rays.push_back(invalidRay(rng, bounds)); break;
+            case RayKind::Outside:
+                rays.push_back(outsideRay(rng, bounds));
+                break;
+            case RayKind::Inside:
+                rays.push_back(insideRay(rng, bounds));
+                break;
+            case RayKind::EdgeAimed:
+                rays.push_back(haveTriangles ? edgeRay(rng, prims, radius) : outsideRay(rng, bounds));
+                break;
+            case RayKind::VertexAimed:
+                rays.push_back(haveTriangles ? vertexRay(rng, prims, radius) : outsideRay(rng, bounds));
+                break;
+            case RayKind::AxisParallel:
+                rays.push_back(axisRay(rng, prims, bounds));
+                break;
+            case RayKind::Grazing:
+                rays.push_back(haveTriangles ? grazingRay(rng, prims, radius) : outsideRay(rng, bounds));
+                break;
+            case RayKind::Interval:
+                rays.push_back(intervalRay(rng, prims, bounds));
+                break;
+            case RayKind::Invalid:
+                rays.push_back(invalidRay(rng, bounds));
+                break;
         }
     }
     return rays;
 }
-
 
 std::vector<Ray> raysTowardTriangles(const Scene& scene, size_t count, uint64_t seed) {
     std::vector<Ray> rays;

@@ -21,9 +21,9 @@ enum class RayKind {
                    // tmin == tmax, negative tmin, tmin > tmax
     Invalid,       // NaN in any component, zero direction: must miss, must not crash
 };
-inline constexpr RayKind kAllRayKinds[] = {RayKind::Outside,      RayKind::Inside,   RayKind::EdgeAimed,
-                                           RayKind::VertexAimed,  RayKind::AxisParallel, RayKind::Grazing,
-                                           RayKind::Interval,     RayKind::Invalid};
+inline constexpr RayKind kAllRayKinds[] = {RayKind::Outside,     RayKind::Inside,       RayKind::EdgeAimed,
+                                           RayKind::VertexAimed, RayKind::AxisParallel, RayKind::Grazing,
+                                           RayKind::Interval,    RayKind::Invalid};
 const char* rayKindName(RayKind kind);
 
 // How many rays of `kind` the correctness checks send at `scene`: scenes are at most ~10k

@@ -57,8 +57,8 @@ CheckResult buildsAtTheEdge(const Subject& subject, const CheckOptions& options)
     size_t reported = 0;
     for (const EdgeCase& c : cases) {
         auto accel = subject.make();
-        const EdgeBuildCheck check = checkEdgeBuild(*accel, c.scene, c.rays, c.reference, maxSeconds, options.threads,
-                                                    options.maxExamples);
+        const EdgeBuildCheck check =
+            checkEdgeBuild(*accel, c.scene, c.rays, c.reference, maxSeconds, options.threads, options.maxExamples);
         ++result.scenes;
         ++result.cases;
         result.failures += check.problems.size();
@@ -110,7 +110,9 @@ CheckResult watertight(const Subject& subject, const CheckOptions& options) {
         }
         reportProgress(options, result.scenes, meshes->size());
     }
-    if (reported) result.note = fmt::format("{} leaks reported, not failed: {} promises no watertightness", reported, subject.name);
+    if (reported)
+        result.note =
+            fmt::format("{} leaks reported, not failed: {} promises no watertightness", reported, subject.name);
     return result;
 }
 

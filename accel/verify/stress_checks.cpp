@@ -94,12 +94,13 @@ EdgeBuildCheck checkEdgeBuild(Accelerator& accel, const Scene& scene, std::span<
     // up in the other, and a build that blows up (quadratic, or stuck) stretches both.
     check.seconds = std::min(stats.buildMs, stats.buildCpuMs) / 1000.0;
     if (stats.primitives != scene.validPrimitives.size())
-        check.problems.push_back(fmt::format("built over {} of {} valid primitives", stats.primitives,
-                                             scene.validPrimitives.size()));
+        check.problems.push_back(
+            fmt::format("built over {} of {} valid primitives", stats.primitives, scene.validPrimitives.size()));
     if (stats.maxDepth && stats.depthBound && *stats.maxDepth >= *stats.depthBound)
         check.problems.push_back(fmt::format("depth {} >= {}", *stats.maxDepth, *stats.depthBound));
     if (stats.maxLeafPrimitives && stats.leafBound && *stats.maxLeafPrimitives > *stats.leafBound)
-        check.problems.push_back(fmt::format("a leaf of {} primitives > {}", *stats.maxLeafPrimitives, *stats.leafBound));
+        check.problems.push_back(
+            fmt::format("a leaf of {} primitives > {}", *stats.maxLeafPrimitives, *stats.leafBound));
     if (stats.bytes && *stats.bytes > kMaxBytesPerPrimitive * stats.primitives + (size_t(1) << 20))
         check.problems.push_back(fmt::format("{} bytes for {} primitives", *stats.bytes, stats.primitives));
     if (check.seconds > maxSeconds)
@@ -117,8 +118,9 @@ EdgeBuildCheck checkEdgeBuild(Accelerator& accel, const Scene& scene, std::span<
             return h.found() ? fmt::format("t={:.9g} prim={}", h.t, h.primitive) : std::string("miss");
         };
         check.examples.push_back(fmt::format(
-            "ray org=({:.9g}, {:.9g}, {:.9g}) dir=({:.9g}, {:.9g}, {:.9g}) t in [{:.9g}, {:.9g}]: {}, reference {}", r.org.x,
-            r.org.y, r.org.z, r.dir.x, r.dir.y, r.dir.z, r.tmin, r.tmax, answer(hits[i]), answer(reference[i])));
+            "ray org=({:.9g}, {:.9g}, {:.9g}) dir=({:.9g}, {:.9g}, {:.9g}) t in [{:.9g}, {:.9g}]: {}, reference {}",
+            r.org.x, r.org.y, r.org.z, r.dir.x, r.dir.y, r.dir.z, r.tmin, r.tmax, answer(hits[i]),
+            answer(reference[i])));
     }
     return check;
 }

@@ -20,13 +20,15 @@ namespace bvhlab::verify {
 // base scene and the base answers of the same kind of accelerator; `probes` are watertightness
 // probes of the transformed scene.
 struct TransformCheck {
-    LeakStats leaks;         // of the watertightness probes
-    size_t compared = 0;     // base rays whose answer is unambiguous (hit far from every edge)
+    LeakStats leaks;            // of the watertightness probes
+    size_t compared = 0;        // base rays whose answer is unambiguous (hit far from every edge)
     size_t otherPrimitive = 0;  // of them, the moved ray hit another primitive (or nothing)
     size_t tNotScaling = 0;     // the same primitive, but t / scale differs by more than 1e-4 relative
     std::vector<std::string> examples;
 
-    bool passed() const { return leaks.leaks == 0 && leaks.occlusionLeaks == 0 && otherPrimitive == 0 && tNotScaling == 0; }
+    bool passed() const {
+        return leaks.leaks == 0 && leaks.occlusionLeaks == 0 && otherPrimitive == 0 && tNotScaling == 0;
+    }
 };
 TransformCheck checkTransformed(const Accelerator& accel, double scale, const DVec3& offset,
                                 std::span<const Ray> baseRays, std::span<const Hit> baseHits,
@@ -68,10 +70,10 @@ AcneCheck checkShadowAcne(const Scene& planeScene, const Accelerator& accel, int
 inline constexpr size_t kMaxBytesPerPrimitive = 4096;  // ours take under 200
 struct EdgeBuildCheck {
     BuildStats stats;
-    double seconds = 0.0;                // the build (timedBuild): the lesser of wall and CPU time
-    size_t rays = 0, differ = 0;         // answers unlike the reference's
-    std::vector<std::string> problems;   // every bound broken, e.g. "depth 70 >= 64"
-    std::vector<std::string> examples;   // the first few differing answers, full precision
+    double seconds = 0.0;               // the build (timedBuild): the lesser of wall and CPU time
+    size_t rays = 0, differ = 0;        // answers unlike the reference's
+    std::vector<std::string> problems;  // every bound broken, e.g. "depth 70 >= 64"
+    std::vector<std::string> examples;  // the first few differing answers, full precision
 
     bool passed() const { return problems.empty() && differ == 0; }
 };

@@ -67,7 +67,8 @@ Scene makeGroundPlaneScene(double distance, double size, double elevationDegrees
     camera.width = camera.height = 64;
     scene.camera = camera;
     const double e = glm::radians(elevationDegrees);
-    scene.lights = {{Vec3(centre + 10.0 * size * DVec3(std::cos(e) * 0.6, std::cos(e) * 0.8, std::sin(e))), Vec3(1.0f)}};
+    scene.lights = {
+        {Vec3(centre + 10.0 * size * DVec3(std::cos(e) * 0.6, std::cos(e) * 0.8, std::sin(e))), Vec3(1.0f)}};
     scene.finalize();
     return scene;
 }

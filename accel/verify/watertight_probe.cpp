@@ -30,7 +30,8 @@ struct PositionHash {
 };
 PositionKey keyOf(const Vec3& v) {
     // + 0.0f turns -0 into +0, so that both weld together.
-    return {{std::bit_cast<uint32_t>(v.x + 0.0f), std::bit_cast<uint32_t>(v.y + 0.0f), std::bit_cast<uint32_t>(v.z + 0.0f)}};
+    return {{std::bit_cast<uint32_t>(v.x + 0.0f), std::bit_cast<uint32_t>(v.y + 0.0f),
+             std::bit_cast<uint32_t>(v.z + 0.0f)}};
 }
 
 // Distance from p to segment [a, b], measured in the plane perpendicular to unit u.
@@ -57,19 +58,21 @@ std::string describeProbe(const WatertightProbeRay& p, const Leak& leak) {
     const char* calls[4] = {"findNearest", "isOccluded", "findNearestBatch", "isOccludedBatch"};
     for (int c = 0; c < 4; ++c)
         if (leak.missed[c]) missed += fmt::format("{}{} missed", missed.empty() ? "" : ", ", calls[c]);
-    return fmt::format("probe #{} at {} {}: org ({:.9g}, {:.9g}, {:.9g}) dir ({:.9g}, {:.9g}, {:.9g}) tmax {:.9g} "
-                       "aimed at ({:.17g}, {:.17g}, {:.17g}); {}",
-                       leak.index, p.atVertex ? "vertex" : "edge", p.feature, r.org.x, r.org.y, r.org.z, r.dir.x,
-                       r.dir.y, r.dir.z, r.tmax, p.target.x, p.target.y, p.target.z, missed);
+    return fmt::format(
+        "probe #{} at {} {}: org ({:.9g}, {:.9g}, {:.9g}) dir ({:.9g}, {:.9g}, {:.9g}) tmax {:.9g} "
+        "aimed at ({:.17g}, {:.17g}, {:.17g}); {}",
+        leak.index, p.atVertex ? "vertex" : "edge", p.feature, r.org.x, r.org.y, r.org.z, r.dir.x, r.dir.y, r.dir.z,
+        r.tmax, p.target.x, p.target.y, p.target.z, missed);
 }
 
 }  // namespace
 
 std::string MeshTopology::summary() const {
-    return fmt::format("{} faces, {} vertices, {} interior edges, {} boundary, {} non-manifold, {} inconsistently "
-                       "wound edges: {}",
-                       faces.size(), vertices.size(), interiorEdges.size(), boundaryEdges, nonManifoldEdges,
-                       inconsistentEdges, closed() ? "closed" : "not closed");
+    return fmt::format(
+        "{} faces, {} vertices, {} interior edges, {} boundary, {} non-manifold, {} inconsistently "
+        "wound edges: {}",
+        faces.size(), vertices.size(), interiorEdges.size(), boundaryEdges, nonManifoldEdges, inconsistentEdges,
+        closed() ? "closed" : "not closed");
 }
 
 MeshTopology MeshTopology::of(const Scene& scene) {
@@ -123,10 +126,14 @@ MeshTopology MeshTopology::of(const Scene& scene) {
         while (j < halfEdges.size() && halfEdges[j].lo == halfEdges[i].lo && halfEdges[j].hi == halfEdges[i].hi) ++j;
         const size_t n = j - i;
         bool interior = false;
-        if (n == 1) ++m.boundaryEdges;
-        else if (n > 2) ++m.nonManifoldEdges;
-        else if (halfEdges[i].forward == halfEdges[i + 1].forward) ++m.inconsistentEdges;
-        else interior = true;
+        if (n == 1)
+            ++m.boundaryEdges;
+        else if (n > 2)
+            ++m.nonManifoldEdges;
+        else if (halfEdges[i].forward == halfEdges[i + 1].forward)
+            ++m.inconsistentEdges;
+        else
+            interior = true;
         if (interior)
             m.interiorEdges.push_back({halfEdges[i].lo, halfEdges[i].hi, {halfEdges[i].face, halfEdges[i + 1].face}});
         else
@@ -158,7 +165,8 @@ ProbeSet makeWatertightProbes(const MeshTopology& m, const ProbeOptions& o) {
     std::vector<uint32_t> edges;
     for (uint32_t e = 0; e < m.interiorEdges.size(); ++e) {
         const MeshTopology::Edge& edge = m.interiorEdges[e];
-        if (m.faces[edge.faces[0]].normal != DVec3(0.0) && m.faces[edge.faces[1]].normal != DVec3(0.0)) edges.push_back(e);
+        if (m.faces[edge.faces[0]].normal != DVec3(0.0) && m.faces[edge.faces[1]].normal != DVec3(0.0))
+            edges.push_back(e);
     }
     if (vertices.empty() && edges.empty()) return set;
 
@@ -205,7 +213,9 @@ ProbeSet makeWatertightProbes(const MeshTopology& m, const ProbeOptions& o) {
                 for (uint32_t fi : e.faces) {
                     faces.push_back(fi);
                     const MeshTopology::Face& f = m.faces[fi];
-                    const uint32_t c = f.v[0] != e.a && f.v[0] != e.b ? f.v[0] : f.v[1] != e.a && f.v[1] != e.b ? f.v[1] : f.v[2];
+                    const uint32_t c = f.v[0] != e.a && f.v[0] != e.b   ? f.v[0]
+                                       : f.v[1] != e.a && f.v[1] != e.b ? f.v[1]
+                                                                        : f.v[2];
                     rim.emplace_back(a, m.vertices[c]);
                     rim.emplace_back(b, m.vertices[c]);
                 }
@@ -270,41 +280,42 @@ LeakStats countLeaks(const Accelerator& accel, std::span<const WatertightProbeRa
     tbb::enumerable_thread_specific<Partial> partials;
     tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
     arena.execute([&] {
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, probes.size(), 1024), [&](const tbb::blocked_range<size_t>& range) {
-            Partial& local = partials.local();
-            QueryCounters counters;
-            const size_t n = range.size();
-            std::vector<Ray> rays(n);
-            for (size_t i = 0; i < n; ++i) rays[i] = probes[range.begin() + i].ray;
-            // The batch calls under both hints: a structure may trace each by another path.
-            std::vector<Hit> hits(n), coherentHits(n);
-            std::vector<uint8_t> occluded(n), coherentOccluded(n);
-            accel.findNearestBatch(rays, hits, counters, {}, RayCoherence::Incoherent);
-            accel.isOccludedBatch(rays, occluded, counters, {}, RayCoherence::Incoherent);
-            accel.findNearestBatch(rays, coherentHits, counters, {}, RayCoherence::Coherent);
-            accel.isOccludedBatch(rays, coherentOccluded, counters, {}, RayCoherence::Coherent);
-            for (size_t i = range.begin(); i < range.end(); ++i) {
-                const WatertightProbeRay& p = probes[i];
-                Hit hit;
-                const bool missed = !accel.findNearest(p.ray, hit, counters);
-                const bool notOccluded = !accel.isOccluded(p.ray, counters);
-                LeakStats& s = local.stats;
-                ++s.rays;
-                ++(p.atVertex ? s.vertexRays : s.edgeRays);
-                if (missed) {
-                    ++s.leaks;
-                    ++(p.atVertex ? s.vertexLeaks : s.edgeLeaks);
+        tbb::parallel_for(
+            tbb::blocked_range<size_t>(0, probes.size(), 1024), [&](const tbb::blocked_range<size_t>& range) {
+                Partial& local = partials.local();
+                QueryCounters counters;
+                const size_t n = range.size();
+                std::vector<Ray> rays(n);
+                for (size_t i = 0; i < n; ++i) rays[i] = probes[range.begin() + i].ray;
+                // The batch calls under both hints: a structure may trace each by another path.
+                std::vector<Hit> hits(n), coherentHits(n);
+                std::vector<uint8_t> occluded(n), coherentOccluded(n);
+                accel.findNearestBatch(rays, hits, counters, {}, RayCoherence::Incoherent);
+                accel.isOccludedBatch(rays, occluded, counters, {}, RayCoherence::Incoherent);
+                accel.findNearestBatch(rays, coherentHits, counters, {}, RayCoherence::Coherent);
+                accel.isOccludedBatch(rays, coherentOccluded, counters, {}, RayCoherence::Coherent);
+                for (size_t i = range.begin(); i < range.end(); ++i) {
+                    const WatertightProbeRay& p = probes[i];
+                    Hit hit;
+                    const bool missed = !accel.findNearest(p.ray, hit, counters);
+                    const bool notOccluded = !accel.isOccluded(p.ray, counters);
+                    LeakStats& s = local.stats;
+                    ++s.rays;
+                    ++(p.atVertex ? s.vertexRays : s.edgeRays);
+                    if (missed) {
+                        ++s.leaks;
+                        ++(p.atVertex ? s.vertexLeaks : s.edgeLeaks);
+                    }
+                    if (notOccluded) ++s.occlusionLeaks;
+                    const size_t k = i - range.begin();
+                    const bool batchMissed = !hits[k].found() || !coherentHits[k].found();
+                    const bool batchNotOccluded = occluded[k] == 0 || coherentOccluded[k] == 0;
+                    s.batchLeaks += batchMissed;
+                    s.batchOcclusionLeaks += batchNotOccluded;
+                    if ((missed || notOccluded || batchMissed || batchNotOccluded) && local.leaked.size() < maxExamples)
+                        local.leaked.push_back({i, {missed, notOccluded, batchMissed, batchNotOccluded}});
                 }
-                if (notOccluded) ++s.occlusionLeaks;
-                const size_t k = i - range.begin();
-                const bool batchMissed = !hits[k].found() || !coherentHits[k].found();
-                const bool batchNotOccluded = occluded[k] == 0 || coherentOccluded[k] == 0;
-                s.batchLeaks += batchMissed;
-                s.batchOcclusionLeaks += batchNotOccluded;
-                if ((missed || notOccluded || batchMissed || batchNotOccluded) && local.leaked.size() < maxExamples)
-                    local.leaked.push_back({i, {missed, notOccluded, batchMissed, batchNotOccluded}});
-            }
-        });
+            });
     });
     LeakStats total;
     std::vector<Leak> leaked;

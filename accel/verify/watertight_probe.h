@@ -31,9 +31,9 @@ namespace bvhlab::verify {
 // primitives take part.
 struct MeshTopology {
     struct Face {
-        uint32_t v[3];      // welded vertex ids, in the primitive's winding
-        uint32_t primitive; // its primitive index in the scene
-        DVec3 normal;       // unit, outward when the mesh's signed volume is positive
+        uint32_t v[3];       // welded vertex ids, in the primitive's winding
+        uint32_t primitive;  // its primitive index in the scene
+        DVec3 normal;        // unit, outward when the mesh's signed volume is positive
     };
     // An edge shared by exactly two faces that traverse it in opposite directions.
     struct Edge {
@@ -62,19 +62,19 @@ struct MeshTopology {
 struct ProbeOptions {
     size_t rays = 1000000;
     uint64_t seed = 1;
-    double vertexFraction = 0.3;      // the rest aim at points on interior edges
+    double vertexFraction = 0.3;  // the rest aim at points on interior edges
     double minDegreesFromGrazing = 6.0;
-    double tmaxFactor = 1.0001;       // tmax = factor * distance to the aimed-at point
+    double tmaxFactor = 1.0001;  // tmax = factor * distance to the aimed-at point
     // Origins lie at distances log-uniform in [minDistance * local edge length, maxDistance * mesh radius].
     double minDistance = 0.25;
     double maxDistance = 4.0;
-    int maxAttemptsPerRay = 64;       // candidate points tried before giving up on a ray
+    int maxAttemptsPerRay = 64;  // candidate points tried before giving up on a ray
 };
 
 struct WatertightProbeRay {
-    Ray ray;               // unit direction, tmin 0, tmax = tmaxFactor * distance to the point
-    DVec3 target;          // the point aimed at
-    uint32_t feature;      // welded vertex id, or index into MeshTopology::interiorEdges
+    Ray ray;           // unit direction, tmin 0, tmax = tmaxFactor * distance to the point
+    DVec3 target;      // the point aimed at
+    uint32_t feature;  // welded vertex id, or index into MeshTopology::interiorEdges
     bool atVertex;
 };
 

@@ -38,9 +38,9 @@
 
 #include <fmt/core.h>
 #include <fmt/ranges.h>
-#include <nlohmann/json.hpp>
 #include <tbb/info.h>
 #include <tbb/task_arena.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -65,11 +65,11 @@ Shard parseShard(const std::string& text) {
     Shard s;
     const std::string_view view = text;
     if (slash == std::string::npos || !parseNumber(view.substr(0, slash), s.index) ||
-        !parseNumber(view.substr(slash + 1), s.count) ||
-        s.count < 1 || s.index < 0 || s.index >= s.count)
-        throw InputError(fmt::format("--shard {}: expected i/n with n >= 1 and 0 <= i < n (i is 0-based, as "
-                                     "$SLURM_ARRAY_TASK_ID), e.g. --shard 0/10",
-                                     text));
+        !parseNumber(view.substr(slash + 1), s.count) || s.count < 1 || s.index < 0 || s.index >= s.count)
+        throw InputError(
+            fmt::format("--shard {}: expected i/n with n >= 1 and 0 <= i < n (i is 0-based, as "
+                        "$SLURM_ARRAY_TASK_ID), e.g. --shard 0/10",
+                        text));
     return s;
 }
 
@@ -141,7 +141,10 @@ struct BatchJob {
     std::string name() const { return batchJobName(scene().id, accel().label); }
     // Its place in the batch, as its job file records it.
     json order() const {
-        return {{"scene", sceneIndex()}, {"accel", accelIndex()}, {"job", index}, {"jobs", plan.scenes.size() * plan.accels.size()}};
+        return {{"scene", sceneIndex()},
+                {"accel", accelIndex()},
+                {"job", index},
+                {"jobs", plan.scenes.size() * plan.accels.size()}};
     }
     std::string shardName() const { return fmt::format("{}/{}", shard.index, shard.count); }
 };
@@ -156,12 +159,16 @@ struct FinishedJob {
 
 // What a job's process hands back: the job record and the steps for the scene's heat maps.
 json finishedJobJson(const FinishedJob& f) {
-    return {{"job", f.job}, {"has_counters", f.hasCounters}, {"width", f.width}, {"height", f.height},
+    return {{"job", f.job},
+            {"has_counters", f.hasCounters},
+            {"width", f.width},
+            {"height", f.height},
             {"steps", {f.steps[0], f.steps[1]}}};
 }
 
 FinishedJob finishedJobFromJson(const json& j) {
-    FinishedJob f{j.at("job"), j.at("has_counters").get<bool>(), j.at("width").get<int>(), j.at("height").get<int>(), {}};
+    FinishedJob f{
+        j.at("job"), j.at("has_counters").get<bool>(), j.at("width").get<int>(), j.at("height").get<int>(), {}};
     for (const bool shadows : {false, true}) f.steps[shadows] = j.at("steps").at(shadows).get<std::vector<float>>();
     return f;
 }
@@ -193,8 +200,9 @@ FinishedJob runJob(const Options& options, const BatchJob& job, const Scene& sce
         RenderSettings s = settings;
         s.shadows = shadows;
         Framebuffer fb(camera.width(), camera.height());
-        const RenderStats stats = renderWithProgress(scene, *built.accel, camera, s, fb, progress,
-                                                     label + (shadows ? ": rendering with shadows" : ": rendering without shadows"));
+        const RenderStats stats =
+            renderWithProgress(scene, *built.accel, camera, s, fb, progress,
+                               label + (shadows ? ": rendering with shadows" : ": rendering without shadows"));
 
         // Images: the PNG always (the contact sheet is made from it), EXR as Output:: says; the heat
         // map after the scene's last job (writeSceneHeatmaps).
@@ -204,37 +212,38 @@ FinishedJob runJob(const Options& options, const BatchJob& job, const Scene& sce
         if (env.get(keys::Output::exr)) writeExr(out / (base + ".exr"), fb), images["exr"] = base + ".exr";
         if (env.get(keys::Output::heatmap)) finished.steps[shadows] = std::move(fb.traversalSteps);
 
-        const StatsRow row{scene.name, accel, scene.primitiveCount(), scene.report,
-                           built.accel->hasCounters(), built.stats, stats};
+        const StatsRow row{scene.name,  accel, scene.primitiveCount(), scene.report, built.accel->hasCounters(),
+                           built.stats, stats};
         json run = statsJson(row);
         run["shadows"] = shadows;
         run["images"] = images;
         runs[shadows ? "shadows" : "no_shadows"] = run;
     }
 
-    json record = {{"format", "bvhlab-batch-job-1"},
-                {"job", name},
-                {"scene", entry.id},
-                {"settings", job.plan.settings.scene(entry.id)->hash},  // the key the tables check
-                {"batch", job.plan.settings.hash},
-                {"scene_name", scene.name},
-                {"scene_env", entry.envFile.empty() ? json()
-                                                    : json(std::filesystem::absolute(entry.envFile).lexically_normal().string())},
-                {"scene_file", scene.source.string()},
-                {"scene_from_cache", loadInfo.fromCache},
-                {"scene_cache_file", loadInfo.cacheFile.string()},
-                {"scene_load_ms", loadInfo.ms},
-                {"accel", accel},
-                {"build_shared", true},  // one build served both renders
-                {"order", job.order()},
-                {"shard", job.shardName()},
-                {"threads", threads},
-                {"image", {{"width", camera.width()}, {"height", camera.height()}, {"samples", settings.samples}}},
-                {"runs", runs},
-                {"env", env.toJson()},
-                {"result_key", jobResultKey(config, env)},
-                {"run", runJson()},
-                {"provenance", provenanceJson()}};
+    json record = {
+        {"format", "bvhlab-batch-job-1"},
+        {"job", name},
+        {"scene", entry.id},
+        {"settings", job.plan.settings.scene(entry.id)->hash},  // the key the tables check
+        {"batch", job.plan.settings.hash},
+        {"scene_name", scene.name},
+        {"scene_env",
+         entry.envFile.empty() ? json() : json(std::filesystem::absolute(entry.envFile).lexically_normal().string())},
+        {"scene_file", scene.source.string()},
+        {"scene_from_cache", loadInfo.fromCache},
+        {"scene_cache_file", loadInfo.cacheFile.string()},
+        {"scene_load_ms", loadInfo.ms},
+        {"accel", accel},
+        {"build_shared", true},  // one build served both renders
+        {"order", job.order()},
+        {"shard", job.shardName()},
+        {"threads", threads},
+        {"image", {{"width", camera.width()}, {"height", camera.height()}, {"samples", settings.samples}}},
+        {"runs", runs},
+        {"env", env.toJson()},
+        {"result_key", jobResultKey(config, env)},
+        {"run", runJson()},
+        {"provenance", provenanceJson()}};
     writeFileAtomically(out / "jobs" / (name + ".json"), record.dump(2) + "\n");
     finished.job = std::move(record);
     return finished;
@@ -283,7 +292,8 @@ void writeSceneHeatmaps(const std::filesystem::path& out, const std::string& sce
         for (const bool shadows : {false, true}) {
             json& run = f.job["runs"][shadows ? "shadows" : "no_shadows"];
             const std::string file = "images/" + name + (shadows ? "_shadows" : "") + ".heatmap.png";
-            run["heatmap"] = writeHeatmap(out / file, file, f.steps[shadows], f.width, f.height, f.hasCounters, accel, scale);
+            run["heatmap"] =
+                writeHeatmap(out / file, file, f.steps[shadows], f.width, f.height, f.hasCounters, accel, scale);
             if (f.hasCounters) run["images"]["heatmap"] = file;
         }
         writeFileAtomically(out / "jobs" / (name + ".json"), f.job.dump(2) + "\n");
@@ -318,17 +328,20 @@ void mergeShards(const std::vector<std::string>& dirs, const std::filesystem::pa
     std::optional<BatchSettings> batch;
     for (const std::filesystem::path dir : dirs) {
         if (!std::filesystem::is_directory(dir / "jobs"))
-            throw InputError(fmt::format("--merge {}: no jobs/ folder here (not the output of bvhlab batch)", dir.string()));
+            throw InputError(
+                fmt::format("--merge {}: no jobs/ folder here (not the output of bvhlab batch)", dir.string()));
         const std::optional<BatchSettings> settings = readBatchSettings(dir);
         if (!settings)
-            throw InputError(fmt::format("--merge {}: no batch.json (written by an older bvhlab): the settings of its "
-                                         "jobs are unknown, so they cannot be merged with others; run that shard again",
-                                         dir.string()));
+            throw InputError(
+                fmt::format("--merge {}: no batch.json (written by an older bvhlab): the settings of its "
+                            "jobs are unknown, so they cannot be merged with others; run that shard again",
+                            dir.string()));
         if (batch && settings->hash != batch->hash)
-            throw InputError(fmt::format("--merge: {} and {} hold shards of different batches ({} -> {}):\n  {}\nmerge "
-                                         "only the shards of one batch (run with the same --env, -D, --accel and --scenes)",
-                                         dirs.front(), dir.string(), dirs.front(), dir.string(),
-                                         fmt::join(batchDifferences(*batch, *settings), "\n  ")));
+            throw InputError(
+                fmt::format("--merge: {} and {} hold shards of different batches ({} -> {}):\n  {}\nmerge "
+                            "only the shards of one batch (run with the same --env, -D, --accel and --scenes)",
+                            dirs.front(), dir.string(), dirs.front(), dir.string(),
+                            fmt::join(batchDifferences(*batch, *settings), "\n  ")));
         if (fresh && std::filesystem::exists(out) && std::filesystem::equivalent(dir, out))
             throw InputError(fmt::format("--fresh would delete {}, one of the folders to merge", dir.string()));
         batch = settings;
@@ -412,11 +425,12 @@ void runJobs(const Options& options, const BatchPlan& plan, const Shard& shard, 
 
     const size_t totalJobs = scenes.size() * accels.size();
     const std::vector<size_t> mine = shardJobs(plan, shard);
-    fmt::print(stderr, "batch: {} scenes x {} accelerators = {} jobs{}; render threads ({}): {}; into {}\n",
-               scenes.size(), accels.size(), totalJobs,
-               shard.count > 1 ? fmt::format(", shard {}/{} runs {} of them", shard.index, shard.count, mine.size()) : "",
-               options.env.threads >= 0 ? "--threads" : "Batch::threads",
-               sceneEnvs.empty() ? 1 : renderThreads(options, sceneEnvs.front()), out.string());
+    fmt::print(
+        stderr, "batch: {} scenes x {} accelerators = {} jobs{}; render threads ({}): {}; into {}\n", scenes.size(),
+        accels.size(), totalJobs,
+        shard.count > 1 ? fmt::format(", shard {}/{} runs {} of them", shard.index, shard.count, mine.size()) : "",
+        options.env.threads >= 0 ? "--threads" : "Batch::threads",
+        sceneEnvs.empty() ? 1 : renderThreads(options, sceneEnvs.front()), out.string());
 
     // Each job's result key first: a rerun keeps the finished jobs of this key (batch_resume.h).
     ResumeCount resume;
@@ -429,8 +443,10 @@ void runJobs(const Options& options, const BatchPlan& plan, const Shard& shard, 
         const StoredResult stored = options.fresh ? StoredResult{false, "of --fresh"}
                                                   : checkFinishedJob(out, name, jobResultKey(accels[a], env), env);
         resume.add(stored);
-        if (stored.keep) kept[s].push_back(json::parse(std::ifstream(out / "jobs" / (name + ".json"))));
-        else toRun[s].push_back(j);
+        if (stored.keep)
+            kept[s].push_back(json::parse(std::ifstream(out / "jobs" / (name + ".json"))));
+        else
+            toRun[s].push_back(j);
     }
     fmt::print(stderr, "batch: {}\n", resume.summary("jobs", "run"));
 
@@ -449,20 +465,22 @@ void runJobs(const Options& options, const BatchPlan& plan, const Shard& shard, 
                 continue;
             }
             ++failed;
-            fmt::print(stderr, "[job {}/{}] {} {}: failed: {}\n", jobNumber, resume.toMeasure(), scenes[s].id, accels[a].label,
-                       outcome.failure());
+            fmt::print(stderr, "[job {}/{}] {} {}: failed: {}\n", jobNumber, resume.toMeasure(), scenes[s].id,
+                       accels[a].label, outcome.failure());
             const BatchJob batchJob{plan, j, shard};
-            writeFileAtomically(out / "jobs" / (batchJob.name() + ".json"),
-                                failedJobRecord(batchJob, jobResultKey(accels[a], jobEnv(options, sceneEnvs[s], accels[a])),
-                                                outcome)
-                                    .dump(2) + "\n");
+            writeFileAtomically(
+                out / "jobs" / (batchJob.name() + ".json"),
+                failedJobRecord(batchJob, jobResultKey(accels[a], jobEnv(options, sceneEnvs[s], accels[a])), outcome)
+                        .dump(2) +
+                    "\n");
         }
         if (sceneEnvs[s].get(keys::Output::heatmap) && !finished.empty())
             writeSceneHeatmaps(out, scenes[s].id, finished, sceneEnvs[s].get(keys::Output::heatmapScale),
                                keptHeatmapScale(kept[s]));
     }
-    fmt::print(stderr, "batch: {} jobs in {}{}; scene loads{}: {} read from the cache, {} parsed{}; {} builds, each "
-                       "serving both renders\n",
+    fmt::print(stderr,
+               "batch: {} jobs in {}{}; scene loads{}: {} read from the cache, {} parsed{}; {} builds, each "
+               "serving both renders\n",
                jobNumber,
                Progress::formatDuration(std::chrono::duration<double>(Progress::Clock::now() - start).count()),
                failed ? fmt::format(", {} of them failed", failed) : "", failed ? " of the jobs that ran" : "",
@@ -527,7 +545,8 @@ size_t runBatch(Options& options) {
     const std::filesystem::path out = prepareOutputFolder(options.out);
     if (!options.merge.empty()) {
         if (options.shardGiven) throw InputError("--merge and --shard do not go together");
-        if (options.slurm) throw InputError("--merge and --slurm do not go together (--slurm N merges its shards itself)");
+        if (options.slurm)
+            throw InputError("--merge and --slurm do not go together (--slurm N merges its shards itself)");
         mergeShards(options.merge, out, options.fresh);
     } else {
         if (options.slurm && options.shardGiven)
@@ -544,7 +563,8 @@ size_t runBatch(Options& options) {
     const BatchTables tables = writeBatchResults(out);
     for (const std::string& warning : tables.warnings) fmt::print(stderr, "warning: {}\n", warning);
     fmt::print("{}", tables.markdown);
-    fmt::print(stderr, "wrote {0}/results.{{md,csv,json}}, {0}/contact_sheet.png, {0}/images, {0}/jobs\n", out.string());
+    fmt::print(stderr, "wrote {0}/results.{{md,csv,json}}, {0}/contact_sheet.png, {0}/images, {0}/jobs\n",
+               out.string());
     if (tables.failedJobs) fmt::print(stderr, "batch: {} failed jobs in the tables\n", tables.failedJobs);
     return tables.failedJobs;
 }
@@ -554,30 +574,35 @@ size_t runBatch(Options& options) {
 void addBatchCommand(CLI::App& app) {
     auto options = std::make_shared<Options>();
     CLI::App* command = app.add_subcommand(
-        "batch", "render every scene with every chosen accelerator, without and with shadows: tables, images, contact sheet");
+        "batch",
+        "render every scene with every chosen accelerator, without and with shadows: tables, images, contact sheet");
     addEnvOptions(*command, options->env);
     addThreadsOption(*command, options->env);
     addScenesOption(*command, options->scenes, "", "env/scenes.list");
     command->add_option("--accel", options->accels, "comma-separated accelerators")
         ->capture_default_str()
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
-    command->add_option("--out", options->out, "output folder: results.{md,csv,json}, contact_sheet.png, images/, jobs/")
+    command
+        ->add_option("--out", options->out, "output folder: results.{md,csv,json}, contact_sheet.png, images/, jobs/")
         ->capture_default_str()
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
-    CLI::Option* shard = command->add_option("--shard", options->shard,
-                                             "i/n: run every n-th job starting at job i (0-based, as $SLURM_ARRAY_TASK_ID)");
-    command->add_option("--merge", options->merge, "join the jobs of these batch output folders into --out and make its tables");
+    CLI::Option* shard = command->add_option(
+        "--shard", options->shard, "i/n: run every n-th job starting at job i (0-based, as $SLURM_ARRAY_TASK_ID)");
+    command->add_option("--merge", options->merge,
+                        "join the jobs of these batch output folders into --out and make its tables");
     command->add_flag("--fresh", options->fresh,
                       "first delete the batch --out holds (jobs/, images/, tables): needed when its settings differ; "
                       "without it a rerun keeps the jobs finished with the same result key");
     CLI::Option* slurm =
-        command->add_option("--slurm", options->slurm,
-                            "N: run nothing here; submit the batch to Slurm (sbatch) as an array of N shards and a "
-                            "merge job after them, into --out (scripts and logs in --out/slurm)")
+        command
+            ->add_option("--slurm", options->slurm,
+                         "N: run nothing here; submit the batch to Slurm (sbatch) as an array of N shards and a "
+                         "merge job after them, into --out (scripts and logs in --out/slurm)")
             ->check(CLI::Range(1, 100000));
-    command->add_option("--slurm-args", options->slurmArgs,
-                        "sbatch options for the shards and the merge, e.g. \"--partition=short --time=01:00:00 "
-                        "--account=lab\"")
+    command
+        ->add_option("--slurm-args", options->slurmArgs,
+                     "sbatch options for the shards and the merge, e.g. \"--partition=short --time=01:00:00 "
+                     "--account=lab\"")
         ->needs(slurm);
     addJobTimeoutOption(*command, options->jobTimeout);
     addChildJobOptions(*command, options->child);

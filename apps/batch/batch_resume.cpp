@@ -43,7 +43,8 @@ std::optional<HeatmapScale> keptHeatmapScale(const std::vector<json>& keptJobs) 
             if (accels.empty() || accels.back() != accel) accels.push_back(accel);
         }
     if (!steps) return std::nullopt;
-    return HeatmapScale{*steps, fmt::format("that of the scene's jobs kept from an earlier run: {}", fmt::join(accels, ", "))};
+    return HeatmapScale{*steps,
+                        fmt::format("that of the scene's jobs kept from an earlier run: {}", fmt::join(accels, ", "))};
 }
 
 }  // namespace bvhlab

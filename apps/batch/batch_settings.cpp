@@ -56,7 +56,8 @@ std::string shown(const std::string& value) { return value.empty() ? "(empty)" :
 size_t jobFileCount(const std::filesystem::path& dir) {
     size_t n = 0;
     if (std::filesystem::is_directory(dir / "jobs"))
-        for (const auto& entry : std::filesystem::directory_iterator(dir / "jobs")) n += entry.path().extension() == ".json";
+        for (const auto& entry : std::filesystem::directory_iterator(dir / "jobs"))
+            n += entry.path().extension() == ".json";
     return n;
 }
 
@@ -88,12 +89,13 @@ std::optional<BatchSettings> readBatchSettings(const std::filesystem::path& dir)
     try {
         std::ifstream in(file);
         const json j = json::parse(in);
-        if (j.value("format", std::string()) != kFormat) throw std::runtime_error(fmt::format("not a {} file", kFormat));
+        if (j.value("format", std::string()) != kFormat)
+            throw std::runtime_error(fmt::format("not a {} file", kFormat));
         BatchSettings s;
         s.accels = j.at("accels").get<std::vector<std::string>>();
         for (const json& scene : j.at("scenes"))
-            s.scenes.push_back({scene.at("id").get<std::string>(),
-                                scene.at("env").get<std::map<std::string, std::string>>(), {}});
+            s.scenes.push_back(
+                {scene.at("id").get<std::string>(), scene.at("env").get<std::map<std::string, std::string>>(), {}});
         computeHashes(s);
         return s;
     } catch (const std::exception& e) {
@@ -145,13 +147,15 @@ std::vector<std::string> batchDifferences(const BatchSettings& before, const Bat
 void checkBatchFolder(const std::filesystem::path& dir, const BatchSettings& settings) {
     const size_t jobs = jobFileCount(dir);
     if (jobs == 0) return;
-    const std::string way = "choose --fresh to delete that batch first (its jobs/, images/, results.*, "
-                            "contact_sheet.png, batch.json), or another --out folder";
+    const std::string way =
+        "choose --fresh to delete that batch first (its jobs/, images/, results.*, "
+        "contact_sheet.png, batch.json), or another --out folder";
     const std::optional<BatchSettings> folder = readBatchSettings(dir);
     if (!folder)
-        throw InputError(fmt::format("{} holds {} job files but no batch.json (written by an older bvhlab): their "
-                                     "settings are unknown, and a folder holds one batch; {}",
-                                     dir.string(), jobs, way));
+        throw InputError(
+            fmt::format("{} holds {} job files but no batch.json (written by an older bvhlab): their "
+                        "settings are unknown, and a folder holds one batch; {}",
+                        dir.string(), jobs, way));
     if (folder->hash == settings.hash) return;
     std::vector<std::string> lines = batchDifferences(*folder, settings);
     constexpr size_t kMostLines = 12;
@@ -160,9 +164,10 @@ void checkBatchFolder(const std::filesystem::path& dir, const BatchSettings& set
         lines.resize(kMostLines);
         lines.push_back(fmt::format("... and {} more", more));
     }
-    throw InputError(fmt::format("{} holds {} jobs of another batch (a folder holds one batch); its settings -> "
-                                 "this run's:\n  {}\n{}",
-                                 dir.string(), jobs, fmt::join(lines, "\n  "), way));
+    throw InputError(
+        fmt::format("{} holds {} jobs of another batch (a folder holds one batch); its settings -> "
+                    "this run's:\n  {}\n{}",
+                    dir.string(), jobs, fmt::join(lines, "\n  "), way));
 }
 
 void clearBatchFolder(const std::filesystem::path& dir) {

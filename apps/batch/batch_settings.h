@@ -19,13 +19,13 @@ namespace bvhlab {
 
 struct BatchSettings {
     struct Scene {
-        std::string id;                           // the env file's stem
-        std::map<std::string, std::string> env;   // the resolved values that change its figures
-        std::string hash;                         // of `env` (and the id): the jobs' settings key
+        std::string id;                          // the env file's stem
+        std::map<std::string, std::string> env;  // the resolved values that change its figures
+        std::string hash;                        // of `env` (and the id): the jobs' settings key
     };
-    std::vector<Scene> scenes;         // the scene list, in table order
-    std::vector<std::string> accels;   // --accel, in table order
-    std::string hash;                  // of all of it
+    std::vector<Scene> scenes;        // the scene list, in table order
+    std::vector<std::string> accels;  // --accel, in table order
+    std::string hash;                 // of all of it
 
     const Scene* scene(const std::string& id) const;
     size_t jobCount() const { return scenes.size() * accels.size(); }

@@ -28,8 +28,8 @@ struct Row {
     std::string failed;  // why the job left no results (child_job.h's JobOutcome::failure()); empty if it ran
     bool shadows = false;
     json prims, leaves, nodes, sah, buildMs;  // of the build, shared by both renders
-    json trUs, nQ, renderMs;                    // over all queries of this render
-    json counters = json::object();  // likewise, the counters of kQueryCounters with a column, by key
+    json trUs, nQ, renderMs;                  // over all queries of this render
+    json counters = json::object();           // likewise, the counters of kQueryCounters with a column, by key
 };
 
 // T_R and the counters (N_IT, N_TR, ...) averaged over every query of a render, primary and shadow
@@ -50,7 +50,8 @@ json allQueries(const json& run) {
         }
         return q > 0 ? json(sum / q) : json();
     };
-    json all = {{"queries", p.at("queries").get<uint64_t>() + s.at("queries").get<uint64_t>()}, {"t_r_us", mean("t_r_us")}};
+    json all = {{"queries", p.at("queries").get<uint64_t>() + s.at("queries").get<uint64_t>()},
+                {"t_r_us", mean("t_r_us")}};
     for (const QueryCounter& c : kQueryCounters) all[c.key] = mean(c.key);
     return all;
 }
@@ -71,10 +72,20 @@ Row makeRow(const json& job, bool shadows) {
     json counters = json::object();
     for (const QueryCounter& c : kQueryCounters)
         if (c.column) counters[c.key] = all.at(c.key);
-    return {job.at("scene").get<std::string>(), job.at("accel").get<std::string>(),
-            job.value("result_key", json::object()).value("structure", json()), "", shadows, run.at("prims"),
-            run.at("leaves"), run.at("nodes"), run.at("sah"), run.at("build_ms"),
-            all.at("t_r_us"), all.at("queries"), run.at("render_ms"), std::move(counters)};
+    return {job.at("scene").get<std::string>(),
+            job.at("accel").get<std::string>(),
+            job.value("result_key", json::object()).value("structure", json()),
+            "",
+            shadows,
+            run.at("prims"),
+            run.at("leaves"),
+            run.at("nodes"),
+            run.at("sah"),
+            run.at("build_ms"),
+            all.at("t_r_us"),
+            all.at("queries"),
+            run.at("render_ms"),
+            std::move(counters)};
 }
 
 // A number as the Markdown table shows it; null is "n/a" (unavailable, never 0).
@@ -110,7 +121,8 @@ std::pair<std::vector<std::string>, std::vector<std::string>> settingsOf(const s
             if (!variesByJob(key)) values[key].insert(v.value("value", std::string()));
     }
     for (const auto& [key, set] : values)
-        if (set.size() > 1) warnings.push_back(fmt::format("jobs were run with different {}: {}", key, fmt::join(set, " / ")));
+        if (set.size() > 1)
+            warnings.push_back(fmt::format("jobs were run with different {}: {}", key, fmt::join(set, " / ")));
     std::set<std::string> commits, cpus, sizes;
     for (const json& job : jobs) {
         if (jobFailed(job)) continue;
@@ -119,8 +131,11 @@ std::pair<std::vector<std::string>, std::vector<std::string>> settingsOf(const s
         const json& image = job.value("image", json::object());
         sizes.insert(fmt::format("{}x{}", image.value("width", 0), image.value("height", 0)));
     }
-    if (commits.size() > 1) warnings.push_back(fmt::format("jobs come from different commits: {}", fmt::join(commits, ", ")));
-    if (cpus.size() > 1) warnings.push_back(fmt::format("jobs ran on different CPUs (timings not comparable): {}", fmt::join(cpus, "; ")));
+    if (commits.size() > 1)
+        warnings.push_back(fmt::format("jobs come from different commits: {}", fmt::join(commits, ", ")));
+    if (cpus.size() > 1)
+        warnings.push_back(
+            fmt::format("jobs ran on different CPUs (timings not comparable): {}", fmt::join(cpus, "; ")));
 
     auto show = [&](const std::string& key, const std::string& label) {
         const auto it = values.find(key);
@@ -147,15 +162,17 @@ std::vector<std::string> heatmapScaleWarnings(const std::vector<json>& jobs) {
     std::vector<std::string> warnings;
     for (const auto& [scene, set] : scales)
         if (set.size() > 1)
-            warnings.push_back(fmt::format("the heat maps of {} have different full scales ({}): its jobs ran in "
-                                           "different shards; set Output::heatmapScale for one scale",
-                                           scene, fmt::join(set, ", ")));
+            warnings.push_back(
+                fmt::format("the heat maps of {} have different full scales ({}): its jobs ran in "
+                            "different shards; set Output::heatmapScale for one scale",
+                            scene, fmt::join(set, ", ")));
     return warnings;
 }
 
 // Whether the structure of a row is a plugin's compiled without optimisation.
 bool unoptimised(const json& structure) {
-    return structure.is_object() && structure.at("plugin").is_object() && !structure["plugin"].at("optimized").get<bool>();
+    return structure.is_object() && structure.at("plugin").is_object() &&
+           !structure["plugin"].at("optimized").get<bool>();
 }
 
 // Each accelerator of the table with its own settings and its plugin, a line each ("- `scan`:
@@ -165,18 +182,22 @@ std::vector<std::string> structureLines(const std::vector<json>& jobs) {
     for (const json& job : jobs) {
         const std::string accel = job.at("accel").get<std::string>(), scene = job.at("scene").get<std::string>();
         const json structure = job.value("result_key", json::object()).value("structure", json());
-        const std::string text = structure.is_null() ? "not recorded (a job of an older bvhlab)" : describeStructure(structure);
+        const std::string text =
+            structure.is_null() ? "not recorded (a job of an older bvhlab)" : describeStructure(structure);
         auto it = std::find_if(byAccel.begin(), byAccel.end(), [&](const auto& a) { return a.first == accel; });
         if (it == byAccel.end()) it = byAccel.insert(byAccel.end(), {accel, {}});
         auto same = std::find_if(it->second.begin(), it->second.end(), [&](const auto& d) { return d.first == text; });
-        if (same == it->second.end()) it->second.push_back({text, {scene}});
-        else same->second.push_back(scene);
+        if (same == it->second.end())
+            it->second.push_back({text, {scene}});
+        else
+            same->second.push_back(scene);
     }
     std::vector<std::string> lines;
     for (const auto& [accel, descriptions] : byAccel)
         for (const auto& [text, scenes] : descriptions)
-            lines.push_back(descriptions.size() == 1 ? fmt::format("- `{}`: {}", accel, text)
-                                                     : fmt::format("- `{}` ({}): {}", accel, fmt::join(scenes, ", "), text));
+            lines.push_back(descriptions.size() == 1
+                                ? fmt::format("- `{}`: {}", accel, text)
+                                : fmt::format("- `{}` ({}): {}", accel, fmt::join(scenes, ", "), text));
     return lines;
 }
 
@@ -204,9 +225,11 @@ std::string batchMarkdown(const std::vector<json>& jobs, const std::vector<Row>&
     for (const std::string& w : warnings) md += fmt::format("**Warning:** {}.\n\n", w);
     std::string counterColumns, counterAlignment, counterBlanks;
     for (const QueryCounter& c : kQueryCounters)
-        if (c.column) counterColumns += fmt::format(" {} |", c.column), counterAlignment += "--:|", counterBlanks += " |";
-    md += fmt::format("| scene | accel | | #Prims | #Leaves | #Nodes | SAH | T_B [ms] | T_R [µs] |{} N_Q | render [ms] |\n",
-                      counterColumns);
+        if (c.column)
+            counterColumns += fmt::format(" {} |", c.column), counterAlignment += "--:|", counterBlanks += " |";
+    md += fmt::format(
+        "| scene | accel | | #Prims | #Leaves | #Nodes | SAH | T_B [ms] | T_R [µs] |{} N_Q | render [ms] |\n",
+        counterColumns);
     md += fmt::format("|:--|:--|:--|--:|--:|--:|--:|--:|--:|{}--:|--:|\n", counterAlignment);
     for (const Row& r : rows) {
         if (!r.failed.empty()) {
@@ -215,9 +238,10 @@ std::string batchMarkdown(const std::vector<json>& jobs, const std::vector<Row>&
             continue;
         }
         if (!r.shadows)
-            md += fmt::format("| {} | {}{} | | {} | {} | {} | {} | {} ", r.scene, r.accel,
-                              unoptimised(r.structure) ? " (unoptimised)" : "", cell(r.prims, "{}"),
-                              cell(r.leaves, "{}"), cell(r.nodes, "{}"), cell(r.sah, "{:.2f}"), cell(r.buildMs, "{:.1f}"));
+            md +=
+                fmt::format("| {} | {}{} | | {} | {} | {} | {} | {} ", r.scene, r.accel,
+                            unoptimised(r.structure) ? " (unoptimised)" : "", cell(r.prims, "{}"), cell(r.leaves, "{}"),
+                            cell(r.nodes, "{}"), cell(r.sah, "{:.2f}"), cell(r.buildMs, "{:.1f}"));
         else
             md += "| | | + shadows | | | | | ";
         md += fmt::format("| {} |", cell(r.trUs, "{:.3f}"));
@@ -225,21 +249,23 @@ std::string batchMarkdown(const std::vector<json>& jobs, const std::vector<Row>&
             if (c.column) md += fmt::format(" {} |", cell(r.counters.at(c.key), "{:.2f}"));
         md += fmt::format(" {} | {} |\n", cell(r.nQ, "{}"), cell(r.renderMs, "{:.1f}"));
     }
-    md += "\nT_B: build time. T_R: µs per query (thread time inside the query loops / queries). N_IT, N_TR: "
-          "ray-triangle tests and nodes visited per query. N_Q: queries. SAH: normalised by the root box, with "
-          "C_trav and C_isect as set. Render time: wall, build excluded. \"+ shadows\": the same build rendered "
-          "with a shadow ray per light; T_R, N_IT and N_TR averaged over all its queries (primary and shadow "
-          "together), N_Q counting them all (results.json keeps them apart). n/a: not available (Embree shows "
-          "no tree and counts nothing). failed: the job crashed, threw or ran out of time (--job-timeout), "
-          "and left no results.\n\n";
-    md += fmt::format("Jobs: {}{}{} (one build each, serving both renders); the scene came from the scene cache in {} "
-                      "of them.",
-                      jobs.size(), jobs.size() < batchJobs ? fmt::format(" of the batch's {}", batchJobs) : "",
-                      failedJobs ? fmt::format(", {} of them failed", failedJobs) : "", fromCache);
+    md +=
+        "\nT_B: build time. T_R: µs per query (thread time inside the query loops / queries). N_IT, N_TR: "
+        "ray-triangle tests and nodes visited per query. N_Q: queries. SAH: normalised by the root box, with "
+        "C_trav and C_isect as set. Render time: wall, build excluded. \"+ shadows\": the same build rendered "
+        "with a shadow ray per light; T_R, N_IT and N_TR averaged over all its queries (primary and shadow "
+        "together), N_Q counting them all (results.json keeps them apart). n/a: not available (Embree shows "
+        "no tree and counts nothing). failed: the job crashed, threw or ran out of time (--job-timeout), "
+        "and left no results.\n\n";
+    md += fmt::format(
+        "Jobs: {}{}{} (one build each, serving both renders); the scene came from the scene cache in {} "
+        "of them.",
+        jobs.size(), jobs.size() < batchJobs ? fmt::format(" of the batch's {}", batchJobs) : "",
+        failedJobs ? fmt::format(", {} of them failed", failedJobs) : "", fromCache);
     if (!jobs.empty()) {
         const json& p = jobs.front().value("provenance", json::object());
-        md += fmt::format(" Commit {}, {}, {}.", p.value("git_commit", std::string("?")), p.value("cpu", std::string("?")),
-                          p.value("compiler", std::string("?")));
+        md += fmt::format(" Commit {}, {}, {}.", p.value("git_commit", std::string("?")),
+                          p.value("cpu", std::string("?")), p.value("compiler", std::string("?")));
     }
     md += "\n";
     return md;
@@ -260,16 +286,18 @@ std::string batchCsv(const std::vector<Row>& rows) {
             for (const auto& [key, value] : r.structure.at("keys").items())
                 settings.push_back(key + "=" + value.get<std::string>());
         csv += fmt::format("{},{},{},{},{},{},{},{},{},", csvText(r.scene), csvText(r.accel),
-                           r.failed.empty() ? (r.shadows ? "true" : "false") : "", csvCell(r.prims),
-                           csvCell(r.leaves), csvCell(r.nodes), csvCell(r.sah), csvCell(r.buildMs), csvCell(r.trUs));
+                           r.failed.empty() ? (r.shadows ? "true" : "false") : "", csvCell(r.prims), csvCell(r.leaves),
+                           csvCell(r.nodes), csvCell(r.sah), csvCell(r.buildMs), csvCell(r.trUs));
         for (const QueryCounter& c : kQueryCounters)
             if (c.column) csv += fmt::format("{},", csvCell(r.counters.value(c.key, json())));
         csv += fmt::format("{},{},{},{},{},{},{}\n", csvCell(r.nQ), csvCell(r.renderMs),
-                             csvText(fmt::format("{}", fmt::join(settings, ";"))),
-                             plugin.is_null() ? "" : csvText(plugin.at("file").get<std::string>()),
-                             plugin.is_null() ? "" : plugin.at("crc32").get<std::string>(),
-                             plugin.is_null() ? "" : plugin.at("optimized").get<bool>() ? "true" : "false",
-                             csvText(r.failed));
+                           csvText(fmt::format("{}", fmt::join(settings, ";"))),
+                           plugin.is_null() ? "" : csvText(plugin.at("file").get<std::string>()),
+                           plugin.is_null() ? "" : plugin.at("crc32").get<std::string>(),
+                           plugin.is_null()                     ? ""
+                           : plugin.at("optimized").get<bool>() ? "true"
+                                                                : "false",
+                           csvText(r.failed));
     }
     return csv;
 }
@@ -277,22 +305,25 @@ std::string batchCsv(const std::vector<Row>& rows) {
 // JSON: the table's rows, and per job primary and shadow queries apart.
 json batchJson(const std::vector<json>& jobs, const std::vector<Row>& rows, const std::vector<std::string>& settings,
                const std::vector<std::string>& warnings, size_t failedJobs) {
-    json j = {{"format", "bvhlab-batch-results-1"}, {"settings", settings}, {"warnings", warnings},
-              {"failed_jobs", failedJobs}, {"rows", json::array()}, {"jobs", json::array()}};
+    json j = {{"format", "bvhlab-batch-results-1"}, {"settings", settings},  {"warnings", warnings},
+              {"failed_jobs", failedJobs},          {"rows", json::array()}, {"jobs", json::array()}};
     for (const Row& r : rows) {
         if (!r.failed.empty()) {
             j["rows"].push_back({{"scene", r.scene}, {"accel", r.accel}, {"failed", r.failed}});
             continue;
         }
-        json row = {{"scene", r.scene}, {"accel", r.accel}, {"shadows", r.shadows}, {"prims", r.prims},
-                    {"leaves", r.leaves}, {"nodes", r.nodes}, {"sah", r.sah}, {"t_b_ms", r.buildMs},
-                    {"t_r_us", r.trUs}, {"n_q", r.nQ}, {"render_ms", r.renderMs}, {"structure", r.structure}};
+        json row = {{"scene", r.scene}, {"accel", r.accel},        {"shadows", r.shadows},
+                    {"prims", r.prims}, {"leaves", r.leaves},      {"nodes", r.nodes},
+                    {"sah", r.sah},     {"t_b_ms", r.buildMs},     {"t_r_us", r.trUs},
+                    {"n_q", r.nQ},      {"render_ms", r.renderMs}, {"structure", r.structure}};
         row.update(r.counters);
         j["rows"].push_back(std::move(row));
     }
     for (const json& job : jobs) {
         if (jobFailed(job)) {
-            j["jobs"].push_back({{"job", job.at("job")}, {"scene", job.at("scene")}, {"accel", job.at("accel")},
+            j["jobs"].push_back({{"job", job.at("job")},
+                                 {"scene", job.at("scene")},
+                                 {"accel", job.at("accel")},
                                  {"failed", job.at("failed")}});
             continue;
         }
@@ -326,7 +357,8 @@ std::vector<json> readBatchJobs(const std::filesystem::path& dir, const BatchSet
     // Table position of a job of this batch; none for another batch's.
     auto position = [&](const json& job) -> std::optional<std::pair<size_t, size_t>> {
         const BatchSettings::Scene* scene = settings.scene(job.at("scene").get<std::string>());
-        const auto accel = std::find(settings.accels.begin(), settings.accels.end(), job.at("accel").get<std::string>());
+        const auto accel =
+            std::find(settings.accels.begin(), settings.accels.end(), job.at("accel").get<std::string>());
         if (!scene || accel == settings.accels.end() || job.value("settings", std::string()) != scene->hash)
             return std::nullopt;
         return std::pair(size_t(scene - settings.scenes.data()), size_t(accel - settings.accels.begin()));
@@ -338,10 +370,13 @@ std::vector<json> readBatchJobs(const std::filesystem::path& dir, const BatchSet
         if (entry.path().extension() != ".json") continue;
         try {
             json job = json::parse(readText(entry.path()));
-            if (job.value("format", std::string()) != "bvhlab-batch-job-1") throw std::runtime_error("not a batch job file");
+            if (job.value("format", std::string()) != "bvhlab-batch-job-1")
+                throw std::runtime_error("not a batch job file");
             if (!jobFailed(job)) makeRow(job, false), makeRow(job, true);  // has what the tables need
             const auto at = position(job);
-            if (!at) throw std::runtime_error("a job of another batch (its scene, accelerator or settings are not this folder's)");
+            if (!at)
+                throw std::runtime_error(
+                    "a job of another batch (its scene, accelerator or settings are not this folder's)");
             jobs.emplace_back(*at, std::move(job));
         } catch (const std::exception& e) {
             fmt::print(stderr, "warning: {}: skipped: {}\n", entry.path().string(), e.what());
@@ -396,9 +431,10 @@ BatchTables writeBatchResults(const std::filesystem::path& dir) {
         for (const char* name : {"no_shadows", "shadows"}) {
             const std::string png =
                 jobFailed(job) ? "" : job["runs"][name].value("images", json::object()).value("png", std::string());
-            sheet.back().push_back({png.empty() ? std::filesystem::path() : dir / png,
-                                    fmt::format("{} {}{}{}", scene, accel, std::string(name) == "shadows" ? " +shadows" : "",
-                                                jobFailed(job) ? " (failed)" : "")});
+            sheet.back().push_back(
+                {png.empty() ? std::filesystem::path() : dir / png,
+                 fmt::format("{} {}{}{}", scene, accel, std::string(name) == "shadows" ? " +shadows" : "",
+                             jobFailed(job) ? " (failed)" : "")});
         }
     }
     std::vector<std::string> settings;  // the few that fit in the title

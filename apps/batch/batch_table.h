@@ -21,9 +21,9 @@ std::string batchJobName(const std::string& scene, const std::string& accel);
 std::vector<nlohmann::json> readBatchJobs(const std::filesystem::path& dir, const BatchSettings& settings);
 
 struct BatchTables {
-    std::string markdown;   // results.md
-    std::string csv;        // results.csv
-    nlohmann::json json;    // results.json
+    std::string markdown;               // results.md
+    std::string csv;                    // results.csv
+    nlohmann::json json;                // results.json
     std::vector<std::string> warnings;  // e.g. jobs run with different settings
     size_t failedJobs = 0;              // jobs that crashed, threw or timed out: a row with the reason each
 };

@@ -44,8 +44,8 @@ void writeContactSheet(const std::filesystem::path& out, const std::vector<std::
                 const Rgb8Image image = readPng(tile.file);
                 const int height = std::max(1, int(std::lround(double(thumbWidth) * image.height / image.width)));
                 Rgb8Image small{thumbWidth, height, std::vector<uint8_t>(size_t(thumbWidth) * height * 3)};
-                if (stbir_resize_uint8(image.pixels.data(), image.width, image.height, 0, small.pixels.data(), thumbWidth,
-                                       height, 0, 3))
+                if (stbir_resize_uint8(image.pixels.data(), image.width, image.height, 0, small.pixels.data(),
+                                       thumbWidth, height, 0, 3))
                     thumb = std::move(small);
             } catch (const std::exception&) {
                 // drawn as a grey tile saying so
@@ -60,8 +60,10 @@ void writeContactSheet(const std::filesystem::path& out, const std::vector<std::
     const int titleHeight = title.empty() ? 0 : 2 * kTextLineHeight + kGap;
     const int tileHeight = thumbHeight + labelHeight;
     Rgb8Image sheet;
-    sheet.width = 2 * kMargin + int(std::max<size_t>(columns, 1)) * thumbWidth + int(columns > 1 ? columns - 1 : 0) * kGap;
-    sheet.height = 2 * kMargin + titleHeight + int(rows.size()) * tileHeight + int(rows.size() > 1 ? rows.size() - 1 : 0) * kGap;
+    sheet.width =
+        2 * kMargin + int(std::max<size_t>(columns, 1)) * thumbWidth + int(columns > 1 ? columns - 1 : 0) * kGap;
+    sheet.height =
+        2 * kMargin + titleHeight + int(rows.size()) * tileHeight + int(rows.size() > 1 ? rows.size() - 1 : 0) * kGap;
     sheet.pixels.resize(size_t(sheet.width) * sheet.height * 3);
     fillRect(sheet, 0, 0, sheet.width, sheet.height, kBackground);
     if (!title.empty()) {

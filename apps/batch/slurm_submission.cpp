@@ -7,13 +7,13 @@
 #include <fmt/core.h>
 #include <fmt/ranges.h>
 
+#include <sys/wait.h>
+#include <unistd.h>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <sstream>
-#include <sys/wait.h>
-#include <unistd.h>
 
 namespace bvhlab {
 namespace {
@@ -117,9 +117,10 @@ std::filesystem::path findSbatch() {
         const std::filesystem::path candidate = std::filesystem::path(folder.empty() ? "." : folder) / "sbatch";
         if (std::filesystem::is_regular_file(candidate) && access(candidate.c_str(), X_OK) == 0) return candidate;
     }
-    throw InputError(fmt::format("--slurm: sbatch is not on PATH ({}): run this where jobs are submitted to the "
-                                 "cluster (a Slurm login node), or put Slurm's bin folder on PATH",
-                                 path ? path : "unset"));
+    throw InputError(
+        fmt::format("--slurm: sbatch is not on PATH ({}): run this where jobs are submitted to the "
+                    "cluster (a Slurm login node), or put Slurm's bin folder on PATH",
+                    path ? path : "unset"));
 }
 
 SlurmJobIds submitSlurmBatch(const SlurmBatch& batch, const std::filesystem::path& sbatch) {
@@ -139,9 +140,10 @@ SlurmJobIds submitSlurmBatch(const SlurmBatch& batch, const std::filesystem::pat
     try {
         ids.merge = submit(fmt::format("{} --dependency=afterany:{} {}", sbatchCommand, ids.shards, word(merge)));
     } catch (const InputError& e) {
-        throw InputError(fmt::format("{}; the shards are submitted as job {}: cancel them (scancel {}) or submit "
-                                     "the merge by hand",
-                                     e.what(), ids.shards, ids.shards));
+        throw InputError(
+            fmt::format("{}; the shards are submitted as job {}: cancel them (scancel {}) or submit "
+                        "the merge by hand",
+                        e.what(), ids.shards, ids.shards));
     }
     return ids;
 }

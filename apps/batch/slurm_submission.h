@@ -15,7 +15,7 @@
 namespace bvhlab {
 
 struct SlurmBatch {
-    std::filesystem::path out;                // the batch's folder, absolute: the merged tables
+    std::filesystem::path out;  // the batch's folder, absolute: the merged tables
     int shards = 1;
     std::filesystem::path program;            // the bvhlab the shards and the merge run
     std::filesystem::path workingDir;         // where they run: relative arguments stay valid

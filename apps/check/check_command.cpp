@@ -7,7 +7,6 @@
 #include "accel/registry.h"
 #include "accel/verify/conformance.h"
 #include "apps/check/check_process.h"
-#include "accel/verify/conformance.h"
 #include "apps/cli/command_line.h"
 #include "apps/cli/commands.h"
 #include "apps/runtime/accel_config.h"
@@ -81,7 +80,8 @@ int runChecks(CheckCommandOptions options) {
     const Env env = accelConfigEnv(config, base);
     createAccelerator(config.name, env);
     std::vector<std::string> names = options.checks.empty() ? verify::checkNames() : splitCommaList(options.checks);
-    if (names.empty()) throw InputError(fmt::format("--checks: none given (known: {})", fmt::join(verify::checkNames(), ", ")));
+    if (names.empty())
+        throw InputError(fmt::format("--checks: none given (known: {})", fmt::join(verify::checkNames(), ", ")));
     for (const std::string& name : names) verify::findCheck(name);
     // Named as registered: the checks look up what the structure promises by name.
     const verify::Subject subject{config.name, [&] { return createAccelerator(config.name, env); }};
@@ -90,7 +90,8 @@ int runChecks(CheckCommandOptions options) {
         options.child.run([&] { return check::toJson(runCheckHere(options.child.job, subject, threads)); });
         return 0;
     }
-    const std::filesystem::path json = options.json.empty() ? std::filesystem::path() : prepareOutputFile(options.json, "--json");
+    const std::filesystem::path json =
+        options.json.empty() ? std::filesystem::path() : prepareOutputFile(options.json, "--json");
 
     bool failed = false;
     std::vector<std::string> warned;
@@ -108,12 +109,9 @@ int runChecks(CheckCommandOptions options) {
     const std::string warnings = warned.empty() ? "" : fmt::format(", with a warning ({})", fmt::join(warned, ", "));
     fmt::print("check {}: {}\n", options.accel, failed ? "FAILED" : "all checks passed" + warnings);
     if (!json.empty()) {
-        const nlohmann::json out = {{"accel", options.accel},
-                                    {"passed", !failed},
-                                    {"checks", results},
-                                    {"env", env.toJson()},
-                                    {"provenance", provenanceJson()},
-                                    {"run", runJson()}};
+        const nlohmann::json out = {
+            {"accel", options.accel},         {"passed", !failed}, {"checks", results}, {"env", env.toJson()},
+            {"provenance", provenanceJson()}, {"run", runJson()}};
         writeFileAtomically(json, out.dump(2) + "\n");
     }
     return failed ? 1 : 0;
@@ -124,16 +122,19 @@ int runChecks(CheckCommandOptions options) {
 void addCheckCommand(CLI::App& app) {
     auto options = std::make_shared<CheckCommandOptions>();
     CLI::App* command = app.add_subcommand(
-        "check", "the conformance suite for one accelerator: agreement with a double-precision reference, any-hit, batch, "
-                 "mixed primitives, degenerate triangles, watertightness, builds at the edge, cost against sahbvh "
-                 "(docs/accuracy.md)");
+        "check",
+        "the conformance suite for one accelerator: agreement with a double-precision reference, any-hit, batch, "
+        "mixed primitives, degenerate triangles, watertightness, builds at the edge, cost against sahbvh "
+        "(docs/accuracy.md)");
     addEnvOptions(*command, options->env);
     addThreadsOption(*command, options->env);
-    command->add_option("--accel", options->accel,
-                        "the accelerator to check, NAME or NAME:Key=value:... (`bvhlab keys` lists them)")
+    command
+        ->add_option("--accel", options->accel,
+                     "the accelerator to check, NAME or NAME:Key=value:... (`bvhlab keys` lists them)")
         ->required();
-    command->add_option("--checks", options->checks,
-                        fmt::format("comma-separated checks to run (default: all of {})", fmt::join(verify::checkNames(), ",")));
+    command->add_option(
+        "--checks", options->checks,
+        fmt::format("comma-separated checks to run (default: all of {})", fmt::join(verify::checkNames(), ",")));
     command->add_option("--json", options->json, "write the results as JSON to this file");
     command->add_flag("--in-process", options->inProcess,
                       "run the checks in this process, not each in a child process: a crash ends the run "

@@ -20,9 +20,9 @@ verify::CheckResult runCheckInChild(const std::string& name, double timeoutSecon
 }
 
 nlohmann::json toJson(const verify::CheckResult& r) {
-    return {{"check", r.check},   {"passed", r.passed()}, {"skipped", r.skipped},   {"warning", r.warning},
-            {"scenes", r.scenes}, {"cases", r.cases},     {"unit", r.unit},         {"failures", r.failures},
-            {"seconds", r.seconds}, {"note", r.note},     {"examples", r.examples}};
+    return {{"check", r.check},     {"passed", r.passed()}, {"skipped", r.skipped},  {"warning", r.warning},
+            {"scenes", r.scenes},   {"cases", r.cases},     {"unit", r.unit},        {"failures", r.failures},
+            {"seconds", r.seconds}, {"note", r.note},       {"examples", r.examples}};
 }
 
 verify::CheckResult checkResultFromJson(const nlohmann::json& json) {

@@ -11,10 +11,13 @@ namespace bvhlab {
 void addEnvOptions(CLI::App& command, EnvOptions& options) {
     command.add_option("--env", options.envFiles,
                        "env file(s) layered on env/global.env (and the scene's env file), later ones win");
-    command.add_option("-D", options.overrides, "override an env key: -DSection::key=value (repeatable; wins over files)")
+    command
+        .add_option("-D", options.overrides, "override an env key: -DSection::key=value (repeatable; wins over files)")
         ->allow_extra_args(false);
-    command.add_flag("--no-global-env", options.noGlobalEnv, "do not read env/global.env: start from the keys' defaults");
-    command.add_option("--plugin", options.plugins, "load a plugin's accelerators from this file (repeatable; docs/plugins.md)");
+    command.add_flag("--no-global-env", options.noGlobalEnv,
+                     "do not read env/global.env: start from the keys' defaults");
+    command.add_option("--plugin", options.plugins,
+                       "load a plugin's accelerators from this file (repeatable; docs/plugins.md)");
 }
 
 void addThreadsOption(CLI::App& command, EnvOptions& options) {
@@ -30,8 +33,8 @@ void addChildJobOptions(CLI::App& command, ChildJob& job) {
 
 void addJobTimeoutOption(CLI::App& command, double& seconds) {
     seconds = kDefaultJobTimeoutSeconds;
-    command.add_option("--job-timeout", seconds,
-                       "seconds each job may run before it is killed and fails; 0 = no limit")
+    command
+        .add_option("--job-timeout", seconds, "seconds each job may run before it is killed and fails; 0 = no limit")
         ->capture_default_str()
         ->check(CLI::Range(0.0, 1e9));
 }
@@ -39,8 +42,9 @@ void addJobTimeoutOption(CLI::App& command, double& seconds) {
 void addScenesOption(CLI::App& command, std::vector<std::string>& scenes, const std::string& others,
                      const std::string& byDefault) {
     command.add_option("--scenes", scenes,
-                       others + "scene env files, .list files, scene files (here or in Scene::dir) or scenes' names "
-                                "(teapots for env/scenes/teapots.env); repeatable or comma-separated (default: " +
+                       others +
+                           "scene env files, .list files, scene files (here or in Scene::dir) or scenes' names "
+                           "(teapots for env/scenes/teapots.env); repeatable or comma-separated (default: " +
                            byDefault + ")");
 }
 

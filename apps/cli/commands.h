@@ -20,8 +20,8 @@ void addCheckCommand(CLI::App& app);
 
 // In the order `bvhlab --help` lists them.
 inline constexpr void (*kCommands[])(CLI::App&) = {
-    addRenderCommand, addRaycastCommand, addRaysCommand, addBenchCommand, addBatchCommand, addStressCommand,
-    addTradeoffCommand, addSpdCommand, addCheckCommand, addKeysCommand, addPlotCommand,
+    addRenderCommand,   addRaycastCommand, addRaysCommand,  addBenchCommand, addBatchCommand, addStressCommand,
+    addTradeoffCommand, addSpdCommand,     addCheckCommand, addKeysCommand,  addPlotCommand,
 };
 
 }  // namespace bvhlab

@@ -17,7 +17,8 @@ namespace bvhlab {
 void addKeysCommand(CLI::App& app) {
     auto options = std::make_shared<EnvOptions>();
     CLI::App* command = app.add_subcommand(
-        "keys", "print every env key and accelerator as Markdown (docs/env-keys.md); with --env or -D, the resolved values");
+        "keys",
+        "print every env key and accelerator as Markdown (docs/env-keys.md); with --env or -D, the resolved values");
     addEnvOptions(*command, *options);
     command->callback([options, command] {
         const bool resolve = command->count("--env") + command->count("-D") + command->count("--no-global-env") > 0;
@@ -34,7 +35,9 @@ void addKeysCommand(CLI::App& app) {
                 const std::string from = value["from"].get<std::string>();
                 const std::string& declared = env.registry().find(name)->defaultValue;
                 fmt::print("{} {}  # {}\n", name, value["value"].get<std::string>(),
-                           from == "default" ? from : fmt::format("{} (default: {})", from, declared.empty() ? "empty" : declared));
+                           from == "default"
+                               ? from
+                               : fmt::format("{} (default: {})", from, declared.empty() ? "empty" : declared));
             }
         });
         if (code != 0) throw CLI::RuntimeError(code);

@@ -42,9 +42,9 @@
 
 #include <fmt/core.h>
 #include <fmt/ranges.h>
-#include <nlohmann/json.hpp>
 #include <tbb/info.h>
 #include <tbb/task_arena.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -92,7 +92,7 @@ struct EmbreeYardstick {
     const Structure* structure = nullptr;
     const NativeBatchApis* apis = nullptr;
     std::vector<std::string> batchApis;
-    std::unique_ptr<NativeRayBatch> bare;                            // of the current ray set
+    std::unique_ptr<NativeRayBatch> bare;                             // of the current ray set
     std::map<std::string, std::unique_ptr<NativeRayBatch>> prepared;  // likewise, per batch API
 };
 
@@ -104,10 +104,10 @@ struct Contender {
 
     std::string label;
     QueryKind queries;
-    const Structure* structure;                  // its builds; embree's for embree-bare and -batch
-    EmbreeYardstick* native;                     // embree-bare and -batch's prepared rays; else null
-    std::vector<std::vector<double>> usPerQuery; // per ray set: one per round
-    std::vector<QueryCounters> counters;         // per ray set: of the first round's counting pass
+    const Structure* structure;                   // its builds; embree's for embree-bare and -batch
+    EmbreeYardstick* native;                      // embree-bare and -batch's prepared rays; else null
+    std::vector<std::vector<double>> usPerQuery;  // per ray set: one per round
+    std::vector<QueryCounters> counters;          // per ray set: of the first round's counting pass
     // embree-batch: per ray set, each batch API's series and the one kept (the lowest median).
     std::vector<std::map<std::string, std::vector<double>>> byApi;
     std::vector<std::string> kept;
@@ -180,8 +180,9 @@ std::vector<EmbreeYardstick> embreeYardsticks(const std::vector<Structure>& stru
 bool isBatchYardstick(const Contender& k) { return k.native && k.queries == QueryKind::Batch; }
 
 // Every structure through each kind of query, and Embree's own APIs, in the order of every round.
-std::vector<Contender> contestContenders(const std::vector<Structure>& structures, std::vector<EmbreeYardstick>& yardsticks,
-                                         const std::vector<QueryKind>& kinds, size_t sets) {
+std::vector<Contender> contestContenders(const std::vector<Structure>& structures,
+                                         std::vector<EmbreeYardstick>& yardsticks, const std::vector<QueryKind>& kinds,
+                                         size_t sets) {
     std::vector<Contender> contenders;
     for (QueryKind kind : kinds) {
         for (const Structure& k : structures) contenders.emplace_back(k.config.label, kind, &k);
@@ -206,7 +207,8 @@ void traceInRounds(std::vector<Contender>& contenders, std::vector<EmbreeYardsti
         y.prepared.clear();
         if (asked(QueryKind::Single)) y.bare = y.apis->prepareNativeBatch(*s.rays);
         if (asked(QueryKind::Batch))
-            for (const std::string& api : y.batchApis) y.prepared[api] = y.apis->prepareBatchApi(*s.rays, api, s.asked.coherence);
+            for (const std::string& api : y.batchApis)
+                y.prepared[api] = y.apis->prepareBatchApi(*s.rays, api, s.asked.coherence);
     }
     for (int round = 0; round < passes; ++round) {
         for (Contender& k : contenders) {
@@ -232,9 +234,9 @@ void traceInRounds(std::vector<Contender>& contenders, std::vector<EmbreeYardsti
 void keepFastestApis(std::vector<Contender>& contenders) {
     for (Contender& k : contenders)
         for (size_t set = 0; set < k.byApi.size(); ++set) {
-            const auto fastest = std::min_element(k.byApi[set].begin(), k.byApi[set].end(), [](const auto& a, const auto& b) {
-                return median(a.second) < median(b.second);
-            });
+            const auto fastest =
+                std::min_element(k.byApi[set].begin(), k.byApi[set].end(),
+                                 [](const auto& a, const auto& b) { return median(a.second) < median(b.second); });
             k.kept.push_back(fastest->first);
             k.usPerQuery[set] = fastest->second;
         }
@@ -261,14 +263,14 @@ nlohmann::json contenderRow(const Contender& k, const std::vector<Contender>& co
     row.update(buildStatsJson(structure.stats));
     for (size_t set = 0; set < raySets.size(); ++set) {
         const double q = std::max<double>(1.0, double(k.counters[set].queries));
-        row[raySets[set].asked.kind] = {
-            {"t_r_us", median(k.usPerQuery[set])},
-            {"t_r_us_all", k.usPerQuery[set]},
-            {"queries", k.counters[set].queries}};
+        row[raySets[set].asked.kind] = {{"t_r_us", median(k.usPerQuery[set])},
+                                        {"t_r_us_all", k.usPerQuery[set]},
+                                        {"queries", k.counters[set].queries}};
         row[raySets[set].asked.kind].update(queryCountersJson(k.counters[set], q, counted));
         if (!k.kept.empty()) {
             row["embree_batch_api"][raySets[set].asked.kind] = k.kept[set];
-            for (const auto& [api, series] : k.byApi[set]) row[raySets[set].asked.kind]["t_r_us_by_api"][api] = median(series);
+            for (const auto& [api, series] : k.byApi[set])
+                row[raySets[set].asked.kind]["t_r_us_by_api"][api] = median(series);
         }
     }
     // Medians of the per-round ratios: to embree-bare and embree-batch (whichever this run
@@ -283,9 +285,9 @@ nlohmann::json contenderRow(const Contender& k, const std::vector<Contender>& co
         if (!ref) continue;
         nlohmann::json ratios = {{"build", pairedRatio(structure.buildMs, ref->structure->buildMs)}};
         for (size_t set = 0; set < raySets.size(); ++set) {
-            ratios[raySets[set].asked.kind] = raySets[set].rays->empty()
-                                            ? nlohmann::json()
-                                            : nlohmann::json(pairedRatio(k.usPerQuery[set], ref->usPerQuery[set]));
+            ratios[raySets[set].asked.kind] =
+                raySets[set].rays->empty() ? nlohmann::json()
+                                           : nlohmann::json(pairedRatio(k.usPerQuery[set], ref->usPerQuery[set]));
         }
         row["ratio_to_" + label] = ratios;
     }
@@ -298,8 +300,8 @@ nlohmann::json contenderRow(const Contender& k, const std::vector<Contender>& co
 // machine thus hits all contenders of a round alike, and the medians of the per-round ratios to
 // Embree hold where absolute times drift by tens of percent.
 std::vector<nlohmann::json> measureRounds(const Scene& scene, const RaySets& rays, const Env& sceneEnv,
-                                          const std::vector<ContestConfig>& configs, const std::vector<QueryKind>& kinds,
-                                          int threads, int builds, int passes) {
+                                          const std::vector<ContestConfig>& configs,
+                                          const std::vector<QueryKind>& kinds, int threads, int builds, int passes) {
     const NamedRaySet raySets[] = {
         {&rays.primary, kRaySetQueries[0]}, {&rays.shadow, kRaySetQueries[1]}, {&rays.incoherent, kRaySetQueries[2]}};
     constexpr size_t kSets = std::size(raySets);
@@ -308,7 +310,8 @@ std::vector<nlohmann::json> measureRounds(const Scene& scene, const RaySets& ray
     buildInRounds(structures, scene, arena, builds);
     std::vector<EmbreeYardstick> yardsticks = embreeYardsticks(structures);
     std::vector<Contender> contenders = contestContenders(structures, yardsticks, kinds, kSets);
-    for (size_t set = 0; set < kSets; ++set) traceInRounds(contenders, yardsticks, raySets[set], set, kinds, threads, passes);
+    for (size_t set = 0; set < kSets; ++set)
+        traceInRounds(contenders, yardsticks, raySets[set], set, kinds, threads, passes);
     keepFastestApis(contenders);
 
     std::vector<nlohmann::json> rows;
@@ -322,7 +325,8 @@ std::string numberOrNa(const nlohmann::json& v, const char* format) {
 
 // A row's ratios to `label`'s row (null where this run did not measure it).
 const nlohmann::json& ratiosTo(const nlohmann::json& row, const std::string& label) {
-    static const nlohmann::json none = {{"build", nullptr}, {"primary", nullptr}, {"shadow", nullptr}, {"incoherent", nullptr}};
+    static const nlohmann::json none = {
+        {"build", nullptr}, {"primary", nullptr}, {"shadow", nullptr}, {"incoherent", nullptr}};
     const auto it = row.find("ratio_to_" + label);
     return it == row.end() ? none : *it;
 }
@@ -338,8 +342,9 @@ std::string yardstickOf(const nlohmann::json& row) {
 
 // The geometric means over scenes of each configuration's ratios (rows by "ACCEL QUERIES threads=N").
 std::string geometricMeanLines(const std::map<std::string, std::vector<nlohmann::json>>& byConfig, size_t accelWidth) {
-    std::string out = "\ngeometric means over scenes of the ratios to embree-bare (single rows) or embree-batch (batch rows), "
-                      "to embree-robust asked the same way in brackets:\n";
+    std::string out =
+        "\ngeometric means over scenes of the ratios to embree-bare (single rows) or embree-batch (batch rows), "
+        "to embree-robust asked the same way in brackets:\n";
     for (const auto& [config, rows] : byConfig) {
         out += fmt::format("  {:<{}}", config, accelWidth + 21);
         for (const char* kind : {"build", "primary", "shadow", "incoherent"}) {
@@ -369,36 +374,40 @@ std::string geometricMeanLines(const std::map<std::string, std::vector<nlohmann:
 // the reference rows), then what each of them is: its own settings, its plugin.
 std::string benchTable(const nlohmann::json& results, const std::vector<std::string>& shown) {
     const auto isShown = [&](const nlohmann::json& row) {
-        return row.contains("accel") && std::find(shown.begin(), shown.end(), row["accel"].get<std::string>()) != shown.end();
+        return row.contains("accel") &&
+               std::find(shown.begin(), shown.end(), row["accel"].get<std::string>()) != shown.end();
     };
     size_t accelWidth = 14;
     for (const nlohmann::json& row : results["rows"])
         if (isShown(row)) accelWidth = std::max(accelWidth, row["accel"].get<std::string>().size());
-    std::string out = fmt::format("{:<16} {:>3} {:<{}} {:<6} {:>9} {:>6} {:>8} {:>6} {:>6} {:>8} {:>6} {:>6} {:>8} {:>6} {:>6} "
-                                  "{:>6} {:>6} {:>8} {:>7} {:>7}\n",
-                                  "scene", "thr", "accel", accelWidth, "query", "T_B ms", "xE", "prim us", "xE", "xER", "shad us",
-                                  "xE", "xER", "incoh us", "xE", "xER", "N_IT", "N_TR", "SAH", "EPO", "MB");
+    std::string out = fmt::format(
+        "{:<16} {:>3} {:<{}} {:<6} {:>9} {:>6} {:>8} {:>6} {:>6} {:>8} {:>6} {:>6} {:>8} {:>6} {:>6} "
+        "{:>6} {:>6} {:>8} {:>7} {:>7}\n",
+        "scene", "thr", "accel", accelWidth, "query", "T_B ms", "xE", "prim us", "xE", "xER", "shad us", "xE", "xER",
+        "incoh us", "xE", "xER", "N_IT", "N_TR", "SAH", "EPO", "MB");
     std::map<std::string, std::vector<nlohmann::json>> byConfig;
     for (const nlohmann::json& row : results["rows"]) {
         if (row.contains("failed")) {
-            out += fmt::format("{:<16} failed: {}\n", row["scene"].get<std::string>(), row["failed"].get<std::string>());
+            out +=
+                fmt::format("{:<16} failed: {}\n", row["scene"].get<std::string>(), row["failed"].get<std::string>());
             continue;
         }
         if (!isShown(row)) continue;
         const nlohmann::json& e = ratiosTo(row, yardstickOf(row));
         const nlohmann::json& er = ratiosTo(row, labelAtIsa("embree-robust", isaOf(row)));
-        out += fmt::format("{:<16} {:>3} {:<{}} {:<6} {:>9.1f} {:>6} {:>8.3f} {:>6} {:>6} {:>8.3f} {:>6} {:>6} "
-                           "{:>8.3f} {:>6} {:>6} {:>6} {:>6} {:>8} {:>7} {:>7}",
-                           row["scene"].get<std::string>(), row["threads"].get<int>(), row["accel"].get<std::string>(),
-                           accelWidth, row["queries"].get<std::string>(), row["build_ms"].get<double>(),
-                           numberOrNa(e["build"], "{:.2f}"), row["primary"]["t_r_us"].get<double>(),
-                           numberOrNa(e["primary"], "{:.2f}"), numberOrNa(er["primary"], "{:.2f}"),
-                           row["shadow"]["t_r_us"].get<double>(), numberOrNa(e["shadow"], "{:.2f}"),
-                           numberOrNa(er["shadow"], "{:.2f}"), row["incoherent"]["t_r_us"].get<double>(),
-                           numberOrNa(e["incoherent"], "{:.2f}"), numberOrNa(er["incoherent"], "{:.2f}"),
-                           numberOrNa(row["primary"]["n_it"], "{:.1f}"), numberOrNa(row["primary"]["n_tr"], "{:.1f}"),
-                           numberOrNa(row["sah"], "{:.2f}"), numberOrNa(row["epo"], "{:.2f}"),
-                           row["bytes"].is_null() ? "n/a" : fmt::format("{:.1f}", row["bytes"].get<double>() / 1048576.0));
+        out += fmt::format(
+            "{:<16} {:>3} {:<{}} {:<6} {:>9.1f} {:>6} {:>8.3f} {:>6} {:>6} {:>8.3f} {:>6} {:>6} "
+            "{:>8.3f} {:>6} {:>6} {:>6} {:>6} {:>8} {:>7} {:>7}",
+            row["scene"].get<std::string>(), row["threads"].get<int>(), row["accel"].get<std::string>(), accelWidth,
+            row["queries"].get<std::string>(), row["build_ms"].get<double>(), numberOrNa(e["build"], "{:.2f}"),
+            row["primary"]["t_r_us"].get<double>(), numberOrNa(e["primary"], "{:.2f}"),
+            numberOrNa(er["primary"], "{:.2f}"), row["shadow"]["t_r_us"].get<double>(),
+            numberOrNa(e["shadow"], "{:.2f}"), numberOrNa(er["shadow"], "{:.2f}"),
+            row["incoherent"]["t_r_us"].get<double>(), numberOrNa(e["incoherent"], "{:.2f}"),
+            numberOrNa(er["incoherent"], "{:.2f}"), numberOrNa(row["primary"]["n_it"], "{:.1f}"),
+            numberOrNa(row["primary"]["n_tr"], "{:.1f}"), numberOrNa(row["sah"], "{:.2f}"),
+            numberOrNa(row["epo"], "{:.2f}"),
+            row["bytes"].is_null() ? "n/a" : fmt::format("{:.1f}", row["bytes"].get<double>() / 1048576.0));
         if (row.contains("embree_batch_api"))
             for (const char* set : {"primary", "shadow", "incoherent"})
                 out += fmt::format("  {} {}", set, row["embree_batch_api"][set].get<std::string>());
@@ -411,9 +420,10 @@ std::string benchTable(const nlohmann::json& results, const std::vector<std::str
     if (results.contains("isa_pairs")) {
         const nlohmann::json& pairs = results["isa_pairs"];
         for (const std::string isa : pairs["isas"])
-            out += fmt::format("\nrows LABEL@{0}: BVH::isa={0} or Embree::isa={0}, their ratios to Embree's rows at {0} "
-                               "(embree-bare@{0}, embree-batch@{0}, embree-robust@{0}); the others at this CPU's best, {1}\n",
-                               isa, pairs["best"].get<std::string>());
+            out += fmt::format(
+                "\nrows LABEL@{0}: BVH::isa={0} or Embree::isa={0}, their ratios to Embree's rows at {0} "
+                "(embree-bare@{0}, embree-batch@{0}, embree-robust@{0}); the others at this CPU's best, {1}\n",
+                isa, pairs["best"].get<std::string>());
         if (!pairs["note"].get<std::string>().empty()) out += fmt::format("\n{}\n", pairs["note"].get<std::string>());
     }
     if (results["scenes"].empty()) return out;
@@ -423,7 +433,8 @@ std::string benchTable(const nlohmann::json& results, const std::vector<std::str
         if (structures.contains(label)) out += fmt::format("  {}: {}\n", label, describeStructure(structures[label]));
     std::vector<std::string> hidden;
     for (const nlohmann::json& row : results["rows"])
-        if (row.contains("accel") && !isShown(row) && std::find(hidden.begin(), hidden.end(), row["accel"]) == hidden.end())
+        if (row.contains("accel") && !isShown(row) &&
+            std::find(hidden.begin(), hidden.end(), row["accel"]) == hidden.end())
             hidden.push_back(row["accel"].get<std::string>());
     if (!hidden.empty())
         out += fmt::format("the reference rows ({}) are in the JSON; --reference-rows shows them here\n",
@@ -449,23 +460,31 @@ struct BenchOptions {
 void addBenchOptions(CLI::App& command, BenchOptions& options) {
     addEnvOptions(command, options.env);
     addScenesOption(command, options.scenes, "", "env/scenes.list");
-    command.add_option("--accel", options.accels,
-                       "comma-separated NAME or NAME:Key=value:... (embree, embree-robust, embree-bare, embree-batch, "
-                       "nothing and nothing-guarded are always added)")
+    command
+        .add_option("--accel", options.accels,
+                    "comma-separated NAME or NAME:Key=value:... (embree, embree-robust, embree-bare, embree-batch, "
+                    "nothing and nothing-guarded are always added)")
         ->capture_default_str();
-    command.add_option("--queries", options.queries,
-                       "single (ray by ray, against embree-bare), batch (the batch calls, against embree-batch) or both, "
-                       "comma-separated")
+    command
+        .add_option("--queries", options.queries,
+                    "single (ray by ray, against embree-bare), batch (the batch calls, against embree-batch) or both, "
+                    "comma-separated")
         ->capture_default_str();
     command.add_option("--isa-pairs", options.isaPairs,
                        "ISAs at which to time ours against Embree beside the headline pair (each at the best ISA the "
                        "CPU runs), comma-separated: avx2, avx512. Each structure that reads BVH::isa or Embree::isa "
                        "is timed again as LABEL@ISA with that key set, against Embree's rows at ISA; one that is the "
                        "CPU's best is the headline pair, timed once");
-    command.add_option("--threads", options.threads, "threads N (0 = all hardware threads), or a comma-separated list of them to measure each")
+    command
+        .add_option("--threads", options.threads,
+                    "threads N (0 = all hardware threads), or a comma-separated list of them to measure each")
         ->capture_default_str();
-    command.add_option("--builds", options.builds, "builds per structure (median)")->capture_default_str()->check(CLI::Range(1, 1000));
-    command.add_option("--passes", options.passes, "passes over each ray set (median)")->capture_default_str()->check(CLI::Range(1, 1000));
+    command.add_option("--builds", options.builds, "builds per structure (median)")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 1000));
+    command.add_option("--passes", options.passes, "passes over each ray set (median)")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 1000));
     command.add_option("--out", options.out, "JSON results")->capture_default_str();
     command.add_flag("--reference-rows", options.referenceRows,
                      "show the reference rows in the table too (those --accel did not choose: Embree through our "
@@ -481,7 +500,8 @@ void addBenchOptions(CLI::App& command, BenchOptions& options) {
 std::vector<AccelConfig> benchConfigs(BenchOptions& options) {
     std::vector<AccelConfig> configs = parseAccelConfigList(options.accels);
     for (const char* reference : {"embree", "embree:Embree::robust=true"})
-        if (std::none_of(configs.begin(), configs.end(), [&](const AccelConfig& c) { return c.label == parseAccelConfig(reference).label; }))
+        if (std::none_of(configs.begin(), configs.end(),
+                         [&](const AccelConfig& c) { return c.label == parseAccelConfig(reference).label; }))
             configs.push_back(parseAccelConfig(reference));
     for (const AccelConfig& c : configs)
         if (std::find(std::begin(kNothingRows), std::end(kNothingRows), c.label) != std::end(kNothingRows))
@@ -519,7 +539,7 @@ std::vector<QueryKind> parseQueryKinds(const std::string& text) {
 // at every thread count and kind of query.
 struct BenchPlan {
     IsaPairs pairs;
-    std::vector<ContestConfig> contest;  // each structure, then its copies at the ISAs of --isa-pairs
+    std::vector<ContestConfig> contest;      // each structure, then its copies at the ISAs of --isa-pairs
     std::vector<AccelConfig> contestAccels;  // the same, for the result key
     std::vector<int> threadCounts;
     std::vector<QueryKind> kinds;
@@ -577,8 +597,11 @@ nlohmann::json measureBenchScene(const BenchOptions& options, const BenchPlan& p
 
 // What a scene's result key holds of the bench's own settings (bench_resume.h).
 nlohmann::json benchMeasurement(const BenchOptions& options, const BenchPlan& plan) {
-    nlohmann::json measurement = {{"command", "bench"}, {"builds", options.builds}, {"passes", options.passes},
-                                  {"threads", plan.threadCounts}, {"queries", nlohmann::json::array()}};
+    nlohmann::json measurement = {{"command", "bench"},
+                                  {"builds", options.builds},
+                                  {"passes", options.passes},
+                                  {"threads", plan.threadCounts},
+                                  {"queries", nlohmann::json::array()}};
     for (QueryKind kind : plan.kinds) measurement["queries"].push_back(toString(kind));
     return measurement;
 }
@@ -597,7 +620,8 @@ size_t measureScenes(const BenchOptions& options, const BenchPlan& plan, nlohman
     ResumeCount resume;
     for (const SceneArgument& scene : scenes) {
         keys.push_back(benchSceneKey(plan.contestAccels, scene.load(options.env), measurement));
-        const StoredResult stored = options.fresh ? StoredResult{false, "of --fresh"} : earlier.check(scene.id, keys.back());
+        const StoredResult stored =
+            options.fresh ? StoredResult{false, "of --fresh"} : earlier.check(scene.id, keys.back());
         resume.add(stored);
         keep.push_back(stored.keep);
     }
@@ -619,12 +643,14 @@ size_t measureScenes(const BenchOptions& options, const BenchPlan& plan, nlohman
                 row["structure"] = keys[s]["structures"].value(row["accel"].get<std::string>(), nlohmann::json());
                 results["rows"].push_back(std::move(row));
             }
-            const std::string name = outcome.result.empty() ? scenes[s].id : outcome.result[0]["scene"].get<std::string>();
+            const std::string name =
+                outcome.result.empty() ? scenes[s].id : outcome.result[0]["scene"].get<std::string>();
             results["scenes"].push_back({{"id", scenes[s].id}, {"name", name}, {"result_key", keys[s]}});
         } else {
             ++failed;
             fmt::print(stderr, "[{}/{}] {}: failed: {}\n", s + 1, scenes.size(), scenes[s].id, outcome.failure());
-            results["rows"].push_back({{"scene", scenes[s].id}, {"scene_id", scenes[s].id}, {"failed", outcome.failure()}});
+            results["rows"].push_back(
+                {{"scene", scenes[s].id}, {"scene_id", scenes[s].id}, {"failed", outcome.failure()}});
         }
         // Written after each scene, so that an interrupted bench keeps the scenes it finished.
         writeFileAtomically(out, results.dump(2) + "\n");

@@ -38,7 +38,8 @@ BuildersScene prepareBuildersScene(const std::string& id, const Env& sceneEnv, c
 
 // Builds (median, within buildBudgetMs), the tree's statistics and T_R per ray set; for the
 // baseline also the bare Embree loop (NativeRayBatch) over the same rays.
-nlohmann::json measureBuilderConfig(const BuildersScene& scene, const AccelConfig& config, const TradeoffSettings& settings);
+nlohmann::json measureBuilderConfig(const BuildersScene& scene, const AccelConfig& config,
+                                    const TradeoffSettings& settings);
 
 // Reads DIR/<scene>/<config>.json, writes DIR/builders.csv, DIR/builders_summary.csv and
 // DIR/builders.md, and returns the Markdown.

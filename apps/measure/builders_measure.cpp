@@ -71,12 +71,11 @@ json measureBuilderConfig(const BuildersScene& b, const AccelConfig& config, con
     // Through the batch calls, as the builders' figures have always been measured.
     for (size_t s = 0; s < std::size(kBuilderRaySets); ++s) {
         const RaySetQuery& asked = kRaySetQueries[s];
-        const PassResult r =
-            tracePasses(*accel, *sets[s], asked.anyHit, asked.coherence, settings.threads, settings.passes, QueryKind::Batch);
+        const PassResult r = tracePasses(*accel, *sets[s], asked.anyHit, asked.coherence, settings.threads,
+                                         settings.passes, QueryKind::Batch);
         const double q = std::max<double>(1.0, double(r.counters.queries));
-        result[kBuilderRaySets[s]] = {{"rays", sets[s]->size()},
-                                      {"t_r_us", r.usPerQuery},
-                                      {"t_r_cpu_us", r.cpuUsPerQuery}};
+        result[kBuilderRaySets[s]] = {
+            {"rays", sets[s]->size()}, {"t_r_us", r.usPerQuery}, {"t_r_cpu_us", r.cpuUsPerQuery}};
         result[kBuilderRaySets[s]].update(queryCountersJson(r.counters, q, counted));
     }
     // The bare loop, Embree as its users call it (the bench's embree-bare), on the baseline's tree.
@@ -86,7 +85,8 @@ json measureBuilderConfig(const BuildersScene& b, const AccelConfig& config, con
         for (size_t s = 0; s < std::size(kBuilderRaySets); ++s) {
             try {
                 const std::unique_ptr<NativeRayBatch> batch = native->prepareNativeBatch(*sets[s]);
-                const PassResult r = traceNativePasses(*batch, kRaySetQueries[s].anyHit, settings.threads, settings.passes);
+                const PassResult r =
+                    traceNativePasses(*batch, kRaySetQueries[s].anyHit, settings.threads, settings.passes);
                 bare[kBuilderRaySets[s]] = {{"t_r_us", r.usPerQuery}, {"t_r_cpu_us", r.cpuUsPerQuery}};
             } catch (const std::invalid_argument& e) {
                 fmt::print(stderr, "  {}: no bare loop over the {} rays ({})\n", b.id, kBuilderRaySets[s], e.what());

@@ -65,7 +65,8 @@ std::vector<std::string> frontOf(const RowsByLabel& rows, X x, Y y) {
     std::vector<std::string> labels;
     std::vector<double> xs, ys;
     for (const auto& [label, row] : rows)
-        if (std::isfinite(x(row)) && std::isfinite(y(row))) labels.push_back(label), xs.push_back(x(row)), ys.push_back(y(row));
+        if (std::isfinite(x(row)) && std::isfinite(y(row)))
+            labels.push_back(label), xs.push_back(x(row)), ys.push_back(y(row));
     std::vector<std::string> front;
     for (size_t i : paretoFront(xs, ys)) front.push_back(labels[i]);
     return front;
@@ -108,8 +109,8 @@ void compareWithinScene(RowsByLabel& byLabel, const TimeKeys& keys) {
         }
     }
     for (size_t s = 0; s < kSets; ++s)
-        for (const std::string& label :
-             frontOf(byLabel, [](const Row& r) { return r.build; }, [s](const Row& r) { return r.trace[s]; }))
+        for (const std::string& label : frontOf(
+                 byLabel, [](const Row& r) { return r.build; }, [s](const Row& r) { return r.trace[s]; }))
             byLabel[label].pareto[s] = true;
 }
 
@@ -125,7 +126,8 @@ Summary summarise(const Measured& measured, const std::vector<std::string>& scen
             ++scenes;
             build.push_back(r->buildRatio);
             for (size_t s = 0; s < kSets; ++s)
-                toBase[s].push_back(r->toBaseline[s]), toHigh[s].push_back(r->toHigh[s]), toBare[s].push_back(r->toBare[s]);
+                toBase[s].push_back(r->toBaseline[s]), toHigh[s].push_back(r->toHigh[s]),
+                    toBare[s].push_back(r->toBare[s]);
         }
         if (!scenes) continue;
         Row& m = summary.means[config.label];
@@ -135,23 +137,28 @@ Summary summarise(const Measured& measured, const std::vector<std::string>& scen
     }
     for (size_t s = 0; s < kSets; ++s)
         for (const std::string& label : frontOf(
-                 summary.means, [](const Row& r) { return r.buildRatio; }, [s](const Row& r) { return r.toBaseline[s]; }))
+                 summary.means, [](const Row& r) { return r.buildRatio; },
+                 [s](const Row& r) { return r.toBaseline[s]; }))
             summary.means[label].pareto[s] = true;
     return summary;
 }
 
 std::string buildersCsv(const Measured& measured, const std::vector<std::string>& sceneIds,
                         const std::vector<AccelConfig>& configs) {
-    std::string csv = "scene,config,accel,threads,prims,builds,build_ms,build_cpu_ms,build_ratio_embree_medium,sah,epo,"
-                      "nodes,leaves,avg_leaf,max_leaf";
+    std::string csv =
+        "scene,config,accel,threads,prims,builds,build_ms,build_cpu_ms,build_ratio_embree_medium,sah,epo,"
+        "nodes,leaves,avg_leaf,max_leaf";
     for (const char* set : kBuilderRaySets)
-        csv += fmt::format(",{0}_rays,t_r_{0}_us,t_r_{0}_cpu_us,n_it_{0},n_tr_{0},ratio_embree_medium_{0},"
-                           "ratio_embree_high_{0},ratio_embree_bare_{0},pareto_{0}",
-                           set);
+        csv += fmt::format(
+            ",{0}_rays,t_r_{0}_us,t_r_{0}_cpu_us,n_it_{0},n_tr_{0},ratio_embree_medium_{0},"
+            "ratio_embree_high_{0},ratio_embree_bare_{0},pareto_{0}",
+            set);
     csv += ",failed\n";
     const std::string csvHeader = csv;
     auto cell = [](const json& v, int digits) {
-        return v.is_number_float() ? fixed(v.get<double>(), digits) : v.is_number() ? std::to_string(v.get<long long>()) : "";
+        return v.is_number_float() ? fixed(v.get<double>(), digits)
+               : v.is_number()     ? std::to_string(v.get<long long>())
+                                   : "";
     };
     for (const std::string& scene : sceneIds)
         for (const AccelConfig& config : configs) {
@@ -163,15 +170,17 @@ std::string buildersCsv(const Measured& measured, const std::vector<std::string>
             if (!row) continue;
             const Row& r = *row;
             const json& j = r.stored;
-            csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}", scene, config.label, j["accel"].get<std::string>(),
-                               cell(j["threads"], 0), cell(j["prims"], 0), j["build_ms_all"].size(), cell(j["build_ms"], 3),
-                               cell(j["build_cpu_ms"], 3), fixed(r.buildRatio, 4), cell(j["sah"], 6), cell(j["epo"], 6),
-                               cell(j["nodes"], 0), cell(j["leaves"], 0), cell(j["avg_leaf"], 3), cell(j["max_leaf"], 0));
+            csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}", scene, config.label,
+                               j["accel"].get<std::string>(), cell(j["threads"], 0), cell(j["prims"], 0),
+                               j["build_ms_all"].size(), cell(j["build_ms"], 3), cell(j["build_cpu_ms"], 3),
+                               fixed(r.buildRatio, 4), cell(j["sah"], 6), cell(j["epo"], 6), cell(j["nodes"], 0),
+                               cell(j["leaves"], 0), cell(j["avg_leaf"], 3), cell(j["max_leaf"], 0));
             for (size_t s = 0; s < kSets; ++s) {
                 const json& t = j[kBuilderRaySets[s]];
                 csv += fmt::format(",{},{},{},{},{},{},{},{},{}", cell(t["rays"], 0), cell(t["t_r_us"], 5),
-                                   cell(t["t_r_cpu_us"], 5), cell(t["n_it"], 3), cell(t["n_tr"], 3), fixed(r.toBaseline[s], 4),
-                                   fixed(r.toHigh[s], 4), fixed(r.toBare[s], 4), r.pareto[s] ? 1 : 0);
+                                   cell(t["t_r_cpu_us"], 5), cell(t["n_it"], 3), cell(t["n_tr"], 3),
+                                   fixed(r.toBaseline[s], 4), fixed(r.toHigh[s], 4), fixed(r.toBare[s], 4),
+                                   r.pareto[s] ? 1 : 0);
             }
             csv += ",\n";  // not failed
         }
@@ -198,20 +207,25 @@ std::string summaryCsv(const Summary& summary, const std::vector<AccelConfig>& c
 // builders.md's first paragraph: what was measured, and how.
 std::string settingsParagraph(const TradeoffSettings& settings) {
     return fmt::format(
-        "Settings: threads {}; T_B median of up to {} builds (fewer once they took {:.0f} s); T_R median of {} pass(es) "
+        "Settings: threads {}; T_B median of up to {} builds (fewer once they took {:.0f} s); T_R median of {} "
+        "pass(es) "
         "over the primary, shadow and incoherent rays of a {} image; T_B is wall time (the structure's own timer, "
         "which leaves out the statistics and EPO computed after a build), T_R {}. Ratios (p / s / i: primary / "
-        "shadow / incoherent) are T_R over {}'s, {}'s and the bare Embree loop's on {}'s tree (the bench's embree-bare). Pareto: "
+        "shadow / incoherent) are T_R over {}'s, {}'s and the bare Embree loop's on {}'s tree (the bench's "
+        "embree-bare). Pareto: "
         "the ray sets on whose front of T_B against T_R the configuration lies.\n\n",
         settings.threads, settings.builds, settings.buildBudgetMs * 1e-3, settings.passes,
         settings.raySize > 0 ? fmt::format("{}x{}", settings.raySize, settings.raySize) : std::string("scene-sized"),
-        settings.threads == 1 ? "CPU time of the process" : "wall time", kBuildersBaseline, kBuildersHigh, kBuildersBaseline);
+        settings.threads == 1 ? "CPU time of the process" : "wall time", kBuildersBaseline, kBuildersHigh,
+        kBuildersBaseline);
 }
 
 std::string sceneTable(const Measured& measured, const std::vector<std::string>& sceneIds,
                        const std::vector<AccelConfig>& configs) {
-    std::string md = "| scene | config | T_B [ms] | T_B / medium | SAH | EPO | leaves | T_R p / s / i [µs] | / medium | / high | / bare "
-                     "| Pareto |\n|---|---|---:|---:|---:|---:|---:|---|---|---|---|---|\n";
+    std::string md =
+        "| scene | config | T_B [ms] | T_B / medium | SAH | EPO | leaves | T_R p / s / i [µs] | / medium | / high | / "
+        "bare "
+        "| Pareto |\n|---|---|---:|---:|---:|---:|---:|---|---|---|---|---|\n";
     for (const std::string& scene : sceneIds)
         for (const AccelConfig& config : configs) {
             if (const json* failure = measured.failure(scene, config.label)) {
@@ -231,9 +245,10 @@ std::string sceneTable(const Measured& measured, const std::vector<std::string>&
 }
 
 std::string summaryTable(const Summary& summary, const std::vector<AccelConfig>& configs) {
-    std::string md = "\nOver the scenes measured (geometric means of the per-scene ratios; Pareto over these means):\n\n"
-                     "| config | scenes | T_B / medium | T_R / medium p / s / i | T_R / high | T_R / bare | Pareto |\n"
-                     "|---|---:|---:|---|---|---|---|\n";
+    std::string md =
+        "\nOver the scenes measured (geometric means of the per-scene ratios; Pareto over these means):\n\n"
+        "| config | scenes | T_B / medium | T_R / medium p / s / i | T_R / high | T_R / bare | Pareto |\n"
+        "|---|---:|---:|---|---|---|---|\n";
     for (const AccelConfig& config : configs) {
         if (!summary.means.count(config.label)) continue;
         const Row& m = summary.means.at(config.label);
@@ -281,7 +296,8 @@ struct NormalisedMetrics {
 NormalisedMetrics normalised(const RowsByLabel& byLabel, bool wide) {
     std::vector<double> s0, e0, t0[kSets];
     for (const auto& [label, r] : byLabel)
-        if (r.stored.at("accel").get<std::string>().ends_with('8') == wide && std::isfinite(r.sah) && std::isfinite(r.epo) && r.epo > 0) {
+        if (r.stored.at("accel").get<std::string>().ends_with('8') == wide && std::isfinite(r.sah) &&
+            std::isfinite(r.epo) && r.epo > 0) {
             s0.push_back(r.sah), e0.push_back(r.epo);
             for (size_t s = 0; s < kSets; ++s) t0[s].push_back(r.trace[s]);
         }
@@ -304,14 +320,16 @@ std::vector<double> combine(const std::vector<double>& sah, const std::vector<do
 // The per-scene table; `pools` gathers each layout's metrics over the scenes.
 std::string rankCorrelationPerScene(const Measured& measured, const std::vector<std::string>& sceneIds,
                                     NormalisedMetrics (&pools)[std::size(kLayouts)]) {
-    std::string md = "\nSpearman's rank correlation of the tree metric with T_R over our builders of one layout (those with SAH "
-                     "and EPO), per scene (p / s / i):\n\n| scene | layout | builders | SAH | SAH+EPO (a = 0.5) | EPO |\n"
-                     "|---|---|---:|---|---|---|\n";
+    std::string md =
+        "\nSpearman's rank correlation of the tree metric with T_R over our builders of one layout (those with SAH "
+        "and EPO), per scene (p / s / i):\n\n| scene | layout | builders | SAH | SAH+EPO (a = 0.5) | EPO |\n"
+        "|---|---|---:|---|---|---|\n";
     const RowsByLabel none;
     for (const std::string& scene : sceneIds)
         for (size_t g = 0; g < std::size(kLayouts); ++g) {
             const auto byLabel = measured.rows.find(scene);
-            const NormalisedMetrics m = normalised(byLabel == measured.rows.end() ? none : byLabel->second, kLayouts[g].wide);
+            const NormalisedMetrics m =
+                normalised(byLabel == measured.rows.end() ? none : byLabel->second, kLayouts[g].wide);
             if (m.sah.size() < 2) continue;
             const std::vector<double> both = combine(m.sah, m.epo, 0.5);
             std::string cells[3];
@@ -321,8 +339,8 @@ std::string rankCorrelationPerScene(const Measured& measured, const std::vector<
                 cells[1] += sep + rho(spearman(both, m.trace[s]));
                 cells[2] += sep + rho(spearman(m.epo, m.trace[s]));
             }
-            md += fmt::format("| {} | {} | {} | {} | {} | {} |\n", scene, kLayouts[g].name, m.sah.size(), cells[0], cells[1],
-                              cells[2]);
+            md += fmt::format("| {} | {} | {} | {} | {} | {} |\n", scene, kLayouts[g].name, m.sah.size(), cells[0],
+                              cells[1], cells[2]);
             NormalisedMetrics& pool = pools[g];
             pool.sah.insert(pool.sah.end(), m.sah.begin(), m.sah.end());
             pool.epo.insert(pool.epo.end(), m.epo.begin(), m.epo.end());
@@ -333,8 +351,10 @@ std::string rankCorrelationPerScene(const Measured& measured, const std::vector<
 }
 
 std::string rankCorrelationPooled(const NormalisedMetrics (&pools)[std::size(kLayouts)]) {
-    std::string md = "\nPooled over the scenes (each value over its scene's geometric mean in its layout):\n\n"
-                     "| layout | pairs | ray set | SAH | SAH+EPO (a = 0.5) | SAH+EPO, fitted a | EPO |\n|---|---:|---|---|---|---|---|\n";
+    std::string md =
+        "\nPooled over the scenes (each value over its scene's geometric mean in its layout):\n\n"
+        "| layout | pairs | ray set | SAH | SAH+EPO (a = 0.5) | SAH+EPO, fitted a | EPO "
+        "|\n|---|---:|---|---|---|---|---|\n";
     for (size_t g = 0; g < std::size(kLayouts); ++g) {
         const NormalisedMetrics& pool = pools[g];
         for (size_t s = 0; s < kSets; ++s) {

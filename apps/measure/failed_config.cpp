@@ -18,9 +18,9 @@ bool isFailedConfig(const json& stored) { return stored.contains("failed"); }
 
 std::string failedConfigCsvRow(const json& stored, const std::string& header) {
     const size_t separators = size_t(std::count(header.begin(), header.end(), ','));
-    std::string row = fmt::format("{},{},{}", csvText(stored.at("scene").get<std::string>()),
-                                  csvText(stored.at("config").get<std::string>()),
-                                  csvText(stored.at("accel").get<std::string>()));
+    std::string row =
+        fmt::format("{},{},{}", csvText(stored.at("scene").get<std::string>()),
+                    csvText(stored.at("config").get<std::string>()), csvText(stored.at("accel").get<std::string>()));
     row += std::string(separators - 2, ',');  // the columns between accel and failed left empty
     return row + csvText(stored.at("failed").get<std::string>()) + "\n";
 }
@@ -34,7 +34,8 @@ std::vector<std::string> failedConfigCells(const json& stored, size_t columns, c
 
 std::string failedConfigMarkdownRow(const json& stored, size_t columns) {
     std::string row = "|";
-    for (const std::string& cell : failedConfigCells(stored, columns, "")) row += cell.empty() ? " |" : " " + cell + " |";
+    for (const std::string& cell : failedConfigCells(stored, columns, ""))
+        row += cell.empty() ? " |" : " " + cell + " |";
     return row + "\n";
 }
 

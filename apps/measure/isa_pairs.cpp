@@ -28,12 +28,13 @@ IsaPairs parseIsaPairs(const std::string& list) {
         if (known == std::end(kPairIsas) || std::find(pairs.isas.begin(), pairs.isas.end(), isa) != pairs.isas.end())
             throw InputError(fmt::format("--isa-pairs {}: '{}' is not avx2 or avx512 (or is given twice)", list, isa));
         if (!(isa == "avx2" ? cpu.v3 : cpu.v4))
-            throw InputError(fmt::format("--isa-pairs {}: this CPU does not run {} (it runs up to {})", list, isa,
-                                         pairs.best));
+            throw InputError(
+                fmt::format("--isa-pairs {}: this CPU does not run {} (it runs up to {})", list, isa, pairs.best));
         if (isa == pairs.best)
-            pairs.note = fmt::format("--isa-pairs {}: {} is this CPU's best ISA, so the headline pair is the {} pair "
-                                     "(timed once)",
-                                     list, isa, isa);
+            pairs.note = fmt::format(
+                "--isa-pairs {}: {} is this CPU's best ISA, so the headline pair is the {} pair "
+                "(timed once)",
+                list, isa, isa);
         else
             pairs.isas.push_back(isa);
     }

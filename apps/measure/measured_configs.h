@@ -19,7 +19,7 @@ namespace bvhlab {
 
 template <typename Row>
 struct MeasuredConfigs {
-    std::map<std::string, std::map<std::string, Row>> rows;                  // scene -> label -> row
+    std::map<std::string, std::map<std::string, Row>> rows;                 // scene -> label -> row
     std::map<std::string, std::map<std::string, nlohmann::json>> failures;  // scene -> label -> its failure
 
     const Row* row(const std::string& scene, const std::string& label) const { return find(rows, scene, label); }
@@ -49,8 +49,10 @@ MeasuredConfigs<Row> readMeasuredConfigs(const std::filesystem::path& dir, const
             if (!std::filesystem::exists(file)) continue;
             std::ifstream in(file);
             nlohmann::json stored = nlohmann::json::parse(in);
-            if (isFailedConfig(stored)) measured.failures[scene][config.label] = std::move(stored);
-            else measured.rows[scene][config.label] = makeRow(std::move(stored));
+            if (isFailedConfig(stored))
+                measured.failures[scene][config.label] = std::move(stored);
+            else
+                measured.rows[scene][config.label] = makeRow(std::move(stored));
         }
     return measured;
 }

@@ -24,10 +24,11 @@ void addRaysCommand(CLI::App& app) {
     addThreadsOption(*command, options->env);
     command->add_option("--scene", options->scene,
                         "scene file, or NAME for env/scenes/NAME.env (default: Scene::file, else the embedded scene)");
-    command->add_option("--kind", options->kind,
-                        "primary: through the pixel centres; shadow: from their hits to each light; incoherent: "
-                        "cosine-distributed bounces from their hits (shadow and incoherent are any-hit queries: "
-                        "raycast --any)")
+    command
+        ->add_option("--kind", options->kind,
+                     "primary: through the pixel centres; shadow: from their hits to each light; incoherent: "
+                     "cosine-distributed bounces from their hits (shadow and incoherent are any-hit queries: "
+                     "raycast --any)")
         ->check(CLI::IsMember({"primary", "shadow", "incoherent"}))
         ->capture_default_str();
     command->add_option("--out", options->out, "output rays (BVHRAYS1)")->required();

@@ -31,14 +31,14 @@ struct TradeoffSettings {
     bool quick = false;
     bool builders = false;  // the builders side by side (builders.h) instead of the K series
     std::vector<int> bins = {2, 4, 8, 16, 32, 64, 128};  // K of the sahbvh configurations
-    int raySize = 400;       // T_R and mismatch ray sets: image width = height; 0 = the scene's own size
-    int seriesSize = 200;    // spp series and reference: image width = height
-    int maxSpp = 64;         // the series renders 1, 2, 4, ..., maxSpp samples per pixel
-    int referenceSpp = 256;  // the converged reference (Embree, all hardware threads: not timed)
-    int builds = 3;          // builds per configuration (median) ...
+    int raySize = 400;               // T_R and mismatch ray sets: image width = height; 0 = the scene's own size
+    int seriesSize = 200;            // spp series and reference: image width = height
+    int maxSpp = 64;                 // the series renders 1, 2, 4, ..., maxSpp samples per pixel
+    int referenceSpp = 256;          // the converged reference (Embree, all hardware threads: not timed)
+    int builds = 3;                  // builds per configuration (median) ...
     double buildBudgetMs = 15000.0;  // ... fewer once their total exceeds this (the 8M-triangle scene's sweep)
-    int passes = 3;          // passes over each ray set (median)
-    int threads = 1;         // threads for every timed build, trace and render
+    int passes = 3;                  // passes over each ray set (median)
+    int threads = 1;                 // threads for every timed build, trace and render
 
     std::vector<int> sppSeries() const;
     // What a stored result must have been measured with to be reused.
@@ -52,15 +52,16 @@ std::vector<AccelConfig> tradeoffConfigs(const TradeoffSettings& settings, const
 
 // What every configuration of one scene is measured against, made once per scene.
 struct TradeoffScene {
-    std::string id;  // the env file's stem
+    std::string id;          // the env file's stem
     Env env{programKeys()};  // the scene's env with the tradeoff's camera sizes and threads applied
     Scene scene;
-    RaySets rays;                       // at raySize
-    std::vector<Hit> referenceHits;     // Embree's closest hits of rays.primary
+    RaySets rays;                            // at raySize
+    std::vector<Hit> referenceHits;          // Embree's closest hits of rays.primary
     std::vector<uint8_t> referenceOccluded;  // Embree's answers to rays.shadow
-    CameraSpec seriesCamera;            // at seriesSize
-    std::vector<Vec3> referenceImage;   // referenceSpp samples per pixel at seriesSize (Embree)
-    std::vector<Vec3> embreeImage1Spp;  // 1 sample per pixel at seriesSize (Embree): the image every structure must make
+    CameraSpec seriesCamera;                 // at seriesSize
+    std::vector<Vec3> referenceImage;        // referenceSpp samples per pixel at seriesSize (Embree)
+    std::vector<Vec3>
+        embreeImage1Spp;  // 1 sample per pixel at seriesSize (Embree): the image every structure must make
 };
 
 // The scene's env as the tradeoff uses it (camera sizes, threads), before per-configuration overrides.
@@ -85,7 +86,8 @@ struct TimedBuilds {
     // and buildCpuMs).
     std::vector<double> buildMs, buildCpuMs;
 };
-TimedBuilds timedBuilds(const Scene& scene, const AccelConfig& config, const Env& env, const TradeoffSettings& settings);
+TimedBuilds timedBuilds(const Scene& scene, const AccelConfig& config, const Env& env,
+                        const TradeoffSettings& settings);
 
 // Builds (median), traces the ray sets, counts mismatches against Embree and renders the spp
 // series: the JSON stored in DIR/<scene>/<config>.json.
@@ -95,7 +97,7 @@ nlohmann::json measureTradeoffConfig(const TradeoffScene& scene, const AccelConf
 // RMSE of the colours clamped to [0, 1] (over pixels and channels), and PSNR = 20 log10(1 / RMSE).
 struct ImageError {
     double rmse = 0.0;
-    double psnr = 0.0;  // +inf for identical images
+    double psnr = 0.0;           // +inf for identical images
     size_t pixelsDiffering = 0;  // any channel differs by more than 1e-6
 };
 ImageError imageError(const std::vector<Vec3>& image, const std::vector<Vec3>& reference);

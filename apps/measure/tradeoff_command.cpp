@@ -51,7 +51,8 @@ std::vector<int> parseBins(const std::string& text) {
 
 // The key of a scene's reference image (Embree's), which the scene's folder keeps for its jobs.
 json referenceKeyOf(const Env& sceneEnv, const TradeoffSettings& settings) {
-    return resultKey("embree", tradeoffSceneEnv(sceneEnv, settings, settings.raySize, settings.raySize), settings.toJson());
+    return resultKey("embree", tradeoffSceneEnv(sceneEnv, settings, settings.raySize, settings.raySize),
+                     settings.toJson());
 }
 
 // The job of a child process, "S:C": configuration C of scene S (indices into the run's lists),
@@ -67,9 +68,11 @@ json measureConfigJob(const std::string& job, const std::vector<SceneArgument>& 
         throw InputError(fmt::format("{} {}: not a configuration of a scene of this tradeoff", kChildJobOption, job));
     const std::string& id = scenes[s].id;
     const Env sceneEnv = scenes[s].load(envOptions);
-    if (settings.builders) return measureBuilderConfig(prepareBuildersScene(id, sceneEnv, settings), configs[c], settings);
-    return measureTradeoffConfig(prepareTradeoffScene(id, sceneEnv, settings, dir / id, referenceKeyOf(sceneEnv, settings)),
-                                 configs[c], settings);
+    if (settings.builders)
+        return measureBuilderConfig(prepareBuildersScene(id, sceneEnv, settings), configs[c], settings);
+    return measureTradeoffConfig(
+        prepareTradeoffScene(id, sceneEnv, settings, dir / id, referenceKeyOf(sceneEnv, settings)), configs[c],
+        settings);
 }
 
 struct TradeoffOptions {
@@ -89,9 +92,10 @@ void addTradeoffOptions(CLI::App& command, TradeoffOptions& options) {
     addEnvOptions(command, options.env);
     TradeoffSettings& s = options.settings;
     addScenesOption(command, options.scenes, "", "env/scenes.list; --quick: munich and sibenik");
-    command.add_option("--out", options.out, "folder of the results: DIR/<scene>/<config>.json, tradeoff.csv, "
-                                             "image_error.csv, tradeoff.md (--builders: builders.csv, "
-                                             "builders_summary.csv, builders.md); default out/tradeoff, out/builders");
+    command.add_option("--out", options.out,
+                       "folder of the results: DIR/<scene>/<config>.json, tradeoff.csv, "
+                       "image_error.csv, tradeoff.md (--builders: builders.csv, "
+                       "builders_summary.csv, builders.md); default out/tradeoff, out/builders");
     command.add_flag("--builders", s.builders,
                      "compare the builders instead: every structure of --accel (default: all of ours) and "
                      "Embree low/medium/high; T_B, SAH, EPO, T_R of primary, shadow and incoherent rays, Pareto "
@@ -106,18 +110,30 @@ void addTradeoffOptions(CLI::App& command, TradeoffOptions& options) {
                        "comma-separated NAME or NAME:Key=value:... to measure (default: every structure of ours; a "
                        "bare sahbvh is the K series; Embree is always added as the yardstick)");
     command.add_option("--bins", options.bins, "sahbvh bin counts K")->capture_default_str();
-    command.add_option("--ray-size", s.raySize, "T_R and mismatch rays: primary rays of an NxN image (0 = the scene's size)")
-        ->capture_default_str()->check(CLI::Range(0, 16384));
+    command
+        .add_option("--ray-size", s.raySize,
+                    "T_R and mismatch rays: primary rays of an NxN image (0 = the scene's size)")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 16384));
     command.add_option("--size", s.seriesSize, "images of the spp series and the reference: NxN")
-        ->capture_default_str()->check(CLI::Range(1, 16384));
+        ->capture_default_str()
+        ->check(CLI::Range(1, 16384));
     command.add_option("--max-spp", s.maxSpp, "the series renders 1, 2, 4, ... up to this many samples per pixel")
-        ->capture_default_str()->check(CLI::Range(1, 65536));
+        ->capture_default_str()
+        ->check(CLI::Range(1, 65536));
     command.add_option("--reference-spp", s.referenceSpp, "samples per pixel of the reference image")
-        ->capture_default_str()->check(CLI::Range(1, 65536));
-    command.add_option("--builds", s.builds, "builds per configuration (median)")->capture_default_str()->check(CLI::Range(1, 100));
-    command.add_option("--passes", s.passes, "passes over each ray set (median)")->capture_default_str()->check(CLI::Range(1, 100));
-    command.add_option("--threads", s.threads, "threads of every timed build, trace and render; 0 = all hardware threads")
-        ->capture_default_str()->check(CLI::Range(0, 1024));
+        ->capture_default_str()
+        ->check(CLI::Range(1, 65536));
+    command.add_option("--builds", s.builds, "builds per configuration (median)")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 100));
+    command.add_option("--passes", s.passes, "passes over each ray set (median)")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 100));
+    command
+        .add_option("--threads", s.threads, "threads of every timed build, trace and render; 0 = all hardware threads")
+        ->capture_default_str()
+        ->check(CLI::Range(0, 1024));
     addJobTimeoutOption(command, options.jobTimeout);
     addChildJobOptions(command, options.child);
 }
@@ -154,7 +170,7 @@ std::vector<SceneArgument> tradeoffScenes(const TradeoffOptions& options) {
 // What a run does with one scene, decided before the first measurement.
 struct ScenePlan {
     Env sceneEnv;
-    json referenceKey;                        // of Embree's reference image
+    json referenceKey;                       // of Embree's reference image
     std::map<std::string, json> resultKeys;  // by label
     std::vector<AccelConfig> pending;
 };
@@ -180,8 +196,9 @@ struct TradeoffRun {
             for (const AccelConfig& config : configs) {
                 const json key = plan.resultKeys[config.label] =
                     resultKey(config.name, accelConfigEnv(config, tradeoffEnv), settings.toJson());
-                const StoredResult stored = options.resume ? checkStoredResult(dir / scene.id / (labelAsFileName(config.label) + ".json"), key)
-                                                           : StoredResult{false, "of --fresh"};
+                const StoredResult stored =
+                    options.resume ? checkStoredResult(dir / scene.id / (labelAsFileName(config.label) + ".json"), key)
+                                   : StoredResult{false, "of --fresh"};
                 resume.add(stored);
                 if (!stored.keep) plan.pending.push_back(config);
             }
@@ -231,17 +248,18 @@ struct TradeoffRun {
         for (const AccelConfig& config : plans[i].pending) {
             const json result = measureAndStore(i, config);
             if (isFailedConfig(result)) continue;
-            fmt::print(stderr, "  {} {}: T_B {:.1f} ms, T_R {:.3f}/{:.3f}/{:.3f} us (CPU) ({})\n", id,
-                       config.label, result["build_ms"].get<double>(),
-                       result["primary"]["t_r_cpu_us"].get<double>(), result["shadow"]["t_r_cpu_us"].get<double>(),
-                       result["incoherent"]["t_r_cpu_us"].get<double>(), eta());
+            fmt::print(stderr, "  {} {}: T_B {:.1f} ms, T_R {:.3f}/{:.3f}/{:.3f} us (CPU) ({})\n", id, config.label,
+                       result["build_ms"].get<double>(), result["primary"]["t_r_cpu_us"].get<double>(),
+                       result["shadow"]["t_r_cpu_us"].get<double>(), result["incoherent"]["t_r_cpu_us"].get<double>(),
+                       eta());
         }
     }
 
     void measureTradeoff(size_t i) {
         const std::string& id = scenes[i].id;
         {
-            const TradeoffScene scene = prepareTradeoffScene(id, plans[i].sceneEnv, settings, dir / id, plans[i].referenceKey);
+            const TradeoffScene scene =
+                prepareTradeoffScene(id, plans[i].sceneEnv, settings, dir / id, plans[i].referenceKey);
             fmt::print(stderr, "  {}: {} triangles, {} primary and {} shadow rays, images {}x{}\n", id,
                        scene.scene.triangleCount(), scene.rays.primary.size(), scene.rays.shadow.size(),
                        scene.seriesCamera.width, scene.seriesCamera.height);
@@ -270,12 +288,14 @@ struct TradeoffRun {
         for (size_t i = 0; i < scenes.size(); ++i) {
             const std::string& id = scenes[i].id;
             ids.push_back(id);
-            progress.phase(fmt::format("[scene {}/{}] {}: {} of {} configurations to measure", i + 1, scenes.size(),
-                                       id, plans[i].pending.size(), configs.size()));
+            progress.phase(fmt::format("[scene {}/{}] {}: {} of {} configurations to measure", i + 1, scenes.size(), id,
+                                       plans[i].pending.size(), configs.size()));
             if (plans[i].pending.empty()) continue;
             std::filesystem::create_directories(dir / id);
-            if (settings.builders) measureBuilders(i);
-            else measureTradeoff(i);
+            if (settings.builders)
+                measureBuilders(i);
+            else
+                measureTradeoff(i);
         }
         return ids;
     }
@@ -293,7 +313,8 @@ size_t runTradeoff(TradeoffOptions& options, const CLI::App& command) {
     const std::string out = !options.out.empty() ? options.out : settings.builders ? "out/builders" : "out/tradeoff";
     const std::filesystem::path dir = prepareOutputFolder(out);
     if (options.child.isChild()) {
-        options.child.run([&] { return measureConfigJob(options.child.job, scenes, configs, options.env, settings, dir); });
+        options.child.run(
+            [&] { return measureConfigJob(options.child.job, scenes, configs, options.env, settings, dir); });
         return 0;
     }
 
@@ -304,7 +325,8 @@ size_t runTradeoff(TradeoffOptions& options, const CLI::App& command) {
                                              : writeTradeoffReport(dir, ids, configs, settings);
     fmt::print("{}", md);
     fmt::print(stderr, "tradeoff: {} configurations measured, {} kept from an earlier run, in {}; wrote {}\n",
-               run.measured, run.resume.kept(), Progress::formatDuration(std::chrono::duration<double>(Clock::now() - start).count()),
+               run.measured, run.resume.kept(),
+               Progress::formatDuration(std::chrono::duration<double>(Clock::now() - start).count()),
                (dir / (settings.builders ? "builders.csv" : "tradeoff.csv")).string());
     if (run.failed) fmt::print(stderr, "tradeoff: {} of {} configurations measured failed\n", run.failed, run.measured);
     return run.failed;
@@ -315,7 +337,8 @@ size_t runTradeoff(TradeoffOptions& options, const CLI::App& command) {
 void addTradeoffCommand(CLI::App& app) {
     auto options = std::make_shared<TradeoffOptions>();
     CLI::App* command = app.add_subcommand(
-        "tradeoff", "run time against error: build time vs SAH gap, T_R, time to image, image error, mismatches vs Embree");
+        "tradeoff",
+        "run time against error: build time vs SAH gap, T_R, time to image, image error, mismatches vs Embree");
     addTradeoffOptions(*command, *options);
     command->callback([options, command] { runJobsGuarded([&] { return runTradeoff(*options, *command); }); });
 }

@@ -55,7 +55,8 @@ std::vector<Vec3> readImage(const std::filesystem::path& exr, int width, int hei
     for (int c = 0; c < 3; ++c) {
         int w = 0, h = 0;
         const std::vector<float> channel = readExrChannel(exr, names[c], w, h);
-        if (w != width || h != height) throw InputError(fmt::format("{}: {}x{}, expected {}x{}", exr.string(), w, h, width, height));
+        if (w != width || h != height)
+            throw InputError(fmt::format("{}: {}x{}, expected {}x{}", exr.string(), w, h, width, height));
         for (size_t i = 0; i < image.size(); ++i) image[i][c] = channel[i];
     }
     return image;
@@ -71,10 +72,10 @@ std::vector<int> TradeoffSettings::sppSeries() const {
 }
 
 json TradeoffSettings::toJson() const {
-    json j = {{"version", 2},  // of the stored results: older ones are measured again
-            {"ray_size", raySize},   {"series_size", seriesSize}, {"max_spp", maxSpp},
-            {"reference_spp", referenceSpp}, {"builds", builds}, {"build_budget_ms", buildBudgetMs},
-            {"passes", passes},      {"threads", threads}};
+    json j = {
+        {"version", 2},  // of the stored results: older ones are measured again
+        {"ray_size", raySize}, {"series_size", seriesSize},        {"max_spp", maxSpp}, {"reference_spp", referenceSpp},
+        {"builds", builds},    {"build_budget_ms", buildBudgetMs}, {"passes", passes},  {"threads", threads}};
     if (builders) j["mode"] = "builders";  // its results and the K series' are not each other's
     return j;
 }
@@ -96,7 +97,8 @@ std::vector<AccelConfig> tradeoffConfigs(const TradeoffSettings& settings, const
     return configs;
 }
 
-TimedBuilds timedBuilds(const Scene& scene, const AccelConfig& config, const Env& env, const TradeoffSettings& settings) {
+TimedBuilds timedBuilds(const Scene& scene, const AccelConfig& config, const Env& env,
+                        const TradeoffSettings& settings) {
     TimedBuilds b;
     tbb::task_arena arena(settings.threads);
     double total = 0.0;
@@ -121,13 +123,15 @@ Env tradeoffSceneEnv(const Env& sceneEnv, const TradeoffSettings& settings, int 
 
 ImageError imageError(const std::vector<Vec3>& image, const std::vector<Vec3>& reference) {
     if (image.size() != reference.size())
-        throw InputError(fmt::format("image of {} pixels compared with a reference of {}", image.size(), reference.size()));
+        throw InputError(
+            fmt::format("image of {} pixels compared with a reference of {}", image.size(), reference.size()));
     double sum = 0.0;
     ImageError e;
     for (size_t i = 0; i < image.size(); ++i) {
         bool differs = false;
         for (int c = 0; c < 3; ++c) {
-            const double d = double(std::clamp(image[i][c], 0.0f, 1.0f)) - double(std::clamp(reference[i][c], 0.0f, 1.0f));
+            const double d =
+                double(std::clamp(image[i][c], 0.0f, 1.0f)) - double(std::clamp(reference[i][c], 0.0f, 1.0f));
             sum += d * d;
             differs |= std::abs(d) > 1e-6;
         }
@@ -160,11 +164,13 @@ TradeoffScene prepareTradeoffScene(const std::string& id, const Env& sceneEnv, c
     t.referenceOccluded.resize(t.rays.shadow.size());
     tbb::parallel_for(tbb::blocked_range<size_t>(0, t.rays.primary.size(), 4096), [&](const auto& range) {
         QueryCounters unused;
-        for (size_t i = range.begin(); i < range.end(); ++i) embree->findNearest(t.rays.primary[i], t.referenceHits[i], unused);
+        for (size_t i = range.begin(); i < range.end(); ++i)
+            embree->findNearest(t.rays.primary[i], t.referenceHits[i], unused);
     });
     tbb::parallel_for(tbb::blocked_range<size_t>(0, t.rays.shadow.size(), 4096), [&](const auto& range) {
         QueryCounters unused;
-        for (size_t i = range.begin(); i < range.end(); ++i) t.referenceOccluded[i] = embree->isOccluded(t.rays.shadow[i], unused);
+        for (size_t i = range.begin(); i < range.end(); ++i)
+            t.referenceOccluded[i] = embree->isOccluded(t.rays.shadow[i], unused);
     });
 
     const Env seriesEnv = tradeoffSceneEnv(t.env, settings, settings.seriesSize, settings.seriesSize);
@@ -199,7 +205,8 @@ TradeoffScene prepareTradeoffScene(const std::string& id, const Env& sceneEnv, c
                                        {"samples", settings.referenceSpp},
                                        {"render_ms", ms},
                                        {"result_key", referenceKey}}
-                                          .dump(2) + "\n");
+                                          .dump(2) +
+                                      "\n");
         fmt::print(stderr, "  {}: reference image ({}x{}, {} spp, Embree) rendered in {:.1f} s\n", id, w, h,
                    settings.referenceSpp, ms * 1e-3);
     }
@@ -212,8 +219,8 @@ namespace {
 json traceRaySet(const Accelerator& accel, const std::vector<Ray>& rays, const RaySetQuery& asked,
                  const TradeoffSettings& settings) {
     const bool counted = accel.hasCounters();
-    const PassResult r = tracePasses(accel, rays, asked.anyHit, asked.coherence, settings.threads, settings.passes,
-                                     QueryKind::Batch);
+    const PassResult r =
+        tracePasses(accel, rays, asked.anyHit, asked.coherence, settings.threads, settings.passes, QueryKind::Batch);
     const double q = std::max<double>(1.0, double(r.counters.queries));
     json result{{"rays", rays.size()}, {"t_r_us", r.usPerQuery}, {"t_r_cpu_us", r.cpuUsPerQuery}};
     result.update(queryCountersJson(r.counters, q, counted));
@@ -226,7 +233,8 @@ json traceRaySet(const Accelerator& accel, const std::vector<Ray>& rays, const R
 constexpr size_t kMismatchExamples = 5;
 
 json rayJson(const Ray& r) {
-    return json{{"org", {r.org.x, r.org.y, r.org.z}}, {"dir", {r.dir.x, r.dir.y, r.dir.z}}, {"tmin", r.tmin}, {"tmax", r.tmax}};
+    return json{
+        {"org", {r.org.x, r.org.y, r.org.z}}, {"dir", {r.dir.x, r.dir.y, r.dir.z}}, {"tmin", r.tmin}, {"tmax", r.tmax}};
 }
 
 json hitJson(const Hit& h) { return h.found() ? json{{"t", h.t}, {"primitive", h.primitive}} : json(); }
@@ -240,7 +248,9 @@ void addPrimaryMismatches(const Accelerator& accel, const TradeoffScene& t, json
         accel.findNearest(t.rays.primary[i], hit, unused);
         if (hitsAgree(hit, t.referenceHits[i])) continue;
         if (++mismatches <= kMismatchExamples)
-            examples.push_back({{"ray_index", i}, {"ray", rayJson(t.rays.primary[i])}, {"hit", hitJson(hit)},
+            examples.push_back({{"ray_index", i},
+                                {"ray", rayJson(t.rays.primary[i])},
+                                {"hit", hitJson(hit)},
                                 {"embree", hitJson(t.referenceHits[i])}});
     }
     primary["mismatches"] = mismatches;
@@ -255,7 +265,9 @@ void addShadowMismatches(const Accelerator& accel, const TradeoffScene& t, json&
         const bool occluded = accel.isOccluded(t.rays.shadow[i], unused);
         if (occluded == bool(t.referenceOccluded[i])) continue;
         if (++mismatches <= kMismatchExamples)
-            examples.push_back({{"ray_index", i}, {"ray", rayJson(t.rays.shadow[i])}, {"occluded", occluded},
+            examples.push_back({{"ray_index", i},
+                                {"ray", rayJson(t.rays.shadow[i])},
+                                {"occluded", occluded},
                                 {"embree", bool(t.referenceOccluded[i])}});
     }
     shadow["mismatches"] = mismatches;
@@ -269,8 +281,8 @@ struct SppSeries {
     json sameImage;
 };
 
-SppSeries renderSeries(const Accelerator& accel, const TradeoffScene& t, const Env& env, const TradeoffSettings& settings,
-                       double buildMedian, double buildCpuMedian) {
+SppSeries renderSeries(const Accelerator& accel, const TradeoffScene& t, const Env& env,
+                       const TradeoffSettings& settings, double buildMedian, double buildCpuMedian) {
     RenderSettings renderSettings = RenderSettings::fromEnv(env, t.scene, t.seriesCamera);
     renderSettings.threads = settings.threads;
     SppSeries out;

@@ -110,22 +110,47 @@ std::optional<double> rmseSpread(const std::map<std::string, Row>& byConfig, siz
     return hi >= lo ? std::optional<double>(hi - lo) : std::nullopt;
 }
 
-std::vector<std::string> tradeoffCsvCells(const std::string& scene, const std::string& label, const Row& r, int maxSpp) {
+std::vector<std::string> tradeoffCsvCells(const std::string& scene, const std::string& label, const Row& r,
+                                          int maxSpp) {
     const json& p = r.stored["primary"];
     const json& s = r.stored["shadow"];
-    return {scene, label, cell(r.at("accel")), cell(r.at("bins")), cell(r.at("prims")),
-            std::to_string(r.stored["build_ms_all"].size()), cell(r.at("build_ms"), "{:.3f}"),
-            cell(r.at("build_cpu_ms"), "{:.3f}"), cell(r.at("sah"), "{:.6f}"), cell(r.gap, "{:.6f}"),
-            cell(r.at("nodes")), cell(r.at("leaves")), cell(p["rays"]), cell(p["t_r_us"], "{:.4f}"),
-            cell(p["t_r_cpu_us"], "{:.4f}"), cell(p["n_it"], "{:.3f}"), cell(p["n_tr"], "{:.3f}"), cell(s["rays"]),
-            cell(s["t_r_us"], "{:.4f}"), cell(s["t_r_cpu_us"], "{:.4f}"), cell(s["n_it"], "{:.3f}"),
-            cell(s["n_tr"], "{:.3f}"), cell(r.at("series_width")), cell(r.at("series_height")),
-            std::to_string(maxSpp), cell(r.series(0, "render_ms"), "{:.3f}"), cell(r.lastSeries("render_ms"), "{:.3f}"),
-            cell(r.series(0, "render_cpu_ms"), "{:.3f}"), cell(r.lastSeries("render_cpu_ms"), "{:.3f}"),
-            cell(r.series(0, "time_to_image_ms"), "{:.3f}"), cell(r.lastSeries("time_to_image_ms"), "{:.3f}"),
-            cell(r.series(0, "time_to_image_cpu_ms"), "{:.3f}"), cell(r.lastSeries("time_to_image_cpu_ms"), "{:.3f}"),
-            cell(p["mismatches"]), cell(s["mismatches"]),
-            cell(r.stored["same_image_1spp"].value("pixels_differing", json())), ""};
+    return {scene,
+            label,
+            cell(r.at("accel")),
+            cell(r.at("bins")),
+            cell(r.at("prims")),
+            std::to_string(r.stored["build_ms_all"].size()),
+            cell(r.at("build_ms"), "{:.3f}"),
+            cell(r.at("build_cpu_ms"), "{:.3f}"),
+            cell(r.at("sah"), "{:.6f}"),
+            cell(r.gap, "{:.6f}"),
+            cell(r.at("nodes")),
+            cell(r.at("leaves")),
+            cell(p["rays"]),
+            cell(p["t_r_us"], "{:.4f}"),
+            cell(p["t_r_cpu_us"], "{:.4f}"),
+            cell(p["n_it"], "{:.3f}"),
+            cell(p["n_tr"], "{:.3f}"),
+            cell(s["rays"]),
+            cell(s["t_r_us"], "{:.4f}"),
+            cell(s["t_r_cpu_us"], "{:.4f}"),
+            cell(s["n_it"], "{:.3f}"),
+            cell(s["n_tr"], "{:.3f}"),
+            cell(r.at("series_width")),
+            cell(r.at("series_height")),
+            std::to_string(maxSpp),
+            cell(r.series(0, "render_ms"), "{:.3f}"),
+            cell(r.lastSeries("render_ms"), "{:.3f}"),
+            cell(r.series(0, "render_cpu_ms"), "{:.3f}"),
+            cell(r.lastSeries("render_cpu_ms"), "{:.3f}"),
+            cell(r.series(0, "time_to_image_ms"), "{:.3f}"),
+            cell(r.lastSeries("time_to_image_ms"), "{:.3f}"),
+            cell(r.series(0, "time_to_image_cpu_ms"), "{:.3f}"),
+            cell(r.lastSeries("time_to_image_cpu_ms"), "{:.3f}"),
+            cell(p["mismatches"]),
+            cell(s["mismatches"]),
+            cell(r.stored["same_image_1spp"].value("pixels_differing", json())),
+            ""};
 }
 
 std::string tradeoffCsv(const Measured& measured, const std::vector<std::string>& sceneIds,
@@ -182,16 +207,17 @@ std::string imageErrorCsv(const Measured& measured, const std::vector<std::strin
 // tradeoff.md's first paragraph: what was measured, and how.
 std::string settingsParagraph(const Measured& measured, const TradeoffSettings& settings, int maxSpp) {
     const auto& rows = measured.rows;
-    const int w = rows.empty() || rows.begin()->second.empty() ? settings.seriesSize
-                                                                : rows.begin()->second.begin()->second.at("series_width").get<int>();
+    const int w = rows.empty() || rows.begin()->second.empty()
+                      ? settings.seriesSize
+                      : rows.begin()->second.begin()->second.at("series_width").get<int>();
     return fmt::format(
         "Settings: threads {}; builds: median of up to {} (fewer once they took {:.0f} s); T_R: median of {} pass(es) "
         "over the primary and shadow rays of a {} image; images {}x{} at 1..{} spp, reference {} spp (Embree). Times "
         "are CPU time of the process (one thread at work), which leaves out what the shared machine gave to others; "
         "wall times are in tradeoff.csv. Time to image = T_B + render.\n\n",
         settings.threads, settings.builds, settings.buildBudgetMs * 1e-3, settings.passes,
-        settings.raySize > 0 ? fmt::format("{}x{}", settings.raySize, settings.raySize) : std::string("scene-sized"), w, w,
-        maxSpp, settings.referenceSpp);
+        settings.raySize > 0 ? fmt::format("{}x{}", settings.raySize, settings.raySize) : std::string("scene-sized"), w,
+        w, maxSpp, settings.referenceSpp);
 }
 
 std::string sceneTable(const Measured& measured, const std::vector<std::string>& sceneIds,
@@ -206,14 +232,14 @@ std::string sceneTable(const Measured& measured, const std::vector<std::string>&
             const Row* row = measured.row(scene, config.label);
             if (!row) continue;
             const Row& r = *row;
-            sceneRows.push_back({scene, config.label, shown(r.at("build_cpu_ms"), "{:.1f}"), shown(r.at("sah"), "{:.2f}"),
-                                 r.gap.is_null() ? "n/a" : fmt::format("{:+.2f}", 100.0 * r.gap.get<double>()),
-                                 shown(r.stored["primary"]["t_r_cpu_us"], "{:.3f}"),
-                                 shown(r.stored["shadow"]["t_r_cpu_us"], "{:.3f}"),
-                                 shown(r.series(0, "time_to_image_cpu_ms"), "{:.0f}"),
-                                 shown(r.lastSeries("time_to_image_cpu_ms"), "{:.0f}"),
-                                 fmt::format("{} / {}", cell(r.stored["primary"]["mismatches"]),
-                                             cell(r.stored["shadow"]["mismatches"]))});
+            sceneRows.push_back(
+                {scene, config.label, shown(r.at("build_cpu_ms"), "{:.1f}"), shown(r.at("sah"), "{:.2f}"),
+                 r.gap.is_null() ? "n/a" : fmt::format("{:+.2f}", 100.0 * r.gap.get<double>()),
+                 shown(r.stored["primary"]["t_r_cpu_us"], "{:.3f}"), shown(r.stored["shadow"]["t_r_cpu_us"], "{:.3f}"),
+                 shown(r.series(0, "time_to_image_cpu_ms"), "{:.0f}"),
+                 shown(r.lastSeries("time_to_image_cpu_ms"), "{:.0f}"),
+                 fmt::format("{} / {}", cell(r.stored["primary"]["mismatches"]),
+                             cell(r.stored["shadow"]["mismatches"]))});
         }
     return markdownTable({"scene", "config", "T_B [ms]", "SAH", "gap [%]", "T_R primary [µs]", "T_R shadow [µs]",
                           "image 1 spp [ms]", fmt::format("image {} spp [ms]", maxSpp), "mismatches primary / shadow"},
@@ -225,7 +251,10 @@ std::string buildYardstick(const std::vector<AccelConfig>& configs) {
     std::string k16 = "sahbvh-K16";
     if (std::none_of(configs.begin(), configs.end(), [&](const AccelConfig& c) { return c.label == k16; }))
         for (const AccelConfig& c : configs)
-            if (c.name == "sahbvh") { k16 = c.label; break; }
+            if (c.name == "sahbvh") {
+                k16 = c.label;
+                break;
+            }
     return k16;
 }
 
@@ -242,7 +271,8 @@ std::optional<std::vector<std::string>> summaryRow(const Measured& measured, con
         ++scenes;
         const Row& r = *row;
         if (r.gap.is_number()) gapSum += r.gap.get<double>(), gapMax = std::max(gapMax, r.gap.get<double>()), ++gaps;
-        if (const Row* k = measured.row(scene, k16)) build.push_back(ratio(r.at("build_cpu_ms"), k->at("build_cpu_ms")));
+        if (const Row* k = measured.row(scene, k16))
+            build.push_back(ratio(r.at("build_cpu_ms"), k->at("build_cpu_ms")));
         if (const Row* sweep = measured.row(scene, "sweepbvh")) {
             trp.push_back(ratio(r.stored["primary"]["t_r_cpu_us"], sweep->stored["primary"]["t_r_cpu_us"]));
             trs.push_back(ratio(r.stored["shadow"]["t_r_cpu_us"], sweep->stored["shadow"]["t_r_cpu_us"]));
@@ -254,11 +284,16 @@ std::optional<std::vector<std::string>> summaryRow(const Measured& measured, con
         mismatches += r.stored["primary"].value("mismatches", 0LL) + r.stored["shadow"].value("mismatches", 0LL);
     }
     if (!scenes) return std::nullopt;
-    return std::vector<std::string>{label, std::to_string(scenes),
+    return std::vector<std::string>{label,
+                                    std::to_string(scenes),
                                     gaps ? fmt::format("{:+.2f}", 100.0 * gapSum / gaps) : "n/a",
-                                    gaps ? fmt::format("{:+.2f}", 100.0 * gapMax) : "n/a", shown(geoMean(build), "{:.2f}"),
-                                    shown(geoMean(trp), "{:.2f}"), shown(geoMean(trs), "{:.2f}"), shown(geoMean(img1), "{:.2f}"),
-                                    shown(geoMean(imgMax), "{:.2f}"), std::to_string(mismatches)};
+                                    gaps ? fmt::format("{:+.2f}", 100.0 * gapMax) : "n/a",
+                                    shown(geoMean(build), "{:.2f}"),
+                                    shown(geoMean(trp), "{:.2f}"),
+                                    shown(geoMean(trs), "{:.2f}"),
+                                    shown(geoMean(img1), "{:.2f}"),
+                                    shown(geoMean(imgMax), "{:.2f}"),
+                                    std::to_string(mismatches)};
 }
 
 // The summary: gaps averaged; times as geometric means of per-scene ratios.
@@ -277,8 +312,9 @@ std::string summaryTable(const Measured& measured, const std::vector<std::string
 
 std::string imageErrorTable(const Measured& measured, const std::vector<std::string>& sceneIds,
                             const std::vector<int>& spps) {
-    std::string md = "\nImage error against the reference: PSNR [dB] per samples per pixel (the same for every structure; "
-                     "largest RMSE spread over structures in the last column)\n\n| scene |";
+    std::string md =
+        "\nImage error against the reference: PSNR [dB] per samples per pixel (the same for every structure; "
+        "largest RMSE spread over structures in the last column)\n\n| scene |";
     for (int spp : spps) md += fmt::format(" {} |", spp);
     md += " spread |\n|---|";
     for (size_t i = 0; i <= spps.size(); ++i) md += "---:|";
@@ -318,7 +354,9 @@ std::string structuresMeasured(const std::filesystem::path& dir, const std::vect
 
 std::string writeTradeoffReport(const std::filesystem::path& dir, const std::vector<std::string>& sceneIds,
                                 const std::vector<AccelConfig>& configs, const TradeoffSettings& settings) {
-    Measured measured = readMeasuredConfigs<Row>(dir, sceneIds, configs, [](json stored) { return Row{std::move(stored), json()}; });
+    Measured measured = readMeasuredConfigs<Row>(dir, sceneIds, configs, [](json stored) {
+        return Row{std::move(stored), json()};
+    });
     addGapsToSweep(measured);
     const std::vector<int> spps = settings.sppSeries();
     const int maxSpp = spps.back();
@@ -326,9 +364,10 @@ std::string writeTradeoffReport(const std::filesystem::path& dir, const std::vec
     writeFileAtomically(dir / "image_error.csv", imageErrorCsv(measured, sceneIds, configs, spps));
 
     // tradeoff.md: per scene, the summary over scenes, the image error.
-    const std::string md = settingsParagraph(measured, settings, maxSpp) + sceneTable(measured, sceneIds, configs, maxSpp) +
-                           structuresMeasured(dir, sceneIds, configs) + summaryTable(measured, sceneIds, configs, maxSpp) +
-                           imageErrorTable(measured, sceneIds, spps);
+    const std::string md =
+        settingsParagraph(measured, settings, maxSpp) + sceneTable(measured, sceneIds, configs, maxSpp) +
+        structuresMeasured(dir, sceneIds, configs) + summaryTable(measured, sceneIds, configs, maxSpp) +
+        imageErrorTable(measured, sceneIds, spps);
     writeFileAtomically(dir / "tradeoff.md", md);
     return md;
 }

@@ -35,12 +35,13 @@ constexpr const char* kPython = "/usr/bin/python3";
 // tradeoff, tradeoff --builders or batch write.
 std::string plotScriptFor(const fs::path& path) {
     if (fs::is_directory(path)) {
-        for (const auto& [file, script] : {std::pair{"tradeoff.csv", "plot_tradeoff.py"},
-                                           std::pair{"builders.csv", "plot_builders.py"},
-                                           std::pair{"results.csv", "plot_batch.py"}})
+        for (const auto& [file, script] :
+             {std::pair{"tradeoff.csv", "plot_tradeoff.py"}, std::pair{"builders.csv", "plot_builders.py"},
+              std::pair{"results.csv", "plot_batch.py"}})
             if (fs::is_regular_file(path / file)) return script;
-        throw inputError(path, 0, "holds no output that bvhlab plot draws: no tradeoff.csv (tradeoff), builders.csv "
-                                  "(tradeoff --builders) or results.csv (batch); a bench's output is its JSON file");
+        throw inputError(path, 0,
+                         "holds no output that bvhlab plot draws: no tradeoff.csv (tradeoff), builders.csv "
+                         "(tradeoff --builders) or results.csv (batch); a bench's output is its JSON file");
     }
     if (!fs::is_regular_file(path)) throw inputError(path, 0, "no such file or folder");
     std::ifstream in(path);
@@ -80,10 +81,12 @@ void addPlotCommand(CLI::App& app) {
     };
     auto options = std::make_shared<Options>();
     CLI::App* command = app.add_subcommand(
-        "plot", "draw the plots of a bench JSON file or a tradeoff, tradeoff --builders or batch folder (PNG files; "
-                "Debian's /usr/bin/python3 with python3-matplotlib)");
-    command->add_option("path", options->path,
-                        "bench's JSON file, or the --out folder of tradeoff, tradeoff --builders or batch")
+        "plot",
+        "draw the plots of a bench JSON file or a tradeoff, tradeoff --builders or batch folder (PNG files; "
+        "Debian's /usr/bin/python3 with python3-matplotlib)");
+    command
+        ->add_option("path", options->path,
+                     "bench's JSON file, or the --out folder of tradeoff, tradeoff --builders or batch")
         ->required();
     command->add_option("--out", options->out,
                         "folder of the PNG files (default: PATH/plots for a folder, the JSON file's folder for bench)");
@@ -91,16 +94,20 @@ void addPlotCommand(CLI::App& app) {
         const int code = runGuarded([&] {
             const fs::path script = dataFile("apps/plot") / plotScriptFor(options->path);
             if (access(kPython, X_OK) != 0)
-                throw InputError(fmt::format("bvhlab plot runs {}, which is missing: install Debian's "
-                                             "python3-matplotlib (apt-get install python3-matplotlib)", kPython));
+                throw InputError(
+                    fmt::format("bvhlab plot runs {}, which is missing: install Debian's "
+                                "python3-matplotlib (apt-get install python3-matplotlib)",
+                                kPython));
             if (runProcess({kPython, "-c", "import matplotlib"}, true) != 0)
-                throw InputError(fmt::format("bvhlab plot needs matplotlib for {}, which cannot import it: install "
-                                             "Debian's python3-matplotlib (apt-get install python3-matplotlib)",
-                                             kPython));
+                throw InputError(
+                    fmt::format("bvhlab plot needs matplotlib for {}, which cannot import it: install "
+                                "Debian's python3-matplotlib (apt-get install python3-matplotlib)",
+                                kPython));
             std::vector<std::string> words = {kPython, script.string(), "--data", options->path};
             if (!options->out.empty()) words.insert(words.end(), {"--out", options->out});
             if (const int status = runProcess(words, false); status != 0)
-                throw InputError(fmt::format("{} failed (exit status {}) on {}", script.string(), status, options->path));
+                throw InputError(
+                    fmt::format("{} failed (exit status {}) on {}", script.string(), status, options->path));
         });
         if (code != 0) throw CLI::RuntimeError(code);
     });

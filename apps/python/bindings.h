@@ -1,8 +1,8 @@
 // The parts of the Python module bvhlab (docs/python.md), each adding its functions and classes.
 #pragma once
 
-#include <nlohmann/json.hpp>
 #include <pybind11/pybind11.h>
+#include <nlohmann/json.hpp>
 
 namespace bvhlab {
 

@@ -22,8 +22,8 @@ std::string text(const py::handle& object) { return py::str(object).cast<std::st
 py::array checkedFloats(const py::handle& object, const std::string& name, py::ssize_t rows, int columns) {
     const std::string shape = columns ? fmt::format("(N, {})", columns) : "(N,)";
     if (!py::isinstance<py::array>(object))
-        throw InputError(fmt::format("{}: expected a NumPy array of shape {}, got {}", name, shape,
-                                     text(py::type::of(object))));
+        throw InputError(
+            fmt::format("{}: expected a NumPy array of shape {}, got {}", name, shape, text(py::type::of(object))));
     const auto array = py::reinterpret_borrow<py::array>(object);
     const py::dtype dtype = array.dtype();
     if (dtype.kind() != 'f' || (dtype.itemsize() != 4 && dtype.itemsize() != 8) || !dtype.attr("isnative").cast<bool>())
@@ -117,7 +117,8 @@ py::array hitsToArray(const std::vector<Hit>& hits) {
 
 std::vector<Hit> hitsFromArray(const py::handle& object) {
     if (!py::isinstance<py::array>(object) || py::reinterpret_borrow<py::array>(object).dtype().attr("names").is_none())
-        throw InputError("hits: expected a NumPy structured array with fields t, prim, u, v (as accel.intersect returns)");
+        throw InputError(
+            "hits: expected a NumPy structured array with fields t, prim, u, v (as accel.intersect returns)");
     const auto array = py::reinterpret_borrow<py::array>(object);
     const auto names = array.dtype().attr("names").cast<py::tuple>();
     auto field = [&]<typename T>(const char* name, T) {
@@ -138,21 +139,24 @@ std::vector<Hit> hitsFromArray(const py::handle& object) {
 }
 
 void bindRayFiles(py::module_& m) {
-    m.def("read_rays", [](const std::filesystem::path& file) { return raysToArrays(readRayFile(file)); },
-          py::arg("path"), "The rays of a BVHRAYS1 file as {origins, directions, tmin, tmax}: accel.intersect(**rays).");
+    m.def(
+        "read_rays", [](const std::filesystem::path& file) { return raysToArrays(readRayFile(file)); }, py::arg("path"),
+        "The rays of a BVHRAYS1 file as {origins, directions, tmin, tmax}: accel.intersect(**rays).");
     m.def(
         "write_rays",
         [](const std::filesystem::path& file, const py::handle& origins, const py::handle& directions,
-           const py::handle& tmin, const py::handle& tmax) {
-            writeRayFile(file, RayArrays(origins, directions, tmin, tmax).all());
-        },
+           const py::handle& tmin,
+           const py::handle& tmax) { writeRayFile(file, RayArrays(origins, directions, tmin, tmax).all()); },
         py::arg("path"), py::arg("origins"), py::arg("directions"), py::arg("tmin") = 0.0f,
-        py::arg("tmax") = std::numeric_limits<float>::infinity(), "Writes rays as a BVHRAYS1 file (bvhlab raycast --rays).");
-    m.def("read_hits", [](const std::filesystem::path& file) { return hitsToArray(readHitFile(file)); },
-          py::arg("path"), "The hits of a BVHHITS1 file (bvhlab raycast --out) as accel.intersect returns them.");
-    m.def("write_hits",
-          [](const std::filesystem::path& file, const py::handle& hits) { writeHitFile(file, hitsFromArray(hits)); },
-          py::arg("path"), py::arg("hits"), "Writes hits (fields t, prim, u, v) as a BVHHITS1 file.");
+        py::arg("tmax") = std::numeric_limits<float>::infinity(),
+        "Writes rays as a BVHRAYS1 file (bvhlab raycast --rays).");
+    m.def(
+        "read_hits", [](const std::filesystem::path& file) { return hitsToArray(readHitFile(file)); }, py::arg("path"),
+        "The hits of a BVHHITS1 file (bvhlab raycast --out) as accel.intersect returns them.");
+    m.def(
+        "write_hits",
+        [](const std::filesystem::path& file, const py::handle& hits) { writeHitFile(file, hitsFromArray(hits)); },
+        py::arg("path"), py::arg("hits"), "Writes hits (fields t, prim, u, v) as a BVHHITS1 file.");
 }
 
 }  // namespace bvhlab

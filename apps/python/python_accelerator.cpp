@@ -1,11 +1,11 @@
 // bvhlab.build and the Accelerator it returns: a structure of the registry built over a scene
 // (timed as the CLI times it) and its queries over NumPy arrays, the GIL released while they run.
+#include "apps/python/python_accelerator.h"
 #include "accel/registry.h"
-#include "apps/runtime/plugins.h"
-#include "apps/runtime/trace_rays.h"
 #include "apps/python/bindings.h"
 #include "apps/python/numpy_rays.h"
-#include "apps/python/python_accelerator.h"
+#include "apps/runtime/plugins.h"
+#include "apps/runtime/trace_rays.h"
 #include "framework/config/common_keys.h"
 #include "framework/core/error.h"
 #include "framework/core/timed_build.h"
@@ -92,7 +92,8 @@ py::array intersect(const PythonAccelerator& self, const py::handle& origins, co
                     const py::handle& tmin, const py::handle& tmax, int threads, bool counters, bool coherent) {
     const RayArrays rays(origins, directions, tmin, tmax);
     if (counters)
-        return answerInto<CountedHitRecord, Hit>(self, rays, threads, true, coherent, writeHitRecords<CountedHitRecord>);
+        return answerInto<CountedHitRecord, Hit>(self, rays, threads, true, coherent,
+                                                 writeHitRecords<CountedHitRecord>);
     return answerInto<HitRecord, Hit>(self, rays, threads, false, coherent, writeHitRecords<HitRecord>);
 }
 
@@ -100,13 +101,13 @@ py::array occluded(const PythonAccelerator& self, const py::handle& origins, con
                    const py::handle& tmin, const py::handle& tmax, int threads, bool counters, bool coherent) {
     const RayArrays rays(origins, directions, tmin, tmax);
     if (counters)
-        return answerInto<CountedOcclusionRecord, uint8_t>(
-            self, rays, threads, true, coherent, [](auto answers, auto costs, CountedOcclusionRecord* out) {
-                for (size_t i = 0; i < answers.size(); ++i) {
-                    out[i].occluded = answers[i] != 0;
-                    writeCounters(costs, i, out[i]);
-                }
-            });
+        return answerInto<CountedOcclusionRecord, uint8_t>(self, rays, threads, true, coherent,
+                                                           [](auto answers, auto costs, CountedOcclusionRecord* out) {
+                                                               for (size_t i = 0; i < answers.size(); ++i) {
+                                                                   out[i].occluded = answers[i] != 0;
+                                                                   writeCounters(costs, i, out[i]);
+                                                               }
+                                                           });
     return answerInto<bool, uint8_t>(self, rays, threads, false, coherent, [](auto answers, auto, bool* out) {
         for (size_t i = 0; i < answers.size(); ++i) out[i] = answers[i] != 0;
     });
@@ -131,17 +132,21 @@ void bindAccelerator(py::module_& m) {
     // Static: pybind11 keeps the pointer.
     static const std::string intersectDoc =
         "Closest hits: a structured array t (inf on a miss), prim (-1 on a miss), u, v, and with counters n_it, "
-        "n_tr per ray (float32; NaN for a structure without counters). " + queryArguments;
+        "n_tr per ray (float32; NaN for a structure without counters). " +
+        queryArguments;
     static const std::string occludedDoc =
         "Any-hit answers: a bool array, or with counters a structured array occluded, n_it, n_tr (float32; NaN "
-        "for a structure without counters). " + queryArguments;
+        "for a structure without counters). " +
+        queryArguments;
     py::class_<PythonAccelerator>(m, "Accelerator", "An acceleration structure built over a scene (bvhlab.build).")
         .def_property_readonly("name", [](const PythonAccelerator& a) { return std::string(a.accel->name()); })
-        .def_property_readonly("stats", [](const PythonAccelerator& a) { return statsDict(a.stats); },
-                               "build_ms, nodes, leaves, sah, epo, bytes, ... and the structure's figures; None "
-                               "where the structure has no such figure")
-        .def_property_readonly("has_counters", [](const PythonAccelerator& a) { return a.accel->hasCounters(); },
-                               "False for a structure that counts no N_IT and N_TR (Embree): its counters are NaN")
+        .def_property_readonly(
+            "stats", [](const PythonAccelerator& a) { return statsDict(a.stats); },
+            "build_ms, nodes, leaves, sah, epo, bytes, ... and the structure's figures; None "
+            "where the structure has no such figure")
+        .def_property_readonly(
+            "has_counters", [](const PythonAccelerator& a) { return a.accel->hasCounters(); },
+            "False for a structure that counts no N_IT and N_TR (Embree): its counters are NaN")
         .def("intersect", &intersect, py::arg("origins"), py::arg("directions"), py::arg("tmin") = 0.0f,
              py::arg("tmax") = std::numeric_limits<float>::infinity(), py::arg("threads") = 0,
              py::arg("counters") = false, py::arg("coherent") = false, intersectDoc.c_str())

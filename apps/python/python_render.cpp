@@ -64,8 +64,9 @@ py::dict renderAccelerator(const PythonAccelerator& accel, const py::object& env
         py::gil_scoped_release release;
         stats = render(scene, *accel.accel, camera, settings, fb);
     }
-    const StatsRow row{scene.name, std::string(accel.accel->name()), scene.primitiveCount(), scene.report,
-                       accel.accel->hasCounters(), accel.stats, stats};
+    const StatsRow row{scene.name,   std::string(accel.accel->name()), scene.primitiveCount(),
+                       scene.report, accel.accel->hasCounters(),       accel.stats,
+                       stats};
     py::dict result;
     result["image"] = imageArray<float>(fb.color, fb.width, fb.height, 3);
     result["depth"] = imageArray<float>(fb.depth, fb.width, fb.height, 0);

@@ -80,7 +80,7 @@ std::vector<std::string> envAssignments(const py::object& env) {
     for (const auto& [key, value] : py::reinterpret_borrow<py::dict>(env)) {
         if (!py::isinstance<py::str>(key)) throw InputError("env: keys are strings, \"Section::key\"");
         const std::string text = py::isinstance<py::bool_>(value) ? (value.cast<bool>() ? "true" : "false")
-                                                                   : py::str(value).cast<std::string>();
+                                                                  : py::str(value).cast<std::string>();
         assignments.push_back(key.cast<std::string>() + "=" + text);
     }
     return assignments;
@@ -92,31 +92,33 @@ void bindScene(py::module_& m) {
             "from_arrays",
             [](const py::handle& vertices, const py::handle& indices, const py::object& env) {
                 Env resolved = optionsWith(env).load();
-                return std::make_shared<PythonScene>(PythonScene{sceneFromArrays(vertices, indices), std::move(resolved)});
+                return std::make_shared<PythonScene>(
+                    PythonScene{sceneFromArrays(vertices, indices), std::move(resolved)});
             },
             py::arg("vertices"), py::arg("indices"), py::arg("env") = py::none(),
             "A scene of triangles indices[t] over vertices, (N, 3) and (T, 3) arrays.")
         .def_property_readonly("name", [](const PythonScene& s) { return s.scene.name; })
         .def_property_readonly("triangle_count", [](const PythonScene& s) { return s.scene.triangleCount(); })
         .def_property_readonly("primitive_count", [](const PythonScene& s) { return s.scene.primitiveCount(); })
-        .def_property_readonly("bounds",
-                               [](const PythonScene& s) {
-                                   const Bounds3& b = s.scene.bounds;
-                                   return py::make_tuple(py::make_tuple(b.lower.x, b.lower.y, b.lower.z),
-                                                         py::make_tuple(b.upper.x, b.upper.y, b.upper.z));
-                               },
-                               "((xmin, ymin, zmin), (xmax, ymax, zmax)) of the primitives built over")
+        .def_property_readonly(
+            "bounds",
+            [](const PythonScene& s) {
+                const Bounds3& b = s.scene.bounds;
+                return py::make_tuple(py::make_tuple(b.lower.x, b.lower.y, b.lower.z),
+                                      py::make_tuple(b.upper.x, b.upper.y, b.upper.z));
+            },
+            "((xmin, ymin, zmin), (xmax, ymax, zmax)) of the primitives built over")
         .def_property_readonly("vertices", readOnlyView(&Scene::positions), "(N, 3) float32, a read-only view")
-        .def_property_readonly("indices", readOnlyView(&Scene::indices), "(T, 3) uint32 into vertices, a read-only view")
+        .def_property_readonly("indices", readOnlyView(&Scene::indices),
+                               "(T, 3) uint32 into vertices, a read-only view")
         .def("__repr__", [](const PythonScene& s) {
             return fmt::format("<bvhlab.Scene '{}': {} triangles>", s.scene.name, s.scene.triangleCount());
         });
 
-    m.def(
-        "load_scene", &loadNamedScene, py::arg("scene") = "", py::arg("env") = py::none(),
-        "A scene file (.obj .ply .off .nff, optionally .gz) or a scene's name (env/scenes/NAME.env), as "
-        "bvhlab --scene reads it, with env/global.env, the scene's env file and `env` layered; empty: "
-        "Scene::file, else the embedded scene.");
+    m.def("load_scene", &loadNamedScene, py::arg("scene") = "", py::arg("env") = py::none(),
+          "A scene file (.obj .ply .off .nff, optionally .gz) or a scene's name (env/scenes/NAME.env), as "
+          "bvhlab --scene reads it, with env/global.env, the scene's env file and `env` layered; empty: "
+          "Scene::file, else the embedded scene.");
 
     m.def(
         "rays",

@@ -45,7 +45,8 @@ void addRaycastCommand(CLI::App& app) {
             progress.phase(fmt::format("building {}", env.get(keys::ASDS::type)));
             const BuiltAccelerator built = buildAccelerator(scene, env);
             const std::vector<Ray> rays = readRayFile(options->rays);
-            progress.phase(fmt::format("tracing {} rays", rays.size()), (rays.size() + kRaysPerRange - 1) / kRaysPerRange);
+            progress.phase(fmt::format("tracing {} rays", rays.size()),
+                           (rays.size() + kRaysPerRange - 1) / kRaysPerRange);
             const int threads = env.get(keys::SetRayTracing::threads);
             const RayCoherence coherence = options->coherent ? RayCoherence::Coherent : RayCoherence::Incoherent;
             std::vector<Hit> hits(rays.size());
@@ -54,8 +55,9 @@ void addRaycastCommand(CLI::App& app) {
             // The timed pass counts nothing, so that its time (and an instruction count of the
             // whole run) is the form of the queries that counts nothing.
             const auto start = std::chrono::steady_clock::now();
-            const QueryCounters timed = traceRays(*built.accel, rays, options->any, coherence, threads, /*counting=*/false,
-                                                  {hits, occluded, {}}, [&](size_t traced) { progress.advance(1, traced); });
+            const QueryCounters timed =
+                traceRays(*built.accel, rays, options->any, coherence, threads, /*counting=*/false,
+                          {hits, occluded, {}}, [&](size_t traced) { progress.advance(1, traced); });
             const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             progress.finish();
             const double n = std::max<double>(1.0, double(timed.queries));
@@ -65,9 +67,8 @@ void addRaycastCommand(CLI::App& app) {
                 progress.phase("counting");
                 std::vector<Hit> countedHits(options->any ? 0 : rays.size());
                 std::vector<uint8_t> countedOccluded(occluded.size());
-                const QueryCounters total =
-                    traceRays(*built.accel, rays, options->any, coherence, threads, /*counting=*/true,
-                              {countedHits, countedOccluded, {}});
+                const QueryCounters total = traceRays(*built.accel, rays, options->any, coherence, threads,
+                                                      /*counting=*/true, {countedHits, countedOccluded, {}});
                 progress.finish();
                 const bool counted = built.accel->hasCounters();
                 for (const QueryCounter& c : kQueryCounters)

@@ -38,7 +38,8 @@ void addRenderCommand(CLI::App& app) {
     command->add_option("--scene", options->scene,
                         "scene file, or NAME for env/scenes/NAME.env (default: Scene::file, else the embedded scene); "
                         "a file that an env/scenes/ file names is seen with that file's camera and lights");
-    command->add_option("--scene-env", options->sceneEnv, "the scene's env file (camera, lights), layered on env/global.env");
+    command->add_option("--scene-env", options->sceneEnv,
+                        "the scene's env file (camera, lights), layered on env/global.env");
     command->add_option("--out", options->out, "output path without extension: writes PATH.exr, PATH.png, PATH.json")
         ->capture_default_str();
     command->callback([options] {
@@ -66,15 +67,16 @@ void addRenderCommand(CLI::App& app) {
             if (env.get(keys::Output::png)) writePng(out.string() + ".png", fb);
             nlohmann::json heatmap;  // for the JSON: the heat map's file and scale, or why there is none
             if (env.get(keys::Output::heatmap)) {
-                const HeatmapScale scale = chooseHeatmapScale(env.get(keys::Output::heatmapScale),
-                                                              heatmapPercentile99(fb.traversalSteps),
-                                                              "99th percentile of this image");
+                const HeatmapScale scale =
+                    chooseHeatmapScale(env.get(keys::Output::heatmapScale), heatmapPercentile99(fb.traversalSteps),
+                                       "99th percentile of this image");
                 heatmap = writeHeatmap(out.string() + ".heatmap.png", out.string() + ".heatmap.png", fb.traversalSteps,
                                        fb.width, fb.height, built.accel->hasCounters(), built.accel->name(), scale);
                 fmt::print(stderr, "{}\n", heatmapNote(heatmap));
             }
-            const StatsRow row{scene.name, std::string(built.accel->name()), scene.primitiveCount(),
-                               scene.report, built.accel->hasCounters(), built.stats, stats};
+            const StatsRow row{scene.name,   std::string(built.accel->name()), scene.primitiveCount(),
+                               scene.report, built.accel->hasCounters(),       built.stats,
+                               stats};
             nlohmann::json json = statsJson(row);
             json["image"] = {{"width", fb.width}, {"height", fb.height}, {"samples", settings.samples}};
             json["scene_file"] = sceneFileJson(scene);

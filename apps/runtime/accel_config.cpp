@@ -73,7 +73,8 @@ void checkAccelConfigs(const std::vector<AccelConfig>& configs, const Env& base,
 std::vector<std::string> acceleratorsReading(const std::string& key) {
     std::vector<std::string> readers;
     for (const AcceleratorInfo& info : acceleratorInfos())
-        if (std::find(info.envKeys.begin(), info.envKeys.end(), key) != info.envKeys.end()) readers.push_back(info.name);
+        if (std::find(info.envKeys.begin(), info.envKeys.end(), key) != info.envKeys.end())
+            readers.push_back(info.name);
     return readers;
 }
 
@@ -102,8 +103,8 @@ std::vector<std::string> unreadKeyWarnings(const std::vector<AccelConfig>& confi
         for (const std::string& o : config.overrides) {
             const std::string key = o.substr(0, o.find('='));
             if (!acceleratorsReading(key).empty() && !reads(config.name, key))
-                warnings.push_back(fmt::format("{} {}: {} is not read by {}; it is ignored", option, typed(config), key,
-                                               config.name));
+                warnings.push_back(
+                    fmt::format("{} {}: {} is not read by {}; it is ignored", option, typed(config), key, config.name));
         }
     return warnings;
 }

@@ -41,8 +41,9 @@ inline constexpr TextKey twoSidedScenes{
     "Spd::twoSidedScenes", "teapot",
     "bvhlab spd: comma-separated scenes whose opaque primitives are seen from both sides (the SPD rules: the "
     "teapot); the others' are one-sided"};
-inline constexpr PathKey reference{"Spd::reference", "../shared/reference/spd",
-                                   "bvhlab spd: folder of Havran's havran_stats_grids.txt and havran_stats_octrees.txt"};
+inline constexpr PathKey reference{
+    "Spd::reference", "../shared/reference/spd",
+    "bvhlab spd: folder of Havran's havran_stats_grids.txt and havran_stats_octrees.txt"};
 }  // namespace keys::Spd
 
 // Keys that change no figure of any run: what is written (Output::*) and where parsed scenes

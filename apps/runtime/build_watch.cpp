@@ -19,7 +19,8 @@ BuildWatch::BuildWatch(std::string label) {
     thread_ = std::thread([this, label = std::move(label)] {
         const auto start = std::chrono::steady_clock::now();
         std::unique_lock lock(mutex_);
-        for (auto next = start + kFirstLine; !done_.wait_until(lock, next, [this] { return finished_; }); next += kInterval) {
+        for (auto next = start + kFirstLine; !done_.wait_until(lock, next, [this] { return finished_; });
+             next += kInterval) {
             const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             fmt::print(stderr, "{}: still building after {}\n", label, Progress::formatDuration(elapsed));
             std::fflush(stderr);

@@ -9,9 +9,9 @@
 #include <atomic>
 #include <cerrno>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
-#include <csignal>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -58,10 +58,12 @@ std::pair<int, bool> waitFor(pid_t pid, double timeoutSeconds, Clock::time_point
     for (;;) {
         const pid_t done = waitpid(pid, &status, WNOHANG);
         if (done == pid) return {status, false};
-        if (done < 0 && errno != EINTR) throw std::runtime_error(fmt::format("waiting for a job's process: {}", std::strerror(errno)));
+        if (done < 0 && errno != EINTR)
+            throw std::runtime_error(fmt::format("waiting for a job's process: {}", std::strerror(errno)));
         if (timeoutSeconds > 0 && std::chrono::duration<double>(Clock::now() - start).count() >= timeoutSeconds) {
             ::kill(pid, SIGKILL);
-            while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {}
+            while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+            }
             return {status, true};
         }
         std::this_thread::sleep_for(pause);
@@ -111,8 +113,8 @@ std::string JobOutcome::failure() const {
 
 JobOutcome runJobInChild(const std::string& job, double timeoutSeconds) {
     static std::atomic<int> jobsStarted{0};
-    const std::filesystem::path resultFile = std::filesystem::temp_directory_path() /
-                                             fmt::format("bvhlab-job-{}-{}.json", ::getpid(), jobsStarted++);
+    const std::filesystem::path resultFile =
+        std::filesystem::temp_directory_path() / fmt::format("bvhlab-job-{}-{}.json", ::getpid(), jobsStarted++);
     std::vector<std::string> words = ownCommandLine();
     words.insert(words.end(), {kChildJobOption, job, kChildResultOption, resultFile.string()});
     const auto start = Clock::now();

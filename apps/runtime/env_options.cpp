@@ -60,10 +60,12 @@ void EnvOptions::loadPlugins(const std::vector<std::string>& layerFiles) const {
                                                  (baseDir / file).lexically_normal().string()));
                 loadPlugin(baseDir / file);
             }
-        if (line.name == keys::ASDS::type.name() && !line.text.empty()) std::tie(type, typeOrigin) = std::pair(line.text, line.origin);
+        if (line.name == keys::ASDS::type.name() && !line.text.empty())
+            std::tie(type, typeOrigin) = std::pair(line.text, line.origin);
     }
     for (const std::string& name : accelerators) loadPluginFor(name);  // unknown: the command says so
-    if (!type.empty() && !loadPluginFor(type)) throw InputError(fmt::format("{}: {}", typeOrigin, unknownAcceleratorMessage(type)));
+    if (!type.empty() && !loadPluginFor(type))
+        throw InputError(fmt::format("{}: {}", typeOrigin, unknownAcceleratorMessage(type)));
     for (const auto& [line, baseDir] : assignments) checkKeyIsNotAnUnloadedPlugins(line.name, line.origin);
 }
 

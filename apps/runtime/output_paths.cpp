@@ -11,7 +11,8 @@ namespace bvhlab {
 std::filesystem::path prepareOutputFile(const std::string& path, const std::string& option) {
     const std::filesystem::path file = path;
     if (path.empty()) throw InputError(option + ": empty path (give a file, e.g. out/render)");
-    if (!file.has_filename() || file.filename() == "." || file.filename() == ".." || std::filesystem::is_directory(file))
+    if (!file.has_filename() || file.filename() == "." || file.filename() == ".." ||
+        std::filesystem::is_directory(file))
         throw InputError(fmt::format("{} {}: names a folder; give a file in it, e.g. {}", option, path,
                                      (file / "render").lexically_normal().string()));
     if (file.has_parent_path()) std::filesystem::create_directories(file.parent_path());

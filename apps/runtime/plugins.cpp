@@ -71,8 +71,14 @@ const LoadedPlugin& loadPlugin(const std::filesystem::path& given) {
     opened.library.release();  // its code is now the registry's
 
     const SceneCacheKey checksum = sceneCacheKey(file);
-    LoadedPlugin plugin{file,          checksum.size,    checksum.crc32,   opened.abi, opened.acceleratorNames(),
-                        opened.compiler, opened.cxxFlags, opened.optimized};
+    LoadedPlugin plugin{file,
+                        checksum.size,
+                        checksum.crc32,
+                        opened.abi,
+                        opened.acceleratorNames(),
+                        opened.compiler,
+                        opened.cxxFlags,
+                        opened.optimized};
     recordLoadedPlugin({{"path", file.string()},
                         {"size", plugin.size},
                         {"crc32", fmt::format("{:08x}", plugin.crc32)},
@@ -128,13 +134,13 @@ std::string unknownAcceleratorMessage(const std::string& accelerator) {
     for (const std::string& file : pluginFilesFor(accelerator))
         for (const LoadedPlugin& plugin : pluginList())
             if (plugin.file.filename() == file)
-                return fmt::format("unknown accelerator '{}': the plugin {} was loaded for it, but it adds {}, not '{}'",
-                                   accelerator, plugin.file.string(), fmt::join(plugin.accelerators, ", "),
-                                   accelerator);
-    return fmt::format("unknown accelerator '{}': none of bvhlab's, no plugin loaded adds it, and no {} in the plugin "
-                       "folders ({}). Known: {}",
-                       accelerator, fmt::join(pluginFilesFor(accelerator), " or "), pluginFolderList(),
-                       fmt::join(known, ", "));
+                return fmt::format(
+                    "unknown accelerator '{}': the plugin {} was loaded for it, but it adds {}, not '{}'", accelerator,
+                    plugin.file.string(), fmt::join(plugin.accelerators, ", "), accelerator);
+    return fmt::format(
+        "unknown accelerator '{}': none of bvhlab's, no plugin loaded adds it, and no {} in the plugin "
+        "folders ({}). Known: {}",
+        accelerator, fmt::join(pluginFilesFor(accelerator), " or "), pluginFolderList(), fmt::join(known, ", "));
 }
 
 void checkKeyIsNotAnUnloadedPlugins(const std::string& key, const std::string& origin) {
@@ -143,11 +149,12 @@ void checkKeyIsNotAnUnloadedPlugins(const std::string& key, const std::string& o
     const std::string section = key.substr(0, colons + 2);
     for (const auto& [name, declared] : programKeys().keys())
         if (name.starts_with(section)) return;  // a misspelt key of a known section: Env says "did you mean"
-    throw InputError(fmt::format("{}: unknown key '{}': no section {} in bvhlab or a loaded plugin. If it is a "
-                                 "plugin's key, load the plugin: --plugin FILE, ASDS::plugins FILE in an env file, "
-                                 "or name its accelerator (--accel NAME, ASDS::type NAME) to load NAME.so from the "
-                                 "plugin folders ({})",
-                                 origin, key, section, pluginFolderList()));
+    throw InputError(
+        fmt::format("{}: unknown key '{}': no section {} in bvhlab or a loaded plugin. If it is a "
+                    "plugin's key, load the plugin: --plugin FILE, ASDS::plugins FILE in an env file, "
+                    "or name its accelerator (--accel NAME, ASDS::type NAME) to load NAME.so from the "
+                    "plugin folders ({})",
+                    origin, key, section, pluginFolderList()));
 }
 
 bool loadPluginFor(const std::string& accelerator) {
@@ -160,10 +167,11 @@ bool loadPluginFor(const std::string& accelerator) {
             if (!std::filesystem::is_regular_file(path, ec)) continue;
             // A user's file named as one bvhlab ships would replace it unseen: only --plugin may.
             if (std::filesystem::is_regular_file(shipped, ec) && !std::filesystem::equivalent(path, shipped, ec))
-                throw InputError(fmt::format("{} (on BVHLAB_PLUGIN_PATH) has the name of a plugin bvhlab ships, {}: "
-                                             "which one '{}' means is not clear. Rename yours, or load it with "
-                                             "--plugin {} (or ASDS::plugins) to use it instead of bvhlab's",
-                                             path.string(), shipped.string(), accelerator, path.string()));
+                throw InputError(
+                    fmt::format("{} (on BVHLAB_PLUGIN_PATH) has the name of a plugin bvhlab ships, {}: "
+                                "which one '{}' means is not clear. Rename yours, or load it with "
+                                "--plugin {} (or ASDS::plugins) to use it instead of bvhlab's",
+                                path.string(), shipped.string(), accelerator, path.string()));
             loadPlugin(path);
             return findAccelerator(accelerator) != nullptr;
         }

@@ -31,14 +31,22 @@ void registerAppKeys(EnvRegistry& r) {
 
 std::string envKeyType(const EnvKey& key) {
     switch (key.type) {
-    case KeyType::Bool: return "bool";
-    case KeyType::Int: return fmt::format("int {}..{}", key.min, key.max);
-    case KeyType::Float: return fmt::format("float {}..{}", float(key.min), float(key.max));
-    case KeyType::String: return "text";
-    case KeyType::Choice: return fmt::format("{}", fmt::join(key.choices, " \\| "));
-    case KeyType::Path: return "path";
-    case KeyType::Vec3: return "x y z";
-    case KeyType::Vec3List: return "x y z, ...";
+        case KeyType::Bool:
+            return "bool";
+        case KeyType::Int:
+            return fmt::format("int {}..{}", key.min, key.max);
+        case KeyType::Float:
+            return fmt::format("float {}..{}", float(key.min), float(key.max));
+        case KeyType::String:
+            return "text";
+        case KeyType::Choice:
+            return fmt::format("{}", fmt::join(key.choices, " \\| "));
+        case KeyType::Path:
+            return "path";
+        case KeyType::Vec3:
+            return "x y z";
+        case KeyType::Vec3List:
+            return "x y z, ...";
     }
     return "";
 }
@@ -65,8 +73,8 @@ void registerPluginKeys(const std::string& plugin, const std::vector<EnvKey>& pl
     EnvRegistry& registry = mutableProgramKeys();
     for (const EnvKey& key : pluginKeys)
         if (registry.find(key.name))
-            throw InputError(fmt::format("{}: env key '{}' is already declared by bvhlab or a plugin loaded before", plugin,
-                                         key.name));
+            throw InputError(fmt::format("{}: env key '{}' is already declared by bvhlab or a plugin loaded before",
+                                         plugin, key.name));
     for (const EnvKey& key : pluginKeys) registry.add(key);
     // ASDS::type's choices are the accelerators known now.
     std::vector<std::string> names;

@@ -12,9 +12,9 @@ namespace {
 
 using Seconds = std::chrono::duration<double>;
 
-constexpr auto kLiveDelay = std::chrono::seconds(2);           // quick phases draw nothing
+constexpr auto kLiveDelay = std::chrono::seconds(2);  // quick phases draw nothing
 constexpr auto kLiveInterval = std::chrono::milliseconds(200);
-constexpr auto kLinesInterval = std::chrono::seconds(10);      // log files stay short
+constexpr auto kLinesInterval = std::chrono::seconds(10);  // log files stay short
 
 std::atomic<bool> quietFlag{false};
 

@@ -6,8 +6,8 @@
 #include "framework/scene/surface_point.h"
 
 #include <fmt/core.h>
-#include <glm/gtc/constants.hpp>
 #include <tbb/parallel_for.h>
+#include <glm/gtc/constants.hpp>
 
 #include <random>
 

@@ -6,7 +6,8 @@ RenderStats renderWithProgress(const Scene& scene, const Accelerator& accel, con
                                const RenderSettings& settings, Framebuffer& fb, Progress& progress,
                                const std::string& label) {
     progress.phase(label, tileCount(fb.width, fb.height));
-    const RenderStats stats = render(scene, accel, camera, settings, fb, [&](uint64_t rays) { progress.advance(1, rays); });
+    const RenderStats stats =
+        render(scene, accel, camera, settings, fb, [&](uint64_t rays) { progress.advance(1, rays); });
     progress.finish();
     return stats;
 }

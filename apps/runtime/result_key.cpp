@@ -63,7 +63,10 @@ void flatten(const json& j, const std::string& path, std::map<std::string, std::
     }
     for (const auto& [name, value] : j.items()) {
         const bool grouping = name == "keys" || name == "settings" || name == "files";
-        const std::string inner = name == "plugin" ? "plugin" : path.empty() ? name : grouping ? path : path + " " + name;
+        const std::string inner = name == "plugin" ? "plugin"
+                                  : path.empty()   ? name
+                                  : grouping       ? path
+                                                   : path + " " + name;
         flatten(value, inner, out);
     }
 }
@@ -89,9 +92,12 @@ json structureKey(const std::string& accelerator, const Env& env) {
     for (const std::string& name : info->envKeys) key["keys"][name] = values.at(name).at("value");
     for (const LoadedPlugin& plugin : loadedPlugins())
         if (plugin.file.string() == info->plugin)
-            key["plugin"] = {{"file", plugin.file.filename().string()}, {"size", plugin.size},
-                             {"crc32", fmt::format("{:08x}", plugin.crc32)}, {"abi", plugin.abi},
-                             {"compiler", plugin.compiler}, {"cxx_flags", plugin.cxxFlags},
+            key["plugin"] = {{"file", plugin.file.filename().string()},
+                             {"size", plugin.size},
+                             {"crc32", fmt::format("{:08x}", plugin.crc32)},
+                             {"abi", plugin.abi},
+                             {"compiler", plugin.compiler},
+                             {"cxx_flags", plugin.cxxFlags},
                              {"optimized", plugin.optimized}};
     return key;
 }
@@ -104,7 +110,8 @@ std::string describeStructure(const json& structure) {
     const json& plugin = structure.at("plugin");
     if (!plugin.is_null())
         text += fmt::format("; plugin {}, CRC-32 {}{}", plugin.at("file").get<std::string>(),
-                            plugin.at("crc32").get<std::string>(), plugin.at("optimized").get<bool>() ? "" : ", unoptimised");
+                            plugin.at("crc32").get<std::string>(),
+                            plugin.at("optimized").get<bool>() ? "" : ", unoptimised");
     return text;
 }
 
@@ -117,8 +124,7 @@ json sceneKey(const Env& env) {
             name != keys::Scene::dir.name() && name != keys::Scene::file.name())
             settings[name] = entry.at("value");
     const std::filesystem::path file = sceneFileOf(env);  // says which key to set when it is not there
-    return {{"file", file.empty() ? json("embedded") : sceneFileContent(file)},
-            {"settings", settings}};
+    return {{"file", file.empty() ? json("embedded") : sceneFileContent(file)}, {"settings", settings}};
 }
 
 json resultKey(const std::string& accelerator, const Env& env, const json& measurement) {
@@ -167,8 +173,10 @@ StoredResult checkStoredKey(const json& stored, const json& key) {
 }
 
 void ResumeCount::add(const StoredResult& stored) {
-    if (stored.keep) ++kept_;
-    else ++reasons_[stored.why];
+    if (stored.keep)
+        ++kept_;
+    else
+        ++reasons_[stored.why];
 }
 
 size_t ResumeCount::toMeasure() const {

@@ -32,23 +32,26 @@ std::filesystem::path sceneEnvFor(const std::filesystem::path& sceneFile, const 
         const std::filesystem::path named = env.get(keys::Scene::file);
         if (named.empty() || uncompressedName(named) != uncompressedName(sceneFile)) continue;
         sameName.push_back(candidate);
-        if (std::filesystem::equivalent(env.get(keys::Scene::dir) / named, sceneFile, ec)) sameFile.push_back(candidate);
+        if (std::filesystem::equivalent(env.get(keys::Scene::dir) / named, sceneFile, ec))
+            sameFile.push_back(candidate);
     }
     if (sameName.size() == 1) return sameName.front();
     if (sameFile.size() == 1) return sameFile.front();
     if (sameName.empty()) return {};
     std::vector<std::string> names;
     for (const std::filesystem::path& candidate : sameName) names.push_back(candidate.string());
-    throw InputError(fmt::format("{}: the scene env files {} all name a scene file {}; say which one to use (--scene-env "
-                                 "FILE, or the env file in --scenes instead of the scene file)",
-                                 sceneFile.string(), fmt::join(names, ", "), uncompressedName(sceneFile).string()));
+    throw InputError(
+        fmt::format("{}: the scene env files {} all name a scene file {}; say which one to use (--scene-env "
+                    "FILE, or the env file in --scenes instead of the scene file)",
+                    sceneFile.string(), fmt::join(names, ", "), uncompressedName(sceneFile).string()));
 }
 
 void warnOfMissingSceneEnv(const std::filesystem::path& sceneFile) {
-    warnOfRun(fmt::format("{}: no scene env file in {} names {}, so it is seen without one: the camera and lights of "
-                          "env/global.env, --env and -D, by default a view framing the scene and one light above the "
-                          "camera",
-                          sceneFile.string(), dataFile("env/scenes").string(), uncompressedName(sceneFile).string()));
+    warnOfRun(
+        fmt::format("{}: no scene env file in {} names {}, so it is seen without one: the camera and lights of "
+                    "env/global.env, --env and -D, by default a view framing the scene and one light above the "
+                    "camera",
+                    sceneFile.string(), dataFile("env/scenes").string(), uncompressedName(sceneFile).string()));
 }
 
 SceneChoice chooseScene(const std::string& scene, const std::string& sceneEnv, const EnvOptions& options) {
@@ -79,9 +82,10 @@ SceneChoice chooseScene(const std::string& scene, const std::string& sceneEnv, c
         for (const auto& entry : std::filesystem::directory_iterator(dataFile("env/scenes")))
             if (entry.path().extension() == ".env") known.push_back(entry.path().stem().string());
     std::sort(known.begin(), known.end());
-    throw InputError(fmt::format("--scene {}: no such file here or in Scene::dir, and no scene env file "
-                                 "env/scenes/{}.env (scene names: {}). {}",
-                                 scene, scene, fmt::join(known, ", "), env.howToSet(keys::Scene::dir)));
+    throw InputError(
+        fmt::format("--scene {}: no such file here or in Scene::dir, and no scene env file "
+                    "env/scenes/{}.env (scene names: {}). {}",
+                    scene, scene, fmt::join(known, ", "), env.howToSet(keys::Scene::dir)));
 }
 
 Env SceneChoice::load(const EnvOptions& options) const {

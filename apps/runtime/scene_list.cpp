@@ -23,9 +23,10 @@ std::vector<SceneArgument> expandSceneList(const std::vector<std::string>& argum
     std::vector<SceneArgument> scenes;
     auto add = [&](SceneArgument scene, const std::string& given) {
         if (std::any_of(scenes.begin(), scenes.end(), [&](const SceneArgument& s) { return s.id == scene.id; }))
-            throw InputError(fmt::format("--scenes: two scenes are named '{}' ({}): jobs and rows are named by the "
-                                         "file's stem",
-                                         scene.id, given));
+            throw InputError(
+                fmt::format("--scenes: two scenes are named '{}' ({}): jobs and rows are named by the "
+                            "file's stem",
+                            scene.id, given));
         scenes.push_back(std::move(scene));
     };
     for (const std::filesystem::path item : items) {

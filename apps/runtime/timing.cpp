@@ -39,8 +39,7 @@ QueryCounters runPass(tbb::task_arena& arena, size_t n, bool counting, TraceRang
 // Times `passes` passes over n rays with counting off; beforePass runs outside the timing.
 // Then, when `count`, one more pass with counting on, untimed, whose counters are kept.
 template <typename BeforePass, typename TraceRange>
-PassResult timePasses(size_t n, int threads, int passes, bool count, BeforePass&& beforePass,
-                      TraceRange&& traceRange) {
+PassResult timePasses(size_t n, int threads, int passes, bool count, BeforePass&& beforePass, TraceRange&& traceRange) {
     PassResult result;
     if (n == 0) return result;
     std::vector<double> times, cpuTimes;
@@ -80,11 +79,11 @@ PassResult tracePasses(const Accelerator& accel, const std::vector<Ray>& rays, b
                 else
                     for (size_t i = begin; i < end; ++i) accel.findNearest(rays[i], hits[i], local);
             } else if (anyHit) {
-                accel.isOccludedBatch(all.subspan(begin, end - begin), std::span(occluded).subspan(begin, end - begin), local, {},
-                                      coherence);
+                accel.isOccludedBatch(all.subspan(begin, end - begin), std::span(occluded).subspan(begin, end - begin),
+                                      local, {}, coherence);
             } else {
-                accel.findNearestBatch(all.subspan(begin, end - begin), std::span(hits).subspan(begin, end - begin), local, {},
-                                       coherence);
+                accel.findNearestBatch(all.subspan(begin, end - begin), std::span(hits).subspan(begin, end - begin),
+                                       local, {}, coherence);
             }
         });
 }

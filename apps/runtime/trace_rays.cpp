@@ -11,9 +11,8 @@ QueryCounters forEachRayRange(size_t n, int threads, bool counting,
                               const std::function<void(size_t begin, size_t end, QueryCounters&)>& traceRange) {
     tbb::enumerable_thread_specific<QueryCounters> perThread(QueryCounters{.counting = counting});
     tbb::task_arena(threads > 0 ? threads : tbb::info::default_concurrency()).execute([&] {
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, n, kRaysPerRange), [&](const auto& range) {
-            traceRange(range.begin(), range.end(), perThread.local());
-        });
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, n, kRaysPerRange),
+                          [&](const auto& range) { traceRange(range.begin(), range.end(), perThread.local()); });
     });
     return passTotal(perThread, n, counting);
 }

@@ -50,8 +50,9 @@ std::string lower(std::string s) {
 std::vector<std::string> readLines(const std::filesystem::path& file) {
     std::ifstream in(file);
     if (!in)
-        throw inputError(file, 0, "cannot open Havran's statistics (Spd::reference names their folder: -DSpd::reference=... "
-                                  "or a line 'Spd::reference ...' in an env file)");
+        throw inputError(file, 0,
+                         "cannot open Havran's statistics (Spd::reference names their folder: -DSpd::reference=... "
+                         "or a line 'Spd::reference ...' in an env file)");
     std::vector<std::string> lines;
     for (std::string line; std::getline(in, line);) lines.push_back(line);
     return lines;
@@ -68,7 +69,8 @@ void readInvariants(const std::filesystem::path& file, std::map<std::string, Hav
         if (std::find(std::begin(kHavranInvariants), std::end(kHavranInvariants), name) == std::end(kHavranInvariants))
             continue;
         const std::vector<double> values = numbersAfterName(w);
-        for (size_t c = 0; c < columns.size() && c < values.size(); ++c) scenes[columns[c]].invariants[name] = values[c];
+        for (size_t c = 0; c < columns.size() && c < values.size(); ++c)
+            scenes[columns[c]].invariants[name] = values[c];
     }
     if (columns.empty()) throw inputError(file, 0, "no invariants table (a line 'balls gears ...')");
 }

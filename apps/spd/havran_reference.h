@@ -33,8 +33,8 @@ struct HavranScene {
 std::map<std::string, HavranScene> readHavranReference(const std::filesystem::path& folder);
 
 // The invariants in the order of Havran's table.
-inline constexpr const char* kHavranInvariants[] = {"PrimaryRay",    "UsedIntPrimRay", "ShadowRay", "UsedIntShadRay",
-                                                     "SecondaryRay",  "UsedIntSecRay",  "AllRays",   "IntersRequired"};
+inline constexpr const char* kHavranInvariants[] = {"PrimaryRay",   "UsedIntPrimRay", "ShadowRay", "UsedIntShadRay",
+                                                    "SecondaryRay", "UsedIntSecRay",  "AllRays",   "IntersRequired"};
 
 // The rows of his octree tables that bvhlab measures (the octree plugin's figures and the spd
 // command's N_IT and N_TS), in his order, and the first maximum depth of his columns.

@@ -45,8 +45,9 @@ namespace {
 double perRay(uint64_t count, uint64_t rays) { return rays ? double(count) / double(rays) : 0.0; }
 
 nlohmann::json invariantsJson(const SpdCounts& c) {
-    return {{"PrimaryRay", c.primaryRays},     {"UsedIntPrimRay", c.usedIntPrimRays}, {"ShadowRay", c.shadowRays},
-            {"UsedIntShadRay", c.usedIntShadRays}, {"SecondaryRay", c.secondaryRays}, {"UsedIntSecRay", c.usedIntSecRays},
+    return {{"PrimaryRay", c.primaryRays},     {"UsedIntPrimRay", c.usedIntPrimRays},
+            {"ShadowRay", c.shadowRays},       {"UsedIntShadRay", c.usedIntShadRays},
+            {"SecondaryRay", c.secondaryRays}, {"UsedIntSecRay", c.usedIntSecRays},
             {"AllRays", c.allRays()},          {"IntersRequired", c.intersRequired()}};
 }
 
@@ -55,20 +56,21 @@ nlohmann::json accelJson(const std::string& label, const BuildStats& build, cons
     const uint64_t rays = r.counts.allRays();
     QueryCounters all = r.closest;
     all += r.shadow;
-    nlohmann::json accel = {{"accel", label},
-            {"build_ms", build.buildMs},
-            {"figures", figuresJson(build.figures)},  // the structure's own (a grid's N_V, N_EV, N_OIV)
-            {"trace_ms", r.traceMs},
-            {"threads", r.threads},
-            {"invariants", invariantsJson(r.counts)},
-            {"n_it_triangle", counted ? nlohmann::json(perRay(all.triangleTests(), rays)) : nlohmann::json()},
-            {"skipped",
-             {{"shadow_backfacing", r.counts.shadowRaysSkippedBackfacing},
-              {"cut_by_depth", r.counts.raysCutByDepth},
-              {"total_internal_reflections", r.counts.totalInternalReflections}}},
-            {"reflection_rays", r.counts.reflectionRays},
-            {"refraction_rays", r.counts.refractionRays},
-            {"havran", std::move(havran)}};  // the column of his tables this run stands beside, or null
+    nlohmann::json accel = {
+        {"accel", label},
+        {"build_ms", build.buildMs},
+        {"figures", figuresJson(build.figures)},  // the structure's own (a grid's N_V, N_EV, N_OIV)
+        {"trace_ms", r.traceMs},
+        {"threads", r.threads},
+        {"invariants", invariantsJson(r.counts)},
+        {"n_it_triangle", counted ? nlohmann::json(perRay(all.triangleTests(), rays)) : nlohmann::json()},
+        {"skipped",
+         {{"shadow_backfacing", r.counts.shadowRaysSkippedBackfacing},
+          {"cut_by_depth", r.counts.raysCutByDepth},
+          {"total_internal_reflections", r.counts.totalInternalReflections}}},
+        {"reflection_rays", r.counts.reflectionRays},
+        {"refraction_rays", r.counts.refractionRays},
+        {"havran", std::move(havran)}};  // the column of his tables this run stands beside, or null
     accel.update(queryCountersJson(all, double(rays), counted));
     return accel;
 }
@@ -129,15 +131,20 @@ std::string octreeMarkdown(const nlohmann::json& accels) {
             nlohmann::json mine;
             if (name == "N_IT" && !a["n_it"].is_null() && required > 0.0)
                 mine = a["n_it"].get<double>() * rays / required;
-            else if (name == "N_TS") mine = a["n_tr"];
-            else if (a["figures"].contains(name)) mine = a["figures"][name]["value"];
+            else if (name == "N_TS")
+                mine = a["n_tr"];
+            else if (a["figures"].contains(name))
+                mine = a["figures"][name]["value"];
             const bool whole = name == "N_IN" || name == "N_V" || name == "N_EV" || name == "N_OIV";
             const auto number = [&](double v) { return whole ? fmt::format("{:.0f}", v) : fmt::format("{:.2f}", v); };
             theirs += havran.contains(name) ? fmt::format(" {} |", number(havran[name].get<double>())) : " n/a |";
-            if (mine.is_null()) ours += " n/a |";
-            else if (!havran.contains(name)) ours += fmt::format(" {} |", number(mine.get<double>()));
-            else ours += fmt::format(" {} ({}) |", number(mine.get<double>()),
-                                     percentDiff(mine.get<double>(), havran[name].get<double>()));
+            if (mine.is_null())
+                ours += " n/a |";
+            else if (!havran.contains(name))
+                ours += fmt::format(" {} |", number(mine.get<double>()));
+            else
+                ours += fmt::format(" {} ({}) |", number(mine.get<double>()),
+                                    percentDiff(mine.get<double>(), havran[name].get<double>()));
         }
         theirs += " |";
         ours += a["n_it"].is_null() ? " n/a |" : fmt::format(" {:.2f} |", a["n_it"].get<double>());
@@ -150,8 +157,9 @@ std::string octreeMarkdown(const nlohmann::json& accels) {
 // his best grid and octree, then the octree runs beside his octree tables.
 std::string markdown(const nlohmann::json& results) {
     std::string md = "# The SPD test: bvhlab beside Havran's GOLEM statistics\n\n";
-    md += "Rules: SPD_Readme.txt \"Testing Procedures\" (framework/render/spd_tracer.h). Havran's figures: "
-          "havran_stats_grids.txt and havran_stats_octrees.txt (1999).\n\n";
+    md +=
+        "Rules: SPD_Readme.txt \"Testing Procedures\" (framework/render/spd_tracer.h). Havran's figures: "
+        "havran_stats_grids.txt and havran_stats_octrees.txt (1999).\n\n";
     for (const nlohmann::json& scene : results["scenes"]) {
         md += fmt::format("## {}\n\n", scene["scene"].get<std::string>());
         // The invariants of the first structure that ran (they are the scene's, whichever traced it).
@@ -163,22 +171,27 @@ std::string markdown(const nlohmann::json& results) {
         for (const char* name : kHavranInvariants) {
             const bool known = havran.contains("invariants") && havran["invariants"].contains(name);
             const double theirs = known ? havran["invariants"][name].get<double>() : 0.0;
-            md += fmt::format("| {} | {} | {} | {} |\n", name, ours.is_null() ? "n/a" : fmt::format("{}", ours[name].get<uint64_t>()),
+            md += fmt::format("| {} | {} | {} | {} |\n", name,
+                              ours.is_null() ? "n/a" : fmt::format("{}", ours[name].get<uint64_t>()),
                               known ? fmt::format("{:.0f}", theirs) : "n/a",
                               known && !ours.is_null() ? percentDiff(ours[name].get<double>(), theirs) : "n/a");
         }
         md += "\n| structure | N_IT per ray | N_TS per ray | T_B ms | trace ms |\n|---|---:|---:|---:|---:|\n";
         for (const char* kind : {"best_grid", "best_octree"}) {
             if (!havran.contains(kind) || havran[kind].is_null()) continue;
-            md += fmt::format("| Havran's {} | {:.2f} | {:.2f} | | |\n", kind == std::string("best_grid") ? "best grid" : "best octree",
+            md += fmt::format("| Havran's {} | {:.2f} | {:.2f} | | |\n",
+                              kind == std::string("best_grid") ? "best grid" : "best octree",
                               havran[kind]["n_it"].get<double>(), havran[kind]["n_ts"].get<double>());
         }
         for (const nlohmann::json& a : scene["accels"]) {
             if (a.contains("failed")) {
-                md += fmt::format("| {} | failed: {} | | | |\n", a["accel"].get<std::string>(), a["failed"].get<std::string>());
+                md += fmt::format("| {} | failed: {} | | | |\n", a["accel"].get<std::string>(),
+                                  a["failed"].get<std::string>());
                 continue;
             }
-            const auto cell = [](const nlohmann::json& v) { return v.is_null() ? std::string("n/a") : fmt::format("{:.2f}", v.get<double>()); };
+            const auto cell = [](const nlohmann::json& v) {
+                return v.is_null() ? std::string("n/a") : fmt::format("{:.2f}", v.get<double>());
+            };
             md += fmt::format("| {} | {} | {} | {:.1f} | {:.0f} |\n", a["accel"].get<std::string>(), cell(a["n_it"]),
                               cell(a["n_tr"]), a["build_ms"].get<double>(), a["trace_ms"].get<double>());
         }
@@ -280,7 +293,8 @@ struct SpdRun {
             const HavranScene& h = it->second;
             sceneJson["havran"]["invariants"] = h.invariants;
             for (const auto& [key, best] : {std::pair{"best_grid", h.bestGrid}, std::pair{"best_octree", h.bestOctree}})
-                sceneJson["havran"][key] = best ? nlohmann::json{{"n_it", best->nIt}, {"n_ts", best->nTs}} : nlohmann::json();
+                sceneJson["havran"][key] =
+                    best ? nlohmann::json{{"n_it", best->nIt}, {"n_ts", best->nTs}} : nlohmann::json();
         } else {
             sceneJson["havran"] = nlohmann::json::object();
         }
@@ -308,9 +322,10 @@ SpdRun prepareSpdRun(SpdOptions& options) {
     checkAccelConfigs(configs, base);
     const std::filesystem::path reference = base.get(keys::Spd::reference);
     if (!std::filesystem::is_directory(reference))
-        throw InputError(fmt::format("Havran's statistics (havran_stats_grids.txt, havran_stats_octrees.txt): "
-                                     "no folder {}; {}",
-                                     reference.string(), base.howToSet(keys::Spd::reference)));
+        throw InputError(
+            fmt::format("Havran's statistics (havran_stats_grids.txt, havran_stats_octrees.txt): "
+                        "no folder {}; {}",
+                        reference.string(), base.howToSet(keys::Spd::reference)));
     auto havran = readHavranReference(reference);
     SpdRules rules;
     rules.maxDepth = base.get(keys::Spd::maxDepth);

@@ -25,10 +25,10 @@
 #include "apps/cli/command_line.h"
 #include "apps/cli/commands.h"
 #include "apps/runtime/accel_config.h"
+#include "apps/runtime/app_keys.h"
 #include "apps/runtime/atomic_write.h"
 #include "apps/runtime/build_watch.h"
 #include "apps/runtime/child_job.h"
-#include "apps/runtime/app_keys.h"
 #include "apps/runtime/comma_list.h"
 #include "apps/runtime/output_paths.h"
 #include "apps/runtime/program_keys.h"
@@ -46,8 +46,8 @@
 
 #include <fmt/core.h>
 #include <fmt/ranges.h>
-#include <nlohmann/json.hpp>
 #include <tbb/task_arena.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -113,7 +113,8 @@ bool finishesWithin(double seconds, std::function<void()> body) {
         state->done.notify_all();
     }).detach();
     std::unique_lock lock(state->mutex);
-    if (!state->done.wait_for(lock, std::chrono::duration<double>(seconds), [&] { return state->finished; })) return false;
+    if (!state->done.wait_for(lock, std::chrono::duration<double>(seconds), [&] { return state->finished; }))
+        return false;
     if (state->error) std::rethrow_exception(state->error);
     return true;
 }
@@ -143,7 +144,8 @@ public:
         const std::vector<std::string> parts = splitCommaList(options_.parts);
         for (const std::string& p : parts)
             if (std::find(std::begin(kParts), std::end(kParts), p) == std::end(kParts))
-                throw InputError(fmt::format("--parts: unknown part '{}' (known: watertight, sweep, acne, builders)", p));
+                throw InputError(
+                    fmt::format("--parts: unknown part '{}' (known: watertight, sweep, acne, builders)", p));
         // --scenes looked at here once, not only in the jobs' processes: what is said of them (a
         // scene file without a scene env) goes into this run's JSON.
         if (std::find(parts.begin(), parts.end(), "watertight") != parts.end()) meshes();
@@ -165,7 +167,8 @@ public:
                 if (!outcome.passed()) {
                     // A failed job fails the run, Embree's too: its part has no answer to report.
                     ++failedJobs_;
-                    const std::string message = fmt::format("{}: {}: failed: {}", config.label, part, outcome.failure());
+                    const std::string message =
+                        fmt::format("{}: {}: failed: {}", config.label, part, outcome.failure());
                     fmt::print(stderr, "  FAIL {}\n", message);
                     results_["failures"].push_back(message);
                     failedLines += fmt::format("{}: failed: {}\n", config.label, outcome.failure());
@@ -176,8 +179,9 @@ public:
                     entries.push_back({e.at("case").get<size_t>(), c, e.at("row"), e.at("line").get<std::string>()});
                 for (const nlohmann::json& f : outcome.result.at("failures")) results_["failures"].push_back(f);
                 for (const nlohmann::json& skipped : outcome.result.at("skipped"))
-                    if (!results_.contains("skipped") || std::find(results_["skipped"].begin(), results_["skipped"].end(),
-                                                                   skipped) == results_["skipped"].end())
+                    if (!results_.contains("skipped") ||
+                        std::find(results_["skipped"].begin(), results_["skipped"].end(), skipped) ==
+                            results_["skipped"].end())
                         results_["skipped"].push_back(skipped);
             }
             std::stable_sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
@@ -253,39 +257,43 @@ private:
             return fmt::format("== watertightness: {} rays per mesh at interior edges and vertices", options_.rays);
         if (part == "sweep") {
             const Scene base = sweepBase();
-            return fmt::format("== scale/translation sweep on {} ({} triangles, size {:.3g}): {} scales x {} offsets, {} "
-                               "probes and {} rays toward triangles each",
-                               base.name, base.triangleCount(), glm::length(DVec3(base.bounds.diagonal())),
-                               sweepScales().size(), sweepOffsets().size(), options_.sweepRays, sweepRayCount());
+            return fmt::format(
+                "== scale/translation sweep on {} ({} triangles, size {:.3g}): {} scales x {} offsets, {} "
+                "probes and {} rays toward triangles each",
+                base.name, base.triangleCount(), glm::length(DVec3(base.bounds.diagonal())), sweepScales().size(),
+                sweepOffsets().size(), options_.sweepRays, sweepRayCount());
         }
         if (part == "acne") return "== shadow acne: lit planes far from the origin, and grounds z = 0 lit from low";
         return fmt::format("== builders at the edge: {} primitives", options_.builderPrims);
     }
     static std::string partHeader(const std::string& part) {
         if (part == "watertight")
-            return fmt::format("{:<16} {:>8} {:<14} {:>9} {:>7} {:>11} {:>9} {:>11} {:>7} {:>9}\n", "mesh", "tris", "accel",
-                               "rays", "leaks", "per million", "any-hit", "per million", "batch", "batch any");
+            return fmt::format("{:<16} {:>8} {:<14} {:>9} {:>7} {:>11} {:>9} {:>11} {:>7} {:>9}\n", "mesh", "tris",
+                               "accel", "rays", "leaks", "per million", "any-hit", "per million", "batch", "batch any");
         if (part == "sweep")
             return fmt::format("{:<14} {:>7} {:<16} {:>8} {:>6} {:>9} {:>8} {:>10} {:>10}\n", "accel", "scale",
                                "offset/size", "rays", "leaks", "prim diff", "t diff", "SAH", "SAH rel");
         if (part == "acne")
             return fmt::format("{:<22} {:<14} {:>8} {:>8} {:>14} {:>6}\n", "plane", "accel", "pixels", "on plane",
                                "self-shadowed", "dark");
-        return fmt::format("{:<18} {:<14} {:>9} {:>10} {:>6} {:>9} {:>9} {:>9}\n", "scene", "accel", "prims", "build ms",
-                           "depth", "nodes", "max leaf", "vs naive");
+        return fmt::format("{:<18} {:<14} {:>9} {:>10} {:>6} {:>9} {:>9} {:>9}\n", "scene", "accel", "prims",
+                           "build ms", "depth", "nodes", "max leaf", "vs naive");
     }
     static std::string partSection(const std::string& part) {
         if (part == "watertight")
-            return "watertightness: rays aimed exactly at interior edges and vertices of closed meshes, tmax = 1.0001 x "
+            return "watertightness: rays aimed exactly at interior edges and vertices of closed meshes, tmax = 1.0001 "
+                   "x "
                    "distance; a leak is a miss (closest hit), any-hit = isOccluded false; batch, batch any = the same "
                    "through findNearestBatch and isOccludedBatch\n";
         if (part == "sweep")
-            return fmt::format("scale/translation sweep: {} scaled, then moved by offset x its scaled size; leaks include "
-                               "any-hit; prim/t diff on rays moved with the scene; SAH rel = relative change from scale 1\n",
-                               sweepBase().name);
+            return fmt::format(
+                "scale/translation sweep: {} scaled, then moved by offset x its scaled size; leaks include "
+                "any-hit; prim/t diff on rays moved with the scene; SAH rel = relative change from scale 1\n",
+                sweepBase().name);
         if (part == "acne")
             return "shadow acne: planes whose centre is 1e4 (checked) and 1e6 (reported) from the origin, lit from the "
-                   "camera's side, and grounds z = 0 lit from 5 degrees (self-shadowing checked); self-shadowed = pixel "
+                   "camera's side, and grounds z = 0 lit from 5 degrees (self-shadowing checked); self-shadowed = "
+                   "pixel "
                    "darker with shadows than without; dark = not above the ambient term\n";
         return "builders at the edge: build time, depth (< 64), and 256 rays toward triangles against naive\n";
     }
@@ -344,40 +352,44 @@ private:
             probeOptions.seed = options_.seed;
             const ProbeSet probes = makeWatertightProbes(topology, probeOptions);
             fmt::print(stderr, "{}: {}; {} probes ({} of {} candidate points rejected) in {:.1f} s\n", scene->name,
-                       topology.summary(), probes.probes.size(), probes.rejected, probes.candidates, secondsSince(start));
+                       topology.summary(), probes.probes.size(), probes.rejected, probes.candidates,
+                       secondsSince(start));
             for (const AccelConfig& config : configs_) {
                 if (config.name == "naive" && scene->triangleCount() > options_.naiveMaxTriangles) continue;
                 BuildStats stats;
                 const auto accel = build(config, *scene, stats);
                 const auto traced = Clock::now();
                 const LeakStats leaks = countLeaks(*accel, probes.probes, options_.threads);
-                fmt::print(stderr, "  {}: built in {:.0f} ms, {} leaks, {} any-hit leaks (batch: {}, {}) of {} rays in {:.1f} s\n",
-                           config.label, stats.buildMs, leaks.leaks, leaks.occlusionLeaks, leaks.batchLeaks,
-                           leaks.batchOcclusionLeaks, leaks.rays, secondsSince(traced));
+                fmt::print(
+                    stderr,
+                    "  {}: built in {:.0f} ms, {} leaks, {} any-hit leaks (batch: {}, {}) of {} rays in {:.1f} s\n",
+                    config.label, stats.buildMs, leaks.leaks, leaks.occlusionLeaks, leaks.batchLeaks,
+                    leaks.batchOcclusionLeaks, leaks.rays, secondsSince(traced));
                 for (const std::string& e : leaks.examples) fmt::print(stderr, "    {}\n", e);
                 if (leaks.leaks || leaks.occlusionLeaks || leaks.batchLeaks || leaks.batchOcclusionLeaks)
-                    fail(config, fmt::format("{} leaks and {} any-hit leaks (batch queries: {} and {}) in {} rays through {}",
-                                             leaks.leaks, leaks.occlusionLeaks, leaks.batchLeaks, leaks.batchOcclusionLeaks,
-                                             leaks.rays, scene->name));
+                    fail(config,
+                         fmt::format("{} leaks and {} any-hit leaks (batch queries: {} and {}) in {} rays through {}",
+                                     leaks.leaks, leaks.occlusionLeaks, leaks.batchLeaks, leaks.batchOcclusionLeaks,
+                                     leaks.rays, scene->name));
                 add(caseIndex,
                     {{"mesh", scene->name},
-                                {"triangles", scene->triangleCount()},
-                                {"closed", topology.closed()},
-                                {"topology", topology.summary()},
-                                {"accel", config.label},
-                                {"rays", leaks.rays},
-                                {"edge_rays", leaks.edgeRays},
-                                {"vertex_rays", leaks.vertexRays},
-                                {"leaks", leaks.leaks},
-                                {"edge_leaks", leaks.edgeLeaks},
-                                {"vertex_leaks", leaks.vertexLeaks},
-                                {"leaks_per_million", leaks.perMillion()},
-                                {"any_hit_leaks", leaks.occlusionLeaks},
-                                {"any_hit_leaks_per_million", leaks.occlusionPerMillion()},
-                                {"batch_leaks", leaks.batchLeaks},
-                                {"batch_any_hit_leaks", leaks.batchOcclusionLeaks},
-                                {"build_ms", stats.buildMs},
-                                {"examples", leaks.examples}},
+                     {"triangles", scene->triangleCount()},
+                     {"closed", topology.closed()},
+                     {"topology", topology.summary()},
+                     {"accel", config.label},
+                     {"rays", leaks.rays},
+                     {"edge_rays", leaks.edgeRays},
+                     {"vertex_rays", leaks.vertexRays},
+                     {"leaks", leaks.leaks},
+                     {"edge_leaks", leaks.edgeLeaks},
+                     {"vertex_leaks", leaks.vertexLeaks},
+                     {"leaks_per_million", leaks.perMillion()},
+                     {"any_hit_leaks", leaks.occlusionLeaks},
+                     {"any_hit_leaks_per_million", leaks.occlusionPerMillion()},
+                     {"batch_leaks", leaks.batchLeaks},
+                     {"batch_any_hit_leaks", leaks.batchOcclusionLeaks},
+                     {"build_ms", stats.buildMs},
+                     {"examples", leaks.examples}},
                     fmt::format("{:<16} {:>8} {:<14} {:>9} {:>7} {:>11.1f} {:>9} {:>11.1f} {:>7} {:>9}\n", scene->name,
                                 scene->triangleCount(), config.label, leaks.rays, leaks.leaks, leaks.perMillion(),
                                 leaks.occlusionLeaks, leaks.occlusionPerMillion(), leaks.batchLeaks,
@@ -423,7 +435,8 @@ private:
                 probeOptions.rays = options_.sweepRays;
                 probeOptions.seed = options_.seed + 7;
                 const ProbeSet probes = makeWatertightProbes(MeshTopology::of(scene), probeOptions);
-                const std::string offsetLabel = fmt::format("({:g},{:g},{:g})", offsetUnits.x, offsetUnits.y, offsetUnits.z);
+                const std::string offsetLabel =
+                    fmt::format("({:g},{:g},{:g})", offsetUnits.x, offsetUnits.y, offsetUnits.z);
                 fmt::print(stderr, "  scale {:g} offset {}\n", scale, offsetLabel);
                 for (Baseline& baseline : baselines) {
                     const AccelConfig& config = *baseline.config;
@@ -442,25 +455,26 @@ private:
                     baseline.leaks += leaks.leaks + leaks.occlusionLeaks;
                     baseline.mismatches += primDiff + tDiff;
                     if (!check.passed())
-                        fail(config, fmt::format("scale {:g} offset {}: {} leaks, {} any-hit leaks, {} other primitives, "
-                                                 "{} t not scaling, of {} probes and {} rays",
-                                                 scale, offsetLabel, leaks.leaks, leaks.occlusionLeaks, primDiff, tDiff,
-                                                 leaks.rays, compared));
+                        fail(config,
+                             fmt::format("scale {:g} offset {}: {} leaks, {} any-hit leaks, {} other primitives, "
+                                         "{} t not scaling, of {} probes and {} rays",
+                                         scale, offsetLabel, leaks.leaks, leaks.occlusionLeaks, primDiff, tDiff,
+                                         leaks.rays, compared));
                     if (sahRel && std::abs(*sahRel) > sahScaleTolerance(scale))
                         fail(config, fmt::format("scale {:g}: SAH cost {:.6g} differs from {:.6g} at scale 1 by {:.2e}",
                                                  scale, stats.sah->cost, baseStats.sah->cost, *sahRel));
                     add(caseIndex,
                         {{"accel", config.label},
-                                    {"scale", scale},
-                                    {"offset_in_sizes", {offsetUnits.x, offsetUnits.y, offsetUnits.z}},
-                                    {"rays", leaks.rays},
-                                    {"leaks", leaks.leaks},
-                                    {"any_hit_leaks", leaks.occlusionLeaks},
-                                    {"compared_rays", compared},
-                                    {"other_primitive", primDiff},
-                                    {"t_not_scaling", tDiff},
-                                    {"sah", stats.sah ? nlohmann::json(stats.sah->cost) : nlohmann::json()},
-                                    {"sah_relative_to_scale_1", sahRel ? nlohmann::json(*sahRel) : nlohmann::json()}},
+                         {"scale", scale},
+                         {"offset_in_sizes", {offsetUnits.x, offsetUnits.y, offsetUnits.z}},
+                         {"rays", leaks.rays},
+                         {"leaks", leaks.leaks},
+                         {"any_hit_leaks", leaks.occlusionLeaks},
+                         {"compared_rays", compared},
+                         {"other_primitive", primDiff},
+                         {"t_not_scaling", tDiff},
+                         {"sah", stats.sah ? nlohmann::json(stats.sah->cost) : nlohmann::json()},
+                         {"sah_relative_to_scale_1", sahRel ? nlohmann::json(*sahRel) : nlohmann::json()}},
                         fmt::format("{:<14} {:>7g} {:<16} {:>8} {:>6} {:>9} {:>8} {:>10} {:>10}\n", config.label, scale,
                                     offsetLabel, leaks.rays, leaks.leaks + leaks.occlusionLeaks, primDiff, tDiff,
                                     stats.sah ? fmt::format("{:.4f}", stats.sah->cost) : "n/a",
@@ -468,7 +482,8 @@ private:
                 }
             }
         for (const Baseline& b : baselines)
-            fmt::print(stderr, "  {}: {} leaks, {} mismatches over the sweep\n", b.config->label, b.leaks, b.mismatches);
+            fmt::print(stderr, "  {}: {} leaks, {} mismatches over the sweep\n", b.config->label, b.leaks,
+                       b.mismatches);
     }
 
     // --- shadow acne ------------------------------------------------------------------------
@@ -486,8 +501,8 @@ private:
                 const size_t onPlane = check.onPlane, shadowed = check.selfShadowed, dark = check.dark;
                 const size_t pixels = check.pixels;
                 if (c.mustPass && !check.passed(c.darkIsFault))
-                    fail(config, fmt::format("{}: {} self-shadowed and {} dark of {} plane pixels ({} pixels)", scene.name,
-                                             shadowed, dark, onPlane, pixels));
+                    fail(config, fmt::format("{}: {} self-shadowed and {} dark of {} plane pixels ({} pixels)",
+                                             scene.name, shadowed, dark, onPlane, pixels));
                 add(caseIndex,
                     {{"plane", scene.name},
                      {"distance", c.distance},
@@ -520,11 +535,13 @@ private:
                 EdgeBuildCheck check;
                 const BuildWatch watch(fmt::format("{} on {}", config.label, scene.name));
                 if (!finishesWithin(options_.builderMaxSeconds, [&] {
-                        check = checkEdgeBuild(*accel, scene, rays, reference, options_.builderMaxSeconds, options_.threads);
+                        check = checkEdgeBuild(*accel, scene, rays, reference, options_.builderMaxSeconds,
+                                               options_.threads);
                     })) {
-                    const std::string late = fmt::format("the build did not end within {:g} s (--builder-max-seconds); "
-                                                         "its later cases were not run",
-                                                         options_.builderMaxSeconds);
+                    const std::string late = fmt::format(
+                        "the build did not end within {:g} s (--builder-max-seconds); "
+                        "its later cases were not run",
+                        options_.builderMaxSeconds);
                     fmt::print(stderr, "{}\n", late);
                     fail(config, fmt::format("{}: {}", scene.name, late));
                     add(caseIndex, {{"scene", scene.name}, {"accel", config.label}, {"failed", late}},
@@ -537,19 +554,22 @@ private:
                            stats.maxDepth ? fmt::format("{}", *stats.maxDepth) : "n/a", wrong, rays.size());
                 for (const std::string& e : check.examples) fmt::print(stderr, "    {}\n", e);
                 // What the structure promises, and bounded time and memory of every structure.
-                for (const std::string& problem : check.problems) fail(config, fmt::format("{}: {}", scene.name, problem));
-                if (wrong) fail(config, fmt::format("{}: {} of {} answers differ from naive", scene.name, wrong, rays.size()));
+                for (const std::string& problem : check.problems)
+                    fail(config, fmt::format("{}: {}", scene.name, problem));
+                if (wrong)
+                    fail(config, fmt::format("{}: {} of {} answers differ from naive", scene.name, wrong, rays.size()));
                 auto optional = [](const auto& v) { return v ? fmt::format("{}", *v) : std::string("n/a"); };
                 add(caseIndex,
                     {{"scene", scene.name},
-                                {"accel", config.label},
-                                {"primitives", stats.primitives},
-                                {"build_ms", stats.buildMs},
-                                {"max_depth", stats.maxDepth ? nlohmann::json(*stats.maxDepth) : nlohmann::json()},
-                                {"nodes", stats.nodes ? nlohmann::json(*stats.nodes) : nlohmann::json()},
-                                {"max_leaf", stats.maxLeafPrimitives ? nlohmann::json(*stats.maxLeafPrimitives) : nlohmann::json()},
-                                {"rays", rays.size()},
-                                {"differ_from_naive", wrong}},
+                     {"accel", config.label},
+                     {"primitives", stats.primitives},
+                     {"build_ms", stats.buildMs},
+                     {"max_depth", stats.maxDepth ? nlohmann::json(*stats.maxDepth) : nlohmann::json()},
+                     {"nodes", stats.nodes ? nlohmann::json(*stats.nodes) : nlohmann::json()},
+                     {"max_leaf",
+                      stats.maxLeafPrimitives ? nlohmann::json(*stats.maxLeafPrimitives) : nlohmann::json()},
+                     {"rays", rays.size()},
+                     {"differ_from_naive", wrong}},
                     fmt::format("{:<18} {:<14} {:>9} {:>10.0f} {:>6} {:>9} {:>9} {:>9}\n", scene.name, config.label,
                                 stats.primitives, stats.buildMs, optional(stats.maxDepth), optional(stats.nodes),
                                 optional(stats.maxLeafPrimitives), fmt::format("{}/{}", wrong, rays.size())));
@@ -562,7 +582,7 @@ private:
     std::vector<AccelConfig> configs_;
     nlohmann::json results_;
     nlohmann::json entries_ = nlohmann::json::array();  // a child's rows (add())
-    const ChildJob* child_ = nullptr;                    // set in a child process
+    const ChildJob* child_ = nullptr;                   // set in a child process
     size_t failedJobs_ = 0;
 };
 
@@ -570,18 +590,24 @@ private:
 
 void addStressCommand(CLI::App& app) {
     auto options = std::make_shared<StressOptions>();
-    CLI::App* command = app.add_subcommand("stress", "robustness stress suite: watertightness (leaks per million), "
-                                                     "scale/translation, shadow acne, builders at the edge");
+    CLI::App* command = app.add_subcommand("stress",
+                                           "robustness stress suite: watertightness (leaks per million), "
+                                           "scale/translation, shadow acne, builders at the edge");
     addEnvOptions(*command, options->env);
     command->add_option("--rays", options->rays, "watertightness probes per mesh")->capture_default_str();
-    command->add_option("--accel", options->accels, "comma-separated NAME or NAME:Key=value:...")->capture_default_str();
+    command->add_option("--accel", options->accels, "comma-separated NAME or NAME:Key=value:...")
+        ->capture_default_str();
     addScenesOption(*command, options->scenes, "meshes icosphere, cube, torus (generated, small and large), ",
                     fmt::format("{}; one that is not there is skipped", fmt::join(options->scenes, ",")));
     command->add_option("--parts", options->parts, "comma-separated parts to run")->capture_default_str();
-    command->add_option("--sweep-rays", options->sweepRays, "probes per scale/offset of the sweep")->capture_default_str();
-    command->add_option("--builder-prims", options->builderPrims, "primitives of the builders' edge cases")->capture_default_str();
-    command->add_option("--builder-max-seconds", options->builderMaxSeconds, "a slower build fails")->capture_default_str();
-    command->add_option("--naive-max", options->naiveMaxTriangles, "naive runs only on meshes up to this many triangles")
+    command->add_option("--sweep-rays", options->sweepRays, "probes per scale/offset of the sweep")
+        ->capture_default_str();
+    command->add_option("--builder-prims", options->builderPrims, "primitives of the builders' edge cases")
+        ->capture_default_str();
+    command->add_option("--builder-max-seconds", options->builderMaxSeconds, "a slower build fails")
+        ->capture_default_str();
+    command
+        ->add_option("--naive-max", options->naiveMaxTriangles, "naive runs only on meshes up to this many triangles")
         ->capture_default_str();
     command->add_option("--acne-pixels", options->acnePixels, "width and height of the shadow-acne renders")
         ->capture_default_str()
@@ -608,9 +634,11 @@ void addStressCommand(CLI::App& app) {
             const std::filesystem::path out = prepareOutputFile(options->out);
             std::ofstream(out) << results.dump(2) << "\n";
             for (const auto& f : results["failures"]) fmt::print("FAIL {}\n", f.get<std::string>());
-            fmt::print("{}\n", run.failed() ? fmt::format("stress: {} failures{}", results["failures"].size(),
-                                                        run.failedJobs() ? fmt::format(" ({} jobs failed)", run.failedJobs()) : "")
-                                            : std::string("stress: all checks passed (Embree's leaks are reported only)"));
+            fmt::print("{}\n",
+                       run.failed()
+                           ? fmt::format("stress: {} failures{}", results["failures"].size(),
+                                         run.failedJobs() ? fmt::format(" ({} jobs failed)", run.failedJobs()) : "")
+                           : std::string("stress: all checks passed (Embree's leaks are reported only)"));
             fmt::print(stderr, "wrote {} ({:.0f} s)\n", out.string(), secondsSince(start));
             failedCode = run.failedJobs() ? kSomeJobsFailedExitCode : run.failed() ? 1 : 0;
         });

@@ -28,11 +28,10 @@ size_t editDistance(const std::string& a, const std::string& b) {
         size_t diagonal = row[0];
         row[0] = i;
         for (size_t j = 1; j <= b.size(); ++j) {
-            const size_t substitute =
-                diagonal + (std::tolower(static_cast<unsigned char>(a[i - 1])) ==
-                                    std::tolower(static_cast<unsigned char>(b[j - 1]))
-                                ? 0
-                                : 1);
+            const size_t substitute = diagonal + (std::tolower(static_cast<unsigned char>(a[i - 1])) ==
+                                                          std::tolower(static_cast<unsigned char>(b[j - 1]))
+                                                      ? 0
+                                                      : 1);
             diagonal = row[j];
             row[j] = std::min({row[j] + 1, row[j - 1] + 1, substitute});
         }
@@ -72,14 +71,22 @@ std::vector<std::string> splitList(const std::string& s) {
 
 const char* typeName(KeyType type) {
     switch (type) {
-    case KeyType::Bool: return "a boolean (true/false)";
-    case KeyType::Int: return "an integer";
-    case KeyType::Float: return "a number";
-    case KeyType::String: return "text";
-    case KeyType::Choice: return "one of the listed words";
-    case KeyType::Path: return "a path";
-    case KeyType::Vec3: return "three numbers 'x y z'";
-    case KeyType::Vec3List: return "a list 'x y z, x y z, ...'";
+        case KeyType::Bool:
+            return "a boolean (true/false)";
+        case KeyType::Int:
+            return "an integer";
+        case KeyType::Float:
+            return "a number";
+        case KeyType::String:
+            return "text";
+        case KeyType::Choice:
+            return "one of the listed words";
+        case KeyType::Path:
+            return "a path";
+        case KeyType::Vec3:
+            return "three numbers 'x y z'";
+        case KeyType::Vec3List:
+            return "a list 'x y z, x y z, ...'";
     }
     return "?";
 }
@@ -92,40 +99,41 @@ std::string validate(const EnvKey& key, const std::string& text, const std::file
         return std::string();
     };
     switch (key.type) {
-    case KeyType::Bool: {
-        const auto b = parseBool(text);
-        if (!b) return fail("expected true or false");
-        return *b ? "true" : "false";
-    }
-    case KeyType::Int: {
-        const auto v = numberIn<long long>(text);
-        if (!v) return fail("expected an integer");
-        if (*v < key.min || *v > key.max) return fail(fmt::format("expected {} to {}", key.min, key.max));
-        return text;
-    }
-    case KeyType::Float: {
-        const auto v = numberIn<double>(text);
-        if (!v || !std::isfinite(*v)) return fail("expected a finite number");
-        if (*v < key.min || *v > key.max) return fail(fmt::format("expected {} to {}", key.min, key.max));
-        return text;
-    }
-    case KeyType::String: return text;
-    case KeyType::Choice:
-        if (std::find(key.choices.begin(), key.choices.end(), text) == key.choices.end())
-            return fail(fmt::format("expected one of: {}", fmt::join(key.choices, ", ")));
-        return text;
-    case KeyType::Path:
-        if (text.empty()) return text;
-        return (baseDir / text).lexically_normal().string();
-    case KeyType::Vec3:
-        if (text.empty()) return text;
-        if (!parseVec3(text)) return fail("expected three finite numbers 'x y z'");
-        return text;
-    case KeyType::Vec3List:
-        if (text.empty()) return text;
-        for (const std::string& item : splitList(text))
-            if (!parseVec3(item)) return fail(fmt::format("'{}' is not three finite numbers 'x y z'", item));
-        return text;
+        case KeyType::Bool: {
+            const auto b = parseBool(text);
+            if (!b) return fail("expected true or false");
+            return *b ? "true" : "false";
+        }
+        case KeyType::Int: {
+            const auto v = numberIn<long long>(text);
+            if (!v) return fail("expected an integer");
+            if (*v < key.min || *v > key.max) return fail(fmt::format("expected {} to {}", key.min, key.max));
+            return text;
+        }
+        case KeyType::Float: {
+            const auto v = numberIn<double>(text);
+            if (!v || !std::isfinite(*v)) return fail("expected a finite number");
+            if (*v < key.min || *v > key.max) return fail(fmt::format("expected {} to {}", key.min, key.max));
+            return text;
+        }
+        case KeyType::String:
+            return text;
+        case KeyType::Choice:
+            if (std::find(key.choices.begin(), key.choices.end(), text) == key.choices.end())
+                return fail(fmt::format("expected one of: {}", fmt::join(key.choices, ", ")));
+            return text;
+        case KeyType::Path:
+            if (text.empty()) return text;
+            return (baseDir / text).lexically_normal().string();
+        case KeyType::Vec3:
+            if (text.empty()) return text;
+            if (!parseVec3(text)) return fail("expected three finite numbers 'x y z'");
+            return text;
+        case KeyType::Vec3List:
+            if (text.empty()) return text;
+            for (const std::string& item : splitList(text))
+                if (!parseVec3(item)) return fail(fmt::format("'{}' is not three finite numbers 'x y z'", item));
+            return text;
     }
     return text;
 }
@@ -212,8 +220,8 @@ std::vector<EnvLine> readEnvLines(const std::filesystem::path& file) {
         if (name.find("::") == std::string::npos || name.size() < 4)
             throw inputError(file, lineNo, fmt::format("expected 'Section::key value', got '{}'", content));
         // Key=value is the form of -D, not of env files: say so rather than "unknown key".
-        if (const size_t eq = content.find('='); eq != std::string::npos && (name.find('=') != std::string::npos ||
-                                                                              text.starts_with('='))) {
+        if (const size_t eq = content.find('=');
+            eq != std::string::npos && (name.find('=') != std::string::npos || text.starts_with('='))) {
             const std::string key = trim(content.substr(0, eq)), value = trim(content.substr(eq + 1));
             throw inputError(file, lineNo,
                              fmt::format("'{}': env lines are 'Section::key value', with a space; write '{} {}' "
@@ -251,9 +259,7 @@ bool Env::get(const BoolKey& key) const { return value(key.name(), KeyType::Bool
 int Env::get(const IntKey& key) const { return *numberIn<int>(value(key.name(), KeyType::Int).text); }
 // Validated as a double in the key's range; a value too small for a float (1e-50) becomes 0 or a
 // subnormal here instead of failing to parse as one.
-float Env::get(const FloatKey& key) const {
-    return float(*numberIn<double>(value(key.name(), KeyType::Float).text));
-}
+float Env::get(const FloatKey& key) const { return float(*numberIn<double>(value(key.name(), KeyType::Float).text)); }
 std::string Env::get(const TextKey& key) const { return value(key.name(), KeyType::String).text; }
 std::string Env::get(const ChoiceKey& key) const { return value(key.name(), KeyType::Choice).text; }
 std::filesystem::path Env::get(const PathKey& key) const { return value(key.name(), KeyType::Path).text; }

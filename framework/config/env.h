@@ -21,7 +21,9 @@ class EnvRegistry {
 public:
     void add(EnvKey key);
     template <KeyType Type>
-    void add(const Key<Type>& key) { add(key.declaration()); }
+    void add(const Key<Type>& key) {
+        add(key.declaration());
+    }
     const EnvKey* find(const std::string& name) const;
     const std::map<std::string, EnvKey>& keys() const { return keys_; }
     // The known keys closest in edit distance to a misspelt one.
@@ -73,7 +75,9 @@ public:
     std::vector<Vec3> get(const Vec3ListKey& key) const;
     // Set by a file or -D, not a default.
     template <KeyType Type>
-    bool isExplicit(const Key<Type>& key) const { return isExplicit(std::string(key.name())); }
+    bool isExplicit(const Key<Type>& key) const {
+        return isExplicit(std::string(key.name()));
+    }
     bool isExplicit(const std::string& name) const;
     // Where a key's value came from: "default", "FILE:LINE", "-DSection::key", "--scene", ...
     std::string origin(std::string_view key) const;

@@ -27,15 +27,40 @@ struct EnvKey {
 };
 
 // The value a key of each type reads as.
-template <KeyType Type> struct EnvValue;
-template <> struct EnvValue<KeyType::Bool> { using type = bool; };
-template <> struct EnvValue<KeyType::Int> { using type = int; };
-template <> struct EnvValue<KeyType::Float> { using type = float; };
-template <> struct EnvValue<KeyType::String> { using type = std::string; };
-template <> struct EnvValue<KeyType::Choice> { using type = std::string; };
-template <> struct EnvValue<KeyType::Path> { using type = std::filesystem::path; };  // empty when not given
-template <> struct EnvValue<KeyType::Vec3> { using type = std::optional<Vec3>; };    // nullopt when not given
-template <> struct EnvValue<KeyType::Vec3List> { using type = std::vector<Vec3>; };
+template <KeyType Type>
+struct EnvValue;
+template <>
+struct EnvValue<KeyType::Bool> {
+    using type = bool;
+};
+template <>
+struct EnvValue<KeyType::Int> {
+    using type = int;
+};
+template <>
+struct EnvValue<KeyType::Float> {
+    using type = float;
+};
+template <>
+struct EnvValue<KeyType::String> {
+    using type = std::string;
+};
+template <>
+struct EnvValue<KeyType::Choice> {
+    using type = std::string;
+};
+template <>
+struct EnvValue<KeyType::Path> {
+    using type = std::filesystem::path;
+};  // empty when not given
+template <>
+struct EnvValue<KeyType::Vec3> {
+    using type = std::optional<Vec3>;
+};  // nullopt when not given
+template <>
+struct EnvValue<KeyType::Vec3List> {
+    using type = std::vector<Vec3>;
+};
 
 // The declaration and typed handle. Constant-initialised (string views only), so a key can be
 // read from any static initialiser without an initialisation-order question.
@@ -46,15 +71,14 @@ public:
 
     // Int and Float: the inclusive range.
     constexpr Key(std::string_view name, std::string_view defaultValue, double min, double max,
-                  std::string_view description)
-        requires(Type == KeyType::Int || Type == KeyType::Float)
+                  std::string_view description) requires(Type == KeyType::Int || Type == KeyType::Float)
         : name_(name), default_(defaultValue), description_(description), min_(min), max_(max) {}
     constexpr Key(std::string_view name, std::string_view defaultValue, std::span<const std::string_view> choices,
-                  std::string_view description)
-        requires(Type == KeyType::Choice)
+                  std::string_view description) requires(Type == KeyType::Choice)
         : name_(name), default_(defaultValue), description_(description), choices_(choices) {}
-    constexpr Key(std::string_view name, std::string_view defaultValue, std::string_view description)
-        requires(Type != KeyType::Int && Type != KeyType::Float && Type != KeyType::Choice)
+    constexpr Key(std::string_view name, std::string_view defaultValue,
+                  std::string_view description) requires(Type != KeyType::Int && Type != KeyType::Float &&
+                                                         Type != KeyType::Choice)
         : name_(name), default_(defaultValue), description_(description) {}
 
     constexpr std::string_view name() const { return name_; }
@@ -62,8 +86,13 @@ public:
     // What the registry holds; a Choice key whose words are known only at run time (ASDS::type:
     // the accelerators) is given them here.
     EnvKey declaration(std::vector<std::string> runtimeChoices = {}) const {
-        EnvKey key{std::string(name_), Type, defaultText_ ? defaultText_(choices_) : std::string(default_),
-                   std::string(description_), min_, max_, {}};
+        EnvKey key{std::string(name_),
+                   Type,
+                   defaultText_ ? defaultText_(choices_) : std::string(default_),
+                   std::string(description_),
+                   min_,
+                   max_,
+                   {}};
         for (std::string_view c : choices_) key.choices.emplace_back(c);
         for (std::string& c : runtimeChoices) key.choices.push_back(std::move(c));
         return key;

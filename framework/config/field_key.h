@@ -17,9 +17,12 @@ namespace bvhlab {
 
 template <typename Field>
 constexpr KeyType keyTypeOf() {
-    if constexpr (std::is_same_v<Field, bool>) return KeyType::Bool;
-    else if constexpr (std::is_enum_v<Field>) return KeyType::Choice;
-    else if constexpr (std::is_integral_v<Field>) return KeyType::Int;
+    if constexpr (std::is_same_v<Field, bool>)
+        return KeyType::Bool;
+    else if constexpr (std::is_enum_v<Field>)
+        return KeyType::Choice;
+    else if constexpr (std::is_integral_v<Field>)
+        return KeyType::Int;
     else {
         static_assert(std::is_same_v<Field, float>, "a field key is bool, an integer, float or an enum");
         return KeyType::Float;
@@ -37,8 +40,10 @@ inline std::string shortestText(float value) {
     return text;
 }
 
-template <typename Member> struct MemberPointer;
-template <typename C, typename F> struct MemberPointer<F C::*> {
+template <typename Member>
+struct MemberPointer;
+template <typename C, typename F>
+struct MemberPointer<F C::*> {
     using Config = C;
     using Field = F;
 };
@@ -55,18 +60,17 @@ public:
     using Value = typename Handle::Value;
 
     // Int and Float: the inclusive range.
-    constexpr FieldKey(std::string_view name, double min, double max, std::string_view description)
-        requires(kType == KeyType::Int || kType == KeyType::Float)
+    constexpr FieldKey(std::string_view name, double min, double max,
+                       std::string_view description) requires(kType == KeyType::Int || kType == KeyType::Float)
         : Handle(name, {}, min, max, description) {
         this->defaultText_ = &defaultText;
     }
-    constexpr FieldKey(std::string_view name, std::span<const std::string_view> words, std::string_view description)
-        requires(kType == KeyType::Choice)
+    constexpr FieldKey(std::string_view name, std::span<const std::string_view> words,
+                       std::string_view description) requires(kType == KeyType::Choice)
         : Handle(name, {}, words, description), words_(words) {
         this->defaultText_ = &defaultText;
     }
-    constexpr FieldKey(std::string_view name, std::string_view description)
-        requires(kType == KeyType::Bool)
+    constexpr FieldKey(std::string_view name, std::string_view description) requires(kType == KeyType::Bool)
         : Handle(name, {}, description) {
         this->defaultText_ = &defaultText;
     }
@@ -84,10 +88,14 @@ public:
 private:
     static std::string defaultText(std::span<const std::string_view> words) {
         const FieldType value = Config{}.*Field;
-        if constexpr (kType == KeyType::Bool) return value ? "true" : "false";
-        else if constexpr (kType == KeyType::Choice) return std::string(words[size_t(value)]);
-        else if constexpr (kType == KeyType::Int) return std::to_string(value);
-        else return shortestText(value);
+        if constexpr (kType == KeyType::Bool)
+            return value ? "true" : "false";
+        else if constexpr (kType == KeyType::Choice)
+            return std::string(words[size_t(value)]);
+        else if constexpr (kType == KeyType::Int)
+            return std::to_string(value);
+        else
+            return shortestText(value);
     }
 
     std::span<const std::string_view> words_;

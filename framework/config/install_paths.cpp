@@ -35,9 +35,10 @@ std::filesystem::path findDataFolder() {
     if (const std::filesystem::path installed = installedDataFolderCandidate(); holdsDefaults(installed))
         return installed;
     if (holdsDefaults(BVHLAB_SOURCE_DIR)) return BVHLAB_SOURCE_DIR;
-    throw InputError(fmt::format("bvhlab's default env files are missing: no env/global.env in {} (where an installed "
-                                 "bvhlab keeps them) nor in {} (the source tree this bvhlab was built from)",
-                                 installedDataFolderCandidate().string(), BVHLAB_SOURCE_DIR));
+    throw InputError(
+        fmt::format("bvhlab's default env files are missing: no env/global.env in {} (where an installed "
+                    "bvhlab keeps them) nor in {} (the source tree this bvhlab was built from)",
+                    installedDataFolderCandidate().string(), BVHLAB_SOURCE_DIR));
 }
 
 }  // namespace

@@ -24,15 +24,14 @@ public:
     // is one of the Key constants, which outlive every binding.
     struct Binding {
         template <KeyType Type, typename Set>
-            requires std::invocable<Set, Settings&, typename Key<Type>::Value>
-        Binding(const Key<Type>& key, Set set)
+        requires std::invocable<Set, Settings&, typename Key<Type>::Value> Binding(const Key<Type>& key, Set set)
             : name(key.name()),
               declare([&key] { return key.declaration(); }),
               read([&key, set](const Env& env, Settings& settings) { set(settings, env.get(key)); }) {}
         // A FieldKey of the Config that `partOf(settings)` returns.
         template <auto Field, typename PartOf>
-            requires std::is_invocable_r_v<typename FieldKey<Field>::Config&, PartOf, Settings&>
-        Binding(const FieldKey<Field>& key, PartOf partOf)
+        requires std::is_invocable_r_v<typename FieldKey<Field>::Config&, PartOf, Settings&> Binding(
+            const FieldKey<Field>& key, PartOf partOf)
             : Binding(static_cast<const typename FieldKey<Field>::Handle&>(key),
                       [&key, partOf](Settings& settings, const typename FieldKey<Field>::Value& value) {
                           key.assign(partOf(settings), value);

@@ -11,14 +11,22 @@ namespace {
 
 const char* keyTypeName(KeyType type) {
     switch (type) {
-    case KeyType::Bool: return "Bool";
-    case KeyType::Int: return "Int";
-    case KeyType::Float: return "Float";
-    case KeyType::String: return "String";
-    case KeyType::Choice: return "Choice";
-    case KeyType::Path: return "Path";
-    case KeyType::Vec3: return "Vec3";
-    case KeyType::Vec3List: return "Vec3List";
+        case KeyType::Bool:
+            return "Bool";
+        case KeyType::Int:
+            return "Int";
+        case KeyType::Float:
+            return "Float";
+        case KeyType::String:
+            return "String";
+        case KeyType::Choice:
+            return "Choice";
+        case KeyType::Path:
+            return "Path";
+        case KeyType::Vec3:
+            return "Vec3";
+        case KeyType::Vec3List:
+            return "Vec3List";
     }
     return nullptr;
 }
@@ -26,12 +34,18 @@ const char* keyTypeName(KeyType type) {
 // The getter that reads a key of `type`.
 const char* getterOf(KeyType type) {
     switch (type) {
-    case KeyType::Bool: return "getBool";
-    case KeyType::Int: return "getInt";
-    case KeyType::Float: return "getFloat";
-    case KeyType::Vec3: return "getVec3";
-    case KeyType::Vec3List: return "getVec3List";
-    default: return "getText";
+        case KeyType::Bool:
+            return "getBool";
+        case KeyType::Int:
+            return "getInt";
+        case KeyType::Float:
+            return "getFloat";
+        case KeyType::Vec3:
+            return "getVec3";
+        case KeyType::Vec3List:
+            return "getVec3List";
+        default:
+            return "getText";
     }
 }
 
@@ -57,11 +71,13 @@ EnvKey declarationOf(const PluginKey& key) {
     return declared;
 }
 
-std::string EnvPluginSettings::checked(const char* key, std::initializer_list<KeyType> types, const char* getter) const {
+std::string EnvPluginSettings::checked(const char* key, std::initializer_list<KeyType> types,
+                                       const char* getter) const {
     const std::string name = key ? key : "";
     if (std::find(keys_.begin(), keys_.end(), name) == keys_.end())
         throw std::invalid_argument(fmt::format("{} read the key '{}', which it did not declare (its keys: {})", owner_,
-                                                name, keys_.empty() ? "none" : fmt::format("{}", fmt::join(keys_, ", "))));
+                                                name,
+                                                keys_.empty() ? "none" : fmt::format("{}", fmt::join(keys_, ", "))));
     const EnvKey* declared = env_.registry().find(name);
     if (!declared) throw std::logic_error(fmt::format("{}: key '{}' is not registered", owner_, name));
     if (std::find(types.begin(), types.end(), declared->type) == types.end())
@@ -85,9 +101,15 @@ float EnvPluginSettings::getFloat(const char* key) const {
 const char* EnvPluginSettings::getText(const char* key) const {
     const std::string name = checked(key, {KeyType::String, KeyType::Choice, KeyType::Path}, "getText");
     switch (env_.registry().find(name)->type) {
-    case KeyType::Choice: texts_.push_back(env_.get(ChoiceKey(name, "", {}, ""))); break;
-    case KeyType::Path: texts_.push_back(env_.get(PathKey(name, "", "")).string()); break;
-    default: texts_.push_back(env_.get(TextKey(name, "", ""))); break;
+        case KeyType::Choice:
+            texts_.push_back(env_.get(ChoiceKey(name, "", {}, "")));
+            break;
+        case KeyType::Path:
+            texts_.push_back(env_.get(PathKey(name, "", "")).string());
+            break;
+        default:
+            texts_.push_back(env_.get(TextKey(name, "", "")));
+            break;
     }
     return texts_.back().c_str();
 }
@@ -104,8 +126,9 @@ View<const Vec3> EnvPluginSettings::getVec3List(const char* key) const {
 }
 
 bool EnvPluginSettings::isExplicit(const char* key) const {
-    return env_.isExplicit(checked(key, {KeyType::Bool, KeyType::Int, KeyType::Float, KeyType::String,
-                                         KeyType::Choice, KeyType::Path, KeyType::Vec3, KeyType::Vec3List},
+    return env_.isExplicit(checked(key,
+                                   {KeyType::Bool, KeyType::Int, KeyType::Float, KeyType::String, KeyType::Choice,
+                                    KeyType::Path, KeyType::Vec3, KeyType::Vec3List},
                                    "isExplicit"));
 }
 

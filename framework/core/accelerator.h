@@ -24,7 +24,7 @@ struct SahCost {
 // A figure of a structure's own, beside the common ones: a grid's resolution and references
 // per voxel, a kd-tree's empty leaves.
 struct NamedFigure {
-    std::string name;     // one word, as the JSON key: "voxels"
+    std::string name;  // one word, as the JSON key: "voxels"
     double value = 0.0;
     std::string meaning;  // one line: "N_V, cells of the grid"
 };
@@ -37,7 +37,7 @@ struct BuildStats {
     // by the statistics: the caller times build(), so every structure is timed alike.
     double buildMs = 0.0;
     double buildCpuMs = 0.0;
-    size_t primitives = 0;  // primitives built over (degenerate ones excluded)
+    size_t primitives = 0;        // primitives built over (degenerate ones excluded)
     std::optional<size_t> nodes;  // all nodes, leaves included
     std::optional<size_t> leaves;
     std::optional<double> avgLeafPrimitives;

@@ -39,8 +39,8 @@ AvailableMemory availableMemory() {
         if (bytes < result.bytes) result = {bytes, limit};
     };
     if (size_t bytes = 0; readKilobytes("/proc/meminfo", "MemAvailable:", bytes)) consider(bytes, "MemAvailable");
-    if (size_t max = 0, current = 0; readNumber("/sys/fs/cgroup/memory.max", max) &&
-                                     readNumber("/sys/fs/cgroup/memory.current", current))
+    if (size_t max = 0, current = 0;
+        readNumber("/sys/fs/cgroup/memory.max", max) && readNumber("/sys/fs/cgroup/memory.current", current))
         consider(max > current ? max - current : 0, "cgroup memory.max");
     rlimit limit{};
     if (getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY) {

@@ -8,8 +8,8 @@
 namespace bvhlab {
 
 struct AvailableMemory {
-    size_t bytes = 0;    // the least of the limits below that apply
-    std::string limit;   // which: "MemAvailable", "cgroup memory.max", "ulimit -v"
+    size_t bytes = 0;   // the least of the limits below that apply
+    std::string limit;  // which: "MemAvailable", "cgroup memory.max", "ulimit -v"
 };
 
 // From /proc/meminfo (MemAvailable), the cgroup's memory.max less memory.current, and

@@ -18,23 +18,38 @@ public:
         const std::string key = name ? name : "";
         once(key);
         const auto count = [&] {
-            if (value < 0 || value != std::floor(value)) refuse(fmt::format("statistic '{}' = {} is not a count", key, value));
+            if (value < 0 || value != std::floor(value))
+                refuse(fmt::format("statistic '{}' = {} is not a count", key, value));
             return size_t(value);
         };
-        if (key == "primitives") stats.primitives = count();
-        else if (key == "nodes") stats.nodes = count();
-        else if (key == "leaves") stats.leaves = count();
-        else if (key == "avg_leaf_prims") stats.avgLeafPrimitives = value;
-        else if (key == "max_leaf_prims") stats.maxLeafPrimitives = count();
-        else if (key == "max_depth") stats.maxDepth = int(count());
-        else if (key == "depth_bound") stats.depthBound = int(count());
-        else if (key == "leaf_bound") stats.leafBound = count();
-        else if (key == "sah") sah().cost = value;
-        else if (key == "sah_c_trav") sah().cTraversal = value;
-        else if (key == "sah_c_isect") sah().cIntersect = value;
-        else if (key == "epo") stats.epo = value;
-        else if (key == "bytes") stats.bytes = count();
-        else refuse(fmt::format("unknown statistic '{}' (a figure of its own is reported with figure())", key));
+        if (key == "primitives")
+            stats.primitives = count();
+        else if (key == "nodes")
+            stats.nodes = count();
+        else if (key == "leaves")
+            stats.leaves = count();
+        else if (key == "avg_leaf_prims")
+            stats.avgLeafPrimitives = value;
+        else if (key == "max_leaf_prims")
+            stats.maxLeafPrimitives = count();
+        else if (key == "max_depth")
+            stats.maxDepth = int(count());
+        else if (key == "depth_bound")
+            stats.depthBound = int(count());
+        else if (key == "leaf_bound")
+            stats.leafBound = count();
+        else if (key == "sah")
+            sah().cost = value;
+        else if (key == "sah_c_trav")
+            sah().cTraversal = value;
+        else if (key == "sah_c_isect")
+            sah().cIntersect = value;
+        else if (key == "epo")
+            stats.epo = value;
+        else if (key == "bytes")
+            stats.bytes = count();
+        else
+            refuse(fmt::format("unknown statistic '{}' (a figure of its own is reported with figure())", key));
     }
     void figure(const char* name, double value, const char* meaning) override {
         const std::string key = name ? name : "";

@@ -89,15 +89,19 @@ public:
     void appendSignal(int signal) {
         const char* name = sigabbrev_np(signal);
         const char* meaning = sigdescr_np(signal);
-        if (name && meaning) append("SIG%s (%s)", name, meaning);
-        else append("signal %d", signal);
+        if (name && meaning)
+            append("SIG%s (%s)", name, meaning);
+        else
+            append("signal %d", signal);
     }
     void appendCall(const PluginCall& c) {
         append(" in plugin %s, accelerator '%s': %s", c.plugin, c.accelerator, c.call);
         if (c.ray) {
             const Ray& r = *c.ray;
-            if (c.count == 1) append(" of the ray");
-            else append(" of %zu rays, the first", c.count);
+            if (c.count == 1)
+                append(" of the ray");
+            else
+                append(" of %zu rays, the first", c.count);
             append(" org=(%.9g, %.9g, %.9g) dir=(%.9g, %.9g, %.9g) t in [%.9g, %.9g]", r.org.x, r.org.y, r.org.z,
                    r.dir.x, r.dir.y, r.dir.z, r.tmin, r.tmax);
         } else if (c.count > 0) {

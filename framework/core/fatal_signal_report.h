@@ -15,11 +15,11 @@ namespace bvhlab {
 // A plugin call in progress. Holds pointers only, so that recording it costs a few stores; the
 // strings and the ray outlive the call.
 struct PluginCall {
-    const char* plugin = "";       // the plugin's file
+    const char* plugin = "";  // the plugin's file
     const char* accelerator = "";
-    const char* call = "";         // "build()", "findNearest()", ...
-    const Ray* ray = nullptr;      // the query's ray, or a batch's first; null for a build
-    size_t count = 0;              // a batch's rays, a build's primitives
+    const char* call = "";     // "build()", "findNearest()", ...
+    const Ray* ray = nullptr;  // the query's ray, or a batch's first; null for a build
+    size_t count = 0;          // a batch's rays, a build's primitives
 };
 
 // Makes `call` the calling thread's running call for the scope's lifetime. A call without a ray

@@ -21,8 +21,10 @@ bool parseNumber(std::string_view token, T& value) {
         // from_chars leaves overflow and underflow unset; strtod's inf or 0 is what we want.
         if (ec == std::errc::result_out_of_range && ptr == end) {
             const std::string copy(token);
-            if constexpr (std::is_same_v<T, float>) value = std::strtof(copy.c_str(), nullptr);
-            else value = std::strtod(copy.c_str(), nullptr);
+            if constexpr (std::is_same_v<T, float>)
+                value = std::strtof(copy.c_str(), nullptr);
+            else
+                value = std::strtod(copy.c_str(), nullptr);
             return true;
         }
     }

@@ -33,9 +33,7 @@ Vec3 turbo(float x) {
 int legendTextScale(int width) { return width >= 320 ? 2 : 1; }
 
 // A bar label: whole steps from 100 on, else three significant digits (12.5, 0.75).
-std::string label(float steps) {
-    return steps >= 100.0f ? fmt::format("{:.0f}", steps) : fmt::format("{:.3g}", steps);
-}
+std::string label(float steps) { return steps >= 100.0f ? fmt::format("{:.0f}", steps) : fmt::format("{:.3g}", steps); }
 
 }  // namespace
 
@@ -81,16 +79,19 @@ HeatmapScale chooseHeatmapScale(float fixed, float fallback, const std::string& 
     return fixed > 0.0f ? HeatmapScale{fixed, "Output::heatmapScale"} : HeatmapScale{fallback, fallbackFrom};
 }
 
-nlohmann::json writeHeatmap(const std::filesystem::path& file, const std::string& recorded, const std::vector<float>& steps,
-                            int width, int height, bool hasCounters, std::string_view accel, const HeatmapScale& scale) {
+nlohmann::json writeHeatmap(const std::filesystem::path& file, const std::string& recorded,
+                            const std::vector<float>& steps, int width, int height, bool hasCounters,
+                            std::string_view accel, const HeatmapScale& scale) {
     if (!hasCounters)
         return {{"skipped", fmt::format("{} counts no traversal steps, so its heat map would be flat", accel)}};
     writeHeatmapPng(file, steps, width, height, scale.steps);
-    return {{"file", recorded}, {"scale", scale.steps}, {"scale_from", scale.from}, {"p99", heatmapPercentile99(steps)}};
+    return {
+        {"file", recorded}, {"scale", scale.steps}, {"scale_from", scale.from}, {"p99", heatmapPercentile99(steps)}};
 }
 
 std::string heatmapNote(const nlohmann::json& record) {
-    if (record.contains("skipped")) return fmt::format("heat map: none written: {}", record["skipped"].get<std::string>());
+    if (record.contains("skipped"))
+        return fmt::format("heat map: none written: {}", record["skipped"].get<std::string>());
     const float scale = record["scale"].get<float>(), p99 = record["p99"].get<float>();
     return fmt::format("heat map: traversal steps per pixel, full scale {} ({}{}): {}", label(scale),
                        record["scale_from"].get<std::string>(),

@@ -35,8 +35,9 @@ HeatmapScale chooseHeatmapScale(float fixed, float fallback, const std::string& 
 // counts no traversal steps (Accelerator::hasCounters() false: a flat image would say nothing).
 // Returns the JSON record: {"file": `recorded`, "scale", "scale_from", "p99": the image's own
 // 99th percentile}, or {"skipped": why}.
-nlohmann::json writeHeatmap(const std::filesystem::path& file, const std::string& recorded, const std::vector<float>& steps,
-                            int width, int height, bool hasCounters, std::string_view accel, const HeatmapScale& scale);
+nlohmann::json writeHeatmap(const std::filesystem::path& file, const std::string& recorded,
+                            const std::vector<float>& steps, int width, int height, bool hasCounters,
+                            std::string_view accel, const HeatmapScale& scale);
 // The line for stderr about a record.
 std::string heatmapNote(const nlohmann::json& record);
 

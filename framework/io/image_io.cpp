@@ -64,8 +64,9 @@ void writeExr(const std::filesystem::path& file, const Framebuffer& fb) {
     addFloat("cost.traversal", reinterpret_cast<const char*>(fb.traversalSteps.data()), pixelStride);
     addFloat("cost.intersection", reinterpret_cast<const char*>(fb.intersectionTests.data()), pixelStride);
     header.channels().insert("primitive", Imf::Channel(Imf::UINT));
-    slices.insert("primitive", Imf::Slice(Imf::UINT, reinterpret_cast<char*>(const_cast<uint32_t*>(fb.primitive.data())),
-                                          sizeof(uint32_t), sizeof(uint32_t) * fb.width));
+    slices.insert("primitive",
+                  Imf::Slice(Imf::UINT, reinterpret_cast<char*>(const_cast<uint32_t*>(fb.primitive.data())),
+                             sizeof(uint32_t), sizeof(uint32_t) * fb.width));
     try {
         Imf::OutputFile out(file.string().c_str(), header);
         out.setFrameBuffer(slices);

@@ -4,8 +4,8 @@
 
 #include "framework/render/framebuffer.h"
 
-#include <filesystem>
 #include <cstdint>
+#include <filesystem>
 #include <string>
 #include <vector>
 

@@ -11,7 +11,8 @@ namespace bvhlab {
 void fillRect(Rgb8Image& image, int x0, int y0, int x1, int y1, Rgb color) {
     x0 = std::max(x0, 0), y0 = std::max(y0, 0), x1 = std::min(x1, image.width), y1 = std::min(y1, image.height);
     for (int y = y0; y < y1; ++y)
-        for (int x = x0; x < x1; ++x) std::copy(color.begin(), color.end(), &image.pixels[(size_t(y) * image.width + x) * 3]);
+        for (int x = x0; x < x1; ++x)
+            std::copy(color.begin(), color.end(), &image.pixels[(size_t(y) * image.width + x) * 3]);
 }
 
 std::string printableText(std::string text) {

@@ -32,8 +32,8 @@ std::vector<Record> readRecords(const std::filesystem::path& file, const char (&
     if (!in.read(reinterpret_cast<char*>(&count), sizeof(count))) throw inputError(file, 0, "truncated header");
     const uint64_t available = std::filesystem::file_size(file) - 16;
     if (count > available / sizeof(Record))
-        throw inputError(file, 0, fmt::format("header says {} records but the file holds {}", count,
-                                              available / sizeof(Record)));
+        throw inputError(
+            file, 0, fmt::format("header says {} records but the file holds {}", count, available / sizeof(Record)));
     std::vector<Record> records(count);
     in.read(reinterpret_cast<char*>(records.data()), std::streamsize(count * sizeof(Record)));
     return records;

@@ -19,9 +19,10 @@ size_t checkedPixels(int w, int h) {
     const size_t needed = Framebuffer::bytesFor(w, h) + pixels * kImageOutputBytesPerPixel;
     const AvailableMemory available = availableMemory();
     if (needed > available.bytes)
-        throw InputError(fmt::format("a {} x {} image needs about {} (framebuffer and image outputs), but only {} is "
-                                     "available ({}): lower Camera::width and Camera::height",
-                                     w, h, formatBytes(needed), formatBytes(available.bytes), available.limit));
+        throw InputError(
+            fmt::format("a {} x {} image needs about {} (framebuffer and image outputs), but only {} is "
+                        "available ({}): lower Camera::width and Camera::height",
+                        w, h, formatBytes(needed), formatBytes(available.bytes), available.limit));
     return pixels;
 }
 
@@ -33,8 +34,13 @@ size_t Framebuffer::bytesFor(int w, int h) {
 }
 
 Framebuffer::Framebuffer(int w, int h)
-    : width(w), height(h), color(checkedPixels(w, h), Vec3(0.0f)), depth(size_t(w) * h, kInfinity),
-      primitive(size_t(w) * h, kInvalidPrimitive), normal(size_t(w) * h, Vec3(0.0f)),
-      traversalSteps(size_t(w) * h, 0.0f), intersectionTests(size_t(w) * h, 0.0f) {}
+    : width(w),
+      height(h),
+      color(checkedPixels(w, h), Vec3(0.0f)),
+      depth(size_t(w) * h, kInfinity),
+      primitive(size_t(w) * h, kInvalidPrimitive),
+      normal(size_t(w) * h, Vec3(0.0f)),
+      traversalSteps(size_t(w) * h, 0.0f),
+      intersectionTests(size_t(w) * h, 0.0f) {}
 
 }  // namespace bvhlab

@@ -11,10 +11,10 @@ namespace bvhlab {
 struct Framebuffer {
     int width = 0, height = 0;
     std::vector<Vec3> color;
-    std::vector<float> depth;           // distance to the first hit of the first sample; +inf on a miss
-    std::vector<uint32_t> primitive;    // primitive of that hit; kInvalidPrimitive on a miss
-    std::vector<Vec3> normal;           // its shading normal; 0 on a miss
-    std::vector<float> traversalSteps;  // N_TR of every query of the pixel, all samples
+    std::vector<float> depth;              // distance to the first hit of the first sample; +inf on a miss
+    std::vector<uint32_t> primitive;       // primitive of that hit; kInvalidPrimitive on a miss
+    std::vector<Vec3> normal;              // its shading normal; 0 on a miss
+    std::vector<float> traversalSteps;     // N_TR of every query of the pixel, all samples
     std::vector<float> intersectionTests;  // N_IT likewise
 
     // Throws InputError, with the size it needs, when it would not fit in the memory available

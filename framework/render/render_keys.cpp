@@ -7,8 +7,8 @@ namespace bvhlab {
 static_assert(kMaxImageSide == 16384, "Camera::width and Camera::height are declared with this range");
 
 void registerRenderKeys(EnvRegistry& r) {
-    for (const IntKey& key : {keys::SetRayTracing::cntSamples, keys::SetRayTracing::depthLimit,
-                              keys::Camera::width, keys::Camera::height})
+    for (const IntKey& key :
+         {keys::SetRayTracing::cntSamples, keys::SetRayTracing::depthLimit, keys::Camera::width, keys::Camera::height})
         r.add(key);
     r.add(keys::SetRayTracing::shadows);
     for (const FloatKey& key : {keys::Render::ambient, keys::Lights::intensity, keys::Camera::fovy}) r.add(key);

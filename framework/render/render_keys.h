@@ -15,7 +15,8 @@ inline constexpr BoolKey shadows{"SetRayTracing::shadows", "true", "cast a shado
 }  // namespace keys::SetRayTracing
 
 namespace keys::Render {
-inline constexpr FloatKey ambient{"Render::ambient", "0.05", 0, 1, "ambient term so that shadowed surfaces stay visible"};
+inline constexpr FloatKey ambient{"Render::ambient", "0.05", 0, 1,
+                                  "ambient term so that shadowed surfaces stay visible"};
 }
 
 namespace keys::Scene {

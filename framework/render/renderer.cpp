@@ -1,9 +1,9 @@
 #include "framework/render/renderer.h"
 
 #include "framework/config/common_keys.h"
-#include "framework/scene/surface_point.h"
 #include "framework/render/pixel_sampler.h"
 #include "framework/render/render_keys.h"
+#include "framework/scene/surface_point.h"
 
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/info.h>
@@ -54,9 +54,14 @@ struct ThreadState {
 
 class TileRenderer {
 public:
-    TileRenderer(const Scene& scene, const Accelerator& accel, const Camera& camera,
-                 const RenderSettings& settings, const std::vector<ShadingLight>& lights, Framebuffer& fb)
-        : scene_(scene), accel_(accel), camera_(camera), settings_(settings), lights_(lights), fb_(fb),
+    TileRenderer(const Scene& scene, const Accelerator& accel, const Camera& camera, const RenderSettings& settings,
+                 const std::vector<ShadingLight>& lights, Framebuffer& fb)
+        : scene_(scene),
+          accel_(accel),
+          camera_(camera),
+          settings_(settings),
+          lights_(lights),
+          fb_(fb),
           counts_(settings.count && accel.hasCounters()) {}
 
     void renderTile(int x0, int y0, ThreadState& ts) const {
@@ -171,14 +176,15 @@ private:
                 continue;
             }
             // The ray ends just short of the light: t = 1 is the light itself.
-            ts.shadowsByLight[l].push_back({Ray{origin, light.position - origin, 0.0f, 1.0f - 1e-5f}, radiance, path.pixel});
+            ts.shadowsByLight[l].push_back(
+                {Ray{origin, light.position - origin, 0.0f, 1.0f - 1e-5f}, radiance, path.pixel});
         }
 
         if (material.mirror > 0.0f) {
             if (depth + 1 < settings_.depthLimit) {
                 const Vec3 reflected = glm::reflect(path.ray.dir, ns);
-                ts.nextPaths.push_back({Ray{origin, reflected, 0.0f, kInfinity},
-                                        path.throughput * material.mirror, path.pixel});
+                ts.nextPaths.push_back(
+                    {Ray{origin, reflected, 0.0f, kInfinity}, path.throughput * material.mirror, path.pixel});
             } else {
                 ++ts.stats.bouncesSkipped;
             }
@@ -221,8 +227,10 @@ RenderSettings RenderSettings::fromEnv(const Env& env, const Scene& scene, const
     s.shadows = env.get(keys::SetRayTracing::shadows);
     s.threads = env.get(keys::SetRayTracing::threads);
     s.ambient = env.get(keys::Render::ambient);
-    if (const auto bg = env.get(keys::Scene::background)) s.background = *bg;
-    else if (scene.background) s.background = *scene.background;
+    if (const auto bg = env.get(keys::Scene::background))
+        s.background = *bg;
+    else if (scene.background)
+        s.background = *scene.background;
 
     const std::vector<Vec3> positions = env.get(keys::Lights::positions);
     if (!positions.empty()) {
@@ -243,8 +251,8 @@ size_t tileCount(int width, int height) {
     return size_t((width + kTileSize - 1) / kTileSize) * size_t((height + kTileSize - 1) / kTileSize);
 }
 
-RenderStats render(const Scene& scene, const Accelerator& accel, const Camera& camera,
-                   const RenderSettings& settings, Framebuffer& fb, const TileDone& onTile) {
+RenderStats render(const Scene& scene, const Accelerator& accel, const Camera& camera, const RenderSettings& settings,
+                   Framebuffer& fb, const TileDone& onTile) {
     std::vector<ShadingLight> lights;
     const Vec3 center = scene.bounds.isEmpty() ? Vec3(0.0f) : scene.bounds.center();
     for (const PointLight& light : settings.lights) {

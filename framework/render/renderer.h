@@ -40,7 +40,7 @@ struct RenderStats {
     QueryStats primary;  // closest-hit queries: camera rays and mirror bounces
     QueryStats shadow;   // any-hit queries toward the lights
     // Work skipped because the scene did not need it (see "no work a scene does not need").
-    uint64_t shadowRaysSkippedDisabled = 0;   // shadows off, or no light
+    uint64_t shadowRaysSkippedDisabled = 0;    // shadows off, or no light
     uint64_t shadowRaysSkippedBackfacing = 0;  // light behind the surface (N·L <= 0)
     uint64_t bouncesSkipped = 0;               // hit surfaces that reflect when depthLimit ended the path
     // Wall time of the whole render, build excluded, less the counting calls: their thread time
@@ -56,7 +56,7 @@ using TileDone = std::function<void(uint64_t rays)>;
 // The number of tiles a render of `width` x `height` pixels calls TileDone for.
 size_t tileCount(int width, int height);
 
-RenderStats render(const Scene& scene, const Accelerator& accel, const Camera& camera,
-                   const RenderSettings& settings, Framebuffer& framebuffer, const TileDone& onTile = {});
+RenderStats render(const Scene& scene, const Accelerator& accel, const Camera& camera, const RenderSettings& settings,
+                   Framebuffer& framebuffer, const TileDone& onTile = {});
 
 }  // namespace bvhlab

@@ -100,7 +100,8 @@ private:
             }
             ++counts.shadowRays;
             // t = 1 is the light itself.
-            if (accel_.isOccluded({shadowOrigin, light.position - shadowOrigin, 0.0f, 1.0f - 1e-5f}, ts.result.shadow)) {
+            if (accel_.isOccluded({shadowOrigin, light.position - shadowOrigin, 0.0f, 1.0f - 1e-5f},
+                                  ts.result.shadow)) {
                 ++counts.usedIntShadRays;
                 continue;
             }
@@ -110,7 +111,8 @@ private:
             const float highlight = material.mirror > 0.0f
                                         ? std::pow(std::max(0.0f, glm::dot(glm::reflect(-l, n), view)), material.shine)
                                         : 0.0f;
-            color += lightIntensity_ * (material.diffuse * diffuse + Vec3(material.mirror * highlight)) * light.intensity;
+            color +=
+                lightIntensity_ * (material.diffuse * diffuse + Vec3(material.mirror * highlight)) * light.intensity;
         }
         return color;
     }

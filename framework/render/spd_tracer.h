@@ -25,17 +25,17 @@ struct SpdRules {
 
 // Havran's invariants, and what the rules let a scene skip.
 struct SpdCounts {
-    uint64_t primaryRays = 0;     // PrimaryRay
-    uint64_t usedIntPrimRays = 0; // UsedIntPrimRay: primary rays that hit
-    uint64_t shadowRays = 0;      // ShadowRay
-    uint64_t usedIntShadRays = 0; // UsedIntShadRay: shadow rays that hit (the light is occluded)
-    uint64_t secondaryRays = 0;   // SecondaryRay: reflection and refraction rays
-    uint64_t usedIntSecRays = 0;  // UsedIntSecRay: secondary rays that hit
+    uint64_t primaryRays = 0;      // PrimaryRay
+    uint64_t usedIntPrimRays = 0;  // UsedIntPrimRay: primary rays that hit
+    uint64_t shadowRays = 0;       // ShadowRay
+    uint64_t usedIntShadRays = 0;  // UsedIntShadRay: shadow rays that hit (the light is occluded)
+    uint64_t secondaryRays = 0;    // SecondaryRay: reflection and refraction rays
+    uint64_t usedIntSecRays = 0;   // UsedIntSecRay: secondary rays that hit
 
     uint64_t reflectionRays = 0, refractionRays = 0;  // the secondary rays by kind
-    uint64_t totalInternalReflections = 0;  // refractions that became reflections only
-    uint64_t shadowRaysSkippedBackfacing = 0;  // the normal faces away from the light
-    uint64_t raysCutByDepth = 0;  // reflection or refraction rays not spawned at maxDepth
+    uint64_t totalInternalReflections = 0;            // refractions that became reflections only
+    uint64_t shadowRaysSkippedBackfacing = 0;         // the normal faces away from the light
+    uint64_t raysCutByDepth = 0;                      // reflection or refraction rays not spawned at maxDepth
 
     uint64_t allRays() const { return primaryRays + shadowRays + secondaryRays; }
     uint64_t intersRequired() const { return usedIntPrimRays + usedIntShadRays + usedIntSecRays; }

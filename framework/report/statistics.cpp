@@ -29,8 +29,8 @@ nlohmann::json queryJson(const QueryStats& q, bool hasCounters) {
 std::string formatStatsTable(const StatsRow& row) {
     const BuildStats& b = row.build;
     // The counters with a column (kQueryCounters) stand between T_R and N_Q.
-    std::string out = fmt::format("{:<14} {:<9} {:>9} {:>9} {:>9} {:>10} {:>8} {:>9} {:>9}", "scene", "accel",
-                                  "#Prims", "#Leaves", "#Nodes", "SAH", "EPO", "T_B ms", "T_R us");
+    std::string out = fmt::format("{:<14} {:<9} {:>9} {:>9} {:>9} {:>10} {:>8} {:>9} {:>9}", "scene", "accel", "#Prims",
+                                  "#Leaves", "#Nodes", "SAH", "EPO", "T_B ms", "T_R us");
     for (const QueryCounter& c : kQueryCounters)
         if (c.column) out += fmt::format(" {:>8}", c.column);
     out += fmt::format(" {:>10} {:>10}\n", "N_Q", "render ms");
@@ -44,9 +44,11 @@ std::string formatStatsTable(const StatsRow& row) {
                            first ? orNa(b.epo, "{:.3f}") : "", first ? fmt::format("{:.1f}", b.buildMs) : "", tr);
         for (const QueryCounter& c : kQueryCounters)
             if (c.column)
-                out += fmt::format(" {:>8}", counted ? fmt::format("{:.2f}", perQuery(q.counters.*c.count, q.counters.queries))
-                                                     : "n/a");
-        out += fmt::format(" {:>10} {:>10}\n", q.counters.queries, first ? fmt::format("{:.1f}", row.render.renderMs) : "");
+                out += fmt::format(
+                    " {:>8}",
+                    counted ? fmt::format("{:.2f}", perQuery(q.counters.*c.count, q.counters.queries)) : "n/a");
+        out += fmt::format(" {:>10} {:>10}\n", q.counters.queries,
+                           first ? fmt::format("{:.1f}", row.render.renderMs) : "");
     };
     // The first line is the closest-hit queries (camera rays and mirror bounces), the second
     // the shadow rays alone (any-hit queries toward the lights), as the report's rows.
@@ -57,13 +59,16 @@ std::string formatStatsTable(const StatsRow& row) {
         row.render.shadowRaysSkippedDisabled > 0
             ? fmt::format("shadows off: no shadow rays cast ({} toward lights, {} with the light behind the surface)",
                           row.render.shadowRaysSkippedDisabled, row.render.shadowRaysSkippedBackfacing)
-            : fmt::format("shadow rays not cast: {} (the light behind the surface)", row.render.shadowRaysSkippedBackfacing);
-    out += fmt::format("degenerate, skipped: {} triangles, {} spheres, {} cones/cylinders, {} polygons; {}; bounces "
-                       "cut by depthLimit: {}; threads: {}",
-                       row.load.degenerateTriangles, row.load.degenerateSpheres, row.load.degenerateCones,
-                       row.load.skippedPolygons, shadowsNotCast, row.render.bouncesSkipped, row.render.threads);
+            : fmt::format("shadow rays not cast: {} (the light behind the surface)",
+                          row.render.shadowRaysSkippedBackfacing);
+    out += fmt::format(
+        "degenerate, skipped: {} triangles, {} spheres, {} cones/cylinders, {} polygons; {}; bounces "
+        "cut by depthLimit: {}; threads: {}",
+        row.load.degenerateTriangles, row.load.degenerateSpheres, row.load.degenerateCones, row.load.skippedPolygons,
+        shadowsNotCast, row.render.bouncesSkipped, row.render.threads);
     if (b.sah) out += fmt::format("; SAH and EPO with C_trav={} C_isect={}", b.sah->cTraversal, b.sah->cIntersect);
-    for (const NamedFigure& f : b.figures) out += fmt::format("\n{} {}: {} ({})", row.accel, f.name, f.value, f.meaning);
+    for (const NamedFigure& f : b.figures)
+        out += fmt::format("\n{} {}: {} ({})", row.accel, f.name, f.value, f.meaning);
     return out;
 }
 
@@ -83,9 +88,10 @@ nlohmann::json statsJson(const StatsRow& row) {
         {"threads", row.render.threads},
         {"primary", queryJson(row.render.primary, row.hasCounters)},
         {"shadow", queryJson(row.render.shadow, row.hasCounters)},
-        {"skipped", {{"shadow_disabled", row.render.shadowRaysSkippedDisabled},
-                     {"shadow_backfacing", row.render.shadowRaysSkippedBackfacing},
-                     {"bounces", row.render.bouncesSkipped}}},
+        {"skipped",
+         {{"shadow_disabled", row.render.shadowRaysSkippedDisabled},
+          {"shadow_backfacing", row.render.shadowRaysSkippedBackfacing},
+          {"bounces", row.render.bouncesSkipped}}},
     };
     j.update(buildStatsJson(b));
     return j;

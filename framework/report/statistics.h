@@ -15,9 +15,9 @@ namespace bvhlab {
 struct StatsRow {
     std::string scene;
     std::string accel;
-    size_t prims = 0;            // primitives in the scene (every kind), degenerate ones included
-    LoadReport load;             // what loading skipped: degenerate triangles, spheres, cones
-    bool hasCounters = true;     // false: N_IT and N_TR unavailable
+    size_t prims = 0;         // primitives in the scene (every kind), degenerate ones included
+    LoadReport load;          // what loading skipped: degenerate triangles, spheres, cones
+    bool hasCounters = true;  // false: N_IT and N_TR unavailable
     BuildStats build;
     RenderStats render;
 };

@@ -8,12 +8,18 @@ namespace bvhlab {
 
 std::string_view describe(PolygonProblem problem) {
     switch (problem) {
-        case PolygonProblem::None: return "triangulated";
-        case PolygonProblem::ZeroArea: return "of zero area (fewer than three distinct corners, or all on one line)";
-        case PolygonProblem::NotPlanar: return "not planar";
-        case PolygonProblem::SelfIntersecting: return "self-intersecting (edges cross, touch or double back)";
-        case PolygonProblem::NotFinite: return "with a NaN or infinite coordinate";
-        case PolygonProblem::TooComplex: return "non-convex with too many corners to triangulate in bounded time";
+        case PolygonProblem::None:
+            return "triangulated";
+        case PolygonProblem::ZeroArea:
+            return "of zero area (fewer than three distinct corners, or all on one line)";
+        case PolygonProblem::NotPlanar:
+            return "not planar";
+        case PolygonProblem::SelfIntersecting:
+            return "self-intersecting (edges cross, touch or double back)";
+        case PolygonProblem::NotFinite:
+            return "with a NaN or infinite coordinate";
+        case PolygonProblem::TooComplex:
+            return "non-convex with too many corners to triangulate in bounded time";
     }
     return "?";
 }
@@ -125,8 +131,8 @@ bool PolygonTriangulator::project(std::span<const Vec3> positions, PolygonProble
     }
 
     const int axis = std::abs(normal.x) >= std::abs(normal.y) && std::abs(normal.x) >= std::abs(normal.z) ? 0
-                     : std::abs(normal.y) >= std::abs(normal.z)                                        ? 1
-                                                                                                       : 2;
+                     : std::abs(normal.y) >= std::abs(normal.z)                                           ? 1
+                                                                                                          : 2;
     const int u = (axis + 1) % 3, v = (axis + 2) % 3;
     // The Newell component along `axis` is twice the signed area in (u, v).
     const double mirror = normal[axis] > 0 ? 1.0 : -1.0;

@@ -55,10 +55,10 @@ private:
     double orient(uint32_t a, uint32_t b, uint32_t c) const;  // > 0: a, b, c turn left
 
     // Scratch kept between calls, so that a reader does not allocate per polygon.
-    std::vector<uint32_t> corners_;  // distinct consecutive corners, as indices into positions
-    std::vector<glm::dvec2> points_;  // corners_ projected, counter-clockwise
+    std::vector<uint32_t> corners_;      // distinct consecutive corners, as indices into positions
+    std::vector<glm::dvec2> points_;     // corners_ projected, counter-clockwise
     std::vector<uint32_t> prev_, next_;  // the ring of corners not yet clipped
-    std::vector<uint8_t> ear_;  // isEar as last computed: a hint, checked again before a clip
+    std::vector<uint8_t> ear_;           // isEar as last computed: a hint, checked again before a clip
     uint64_t earTests_ = 0;
     std::vector<glm::uvec3> triangles_;
     bool earClipped_ = false;

@@ -28,8 +28,7 @@ void addLooseTriangle(Scene& scene, const Vec3& a, const Vec3& b, const Vec3& c)
 void addQuad(Scene& scene, const Vec3& corner, const Vec3& edge1, const Vec3& edge2, uint32_t material) {
     padMaterialIds(scene);
     const uint32_t base = uint32_t(scene.positions.size());
-    scene.positions.insert(scene.positions.end(),
-                           {corner, corner + edge1, corner + edge1 + edge2, corner + edge2});
+    scene.positions.insert(scene.positions.end(), {corner, corner + edge1, corner + edge1 + edge2, corner + edge2});
     addTriangle(scene, base, base + 1, base + 2, material);
     addTriangle(scene, base, base + 2, base + 3, material);
 }
@@ -49,11 +48,12 @@ void addBox(Scene& scene, const Vec3& lower, const Vec3& upper, uint32_t materia
 void addIcosphere(Scene& scene, const Vec3& center, float radius, int subdivisions, uint32_t material) {
     padMaterialIds(scene);
     const float t = (1.0f + std::sqrt(5.0f)) * 0.5f;
-    std::vector<Vec3> vertices = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                                  {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
-    std::vector<glm::uvec3> faces = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
-                                     {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8},
-                                     {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
+    std::vector<Vec3> vertices = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
+                                  {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
+    std::vector<glm::uvec3> faces = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
+                                     {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+                                     {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
+                                     {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
     for (Vec3& v : vertices) v = glm::normalize(v);
     for (int level = 0; level < subdivisions; ++level) {
         // Shared midpoints keep the mesh closed: each edge is split once.
@@ -86,7 +86,8 @@ void addTorus(Scene& scene, const Vec3& center, float majorRadius, float minorRa
         for (int j = 0; j < minorSegments; ++j) {
             const float theta = tau * float(j) / float(minorSegments);
             const float r = majorRadius + minorRadius * std::cos(theta);
-            scene.positions.push_back(center + Vec3(r * std::cos(phi), minorRadius * std::sin(theta), r * std::sin(phi)));
+            scene.positions.push_back(center +
+                                      Vec3(r * std::cos(phi), minorRadius * std::sin(theta), r * std::sin(phi)));
         }
     }
     auto index = [&](int i, int j) {
@@ -103,11 +104,11 @@ Scene makeDefaultScene() {
     Scene scene;
     scene.name = "default";
     scene.materials = {
-        {Vec3(0.75f), 0.0f},                  // 0: floor
-        {Vec3(0.8f, 0.25f, 0.2f), 0.0f},      // 1: red
-        {Vec3(0.25f, 0.45f, 0.8f), 0.0f},     // 2: blue
-        {Vec3(0.9f, 0.8f, 0.3f), 0.0f},       // 3: yellow
-        {Vec3(0.1f), 0.85f},                  // 4: mirror
+        {Vec3(0.75f), 0.0f},               // 0: floor
+        {Vec3(0.8f, 0.25f, 0.2f), 0.0f},   // 1: red
+        {Vec3(0.25f, 0.45f, 0.8f), 0.0f},  // 2: blue
+        {Vec3(0.9f, 0.8f, 0.3f), 0.0f},    // 3: yellow
+        {Vec3(0.1f), 0.85f},               // 4: mirror
     };
     addQuad(scene, Vec3(-4, 0, -4), Vec3(0, 0, 8), Vec3(8, 0, 0), 0);
     addBox(scene, Vec3(-2.2f, 0, -1.0f), Vec3(-1.0f, 2.4f, 0.2f), 1);

@@ -79,7 +79,7 @@ struct Scene {
     // Derived by finalize().
     std::vector<Triangle> triangles;
     std::vector<uint32_t> validPrimitives;  // of every kind, ascending (PrimitiveSet::valid)
-    Bounds3 bounds;  // of the valid primitives
+    Bounds3 bounds;                         // of the valid primitives
 
     // Builds the derived arrays and counts degenerate primitives; readers call it last.
     void finalize();

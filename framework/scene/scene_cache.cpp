@@ -155,7 +155,8 @@ std::optional<Scene> readSceneCache(const std::filesystem::path& cacheFile, cons
     if (!r.bytes(&h, sizeof(h))) return fail("truncated");
     if (std::memcmp(h.magic, kMagic, sizeof(kMagic)) != 0) return fail("not a scene cache file");
     if (h.endian != kEndianMarker) return fail("written on a machine of other byte order");
-    if (h.version != kSceneCacheVersion) return fail(fmt::format("format version {}, not {}", h.version, kSceneCacheVersion));
+    if (h.version != kSceneCacheVersion)
+        return fail(fmt::format("format version {}, not {}", h.version, kSceneCacheVersion));
     if (h.sourceSize != key.size || h.sourceCrc32 != key.crc32 || h.sourceAdler32 != key.adler32)
         return fail("written for other source bytes");
 
@@ -198,14 +199,15 @@ std::optional<Scene> readSceneCache(const std::filesystem::path& cacheFile, cons
     scene.source = source;
     scene.materials.clear();
     for (const PackedMaterial& m : materials)
-        scene.materials.push_back({Vec3(m.diffuse[0], m.diffuse[1], m.diffuse[2]), m.mirror, m.shine, m.transmission, m.ior});
+        scene.materials.push_back(
+            {Vec3(m.diffuse[0], m.diffuse[1], m.diffuse[2]), m.mirror, m.shine, m.transmission, m.ior});
     for (const PackedLight& l : lights)
-        scene.lights.push_back({Vec3(l.position[0], l.position[1], l.position[2]),
-                                Vec3(l.intensity[0], l.intensity[1], l.intensity[2])});
+        scene.lights.push_back(
+            {Vec3(l.position[0], l.position[1], l.position[2]), Vec3(l.intensity[0], l.intensity[1], l.intensity[2])});
     if (h.hasCamera) {
         const float* c = h.camera;
         scene.camera = CameraSpec{Vec3(c[0], c[1], c[2]), Vec3(c[3], c[4], c[5]), Vec3(c[6], c[7], c[8]), c[9],
-                                  h.cameraWidth, h.cameraHeight};
+                                  h.cameraWidth,          h.cameraHeight};
     }
     if (h.hasBackground) scene.background = Vec3(h.background[0], h.background[1], h.background[2]);
     scene.report.skippedPolygons = h.skippedPolygons;
@@ -239,7 +241,8 @@ void writeSceneCache(const std::filesystem::path& cacheFile, const SceneCacheKey
     h.hasCamera = scene.camera.has_value();
     if (scene.camera) {
         const CameraSpec& c = *scene.camera;
-        const float values[10] = {c.from.x, c.from.y, c.from.z, c.at.x, c.at.y, c.at.z, c.up.x, c.up.y, c.up.z, c.fovyDegrees};
+        const float values[10] = {c.from.x, c.from.y, c.from.z, c.at.x, c.at.y,
+                                  c.at.z,   c.up.x,   c.up.y,   c.up.z, c.fovyDegrees};
         std::memcpy(h.camera, values, sizeof(values));
         h.cameraWidth = c.width;
         h.cameraHeight = c.height;
@@ -256,8 +259,7 @@ void writeSceneCache(const std::filesystem::path& cacheFile, const SceneCacheKey
 
     // A unique temporary name (shards on several machines may share the folder), renamed into place.
     std::random_device random;
-    const std::filesystem::path temporary =
-        cacheFile.string() + fmt::format(".tmp-{:08x}{:08x}", random(), random());
+    const std::filesystem::path temporary = cacheFile.string() + fmt::format(".tmp-{:08x}{:08x}", random(), random());
     try {
         Writer w(temporary);
         w.bytes(&h, sizeof(h));
@@ -298,7 +300,8 @@ CachedScene loadSceneCached(const std::filesystem::path& source, const std::file
             result.fromCache = true;
             return result;
         }
-        result.note = fmt::format("ignored cache entry {} ({}); parsing and rewriting it", result.cacheFile.string(), why);
+        result.note =
+            fmt::format("ignored cache entry {} ({}); parsing and rewriting it", result.cacheFile.string(), why);
     }
     result.scene = loadScene(source);
     try {

@@ -36,8 +36,9 @@ void requireText(const std::filesystem::path& file, std::string_view bytes, std:
         return (c < 0x20 && !std::isspace(c) && c != 0x1a) || c == 0x7f;
     });
     if (binary != start.end()) {
-        throw inputError(file, 0, fmt::format("binary data, not a text {} file (byte 0x{:02x} at offset {})", extension,
-                                              (unsigned char)*binary, binary - start.begin()));
+        throw inputError(file, 0,
+                         fmt::format("binary data, not a text {} file (byte 0x{:02x} at offset {})", extension,
+                                     (unsigned char)*binary, binary - start.begin()));
     }
 }
 
@@ -102,9 +103,11 @@ void requireSomethingToRender(const Scene& scene) {
     const LoadReport& r = scene.report;
     std::string why;
     if (scene.triangleCount() > 0) {
-        why = fmt::format("{} degenerate (zero area, NaN or infinite vertices, or a normal that cannot be "
-                          "normalised)", scene.triangleCount() == 1 ? "its one triangle is"
-                                         : fmt::format("all {} triangles are", scene.triangleCount()));
+        why = fmt::format(
+            "{} degenerate (zero area, NaN or infinite vertices, or a normal that cannot be "
+            "normalised)",
+            scene.triangleCount() == 1 ? "its one triangle is"
+                                       : fmt::format("all {} triangles are", scene.triangleCount()));
     } else if (r.skippedPolygons > 0) {
         const auto named = std::find_if(r.warnings.begin(), r.warnings.end(),
                                         [](const std::string& w) { return w.find("polygon of") != std::string::npos; });
@@ -116,9 +119,10 @@ void requireSomethingToRender(const Scene& scene) {
         why = fmt::format("no primitives ({} vertices but no faces)", scene.positions.size());
     }
     if (r.degenerateSpheres || r.degenerateCones) {
-        why = fmt::format("{} spheres and {} cones/cylinders are degenerate (a zero, NaN or infinite radius or "
-                          "axis), and {}",
-                          r.degenerateSpheres, r.degenerateCones, scene.triangleCount() > 0 ? why : "no polygons");
+        why = fmt::format(
+            "{} spheres and {} cones/cylinders are degenerate (a zero, NaN or infinite radius or "
+            "axis), and {}",
+            r.degenerateSpheres, r.degenerateCones, scene.triangleCount() > 0 ? why : "no polygons");
     }
     throw inputError(scene.source, 0, "nothing to render: " + why);
 }

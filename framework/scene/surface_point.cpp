@@ -19,8 +19,8 @@ SurfacePoint triangleSurface(const Scene& scene, const Ray& ray, const Hit& hit)
     s.shadingNormal = s.geometricNormal;
     if (!scene.normals.empty()) {
         const glm::uvec3 idx = scene.indices[hit.primitive];
-        const Vec3 interpolated = (1.0f - hit.u - hit.v) * scene.normals[idx.x] + hit.u * scene.normals[idx.y] +
-                                  hit.v * scene.normals[idx.z];
+        const Vec3 interpolated =
+            (1.0f - hit.u - hit.v) * scene.normals[idx.x] + hit.u * scene.normals[idx.y] + hit.v * scene.normals[idx.z];
         if (glm::dot(interpolated, interpolated) > 0.0f)
             s.shadingNormal = glm::faceforward(glm::normalize(interpolated), -s.geometricNormal, s.geometricNormal);
     }

@@ -51,8 +51,8 @@ struct SceneCase {
     std::map<RayKind, Reference> reference;
 };
 
-SceneCase& sceneCase(const std::string& key, const std::function<Scene()>& make,
-                     const std::vector<RayKind>& kinds, const std::function<size_t(const Scene&, RayKind)>& count) {
+SceneCase& sceneCase(const std::string& key, const std::function<Scene()>& make, const std::vector<RayKind>& kinds,
+                     const std::function<size_t(const Scene&, RayKind)>& count) {
     static std::map<std::string, std::unique_ptr<SceneCase>> cache;
     auto& slot = cache[key];
     if (!slot) {
@@ -91,16 +91,18 @@ protected:
         RecordProperty(key + ".oracle_confirmed_errors", int(r.accelWrong));
         RecordProperty(key + ".contract_violations", int(r.failures() - r.accelWrong));
         if (r.failures() > 0)
-            std::printf("[ REPORT   ] %s on %s: %zu oracle-confirmed errors, %zu contract violations in %zu rays\n  %s\n",
-                        GetParam().c_str(), label.c_str(), r.accelWrong, r.failures() - r.accelWrong, r.rays,
-                        r.summary().c_str());
+            std::printf(
+                "[ REPORT   ] %s on %s: %zu oracle-confirmed errors, %zu contract violations in %zu rays\n  %s\n",
+                GetParam().c_str(), label.c_str(), r.accelWrong, r.failures() - r.accelWrong, r.rays,
+                r.summary().c_str());
         EXPECT_LE(double(r.failures()), kExternalBound * double(r.rays))
             << GetParam() << " on " << label << " exceeds the bound for known deviations: " << r.summary();
     }
 
     // Builds the accelerator over the case's scene and runs every ray kind.
     void runScene(const std::string& name, const std::function<Scene()>& makeScene,
-                  const std::vector<RayKind>& kinds = std::vector<RayKind>(std::begin(kAllRayKinds), std::end(kAllRayKinds)),
+                  const std::vector<RayKind>& kinds = std::vector<RayKind>(std::begin(kAllRayKinds),
+                                                                           std::end(kAllRayKinds)),
                   const std::function<size_t(const Scene&, RayKind)>& count = raysPerKind) {
         SceneCase& c = sceneCase(name, makeScene, kinds, count);
         const auto accel = make();
@@ -194,12 +196,13 @@ TEST_P(AccelCorrectness, ClosedMeshesAreWatertight) {
             RecordProperty(key + ".vertex_leaks", int(c.vertexLeaks));
             RecordProperty(key + ".not_occluded", int(c.occlusionLeaks));
             if (c.leaks > 0)
-                std::printf("[ REPORT   ] %s (%s) leaks through %s: edges %zu of %zu (%.2f %%, bound %.0f %%), "
-                            "vertices %zu of %zu (%.2f %%, bound %.0f %%)%s\n",
-                            GetParam().c_str(), variant.label.c_str(), mesh.name.c_str(), c.edgeLeaks, c.edgeRays,
-                            100.0 * double(c.edgeLeaks) / double(c.edgeRays), 100.0 * variant.edgeBound,
-                            c.vertexLeaks, c.vertexRays, 100.0 * double(c.vertexLeaks) / double(c.vertexRays),
-                            100.0 * variant.vertexBound, detail.c_str());
+                std::printf(
+                    "[ REPORT   ] %s (%s) leaks through %s: edges %zu of %zu (%.2f %%, bound %.0f %%), "
+                    "vertices %zu of %zu (%.2f %%, bound %.0f %%)%s\n",
+                    GetParam().c_str(), variant.label.c_str(), mesh.name.c_str(), c.edgeLeaks, c.edgeRays,
+                    100.0 * double(c.edgeLeaks) / double(c.edgeRays), 100.0 * variant.edgeBound, c.vertexLeaks,
+                    c.vertexRays, 100.0 * double(c.vertexLeaks) / double(c.vertexRays), 100.0 * variant.vertexBound,
+                    detail.c_str());
             EXPECT_LE(double(c.edgeLeaks), variant.edgeBound * double(c.edgeRays)) << variant.label << detail;
             EXPECT_LE(double(c.vertexLeaks), variant.vertexBound * double(c.vertexRays)) << variant.label << detail;
             EXPECT_LE(double(c.occlusionLeaks), std::max(variant.edgeBound, variant.vertexBound) * double(c.rays))
@@ -232,15 +235,17 @@ TEST_P(AccelCorrectness, NonConvexPolygons) { runScene("nonconvex_polygons", non
 
 std::filesystem::path sharedScenes() { return std::filesystem::path(test::sourceTree()) / ".." / "shared" / "scenes"; }
 
-const std::vector<RayKind> kFileRayKinds = {RayKind::Outside,  RayKind::Inside,  RayKind::EdgeAimed, RayKind::VertexAimed,
-                                            RayKind::AxisParallel, RayKind::Grazing, RayKind::Interval};
+const std::vector<RayKind> kFileRayKinds = {RayKind::Outside,     RayKind::Inside,       RayKind::EdgeAimed,
+                                            RayKind::VertexAimed, RayKind::AxisParallel, RayKind::Grazing,
+                                            RayKind::Interval};
 
-#define FILE_TEST(TestName, relative, raysPerKind)                                                        \
-    TEST_P(AccelCorrectness, TestName) {                                                                  \
-        const std::filesystem::path file = sharedScenes() / relative;                                     \
-        if (!std::filesystem::exists(file)) GTEST_SKIP() << file << " not found";                         \
-        runScene(std::string("file:") + relative, [file] { return loadScene(file); }, kFileRayKinds,     \
-                 [](const Scene&, RayKind) { return size_t(raysPerKind); });                              \
+#define FILE_TEST(TestName, relative, raysPerKind)                                              \
+    TEST_P(AccelCorrectness, TestName) {                                                        \
+        const std::filesystem::path file = sharedScenes() / relative;                           \
+        if (!std::filesystem::exists(file)) GTEST_SKIP() << file << " not found";               \
+        runScene(                                                                               \
+            std::string("file:") + relative, [file] { return loadScene(file); }, kFileRayKinds, \
+            [](const Scene&, RayKind) { return size_t(raysPerKind); });                         \
     }
 
 FILE_TEST(SceneFileTeapotNff, "nff/teapot.nff", 1000)

@@ -16,7 +16,6 @@
 
 #include <gtest/gtest.h>
 
-
 namespace bvhlab {
 namespace {
 
@@ -86,7 +85,6 @@ TEST_P(BatchQueries, RenderAsThroughTheSingleRayCalls) {
         ASSERT_EQ(viaBatch.intersectionTests[p], viaSingle.intersectionTests[p]) << GetParam() << " pixel " << p;
     }
 }
-
 
 INSTANTIATE_TEST_SUITE_P(Registered, BatchQueries, testing::ValuesIn(test::registeredAccelerators()),
                          [](const auto& info) { return info.param; });

@@ -18,11 +18,12 @@ using bvhlab::test::runShell;
 
 TEST(CheckCommand, PassingChecksPrintALineEachAndExitZero) {
     const auto json = bvhlab::test::scratchDir("check") / "check.json";
-    const Result r = run("check --accel sahbvh --checks batch,mixed-primitives,builds-at-the-edge --quiet --json " +
-                         json.string());
+    const Result r =
+        run("check --accel sahbvh --checks batch,mixed-primitives,builds-at-the-edge --quiet --json " + json.string());
     ASSERT_EQ(r.exitCode, 0) << r.output;
     for (const char* check : {"batch", "mixed-primitives", "builds-at-the-edge"}) {
-        const std::regex line(std::string("(^|\\n)PASS ") + check + " +[0-9]+ scenes +[0-9]+ [a-z]+ +0 failures +[0-9.]+ s");
+        const std::regex line(std::string("(^|\\n)PASS ") + check +
+                              " +[0-9]+ scenes +[0-9]+ [a-z]+ +0 failures +[0-9.]+ s");
         EXPECT_TRUE(std::regex_search(r.output, line)) << check << " in\n" << r.output;
     }
     EXPECT_EQ(r.output.find("agreement"), std::string::npos) << "only the checks asked for:\n" << r.output;
@@ -90,15 +91,18 @@ TEST(CheckCommand, ACrashFailsItsCheckNamingThePluginTheCallAndTheRayAndTheOther
     r = runShell("ulimit -s 8192; " + bvhlab::test::bvhlabProgram() + " check --plugin " + plugin +
                  " --accel crashing_build --checks batch --quiet");
     EXPECT_EQ(r.exitCode, 1) << r.output;
-    EXPECT_TRUE(std::regex_search(r.output, std::regex("batch: SIGSEGV \\(Segmentation fault\\) in plugin .*crashing.so, "
-                                                       "accelerator 'crashing_build': build\\(\\) over [0-9]+ primitives")))
+    EXPECT_TRUE(
+        std::regex_search(r.output, std::regex("batch: SIGSEGV \\(Segmentation fault\\) in plugin .*crashing.so, "
+                                               "accelerator 'crashing_build': build\\(\\) over [0-9]+ primitives")))
         << r.output;
 }
 
 TEST(CheckCommand, AnExceptionFailsItsCheckNamingThePluginAndTheOtherChecksRun) {
-    const Result r = run("check --plugin " + kPlugins + "/throwing.so --accel throwing_query --checks batch,watertight --quiet");
+    const Result r =
+        run("check --plugin " + kPlugins + "/throwing.so --accel throwing_query --checks batch,watertight --quiet");
     EXPECT_EQ(r.exitCode, 1) << r.output;
-    EXPECT_NE(r.output.find("    batch: plugin " + kPlugins + "/throwing.so, accelerator 'throwing_query': findNearest() threw: "
+    EXPECT_NE(r.output.find("    batch: plugin " + kPlugins +
+                            "/throwing.so, accelerator 'throwing_query': findNearest() threw: "
                             "no queries today"),
               std::string::npos)
         << r.output;
@@ -110,8 +114,11 @@ TEST(CheckCommand, ACorrectStructureThatWorksFarHarderThanSahbvhPassesWithACostW
     Result r = run("check --plugin " + kPlugins + "/builders.so --accel interleaved --checks batch,cost --quiet");
     EXPECT_EQ(r.exitCode, 0) << r.output;
     EXPECT_TRUE(std::regex_search(r.output, std::regex("(^|\\n)PASS batch "))) << r.output;
-    EXPECT_TRUE(std::regex_search(r.output, std::regex("(^|\\n)WARN cost .*0 failures .*sahbvh's.*past 10x: right answers at an absurd cost"))) << r.output;
-    EXPECT_NE(r.output.find("check interleaved: all checks passed, with a warning (cost)"), std::string::npos) << r.output;
+    EXPECT_TRUE(std::regex_search(
+        r.output, std::regex("(^|\\n)WARN cost .*0 failures .*sahbvh's.*past 10x: right answers at an absurd cost")))
+        << r.output;
+    EXPECT_NE(r.output.find("check interleaved: all checks passed, with a warning (cost)"), std::string::npos)
+        << r.output;
 
     r = run("check --accel sahbvh8 --checks cost --quiet");
     EXPECT_EQ(r.exitCode, 0) << r.output;

@@ -19,9 +19,7 @@ namespace {
 using test::Result;
 using test::run;
 
-std::filesystem::path cliScratchDir() {
-    return test::scratchDir("cli");
-}
+std::filesystem::path cliScratchDir() { return test::scratchDir("cli"); }
 
 // A file of `bytes` in the scratch folder: a scene, env or ray file a run reads.
 std::filesystem::path scratchFile(const std::string& name, const std::string& bytes) {
@@ -32,21 +30,24 @@ std::filesystem::path scratchFile(const std::string& name, const std::string& by
 
 // `bvhlab render ARGS`, its images (should it get that far) in a throwaway path: the runs that
 // must fail.
-Result renderToScratch(const std::string& args) { return run("render " + args + " --out " + (cliScratchDir() / "x").string()); }
+Result renderToScratch(const std::string& args) {
+    return run("render " + args + " --out " + (cliScratchDir() / "x").string());
+}
 
 }  // namespace
 
 TEST(Cli, RenderWritesImagesAndStatistics) {
     const auto out = cliScratchDir() / "default";
-    const Result r = run("render -DASDS::type=naive -DSetRayTracing::depthLimit=1 -DCamera::width=80 -DCamera::height=60 --out " + out.string());
+    const Result r =
+        run("render -DASDS::type=naive -DSetRayTracing::depthLimit=1 -DCamera::width=80 -DCamera::height=60 --out " +
+            out.string());
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("N_IT"), std::string::npos) << r.output;
-    for (const char* ext : {".exr", ".png", ".json"})
-        EXPECT_TRUE(std::filesystem::exists(out.string() + ext)) << ext;
+    for (const char* ext : {".exr", ".png", ".json"}) EXPECT_TRUE(std::filesystem::exists(out.string() + ext)) << ext;
     std::ifstream in(out.string() + ".json");
     const nlohmann::json j = nlohmann::json::parse(in);
-    for (const char* key : {"scene", "accel", "prims", "nodes", "leaves", "sah", "build_ms", "render_ms", "threads",
-                            "env", "provenance"})
+    for (const char* key :
+         {"scene", "accel", "prims", "nodes", "leaves", "sah", "build_ms", "render_ms", "threads", "env", "provenance"})
         EXPECT_TRUE(j.contains(key)) << key;
     EXPECT_EQ(j["accel"], "naive");
     EXPECT_EQ(j["primary"]["queries"], 80 * 60);
@@ -85,7 +86,9 @@ TEST(Cli, SceneWithNothingToRenderIsAnErrorNamingTheFile) {
     const std::pair<const char*, std::string> files[] = {
         {"empty.obj", ""},
         {"flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n"},
-        {"binary.obj", std::string("\x7f" "ELF\x02\x01\x01\0\0\0", 10)},
+        {"binary.obj", std::string("\x7f"
+                                   "ELF\x02\x01\x01\0\0\0",
+                                   10)},
         {"notes.obj", "Not a scene, just notes.\n"},
         {"munich.obj", "ply\nformat binary_little_endian 1.0\nelement vertex 0\nend_header\n"},
         {"spheres.nff", "s 0 0 0 0\n"},  // a degenerate sphere only
@@ -100,8 +103,9 @@ TEST(Cli, SceneWithNothingToRenderIsAnErrorNamingTheFile) {
 
 TEST(Cli, SpheresAndConesAreRenderedAndTheirDegenerateOnesCounted) {
     // balls.nff in small: a ground quad, three spheres (one of radius 0) and a cone.
-    const auto scene = scratchFile("balls.nff", "p 4\n-1 -1 0\n1 -1 0\n1 1 0\n-1 1 0\n"
-                                                "s 0 0 1 0.5\ns 0 0 2 0\ns 0 0 3 0.5\nc 0 0 0 0.2 0 0 1 0.1\n");
+    const auto scene = scratchFile("balls.nff",
+                                   "p 4\n-1 -1 0\n1 -1 0\n1 1 0\n-1 1 0\n"
+                                   "s 0 0 1 0.5\ns 0 0 2 0\ns 0 0 3 0.5\nc 0 0 0 0.2 0 0 1 0.1\n");
     const auto out = cliScratchDir() / "balls";
     const Result r = run("render -DASDS::type=naive -DCamera::width=16 -DCamera::height=16 --scene " + scene.string() +
                          " --out " + out.string());
@@ -127,8 +131,8 @@ TEST(Cli, RaycastAnswersRayFileWithNaive) {
                                    {Vec3(0, 0, 5), Vec3(0, 0, -2), 0.0f, 1.0f}};
     const auto raysFile = cliScratchDir() / "rays.bin", hitsFile = cliScratchDir() / "hits.bin";
     writeRayFile(raysFile, rays);
-    Result r = run("raycast -DASDS::type=naive --scene " + scene.string() + " --rays " + raysFile.string() +
-                   " --out " + hitsFile.string());
+    Result r = run("raycast -DASDS::type=naive --scene " + scene.string() + " --rays " + raysFile.string() + " --out " +
+                   hitsFile.string());
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("naive closest-hit queries: 3  T_R "), std::string::npos) << r.output;
     std::vector<Hit> hits = readHitFile(hitsFile);
@@ -138,8 +142,8 @@ TEST(Cli, RaycastAnswersRayFileWithNaive) {
     EXPECT_EQ(hits[1].primitive, kInvalidPrimitive);
     EXPECT_EQ(hits[2].primitive, kInvalidPrimitive);  // tmax = 1 ends 3 units short (dir has length 2)
 
-    r = run("raycast --any -DASDS::type=naive --scene " + scene.string() + " --rays " + raysFile.string() +
-            " --out " + hitsFile.string());
+    r = run("raycast --any -DASDS::type=naive --scene " + scene.string() + " --rays " + raysFile.string() + " --out " +
+            hitsFile.string());
     ASSERT_EQ(r.exitCode, 0) << r.output;
     hits = readHitFile(hitsFile);
     EXPECT_EQ(hits[0].t, 0.0f);
@@ -180,8 +184,9 @@ TEST(Cli, RaysWritesTheBenchRaySetsForRaycast) {
 TEST(Cli, BenchMeasuresInRoundsWithPairedRatios) {
     const auto env = scratchFile("tiny.env", "Camera::width 24\nCamera::height 16\n");
     const auto out = cliScratchDir() / "bench.json";
-    const Result r = run("bench --scenes " + env.string() +
-                         " --accel sahbvh,sahbvh:BVH::robust=false --threads 1 --builds 2 --passes 3 --out " + out.string());
+    const Result r =
+        run("bench --scenes " + env.string() +
+            " --accel sahbvh,sahbvh:BVH::robust=false --threads 1 --builds 2 --passes 3 --out " + out.string());
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("geometric means"), std::string::npos) << r.output;
     std::ifstream in(out);
@@ -236,8 +241,10 @@ TEST(Cli, BenchMeasuresInRoundsWithPairedRatios) {
 TEST(Cli, BenchIsaPairsTimeTheAvx2PairBesideTheHeadline) {
     const auto env = scratchFile("tiny.env", "Camera::width 8\nCamera::height 8\n");
     const auto out = cliScratchDir() / "bench-isa.json";
-    const Result r = run("bench --scenes " + env.string() + " --accel sahbvh8 --isa-pairs avx2 --queries single "
-                         "--threads 1 --builds 1 --passes 1 --out " + out.string());
+    const Result r = run("bench --scenes " + env.string() +
+                         " --accel sahbvh8 --isa-pairs avx2 --queries single "
+                         "--threads 1 --builds 1 --passes 1 --out " +
+                         out.string());
     ASSERT_EQ(r.exitCode, 0) << r.output;
     std::ifstream in(out);
     const nlohmann::json j = nlohmann::json::parse(in);
@@ -245,7 +252,8 @@ TEST(Cli, BenchIsaPairsTimeTheAvx2PairBesideTheHeadline) {
     for (const nlohmann::json& row : j["rows"]) labels.push_back(row["accel"]);
     if (!cpuLevels().v4) {
         EXPECT_NE(r.output.find("avx2 is this CPU's best ISA, so the headline pair is the avx2 pair (timed once)"),
-                  std::string::npos) << r.output;
+                  std::string::npos)
+            << r.output;
         EXPECT_EQ(labels, (std::vector<std::string>{"sahbvh8", "embree", "embree-robust", "nothing", "nothing-guarded",
                                                     "embree-bare"}));
         return;
@@ -274,7 +282,8 @@ TEST(Cli, BenchIsaPairsTimeTheAvx2PairBesideTheHeadline) {
     EXPECT_NE(r.output.find("  1 sahbvh8@avx2 "), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("rows LABEL@avx2: BVH::isa=avx2 or Embree::isa=avx2"), std::string::npos) << r.output;
 
-    const Result bad = run("bench --scenes " + env.string() + " --accel sahbvh8 --isa-pairs sse2 --out " + out.string());
+    const Result bad =
+        run("bench --scenes " + env.string() + " --accel sahbvh8 --isa-pairs sse2 --out " + out.string());
     EXPECT_NE(bad.exitCode, 0);
     EXPECT_NE(bad.output.find("--isa-pairs sse2: 'sse2' is not avx2 or avx512"), std::string::npos) << bad.output;
 }
@@ -312,7 +321,8 @@ TEST(Cli, BenchQueriesChoosesTheKinds) {
         EXPECT_EQ(labels, (std::vector<std::string>{"sahbvh", "embree", "embree-robust", "nothing", "nothing-guarded",
                                                     kind == "single" ? "embree-bare" : "embree-batch"}));
     }
-    const Result bad = run("bench --scenes " + env.string() + " --accel sahbvh --queries single,packets --out " + out.string());
+    const Result bad =
+        run("bench --scenes " + env.string() + " --accel sahbvh --queries single,packets --out " + out.string());
     EXPECT_NE(bad.exitCode, 0);
     EXPECT_NE(bad.output.find("packets"), std::string::npos) << bad.output;
 }

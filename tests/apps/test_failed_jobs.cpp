@@ -46,10 +46,10 @@ struct JobWorkspace {
     // `bvhlab COMMAND ARGS` in the workspace, with the test plugins at hand; `then` follows in the shell.
     Result run(const std::string& command, const std::string& args, const std::string& then = "") const {
         const std::string plugins = testPlugins();
-        return runShell(fmt::format("cd {} && TMPDIR={}/tmp XDG_CACHE_HOME={}/cache {} {} {} --plugin {}/crashing.so "
-                                    "--plugin {}/throwing.so --plugin {}/hanging.so {}",
-                                    dir.string(), dir.string(), dir.string(), bvhlabProgram(), command, args, plugins,
-                                    plugins, plugins, then));
+        return runShell(fmt::format(
+            "cd {} && TMPDIR={}/tmp XDG_CACHE_HOME={}/cache {} {} {} --plugin {}/crashing.so "
+            "--plugin {}/throwing.so --plugin {}/hanging.so {}",
+            dir.string(), dir.string(), dir.string(), bvhlabProgram(), command, args, plugins, plugins, plugins, then));
     }
     std::string read(const std::string& file) const {
         std::ifstream in(dir / file);
@@ -60,16 +60,19 @@ struct JobWorkspace {
 
 TEST(FailedJobs, BatchGivesAFailedRowPerCrashExceptionAndTimeOutAndTheOtherJobsRows) {
     const JobWorkspace w("batch");
-    const Result r = w.run("batch", fmt::format("--scenes mesh.obj --accel crashing,throwing,hanging,sahbvh --job-timeout {} "
-                           "-DCamera::width=16 -DCamera::height=12 --out out", 3 * kSlowdown));
+    const Result r =
+        w.run("batch", fmt::format("--scenes mesh.obj --accel crashing,throwing,hanging,sahbvh --job-timeout {} "
+                                   "-DCamera::width=16 -DCamera::height=12 --out out",
+                                   3 * kSlowdown));
     EXPECT_EQ(r.exitCode, 3) << r.output;
     EXPECT_NE(r.output.find("batch: 3 failed jobs in the tables"), std::string::npos) << r.output;
     // mesh.obj has no scene env: said once, by the batch, not again by each job's process.
     EXPECT_EQ(occurrences(r.output, "mesh.obj: no scene env file in"), 1u) << r.output;
 
     const std::string md = w.read("out/results.md");
-    EXPECT_TRUE(std::regex_search(md, std::regex(R"(\| mesh \| crashing \| failed: crashed: SIGSEGV \(Segmentation )"
-                                                 R"(fault\) in plugin .*crashing.so, accelerator 'crashing': findNearestBatch\(\) of 192 rays)")))
+    EXPECT_TRUE(std::regex_search(
+        md, std::regex(R"(\| mesh \| crashing \| failed: crashed: SIGSEGV \(Segmentation )"
+                       R"(fault\) in plugin .*crashing.so, accelerator 'crashing': findNearestBatch\(\) of 192 rays)")))
         << md;
     EXPECT_NE(md.find("| mesh | throwing | failed: plugin "), std::string::npos) << md;
     EXPECT_NE(md.find("accelerator 'throwing': build() threw: no build today |"), std::string::npos) << md;
@@ -104,17 +107,21 @@ TEST(FailedJobs, CheckFailsACheckThatRunsOutOfTimeAndLeavesNoFile) {
     const JobWorkspace w("check");
     const Result r = w.run("check", "--accel hanging --checks batch,watertight --job-timeout 1 --quiet");
     EXPECT_EQ(r.exitCode, 1) << r.output;
-    EXPECT_TRUE(std::regex_search(r.output, std::regex("(^|\\n)FAIL batch .*1 failures .*\\(timed out after 1 s\\)"))) << r.output;
-    EXPECT_TRUE(std::regex_search(r.output, std::regex("(^|\\n)FAIL watertight .*\\(timed out after 1 s\\)"))) << r.output;
+    EXPECT_TRUE(std::regex_search(r.output, std::regex("(^|\\n)FAIL batch .*1 failures .*\\(timed out after 1 s\\)")))
+        << r.output;
+    EXPECT_TRUE(std::regex_search(r.output, std::regex("(^|\\n)FAIL watertight .*\\(timed out after 1 s\\)")))
+        << r.output;
     EXPECT_TRUE(w.tmpIsEmpty()) << "a check's result file is left behind";
 }
 
 TEST(FailedJobs, BenchWritesItsJsonWithAFailedRow) {
     const JobWorkspace w("bench");
-    const Result r = w.run("bench", "--scenes mesh.obj --accel crashing --builds 1 --passes 1 --threads 1 --queries single "
-                                    "--out bench.json");
+    const Result r = w.run("bench",
+                           "--scenes mesh.obj --accel crashing --builds 1 --passes 1 --threads 1 --queries single "
+                           "--out bench.json");
     EXPECT_EQ(r.exitCode, 3) << r.output;
-    EXPECT_NE(r.output.find("mesh             failed: crashed: SIGSEGV (Segmentation fault) in plugin "), std::string::npos)
+    EXPECT_NE(r.output.find("mesh             failed: crashed: SIGSEGV (Segmentation fault) in plugin "),
+              std::string::npos)
         << r.output;
     const nlohmann::json j = nlohmann::json::parse(w.read("bench.json"));
     EXPECT_EQ(j["failed_jobs"], 1);
@@ -125,14 +132,17 @@ TEST(FailedJobs, BenchWritesItsJsonWithAFailedRow) {
 
 TEST(FailedJobs, StressEndsAHangingBuildAfterItsTimeAndGivesFailedRows) {
     const JobWorkspace w("stress");
-    const Result r = w.run("stress", fmt::format("--accel crashing,hanging,sahbvh --parts acne,builders --acne-pixels 8 "
-                                     "--builder-prims 1000 --builder-max-seconds {} --job-timeout {} --threads 1 "
-                                                 "--out stress.json", 2 * kSlowdown, 3 * kSlowdown));
+    const Result r =
+        w.run("stress", fmt::format("--accel crashing,hanging,sahbvh --parts acne,builders --acne-pixels 8 "
+                                    "--builder-prims 1000 --builder-max-seconds {} --job-timeout {} --threads 1 "
+                                    "--out stress.json",
+                                    2 * kSlowdown, 3 * kSlowdown));
     EXPECT_EQ(r.exitCode, 3) << r.output;
     EXPECT_NE(r.output.find("hanging: failed: " + timedOut(3) + "\n"), std::string::npos) << r.output;
     EXPECT_TRUE(std::regex_search(r.output, std::regex("crashing: failed: crashed: SIGSEGV .*accelerator 'crashing'")))
         << r.output;
-    EXPECT_TRUE(std::regex_search(r.output, std::regex(fmt::format("hanging +failed: the build did not end within {} s", 2 * kSlowdown))))
+    EXPECT_TRUE(std::regex_search(
+        r.output, std::regex(fmt::format("hanging +failed: the build did not end within {} s", 2 * kSlowdown))))
         << r.output;
     const nlohmann::json j = nlohmann::json::parse(w.read("stress.json"));
     EXPECT_EQ(j["failed_jobs"], 3);  // crashing in both parts, hanging's acne
@@ -152,14 +162,17 @@ TEST(FailedJobs, SpdGivesAFailedRowAndTheOtherStructuresRows) {
     std::ofstream(w.dir / "balls.nff") << "v\nfrom 0 -6 3\nat 0 0 0\nup 0 0 1\nangle 40\nhither 1\nresolution 8 8\n"
                                           "l 4 -3 6\nf 1 0.75 0.33 0.8 0 100000 0 1\n"
                                           "p 3\n4 4 -0.5\n-4 4 -0.5\n0 -4 -0.5\ns 0 0 0.5 1\n";
-    std::ofstream(w.dir / "havran_stats_grids.txt") << "Invariants\n balls gears lattice mount\nPrimaryRay[-] 64 64 64 64\n";
+    std::ofstream(w.dir / "havran_stats_grids.txt")
+        << "Invariants\n balls gears lattice mount\nPrimaryRay[-] 64 64 64 64\n";
     std::ofstream(w.dir / "havran_stats_octrees.txt") << "BALLS\n N_IT 19.0\n N_TS 11.0\n";
     const Result r = w.run("spd", "balls.nff --accel crashing,sahbvh -DSpd::reference=. --out spd --quiet");
     EXPECT_EQ(r.exitCode, 3) << r.output;
     const std::string md = w.read("spd/spd.md");
-    EXPECT_NE(md.find("| crashing | failed: crashed: SIGSEGV (Segmentation fault) in plugin "), std::string::npos) << md;
+    EXPECT_NE(md.find("| crashing | failed: crashed: SIGSEGV (Segmentation fault) in plugin "), std::string::npos)
+        << md;
     EXPECT_TRUE(std::regex_search(md, std::regex(R"(\| sahbvh \| [0-9.]+ \| [0-9.]+ \|)"))) << md;
-    EXPECT_NE(md.find("| PrimaryRay | 81 | 64 |"), std::string::npos) << "the invariants of the structure that ran:\n" << md;
+    EXPECT_NE(md.find("| PrimaryRay | 81 | 64 |"), std::string::npos) << "the invariants of the structure that ran:\n"
+                                                                      << md;
     const nlohmann::json j = nlohmann::json::parse(w.read("spd/spd.json"));
     EXPECT_EQ(j["failed_jobs"], 1);
     EXPECT_TRUE(j["scenes"][0]["accels"][0].contains("failed"));
@@ -190,9 +203,10 @@ void expectPlotsOf(const JobWorkspace& w, const std::string& folder) {
 
 TEST(FailedJobs, TradeoffGivesFailedRowsAndMeasuresThemAgainOnTheNextRun) {
     const JobWorkspace w("tradeoff");
-    const std::string args = "--quick --scenes mesh.obj --accel crashing,hanging,sahbvh --bins 4 --size 8 --ray-size 8 "
-                             "--max-spp 2 --reference-spp 2 --builds 1 --passes 1 --out out --job-timeout " +
-                             std::to_string(2 * kSlowdown);
+    const std::string args =
+        "--quick --scenes mesh.obj --accel crashing,hanging,sahbvh --bins 4 --size 8 --ray-size 8 "
+        "--max-spp 2 --reference-spp 2 --builds 1 --passes 1 --out out --job-timeout " +
+        std::to_string(2 * kSlowdown);
     const Result r = w.run("tradeoff", args);
     EXPECT_EQ(r.exitCode, 3) << r.output;
     EXPECT_NE(r.output.find("tradeoff: 2 of 4 configurations measured failed"), std::string::npos) << r.output;
@@ -202,7 +216,9 @@ TEST(FailedJobs, TradeoffGivesFailedRowsAndMeasuresThemAgainOnTheNextRun) {
     EXPECT_TRUE(std::regex_search(md, std::regex(R"(\| mesh \| crashing \| failed: crashed: SIGSEGV \(Segmentation )"
                                                  R"(fault\) in plugin .*crashing.so, accelerator 'crashing': )")))
         << md;
-    EXPECT_NE(md.find("| mesh | hanging | failed: " + timedOut(2) + " | n/a | n/a | n/a | n/a | n/a | n/a |\n"), std::string::npos) << md;
+    EXPECT_NE(md.find("| mesh | hanging | failed: " + timedOut(2) + " | n/a | n/a | n/a | n/a | n/a | n/a |\n"),
+              std::string::npos)
+        << md;
     EXPECT_NE(md.find("| mesh | sahbvh-K4 | "), std::string::npos) << md;
     EXPECT_NE(md.find("| embree | 1 | "), std::string::npos) << "the summary counts the scenes measured:\n" << md;
     EXPECT_EQ(md.find("\n| hanging | "), std::string::npos) << "a failed configuration has no summary row:\n" << md;
@@ -222,7 +238,8 @@ TEST(FailedJobs, TradeoffGivesFailedRowsAndMeasuresThemAgainOnTheNextRun) {
     // The next run keeps what was measured and measures the failed ones again.
     const Result again = w.run("tradeoff", args);
     EXPECT_EQ(again.exitCode, 3) << again.output;
-    EXPECT_NE(again.output.find("2 configurations measured, 2 kept from an earlier run"), std::string::npos) << again.output;
+    EXPECT_NE(again.output.find("2 configurations measured, 2 kept from an earlier run"), std::string::npos)
+        << again.output;
     EXPECT_NE(again.output.find("  mesh hanging: failed: " + timedOut(2) + "\n"), std::string::npos) << again.output;
 }
 
@@ -231,12 +248,15 @@ TEST(FailedJobs, TradeoffBuildersGivesFailedRowsBesideTheParetoFrontAndCorrelati
     // Forty overlapping triangles: trees whose EPO is not 0, which the rank correlations need.
     std::ofstream soup(w.dir / "soup.obj");
     for (int t = 0; t < 40; ++t)
-        soup << fmt::format("v {} {} {}\nv {} {} {}\nv {} {} {}\n", t % 7 * 0.6, t % 5 * 0.7, t % 3 * 0.9, t % 7 * 0.6 + 1.1,
-                            t % 5 * 0.7 + 0.3, t % 3 * 0.9 - 0.4, t % 7 * 0.6 - 0.2, t % 5 * 0.7 + 1.2, t % 3 * 0.9 + 0.5);
+        soup << fmt::format("v {} {} {}\nv {} {} {}\nv {} {} {}\n", t % 7 * 0.6, t % 5 * 0.7, t % 3 * 0.9,
+                            t % 7 * 0.6 + 1.1, t % 5 * 0.7 + 0.3, t % 3 * 0.9 - 0.4, t % 7 * 0.6 - 0.2,
+                            t % 5 * 0.7 + 1.2, t % 3 * 0.9 + 0.5);
     for (int t = 0; t < 40; ++t) soup << fmt::format("f {} {} {}\n", 3 * t + 1, 3 * t + 2, 3 * t + 3);
     soup.close();
-    const Result r = w.run("tradeoff", fmt::format("--builders --quick --scenes soup.obj --accel crashing,hanging,sahbvh,sweepbvh "
-                                                   "--ray-size 8 --builds 1 --passes 1 --job-timeout {} --out out", 2 * kSlowdown));
+    const Result r =
+        w.run("tradeoff", fmt::format("--builders --quick --scenes soup.obj --accel crashing,hanging,sahbvh,sweepbvh "
+                                      "--ray-size 8 --builds 1 --passes 1 --job-timeout {} --out out",
+                                      2 * kSlowdown));
     EXPECT_EQ(r.exitCode, 3) << r.output;
     EXPECT_NE(r.output.find("tradeoff: 2 of 8 configurations measured failed"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("  soup hanging: failed: " + timedOut(2) + "\n"), std::string::npos) << r.output;
@@ -246,7 +266,8 @@ TEST(FailedJobs, TradeoffBuildersGivesFailedRowsBesideTheParetoFrontAndCorrelati
     EXPECT_NE(md.find("| soup | crashing | failed: crashed: SIGSEGV"), std::string::npos) << md;
     EXPECT_NE(md.find("| soup | embree-medium | "), std::string::npos) << md;
     EXPECT_TRUE(std::regex_search(md, std::regex(R"(\| soup \| binary \| 3 \| [-+][0-9.]+ / )")))
-        << "the rank correlation of the three builders measured:\n" << md;
+        << "the rank correlation of the three builders measured:\n"
+        << md;
 
     const std::string csv = w.read("out/builders.csv");
     EXPECT_NE(csv.find(",pareto_incoherent,failed\n"), std::string::npos) << csv;

@@ -29,14 +29,15 @@ struct Workspace {
         std::ofstream(dir / "balls.nff") << "v\nfrom 0 -6 3\nat 0 0 0\nup 0 0 1\nangle 40\nhither 1\nresolution 8 8\n"
                                             "l 4 -3 6\nf 1 0.75 0.33 0.8 0 100000 0 1\n"
                                             "p 3\n4 4 -0.5\n-4 4 -0.5\n0 -4 -0.5\ns 0 0 0.5 1\n";
-        std::ofstream(dir / "havran_stats_grids.txt") << "Invariants\n balls gears lattice mount\nPrimaryRay[-] 64 64 64 64\n";
+        std::ofstream(dir / "havran_stats_grids.txt")
+            << "Invariants\n balls gears lattice mount\nPrimaryRay[-] 64 64 64 64\n";
         std::ofstream(dir / "havran_stats_octrees.txt") << "BALLS\n N_IT 19.0\n N_TS 11.0\n";
         std::ofstream(dir / "grid.env") << "Grid::density 2\n";
     }
     // `bvhlab ARGS` in the workspace.
     Result run(const std::string& args) const {
-        return runShell(fmt::format("cd {} && XDG_CACHE_HOME={}/cache {} {}", dir.string(), dir.string(),
-                                    bvhlabProgram(), args));
+        return runShell(
+            fmt::format("cd {} && XDG_CACHE_HOME={}/cache {} {}", dir.string(), dir.string(), bvhlabProgram(), args));
     }
 };
 
@@ -73,15 +74,15 @@ TEST(PluginCommands, EveryCommandTakesAPluginFoundByNameWithItsKeys) {
              fmt::format("batch --scenes mesh.obj --accel grid --env grid.env{} --out batch_env", kSmall),
              "bench --scenes mesh.obj --accel grid -DGrid::density=3 --builds 1 --passes 1 --out bench.json",
              "stress --accel grid -DGrid::density=3 --parts watertight --rays 16 --out stress.json",
-             "tradeoff --builders --accel grid:Grid::density=3 -DGrid::objects=2 --scenes mesh.obj --quick --out tradeoff",
-             "check --accel grid:Grid::density=3 --checks batch",
-             "check --accel grid -DGrid::density=3 --checks batch",
+             "tradeoff --builders --accel grid:Grid::density=3 -DGrid::objects=2 --scenes mesh.obj --quick --out "
+             "tradeoff",
+             "check --accel grid:Grid::density=3 --checks batch", "check --accel grid -DGrid::density=3 --checks batch",
              "spd balls.nff --accel grid -DGrid::density=3 -DSpd::reference=. --out spd --quiet"}) {
         r = w.run(command);
         EXPECT_EQ(r.exitCode, 0) << command << "\n" << r.output;
     }
-    r = w.run(fmt::format("batch --scenes mesh.obj --accel grid:Grid::density=3,sahbvh8 -DGrid::objects=2{} --out batch",
-                          kSmall));
+    r = w.run(fmt::format(
+        "batch --scenes mesh.obj --accel grid:Grid::density=3,sahbvh8 -DGrid::objects=2{} --out batch", kSmall));
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("grid:Grid::density=3"), std::string::npos) << r.output;
     // A label in a file name has no ':' or '=' (labelAsFileName).
@@ -90,7 +91,8 @@ TEST(PluginCommands, EveryCommandTakesAPluginFoundByNameWithItsKeys) {
 
     const fs::path python = fs::path(bvhlabProgram()).parent_path() / "python";
     if (!fs::exists(python)) return;  // a build without the module (the sanitizer's)
-    r = runShell(fmt::format("cd {} && PYTHONPATH={} /usr/bin/python3 -c \"import bvhlab; "
+    r =
+        runShell(fmt::format("cd {} && PYTHONPATH={} /usr/bin/python3 -c \"import bvhlab; "
                              "accel = bvhlab.build(bvhlab.load_scene('mesh.obj'), 'grid', env={{'Grid::density': 3}}); "
                              "print(accel.stats['name'] if 'name' in accel.stats else 'built')\"",
                              w.dir.string(), python.string()));
@@ -99,7 +101,8 @@ TEST(PluginCommands, EveryCommandTakesAPluginFoundByNameWithItsKeys) {
 
 TEST(PluginCommands, AKeyOfAPluginThatIsNotLoadedSaysSo) {
     const Workspace w;
-    for (const std::string& args : {std::string("render -DKdMed::maxLeaf=4"), std::string("bench --accel sahbvh8 -DKdMed::maxLeaf=4")}) {
+    for (const std::string& args :
+         {std::string("render -DKdMed::maxLeaf=4"), std::string("bench --accel sahbvh8 -DKdMed::maxLeaf=4")}) {
         const Result r = w.run(args + " --out x");
         EXPECT_EQ(r.exitCode, 1) << r.output;
         EXPECT_NE(r.output.find("-DKdMed::maxLeaf: unknown key 'KdMed::maxLeaf': no section KdMed:: in bvhlab or a "
@@ -120,13 +123,14 @@ TEST(PluginCommands, AFileFoundByNameThatAddsAnotherNameSaysWhatItAdds) {
     fs::create_directories(folder);
     fs::copy_file(fs::path(bvhlabProgram()).parent_path() / "plugins" / "grid.so", folder / "bsptree.so",
                   fs::copy_options::overwrite_existing);
-    const Result r = runShell(fmt::format("BVHLAB_PLUGIN_PATH={} {} render -DASDS::type=bsptree --out {}", folder.string(),
-                                          bvhlabProgram(), (w.dir / "x").string()));
+    const Result r = runShell(fmt::format("BVHLAB_PLUGIN_PATH={} {} render -DASDS::type=bsptree --out {}",
+                                          folder.string(), bvhlabProgram(), (w.dir / "x").string()));
     EXPECT_EQ(r.exitCode, 1) << r.output;
-    EXPECT_NE(r.output.find(fmt::format("unknown accelerator 'bsptree': the plugin {} was loaded for it, but it adds grid, "
-                                        "not 'bsptree'",
-                                        (folder / "bsptree.so").string())),
-              std::string::npos)
+    EXPECT_NE(
+        r.output.find(fmt::format("unknown accelerator 'bsptree': the plugin {} was loaded for it, but it adds grid, "
+                                  "not 'bsptree'",
+                                  (folder / "bsptree.so").string())),
+        std::string::npos)
         << r.output;
 }
 

@@ -128,14 +128,16 @@ TEST(Plugins, ExceptionsInsideAPluginNameThePluginAndTheAccelerator) {
 
     r = render("--plugin " + kThrowing + " -DASDS::type=throwing_factory");
     EXPECT_EQ(r.exitCode, 1) << r.output;
-    EXPECT_NE(r.output.find("accelerator 'throwing_factory': its factory threw: no accelerator today"), std::string::npos)
+    EXPECT_NE(r.output.find("accelerator 'throwing_factory': its factory threw: no accelerator today"),
+              std::string::npos)
         << r.output;
 
     r = render("--plugin " + kThrowing + " -DASDS::type=throwing_misread");
     EXPECT_EQ(r.exitCode, 1) << r.output;
-    EXPECT_NE(r.output.find("accelerator 'throwing_misread': its factory threw: accelerator 'throwing_misread' read the "
-                            "Int key 'Throwing::count' with getFloat: read it with getInt"),
-              std::string::npos)
+    EXPECT_NE(
+        r.output.find("accelerator 'throwing_misread': its factory threw: accelerator 'throwing_misread' read the "
+                      "Int key 'Throwing::count' with getFloat: read it with getInt"),
+        std::string::npos)
         << r.output;
 }
 
@@ -157,8 +159,9 @@ TEST(Plugins, ACrashInsideAPluginNamesThePluginTheCallAndItsRayAndEndsTheRunByTh
     EXPECT_NE(r.output.find(" rays, the first org=("), std::string::npos) << r.output;
 
     // A stack overflow too (on a signal stack of its own), under the usual stack limit.
-    r = runShell("ulimit -s 8192; " + test::bvhlabProgram() + " render -DCamera::width=16 -DCamera::height=12 --plugin " +
-                 kCrashing + " -DASDS::type=crashing_build --out " + (scratchDir("plugins") / "image").string());
+    r = runShell("ulimit -s 8192; " + test::bvhlabProgram() +
+                 " render -DCamera::width=16 -DCamera::height=12 --plugin " + kCrashing +
+                 " -DASDS::type=crashing_build --out " + (scratchDir("plugins") / "image").string());
     EXPECT_EQ(r.exitCode, kEndedBySegv) << r.output;
     EXPECT_NE(r.output.find("accelerator 'crashing_build': build() over "), std::string::npos) << r.output;
 }
@@ -216,12 +219,12 @@ TEST(Plugins, KeysListsTheShippedPluginsAndThoseOnThePluginPath) {
 TEST(Plugins, APluginOnThePathNamedAsAShippedOneIsRefusedNamingBoth) {
     const auto dir = scratchDir("plugins_named_as_shipped");
     std::filesystem::copy_file(kThrowing, dir / "grid.so", std::filesystem::copy_options::overwrite_existing);
-    const Result r = runShell("BVHLAB_PLUGIN_PATH=" + dir.string() + " " + test::bvhlabProgram() +
-                              " render -DASDS::type=grid -DCamera::width=16 -DCamera::height=12 --out " +
-                              (dir / "image").string());
+    const Result r =
+        runShell("BVHLAB_PLUGIN_PATH=" + dir.string() + " " + test::bvhlabProgram() +
+                 " render -DASDS::type=grid -DCamera::width=16 -DCamera::height=12 --out " + (dir / "image").string());
     EXPECT_EQ(r.exitCode, 1) << r.output;
     EXPECT_NE(r.output.find((dir / "grid.so").string() + " (on BVHLAB_PLUGIN_PATH) has the name of a plugin bvhlab "
-                            "ships, "),
+                                                         "ships, "),
               std::string::npos)
         << r.output;
     EXPECT_NE(r.output.find("plugins/grid.so: which one 'grid' means is not clear"), std::string::npos) << r.output;
@@ -230,7 +233,8 @@ TEST(Plugins, APluginOnThePathNamedAsAShippedOneIsRefusedNamingBoth) {
 TEST(Plugins, KeysListsAPluginsAcceleratorsAndKeysWithItsFile) {
     const Result r = run("keys --plugin " + kThrowing);
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    EXPECT_NE(r.output.find("| `throwing_query` | throws in its queries (plugin `" + kThrowing + "`)"), std::string::npos)
+    EXPECT_NE(r.output.find("| `throwing_query` | throws in its queries (plugin `" + kThrowing + "`)"),
+              std::string::npos)
         << r.output;
     EXPECT_NE(r.output.find("| `Throwing::unused` | int 1..9 | `3` |"), std::string::npos) << r.output;
 }
@@ -244,11 +248,13 @@ TEST(Plugins, TheJsonProvenanceNamesEveryPluginLoaded) {
     EXPECT_EQ(plugins[0]["path"], kThrowing);
     EXPECT_TRUE(std::regex_match(plugins[0]["abi"].get<std::string>(), std::regex("[0-9a-f]{16}"))) << plugins.dump();
     EXPECT_EQ(plugins[0]["crc32"].get<std::string>().size(), 8u);
-    EXPECT_EQ(plugins[0]["accelerators"], nlohmann::json({"throwing", "throwing_query", "throwing_factory", "throwing_misread"}));
+    EXPECT_EQ(plugins[0]["accelerators"],
+              nlohmann::json({"throwing", "throwing_query", "throwing_factory", "throwing_misread"}));
     // How it was compiled: the compiler as bvhlab's own provenance names it, the flags
     // bvhlab_record_plugin_flags passed (with the one bvhlab::plugin_api carries).
     EXPECT_EQ(plugins[0]["compiler"], provenance["compiler"]);
-    EXPECT_NE(plugins[0]["cxx_flags"].get<std::string>().find("-ffp-contract=off"), std::string::npos) << plugins.dump();
+    EXPECT_NE(plugins[0]["cxx_flags"].get<std::string>().find("-ffp-contract=off"), std::string::npos)
+        << plugins.dump();
     EXPECT_EQ(plugins[0]["optimized"], kPluginsOptimized);
     if (kPluginsOptimized) {
         EXPECT_EQ(r.output.find(kUnoptimizedWarning), std::string::npos) << r.output;
@@ -267,7 +273,8 @@ TEST(Plugins, APluginCompiledWithoutOptimisationIsMeasuredWithAWarning) {
 
 TEST(Plugins, ABuilderBecomesThreeAcceleratorsThatAnswerAsTheReference) {
     for (const char* name : {"pairs", "pairs4", "pairs8"}) {
-        const Result r = run(fmt::format("check --plugin {} --accel {} --checks agreement,mixed-primitives", kBuilders, name));
+        const Result r =
+            run(fmt::format("check --plugin {} --accel {} --checks agreement,mixed-primitives", kBuilders, name));
         EXPECT_EQ(r.exitCode, 0) << name << "\n" << r.output;
         EXPECT_NE(r.output.find("all checks passed"), std::string::npos) << r.output;
     }

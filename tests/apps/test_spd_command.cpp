@@ -115,7 +115,8 @@ TEST(HavranReference, ThePublishedFilesReadWhole) {
     for (const char* name : {"balls", "mount", "rings", "teapot", "tetra", "tree"}) {
         ASSERT_TRUE(scenes.count(name)) << name;
         const HavranScene& s = scenes.at(name);
-        for (const char* invariant : kHavranInvariants) EXPECT_TRUE(s.invariants.count(invariant)) << name << " " << invariant;
+        for (const char* invariant : kHavranInvariants)
+            EXPECT_TRUE(s.invariants.count(invariant)) << name << " " << invariant;
         // Every SPD image is 513 x 513 eye rays, and the summary rows add up.
         EXPECT_EQ(s.invariants.at("PrimaryRay"), 513.0 * 513.0) << name;
         EXPECT_EQ(s.invariants.at("AllRays"),
@@ -138,10 +139,11 @@ TEST(HavranReference, ThePublishedFilesReadWhole) {
 TEST(SpdCommand, WritesTheComparisonForEveryAccelerator) {
     const fs::path dir = test::scratchDir("spd_command");
     const fs::path scene = dir / "balls.nff";
-    std::ofstream(scene) << "v\nfrom 0 -6 3\nat 0 0 0\nup 0 0 1\nangle 40\nhither 1\nresolution 8 8\n"
-                            "l 4 -3 6\nl -4 -4 5\nf 1 0.75 0.33 0.8 0 100000 0 1\n"
-                            "p 4\n12 12 -0.5\n-12 12 -0.5\n-12 -12 -0.5\n12 -12 -0.5\n"
-                            "f 1 0.9 0.7 0.5 0.5 3.0827 0.5 1.3\ns 0 0 0.5 1\ns 1.5 0 0 0.4\nc 0 2 -0.5 0.3 0 2 1 0.1\n";
+    std::ofstream(scene)
+        << "v\nfrom 0 -6 3\nat 0 0 0\nup 0 0 1\nangle 40\nhither 1\nresolution 8 8\n"
+           "l 4 -3 6\nl -4 -4 5\nf 1 0.75 0.33 0.8 0 100000 0 1\n"
+           "p 4\n12 12 -0.5\n-12 12 -0.5\n-12 -12 -0.5\n12 -12 -0.5\n"
+           "f 1 0.9 0.7 0.5 0.5 3.0827 0.5 1.3\ns 0 0 0.5 1\ns 1.5 0 0 0.4\nc 0 2 -0.5 0.3 0 2 1 0.1\n";
     const fs::path out = dir / "out";
     const auto r = run("spd " + scene.string() + " --accel naive,sahbvh8,embree --out " + out.string() +
                        " -DSpd::reference=" + referenceFolder().string() + " --quiet");
@@ -185,7 +187,7 @@ TEST(SpdCommand, AnOctreeBesideHavransColumnOfItsMethodAndDepth) {
     EXPECT_EQ(octree["havran"]["values"]["N_OIV"], 9171.0);
     EXPECT_EQ(octree["havran"]["values"]["N_EETS"], 3.67);
     EXPECT_GT(octree["figures"]["N_ETS"]["value"].get<double>(), 0.0);  // per ray, after the trace
-    EXPECT_TRUE(j["scenes"][0]["accels"][1]["havran"].is_null());  // depth 9: no column of his
+    EXPECT_TRUE(j["scenes"][0]["accels"][1]["havran"].is_null());       // depth 9: no column of his
     std::ifstream md(out / "spd.md");
     const std::string text((std::istreambuf_iterator<char>(md)), std::istreambuf_iterator<char>());
     EXPECT_NE(text.find("| Havran's Octree84-C, depth 4 | 57 | 400 | 300 | 9171 | 19.00 | 11.00 | 9.93 | 3.67 | |"),

@@ -15,8 +15,10 @@ namespace {
 
 TEST(StressCommand, WritesTablesAndJson) {
     const auto out = test::scratchDir("stress") / "stress.json";
-    const test::Result r = test::run("stress --rays 2000 --scenes cube --parts watertight,acne --acne-pixels 16 "
-                                     "--accel naive,sahbvh,embree:Embree::robust=true --threads 1 --out " + out.string());
+    const test::Result r = test::run(
+        "stress --rays 2000 --scenes cube --parts watertight,acne --acne-pixels 16 "
+        "--accel naive,sahbvh,embree:Embree::robust=true --threads 1 --out " +
+        out.string());
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("per million"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("stress: all checks passed"), std::string::npos) << r.output;
@@ -60,8 +62,7 @@ TEST(StressCommand, ScenesAreTakenAsTheOtherCommandsTakeThem) {
                   " --out " + out.string());
     ASSERT_EQ(r.exitCode, 0) << r.output;
     // teapots, a scene's name, is found (env/scenes/teapots.env) but its file is not in Scene::dir.
-    EXPECT_NE(r.output.find("skipping: scene file teapots.obj (Scene::file, from "), std::string::npos)
-        << r.output;
+    EXPECT_NE(r.output.find("skipping: scene file teapots.obj (Scene::file, from "), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("Scene::dir is " + (dir / "nowhere").string() + " (from -DScene::dir; set it with"),
               std::string::npos)
         << r.output;

@@ -24,7 +24,8 @@ TEST(Docs, EnvKeyListMatchesRegistry) {
     ASSERT_TRUE(in) << "docs/env-keys.md is missing";
     std::stringstream text;
     text << in.rdbuf();
-    const test::Result keys = test::runShell("env -u BVHLAB_PLUGIN_PATH " + test::bvhlabProgram() + " keys 2>/dev/null");
+    const test::Result keys =
+        test::runShell("env -u BVHLAB_PLUGIN_PATH " + test::bvhlabProgram() + " keys 2>/dev/null");
     ASSERT_EQ(keys.exitCode, 0) << keys.output;
     EXPECT_EQ(text.str(), keys.output) << "run: build/bvhlab keys > docs/env-keys.md";
     EXPECT_NE(keys.output.find("| `grid` |"), std::string::npos);  // the shipped plugins are listed
@@ -110,7 +111,8 @@ TEST(Docs, ThePluginReferenceDescribesEveryTypeOfThePluginApi) {
     namespace fs = std::filesystem;
     const fs::path root(test::sourceTree());
     std::set<std::string> names = {"cTraversal", "cIntersect", "BVH::cTraversal", "BVH::cIntersect"};
-    const std::regex declaration(R"(^(?:struct|class|enum class) (?:alignas\(\d+\) )?(\w+)[^;]*$|virtual [^(]*\b(\w+)\()");
+    const std::regex declaration(
+        R"(^(?:struct|class|enum class) (?:alignas\(\d+\) )?(\w+)[^;]*$|virtual [^(]*\b(\w+)\()");
     size_t headers = 0;
     for (const auto& header : fs::directory_iterator(root / "framework/api/bvhlab")) {
         ++headers;
@@ -150,7 +152,8 @@ TEST(Docs, ResultsHaveTheDefaultStructureAndTheirCommit) {
     Env globalEnv(programKeys());
     globalEnv.loadFile(test::sourceTree() + "/env/global.env");
     const std::string defaultStructure = globalEnv.get(keys::ASDS::type);
-    for (const std::string& accel : {defaultStructure, std::string("sahbvh"), std::string("tdbvh"), std::string("embree")})
+    for (const std::string& accel :
+         {defaultStructure, std::string("sahbvh"), std::string("tdbvh"), std::string("embree")})
         EXPECT_NE(table1.find("| conference | " + accel + " |"), std::string::npos) << accel;
     EXPECT_TRUE(std::regex_search(table1, std::regex("at commit [0-9a-f]{7}")));
 }

@@ -17,14 +17,30 @@ inline void readEveryEnvKey(const Env& env) {
     for (const auto& [name, key] : env.registry().keys()) {
         // A handle made from the registered name reads like a declared key.
         switch (key.type) {
-        case KeyType::Bool: (void)env.get(BoolKey(name, "", "")); break;
-        case KeyType::Int: (void)env.get(IntKey(name, "", 0, 0, "")); break;
-        case KeyType::Float: (void)env.get(FloatKey(name, "", 0, 0, "")); break;
-        case KeyType::String: (void)env.get(TextKey(name, "", "")); break;
-        case KeyType::Choice: (void)env.get(ChoiceKey(name, "", {}, "")); break;
-        case KeyType::Path: (void)env.get(PathKey(name, "", "")); break;
-        case KeyType::Vec3: (void)env.get(Vec3Key(name, "", "")); break;
-        case KeyType::Vec3List: (void)env.get(Vec3ListKey(name, "", "")); break;
+            case KeyType::Bool:
+                (void)env.get(BoolKey(name, "", ""));
+                break;
+            case KeyType::Int:
+                (void)env.get(IntKey(name, "", 0, 0, ""));
+                break;
+            case KeyType::Float:
+                (void)env.get(FloatKey(name, "", 0, 0, ""));
+                break;
+            case KeyType::String:
+                (void)env.get(TextKey(name, "", ""));
+                break;
+            case KeyType::Choice:
+                (void)env.get(ChoiceKey(name, "", {}, ""));
+                break;
+            case KeyType::Path:
+                (void)env.get(PathKey(name, "", ""));
+                break;
+            case KeyType::Vec3:
+                (void)env.get(Vec3Key(name, "", ""));
+                break;
+            case KeyType::Vec3List:
+                (void)env.get(Vec3ListKey(name, "", ""));
+                break;
         }
         (void)env.isExplicit(name);
     }

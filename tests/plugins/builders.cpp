@@ -74,13 +74,25 @@ private:
 
 BVHLAB_PLUGIN(registrar) {
     registrar.addBuilder({"pairs", "neighbours joined round after round", {}, {}, pairs});
-    registrar.addBuilder({"interleaved", "deals the primitives out to the children in turn", {},
-                          [](const BuilderSettings&) -> SplitRule* { return new Interleaved; }, {}});
-    registrar.addBuilder(
-        {"lossy", "overwrites a primitive index", {}, [](const BuilderSettings&) -> SplitRule* { return new Lossy; }, {}});
-    registrar.addBuilder({"costed", "median splits, leaves where the SAH constants favour them", {},
-                          [](const BuilderSettings& settings) -> SplitRule* { return new Costed(settings); }, {}});
-    registrar.addBuilder({"twice", "uses a node twice", {}, {},
+    registrar.addBuilder({"interleaved",
+                          "deals the primitives out to the children in turn",
+                          {},
+                          [](const BuilderSettings&) -> SplitRule* { return new Interleaved; },
+                          {}});
+    registrar.addBuilder({"lossy",
+                          "overwrites a primitive index",
+                          {},
+                          [](const BuilderSettings&) -> SplitRule* { return new Lossy; },
+                          {}});
+    registrar.addBuilder({"costed",
+                          "median splits, leaves where the SAH constants favour them",
+                          {},
+                          [](const BuilderSettings& settings) -> SplitRule* { return new Costed(settings); },
+                          {}});
+    registrar.addBuilder({"twice",
+                          "uses a node twice",
+                          {},
+                          {},
                           [](View<const PrimRef> prims, View<Merge> merges, const BuilderSettings& s) {
                               pairs(prims, merges, s);
                               if (!merges.empty()) merges.back().right = merges.back().left;

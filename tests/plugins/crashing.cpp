@@ -49,8 +49,12 @@ private:
 }  // namespace
 
 BVHLAB_PLUGIN(registrar) {
-    registrar.addAccelerator({"crashing", "a segmentation fault in findNearest()", {},
-                              [](const PluginSettings&) -> Accelerator* { return new Crashing(false); }});
-    registrar.addAccelerator({"crashing_build", "a stack overflow in build()", {},
-                              [](const PluginSettings&) -> Accelerator* { return new Crashing(true); }});
+    registrar.addAccelerator(
+        {"crashing", "a segmentation fault in findNearest()", {}, [](const PluginSettings&) -> Accelerator* {
+             return new Crashing(false);
+         }});
+    registrar.addAccelerator(
+        {"crashing_build", "a stack overflow in build()", {}, [](const PluginSettings&) -> Accelerator* {
+             return new Crashing(true);
+         }});
 }

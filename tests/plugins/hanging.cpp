@@ -21,6 +21,8 @@ public:
 }  // namespace
 
 BVHLAB_PLUGIN(registrar) {
-    registrar.addAccelerator({"hanging", "a build() that never returns", {},
-                              [](const bvhlab::PluginSettings&) -> bvhlab::Accelerator* { return new Hanging; }});
+    registrar.addAccelerator(
+        {"hanging", "a build() that never returns", {}, [](const bvhlab::PluginSettings&) -> bvhlab::Accelerator* {
+             return new Hanging;
+         }});
 }

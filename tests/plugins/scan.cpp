@@ -18,7 +18,8 @@ public:
     void statistics(BuildStatistics& out) const override { out.set("primitives", double(prims_.valid.size())); }
     bool findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const override {
         ++counters.queries;
-        return findNearestAlong(prims_, ray, counters, [&](auto visit) { visit(prims_.valid, double(ray.tmax)); }, hit);
+        return findNearestAlong(
+            prims_, ray, counters, [&](auto visit) { visit(prims_.valid, double(ray.tmax)); }, hit);
     }
     bool isOccluded(const Ray& ray, QueryCounters& counters) const override {
         ++counters.queries;
@@ -32,6 +33,8 @@ private:
 }  // namespace
 
 BVHLAB_PLUGIN(registrar) {
-    registrar.addAccelerator({"scan", "every primitive against every ray (build " SCAN_VARIANT ")", {kPasses},
+    registrar.addAccelerator({"scan",
+                              "every primitive against every ray (build " SCAN_VARIANT ")",
+                              {kPasses},
                               [](const PluginSettings&) -> Accelerator* { return new Scan; }});
 }

@@ -27,23 +27,29 @@ private:
     bool inBuild_;
 };
 
-inline constexpr bvhlab::PluginKey kUnused{"Throwing::unused", bvhlab::KeyType::Int, "3",
-                                           "a key, to be listed by `bvhlab keys`", 1, 9};
-inline constexpr bvhlab::PluginKey kCount{"Throwing::count", bvhlab::KeyType::Int, "1", "an Int key read as a Float",
-                                          0, 9};
+inline constexpr bvhlab::PluginKey kUnused{
+    "Throwing::unused", bvhlab::KeyType::Int, "3", "a key, to be listed by `bvhlab keys`", 1, 9};
+inline constexpr bvhlab::PluginKey kCount{
+    "Throwing::count", bvhlab::KeyType::Int, "1", "an Int key read as a Float", 0, 9};
 
 }  // namespace
 
 BVHLAB_PLUGIN(registrar) {
-    registrar.addAccelerator({"throwing", "throws in build()", {kUnused},
-                              [](const bvhlab::PluginSettings&) -> bvhlab::Accelerator* { return new Throwing(true); }});
-    registrar.addAccelerator({"throwing_query", "throws in its queries", {},
-                              [](const bvhlab::PluginSettings&) -> bvhlab::Accelerator* { return new Throwing(false); }});
-    registrar.addAccelerator({"throwing_factory", "throws when made", {},
-                              [](const bvhlab::PluginSettings&) -> bvhlab::Accelerator* {
-                                  throw std::invalid_argument("no accelerator today");
-                              }});
-    registrar.addAccelerator({"throwing_misread", "reads its Int key as a Float", {kCount},
+    registrar.addAccelerator(
+        {"throwing", "throws in build()", {kUnused}, [](const bvhlab::PluginSettings&) -> bvhlab::Accelerator* {
+             return new Throwing(true);
+         }});
+    registrar.addAccelerator(
+        {"throwing_query", "throws in its queries", {}, [](const bvhlab::PluginSettings&) -> bvhlab::Accelerator* {
+             return new Throwing(false);
+         }});
+    registrar.addAccelerator(
+        {"throwing_factory", "throws when made", {}, [](const bvhlab::PluginSettings&) -> bvhlab::Accelerator* {
+             throw std::invalid_argument("no accelerator today");
+         }});
+    registrar.addAccelerator({"throwing_misread",
+                              "reads its Int key as a Float",
+                              {kCount},
                               [](const bvhlab::PluginSettings& settings) -> bvhlab::Accelerator* {
                                   return new Throwing(settings.getFloat(kCount.name) > 0);
                               }});

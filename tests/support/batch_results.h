@@ -29,7 +29,8 @@ inline std::vector<std::vector<std::string>> csvWithoutTimings(const std::filesy
         for (std::string cell; std::getline(fields, cell, ',');) cells.push_back(cell);
         if (keep.empty())
             for (const std::string& c : cells)
-                keep.push_back(std::find(std::begin(kTimingColumns), std::end(kTimingColumns), c) == std::end(kTimingColumns));
+                keep.push_back(std::find(std::begin(kTimingColumns), std::end(kTimingColumns), c) ==
+                               std::end(kTimingColumns));
         std::vector<std::string> kept;
         for (size_t i = 0; i < cells.size(); ++i)
             if (i < keep.size() && keep[i]) kept.push_back(cells[i]);

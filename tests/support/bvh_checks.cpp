@@ -53,7 +53,8 @@ Soup randomSoup(size_t n, uint32_t seed, float extent, float size) {
     Soup soup;
     while (soup.triangles.size() < n) {
         const Vec3 p(pos(rng), pos(rng), pos(rng));
-        const Triangle t{p, p + Vec3(offset(rng), offset(rng), offset(rng)), p + Vec3(offset(rng), offset(rng), offset(rng))};
+        const Triangle t{p, p + Vec3(offset(rng), offset(rng), offset(rng)),
+                         p + Vec3(offset(rng), offset(rng), offset(rng))};
         if (!isDegenerate(t)) soup.add(t);
     }
     return soup;
@@ -66,7 +67,8 @@ Soup mixedScaleSoup(size_t n, uint32_t seed) {
     while (soup.triangles.size() < n) {
         const float size = std::pow(10.0f, exponent(rng));
         const Vec3 p(pos(rng), pos(rng), pos(rng));
-        const Triangle t{p, p + size * Vec3(unit(rng), unit(rng), unit(rng)), p + size * Vec3(unit(rng), unit(rng), unit(rng))};
+        const Triangle t{p, p + size * Vec3(unit(rng), unit(rng), unit(rng)),
+                         p + size * Vec3(unit(rng), unit(rng), unit(rng))};
         if (!isDegenerate(t)) soup.add(t);
     }
     return soup;
@@ -165,7 +167,8 @@ TreeFacts checkTree(const BinaryBvh& bvh, const Soup& soup) {
             stack.push_back({node.index + 1, depth + 1});
         }
     }
-    for (size_t i = 0; i < n; ++i) EXPECT_EQ(covered[i], 1) << "leaf slot " << i << " covered " << covered[i] << " times";
+    for (size_t i = 0; i < n; ++i)
+        EXPECT_EQ(covered[i], 1) << "leaf slot " << i << " covered " << covered[i] << " times";
     EXPECT_EQ(facts.nodes, 2 * facts.leaves - 1);
     EXPECT_LT(facts.maxDepth, kBvhMaxDepth);
     return facts;
@@ -211,8 +214,8 @@ void expectAgreesWithNaive(const Accelerator& accel, const Soup& soup, int count
         const bool a = accel.findNearest(ray, actual, c2);
         if (e != a || !hitsAgree(expected, actual)) {
             ++mismatches;
-            ADD_FAILURE() << accel.name() << " ray " << i << ": naive t=" << expected.t << " prim " << expected.primitive
-                          << ", bvh t=" << actual.t << " prim " << actual.primitive;
+            ADD_FAILURE() << accel.name() << " ray " << i << ": naive t=" << expected.t << " prim "
+                          << expected.primitive << ", bvh t=" << actual.t << " prim " << actual.primitive;
         }
         if (naive.isOccluded(ray, c1) != accel.isOccluded(ray, c2)) {
             ++mismatches;

@@ -3,9 +3,9 @@
 
 #include "tests/support/test_paths.h"
 
+#include <sys/wait.h>
 #include <cstdio>
 #include <string>
-#include <sys/wait.h>
 
 namespace bvhlab::test {
 

@@ -66,8 +66,7 @@ inline Polygon2 gearPolygon() {
 inline bool insidePolygon(const Polygon2& p, const glm::dvec2& q) {
     bool inside = false;
     for (size_t i = 0, j = p.size() - 1; i < p.size(); j = i++) {
-        if ((p[i].y > q.y) != (p[j].y > q.y) &&
-            q.x < (p[j].x - p[i].x) * (q.y - p[i].y) / (p[j].y - p[i].y) + p[i].x)
+        if ((p[i].y > q.y) != (p[j].y > q.y) && q.x < (p[j].x - p[i].x) * (q.y - p[i].y) / (p[j].y - p[i].y) + p[i].x)
             inside = !inside;
     }
     return inside;

@@ -40,8 +40,7 @@ struct QuadricAgreement {
             } else if (++ungrazedDisagreements <= 3) {
                 ADD_FAILURE() << "float " << (f ? "hit" : "missed") << ", double " << (d ? "hit" : "missed")
                               << " away from the grazing band: org (" << ray.org.x << ", " << ray.org.y << ", "
-                              << ray.org.z << ") dir (" << ray.dir.x << ", " << ray.dir.y << ", " << ray.dir.z
-                              << ")";
+                              << ray.org.z << ") dir (" << ray.dir.x << ", " << ray.dir.y << ", " << ray.dir.z << ")";
             }
         }
         if (f) {
@@ -55,7 +54,8 @@ struct QuadricAgreement {
         ++bothHit;
         // Near a tangent t itself is ill-conditioned (it moves with the square root of the miss
         // distance): its error there is recorded, not bounded.
-        const double error = std::abs(double(hf.t) - hd.t) / std::max(std::abs(hd.t), size / glm::length(DVec3(ray.dir)));
+        const double error =
+            std::abs(double(hf.t) - hd.t) / std::max(std::abs(hd.t), size / glm::length(DVec3(ray.dir)));
         if (isGrazing) {
             maxGrazingRelativeError = std::max(maxGrazingRelativeError, error);
             return f;
@@ -68,10 +68,10 @@ struct QuadricAgreement {
 
     // Prints the counts and checks that the rays were a fair mix and the band stayed narrow.
     void expectCounts(const char* what, int minBothHit, int minBothMissed, int maxGrazing) const {
-        std::printf("[ NOTE     ] %s: %d rays, %d hit by both, %d missed by both; max relative t error %.3g; "
-                    "%d grazing, %d of them float and double disagree on, max relative t error there %.3g\n",
-                    what, rays, bothHit, bothMissed, maxRelativeError, grazing, grazingDisagreements,
-                    maxGrazingRelativeError);
+        std::printf(
+            "[ NOTE     ] %s: %d rays, %d hit by both, %d missed by both; max relative t error %.3g; "
+            "%d grazing, %d of them float and double disagree on, max relative t error there %.3g\n",
+            what, rays, bothHit, bothMissed, maxRelativeError, grazing, grazingDisagreements, maxGrazingRelativeError);
         EXPECT_GE(bothHit, minBothHit) << what;
         EXPECT_GE(bothMissed, minBothMissed) << what;
         EXPECT_LE(grazing, maxGrazing) << what;
@@ -152,7 +152,8 @@ void expectNaNRaysMiss(const Intersect& intersect, const Ray& good) {
     ASSERT_TRUE(intersect(good, double(good.tmin), double(good.tmax), hf));
     for (int field = 0; field < 9; ++field) {
         Ray ray = good;
-        float* fields[8] = {&ray.org.x, &ray.org.y, &ray.org.z, &ray.dir.x, &ray.dir.y, &ray.dir.z, &ray.tmin, &ray.tmax};
+        float* fields[8] = {&ray.org.x, &ray.org.y, &ray.org.z, &ray.dir.x,
+                            &ray.dir.y, &ray.dir.z, &ray.tmin,  &ray.tmax};
         if (field < 8)
             *fields[field] = std::numeric_limits<float>::quiet_NaN();
         else

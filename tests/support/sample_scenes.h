@@ -21,9 +21,12 @@ public:
 
     std::string format() const {
         switch (encoding_) {
-            case PlyEncoding::Ascii: return "ascii";
-            case PlyEncoding::LittleEndian: return "binary_little_endian";
-            case PlyEncoding::BigEndian: return "binary_big_endian";
+            case PlyEncoding::Ascii:
+                return "ascii";
+            case PlyEncoding::LittleEndian:
+                return "binary_little_endian";
+            case PlyEncoding::BigEndian:
+                return "binary_big_endian";
         }
         return "";
     }
@@ -92,7 +95,15 @@ inline std::string testPly(PlyEncoding encoding) {
     w.put(int32_t(0)).put(7.0f).endRecord();
     w.put(uint8_t(1)).put(uint16_t(4)).put(0u).put(1u).put(2u).put(3u).put(uint8_t(1)).put(int32_t(-9)).endRecord();
     w.put(uint8_t(1)).put(uint16_t(3)).put(0u).put(1u).put(1u).put(uint8_t(0)).endRecord();
-    w.put(uint8_t(1)).put(uint16_t(3)).put(1u).put(4u).put(2u).put(uint8_t(2)).put(int32_t(5)).put(int32_t(6)).endRecord();
+    w.put(uint8_t(1))
+        .put(uint16_t(3))
+        .put(1u)
+        .put(4u)
+        .put(2u)
+        .put(uint8_t(2))
+        .put(int32_t(5))
+        .put(int32_t(6))
+        .endRecord();
     w.put(int32_t(0)).put(1u).put(0.5).endRecord();
     w.put(int32_t(1)).put(2u).put(0.5).endRecord();
     return header + w.data();

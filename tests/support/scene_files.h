@@ -66,11 +66,13 @@ inline void expectInputError(const std::function<void()>& load, std::initializer
         ADD_FAILURE() << "no InputError thrown";
     } catch (const InputError& e) {
         const std::string_view message = e.what();
-        for (std::string_view part : parts) EXPECT_NE(message.find(part), std::string_view::npos) << message << "\n  lacks: " << part;
+        for (std::string_view part : parts)
+            EXPECT_NE(message.find(part), std::string_view::npos) << message << "\n  lacks: " << part;
     }
 }
 
-inline void expectLoadError(const std::string& name, std::string_view text, std::initializer_list<std::string_view> parts) {
+inline void expectLoadError(const std::string& name, std::string_view text,
+                            std::initializer_list<std::string_view> parts) {
     TempDir dir;
     const fs::path file = dir.write(name, text);
     expectInputError([&] { loadScene(file); }, parts);

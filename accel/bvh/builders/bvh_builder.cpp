@@ -17,18 +17,16 @@ namespace {
 // reorders into leaf order: the nodes above the jobs, then the jobs' subtrees appended in the
 // order they were deferred, so the same tree whatever the thread count and the schedule.
 std::vector<BvhNode, TraversalAllocator<BvhNode>> buildNodes(const SplitRuleFactory& makeBuilder,
-                                                            const BvhBuildConfig& config, std::span<PrimRef> all,
-                                                            const BuildRange& root) {
+                                                             const BvhBuildConfig& config, std::span<PrimRef> all,
+                                                             const BuildRange& root) {
     std::vector<DeferredRange> jobs;
     std::vector<BvhNode, TraversalAllocator<BvhNode>> nodes =
         makeBuilder(config)->build(all, root, 0, &jobs, kJobPrimitives);
     std::vector<std::vector<BvhNode, TraversalAllocator<BvhNode>>> subtrees(jobs.size());
     onThreads(config.shared.threads, [&] {
-        tbb::enumerable_thread_specific<std::unique_ptr<BvhSplitRule>> builders(
-            [&] { return makeBuilder(config); });
-        tbb::parallel_for(size_t(0), jobs.size(), [&](size_t j) {
-            subtrees[j] = builders.local()->build(all, jobs[j].range, jobs[j].depth);
-        });
+        tbb::enumerable_thread_specific<std::unique_ptr<BvhSplitRule>> builders([&] { return makeBuilder(config); });
+        tbb::parallel_for(size_t(0), jobs.size(),
+                          [&](size_t j) { subtrees[j] = builders.local()->build(all, jobs[j].range, jobs[j].depth); });
     });
     for (size_t j = 0; j < jobs.size(); ++j) appendSubtree(nodes, jobs[j].node, subtrees[j]);
     return nodes;
@@ -50,12 +48,14 @@ void checkPrimRefsOf(const BuilderRecord& builder, const PrimRef* refs, const Pr
         if (known) seen[ref.prim] = 2;
         Bounds3 box;
         if (known)
-            for (const Vec3& v : {prims.triangles[ref.prim].v0, prims.triangles[ref.prim].v1, prims.triangles[ref.prim].v2})
+            for (const Vec3& v :
+                 {prims.triangles[ref.prim].v0, prims.triangles[ref.prim].v1, prims.triangles[ref.prim].v2})
                 box.extend(v);
         if (!known || ref.box().lower != box.lower || ref.box().upper != box.upper)
-            throw std::runtime_error(fmt::format("builder '{}' changed the primitives it was to reorder (at index {}: "
-                                                 "primitive {}{})",
-                                                 builder.name, i, ref.prim, known ? ", another box" : ", not one of them once"));
+            throw std::runtime_error(
+                fmt::format("builder '{}' changed the primitives it was to reorder (at index {}: "
+                            "primitive {}{})",
+                            builder.name, i, ref.prim, known ? ", another box" : ", not one of them once"));
     }
 }
 

@@ -136,8 +136,8 @@ private:
         gather(c);
         BoundsAccumulator<simd::Scalar<4>> acc;
         for (uint32_t i = first; i < written_; ++i) acc.add(ordered_[i]);
-        const Nodes subtree =
-            BinnedSahBuilder(config_, BinnedSahConfig{}).build(ordered_, {first, written_, acc.bounds(), acc.centroidBounds()}, item.depth);
+        const Nodes subtree = BinnedSahBuilder(config_, BinnedSahConfig{})
+                                  .build(ordered_, {first, written_, acc.bounds(), acc.centroidBounds()}, item.depth);
         appendSubtree(nodes, item.slot, subtree);
     }
 

@@ -21,14 +21,14 @@ struct alignas(32) ClusterBox {
 };
 
 struct ClusterTree {
-    uint32_t leafCount = 0;            // nodes [0, leafCount) are the primitives, in leafRefs order
-    std::vector<ClusterBox> boxes;     // every node's box
-    std::vector<uint32_t> children;    // inner node leafCount + m: children[2m] (left), children[2m + 1]
+    uint32_t leafCount = 0;          // nodes [0, leafCount) are the primitives, in leafRefs order
+    std::vector<ClusterBox> boxes;   // every node's box
+    std::vector<uint32_t> children;  // inner node leafCount + m: children[2m] (left), children[2m + 1]
     // The leaf forming, decided per node as it is made (formNode), bottom-up:
-    std::vector<uint32_t> prims;       // primitives below the node
-    std::vector<uint32_t> height;      // of the node's subtree once leaves are formed (0: a leaf)
-    std::vector<float> cost;           // SAH cost of that subtree, unnormalised (areas, not ratios)
-    std::vector<uint8_t> leaf;         // 1: the node becomes a leaf of all its primitives
+    std::vector<uint32_t> prims;   // primitives below the node
+    std::vector<uint32_t> height;  // of the node's subtree once leaves are formed (0: a leaf)
+    std::vector<float> cost;       // SAH cost of that subtree, unnormalised (areas, not ratios)
+    std::vector<uint8_t> leaf;     // 1: the node becomes a leaf of all its primitives
 
     void resize(uint32_t leaves);
     uint32_t root() const { return uint32_t(boxes.size()) - 1; }

@@ -112,7 +112,9 @@ uint32_t LinkedTree::bestSibling(uint32_t subtree) const {
         float induced;  // the growth of the node's ancestors
         uint32_t node;
         int depth;
-        bool operator>(const Candidate& o) const { return induced > o.induced || (induced == o.induced && node > o.node); }
+        bool operator>(const Candidate& o) const {
+            return induced > o.induced || (induced == o.induced && node > o.node);
+        }
     };
     std::priority_queue<Candidate, std::vector<Candidate>, std::greater<>> queue;
     const Node& inserted = nodes[subtree];

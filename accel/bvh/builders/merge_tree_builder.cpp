@@ -29,7 +29,7 @@ void checkMerges(const std::string& builder, std::span<const uint32_t> children,
 }  // namespace
 
 BinaryBvh buildFromMerges(const std::string& builder, const BuildConfig& config, const PrimitiveSet& prims,
-                    const MergeFunction& merge) {
+                          const MergeFunction& merge) {
     const uint32_t n = uint32_t(prims.validTriangles().size());
     BinaryBvh bvh;
     if (n == 0) return bvh;

@@ -22,6 +22,6 @@ using MergeFunction = std::function<std::vector<uint32_t>(std::span<const PrimRe
 // Throws std::runtime_error naming `builder` when the merges are not a binary tree over exactly
 // those primitives (their count, a child not below its parent, a node used twice or never).
 BinaryBvh buildFromMerges(const std::string& builder, const BuildConfig& config, const PrimitiveSet& prims,
-                    const MergeFunction& merge);
+                          const MergeFunction& merge);
 
 }  // namespace bvhlab

@@ -145,7 +145,8 @@ std::optional<ObjectPlane> ObjectBinning::bestPlaneWith(const PrimRef* refs, con
     for (int axis = 0; axis < 3; ++axis) {
         if (allAxes_ && !active[axis]) binning[axis].k1 = 0.0f;
         if (!active[axis] && !allAxes_) continue;
-        std::fill_n(binsOf(axis), K, Bin{{kInfinity, kInfinity, kInfinity, 0.0f}, {-kInfinity, -kInfinity, -kInfinity, 0.0f}});
+        std::fill_n(binsOf(axis), K,
+                    Bin{{kInfinity, kInfinity, kInfinity, 0.0f}, {-kInfinity, -kInfinity, -kInfinity, 0.0f}});
         std::fill_n(countsOf(axis), K, 0u);
     }
     if (allAxes_) {

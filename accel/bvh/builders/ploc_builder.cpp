@@ -38,12 +38,15 @@ constexpr int kMaxRowVectors = (256 + kLanes - 1) / kLanes;  // BVH::plocRadius 
 // comparison holds for it, and min(NaN, x) is x).
 constexpr float kInf = std::numeric_limits<float>::infinity();
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-alignas(32) constexpr float kLanePenalty[kLanes + 1][kLanes] = {
-    {kNaN, kNaN, kNaN, kNaN, kNaN, kNaN, kNaN, kNaN}, {0, kNaN, kNaN, kNaN, kNaN, kNaN, kNaN, kNaN},
-    {0, 0, kNaN, kNaN, kNaN, kNaN, kNaN, kNaN},       {0, 0, 0, kNaN, kNaN, kNaN, kNaN, kNaN},
-    {0, 0, 0, 0, kNaN, kNaN, kNaN, kNaN},             {0, 0, 0, 0, 0, kNaN, kNaN, kNaN},
-    {0, 0, 0, 0, 0, 0, kNaN, kNaN},                   {0, 0, 0, 0, 0, 0, 0, kNaN},
-    {0, 0, 0, 0, 0, 0, 0, 0}};
+alignas(32) constexpr float kLanePenalty[kLanes + 1][kLanes] = {{kNaN, kNaN, kNaN, kNaN, kNaN, kNaN, kNaN, kNaN},
+                                                                {0, kNaN, kNaN, kNaN, kNaN, kNaN, kNaN, kNaN},
+                                                                {0, 0, kNaN, kNaN, kNaN, kNaN, kNaN, kNaN},
+                                                                {0, 0, 0, kNaN, kNaN, kNaN, kNaN, kNaN},
+                                                                {0, 0, 0, 0, kNaN, kNaN, kNaN, kNaN},
+                                                                {0, 0, 0, 0, 0, kNaN, kNaN, kNaN},
+                                                                {0, 0, 0, 0, 0, 0, kNaN, kNaN},
+                                                                {0, 0, 0, 0, 0, 0, 0, kNaN},
+                                                                {0, 0, 0, 0, 0, 0, 0, 0}};
 
 // The best left neighbour found so far of the clusters of a chunk and the radius around it:
 // areas, and cluster indices as float bit patterns (blended by the same SIMD select).
@@ -93,7 +96,8 @@ public:
         tbb::parallel_for(tbb::blocked_range<uint32_t>(0, n, kChunk), [&](const tbb::blocked_range<uint32_t>& r) {
             for (uint32_t i = r.begin(); i < r.end(); ++i) {
                 const PrimRef& p = leafRefs[i];
-                tree_.boxes[i] = {{p.lower[0], p.lower[1], p.lower[2], 0.0f}, {p.upper[0], p.upper[1], p.upper[2], 0.0f}};
+                tree_.boxes[i] = {{p.lower[0], p.lower[1], p.lower[2], 0.0f},
+                                  {p.upper[0], p.upper[1], p.upper[2], 0.0f}};
                 boxes_.set(i, tree_.boxes[i]);
                 formNode(tree_, i, config_);
                 ids_[i] = i;
@@ -139,7 +143,8 @@ private:
                     const int64_t start = int64_t(i) + 1 + kLanes * v;
                     F d[3];
                     for (int a = 0; a < 3; ++a)
-                        d[a] = max(upper[a], F::loadu(boxes_.at(3 + a, start))) - min(lower[a], F::loadu(boxes_.at(a, start)));
+                        d[a] = max(upper[a], F::loadu(boxes_.at(3 + a, start))) -
+                               min(lower[a], F::loadu(boxes_.at(a, start)));
                     F area = d[0] * d[1] + d[1] * d[2] + d[2] * d[0];
                     if (r - kLanes * v < kLanes) area = area + F::loadu(kLanePenalty[r - kLanes * v]);
                     row[v] = area;

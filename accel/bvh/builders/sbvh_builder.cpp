@@ -68,15 +68,17 @@ SbvhSplit SbvhBuilder::partition(SbvhRange& range, Side side) {
 }
 
 SbvhSplit SbvhBuilder::splitAtIndex(SbvhRange& range, uint32_t mid) {
-    return partition(range, [i = 0u, mid](const PrimRef&, PrimRef&, PrimRef&) mutable { return i++ < mid ? kLeft : kRight; });
+    return partition(range,
+                     [i = 0u, mid](const PrimRef&, PrimRef&, PrimRef&) mutable { return i++ < mid ? kLeft : kRight; });
 }
 
 SbvhSplit SbvhBuilder::objectMedianSplit(SbvhRange& range, int axis) {
     const uint32_t mid = range.size() / 2;
-    std::nth_element(range.refs.begin(), range.refs.begin() + mid, range.refs.end(), [axis](const PrimRef& a, const PrimRef& b) {
-        const float ca = a.center(axis), cb = b.center(axis);
-        return ca < cb || (ca == cb && a.prim < b.prim);
-    });
+    std::nth_element(range.refs.begin(), range.refs.begin() + mid, range.refs.end(),
+                     [axis](const PrimRef& a, const PrimRef& b) {
+                         const float ca = a.center(axis), cb = b.center(axis);
+                         return ca < cb || (ca == cb && a.prim < b.prim);
+                     });
     return splitAtIndex(range, mid);
 }
 
@@ -108,7 +110,8 @@ std::optional<SbvhSplit> SbvhBuilder::trySplit(SbvhRange& range, bool mayBeLeaf)
     if (range.budget > 0) {
         const float overlap =
             intersectionOf(objectBinning_.leftBounds(*object), objectBinning_.rightBounds(*object)).halfArea();
-        if (overlap > minOverlap_) spatial = spatialBinning_.bestPlane(range.refs, range.bounds, triangles_, range.budget);
+        if (overlap > minOverlap_)
+            spatial = spatialBinning_.bestPlane(range.refs, range.bounds, triangles_, range.budget);
         if (spatial && spatial->cost < bestCost) {
             bestCost = spatial->cost;
         } else {
@@ -173,7 +176,7 @@ BvhNodes SbvhBuilder::build(SbvhRange root, int depth, std::vector<Deferred>* de
 }
 
 BinaryBvh buildSbvh(const BuildConfig& config, const BinnedSahConfig& binned, const SbvhConfig& sbvh,
-              const PrimitiveSet& prims) {
+                    const PrimitiveSet& prims) {
     const size_t n = prims.validTriangles().size();
     SbvhRange root;
     root.refs.resize(n);

@@ -27,9 +27,9 @@ namespace bvhlab {
 
 // sbvh's own options; its object splits and its spatial bins follow BinnedSahConfig.
 struct SbvhConfig {
-    float alpha = 1e-5f;   // spatial splits only where the object split's children overlap by more
-                           // than alpha * A(root): lower finds more overlap to remove, builds slower
-    float growth = 0.3f;   // at most this many new references per triangle: memory for quality
+    float alpha = 1e-5f;  // spatial splits only where the object split's children overlap by more
+                          // than alpha * A(root): lower finds more overlap to remove, builds slower
+    float growth = 0.3f;  // at most this many new references per triangle: memory for quality
 
     bool operator==(const SbvhConfig&) const = default;
 };
@@ -101,6 +101,6 @@ private:
 // The whole build over the valid triangles, in parallel jobs below kJobPrimitives references
 // (the same tree whatever config.threads).
 BinaryBvh buildSbvh(const BuildConfig& config, const BinnedSahConfig& binned, const SbvhConfig& sbvh,
-              const PrimitiveSet& prims);
+                    const PrimitiveSet& prims);
 
 }  // namespace bvhlab

@@ -18,7 +18,8 @@ SpatialBinning::SpatialBinning(const BuildConfig& config, int bins)
 
 // A reference spanning bins first..last is chopped at each plane between them in turn, its
 // part in each bin growing that bin.
-void SpatialBinning::binAxis(std::span<const PrimRef> refs, std::span<const Triangle> triangles, const SpatialPlane& b) {
+void SpatialBinning::binAxis(std::span<const PrimRef> refs, std::span<const Triangle> triangles,
+                             const SpatialPlane& b) {
     std::fill(bins_.begin(), bins_.end(), Bounds3());
     std::fill(entries_.begin(), entries_.end(), 0u);
     std::fill(exits_.begin(), exits_.end(), 0u);
@@ -78,7 +79,8 @@ std::optional<SpatialPlane> SpatialBinning::bestPlane(std::span<const PrimRef> r
         const float extent = bounds.upper[axis] - bounds.lower[axis];
         const float k1 = float(binCount_) / extent;
         if (!(extent > 0.0f) || !std::isfinite(k1)) continue;
-        const SpatialPlane binning{kInfinity, axis, 0, bounds.lower[axis], k1, float(binCount_ - 1), 0.0f, {}, {}, 0, 0};
+        const SpatialPlane binning{kInfinity, axis, 0, bounds.lower[axis], k1, float(binCount_ - 1), 0.0f, {},
+                                   {},        0,    0};
         binAxis(refs, triangles, binning);
         sweep(binning, uint32_t(refs.size()), budget, best);
     }

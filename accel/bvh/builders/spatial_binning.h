@@ -20,10 +20,10 @@ namespace bvhlab {
 struct SpatialPlane {
     float cost;  // A_L*N_L + A_R*N_R, N as the SAH charges it (BuildConfig::sahTests)
     int axis;
-    uint32_t plane;           // the plane between bins plane-1 and plane
-    float k0, k1, maxBin;     // bin of x: min(k1 * (x - k0), K - 1), truncated
-    float position;           // where the plane lies
-    Bounds3 left, right;      // the two sides' boxes
+    uint32_t plane;        // the plane between bins plane-1 and plane
+    float k0, k1, maxBin;  // bin of x: min(k1 * (x - k0), K - 1), truncated
+    float position;        // where the plane lies
+    Bounds3 left, right;   // the two sides' boxes
     uint32_t leftCount, rightCount;
 
     uint32_t binOf(float x) const { return uint32_t(int(std::min(std::max((x - k0) * k1, 0.0f), maxBin))); }

@@ -7,7 +7,9 @@
 
 namespace bvhlab {
 
-bool allCentresEqual(const Bounds3& c) { return c.lower.x == c.upper.x && c.lower.y == c.upper.y && c.lower.z == c.upper.z; }
+bool allCentresEqual(const Bounds3& c) {
+    return c.lower.x == c.upper.x && c.lower.y == c.upper.y && c.lower.z == c.upper.z;
+}
 
 bool nearDepthBound(int depth, uint32_t n) {
     const int ceilLog2 = n <= 1 ? 0 : int(std::bit_width(n - 1));
@@ -50,10 +52,9 @@ std::optional<Split> BvhSplitRule::chooseSplit(const BuildRange& range, int dept
     return objectMedianSplit(range, range.centroidBounds.largestAxis());
 }
 
-std::vector<BvhNode, TraversalAllocator<BvhNode>> BvhSplitRule::build(std::span<PrimRef> refs,
-                                                                        const BuildRange& root, int depth,
-                                                                        std::vector<DeferredRange>* deferred,
-                                                                        uint32_t deferBelow) {
+std::vector<BvhNode, TraversalAllocator<BvhNode>> BvhSplitRule::build(std::span<PrimRef> refs, const BuildRange& root,
+                                                                      int depth, std::vector<DeferredRange>* deferred,
+                                                                      uint32_t deferBelow) {
     refs_ = refs;
     // The root, the padding slot that aligns the sibling pairs, and at most N - 1 pairs.
     return buildTopDown(

@@ -37,7 +37,8 @@ std::optional<Split> SweepSahBuilder::trySplit(const BuildRange& range, bool may
             // Only between distinct centres: primitives with equal centres lie on the same side
             // of every plane (a split among them by index would be no plane at all).
             if (!(refs[i - 1].center(axis) < refs[i].center(axis))) continue;
-            const float cost = box.halfArea() * float(config_.sahTests(i)) + rightArea_[i] * float(config_.sahTests(n - i));
+            const float cost =
+                box.halfArea() * float(config_.sahTests(i)) + rightArea_[i] * float(config_.sahTests(n - i));
             if (cost < bestCost) bestCost = cost, bestAxis = axis, bestCount = i;
         }
     }

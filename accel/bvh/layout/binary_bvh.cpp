@@ -57,7 +57,8 @@ void fillTreeStats(std::span<const BvhNode> tree, double cTraversal, double cInt
     stats.sah = sah;
 }
 
-void combineTreeStats(BuildStats& first, const Bounds3& firstRoot, const BuildStats& second, const Bounds3& secondRoot) {
+void combineTreeStats(BuildStats& first, const Bounds3& firstRoot, const BuildStats& second,
+                      const Bounds3& secondRoot) {
     const auto sum = [](const auto& a, const auto& b) { return a && b ? std::optional(*a + *b) : (a ? a : b); };
     const size_t leaves = first.leaves.value_or(0) + second.leaves.value_or(0);
     if (leaves > 0) {

@@ -19,8 +19,8 @@ namespace bvhlab {
 using BinaryBvh = NodeTree<BvhNode>;
 
 // Fills the tree fields of BuildStats (nodes, leaves, leaf sizes and their histogram, depth, SAH;
-// not the build time, the bytes nor EPO: end_point_overlap.h) from the nodes of a tree laid out as BinaryBvh. The SAH cost, the same formula
-// for every builder, normalised by the root area:
+// not the build time, the bytes nor EPO: end_point_overlap.h) from the nodes of a tree laid out as BinaryBvh. The SAH
+// cost, the same formula for every builder, normalised by the root area:
 //   C_trav * sum_inner A(n)/A(root) + C_isect * sum_leaves A(l)/A(root) * N(l).
 void fillTreeStats(std::span<const BvhNode> nodes, double cTraversal, double cIntersect, BuildStats& stats);
 

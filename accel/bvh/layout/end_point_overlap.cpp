@@ -8,8 +8,8 @@
 #include <glm/geometric.hpp>
 
 #include <algorithm>
-#include <atomic>
 #include <array>
+#include <atomic>
 #include <vector>
 
 namespace bvhlab {
@@ -74,7 +74,8 @@ std::vector<SlotRange> subtreeSlots(std::span<const BvhNode> nodes) {
     for (size_t i = nodes.size(); i-- > 0;) {
         if (i == 1) continue;  // the padding slot
         const BvhNode& n = nodes[i];
-        slots[i] = n.isLeaf() ? SlotRange{n.index, n.index + n.count} : SlotRange{slots[n.index].first, slots[n.index + 1].end};
+        slots[i] = n.isLeaf() ? SlotRange{n.index, n.index + n.count}
+                              : SlotRange{slots[n.index].first, slots[n.index + 1].end};
     }
     return slots;
 }

@@ -11,8 +11,8 @@
 // millions of triangles (BVH::epoMaxTriangles).
 #pragma once
 
-#include "accel/bvh/layout/bvh_node.h"
 #include <bvhlab/triangle.h>
+#include "accel/bvh/layout/bvh_node.h"
 
 #include <optional>
 #include <span>
@@ -20,8 +20,8 @@
 namespace bvhlab {
 
 // The node visits the walks may take, per triangle on average (measured 40-100 for sahbvh8 on
-// five of our scenes, 166 for tdbvh on conference); beyond, boxes overlap so much (many coincident triangles) that the walks grow
-// quadratic, and EPO is not computed.
+// five of our scenes, 166 for tdbvh on conference); beyond, boxes overlap so much (many coincident triangles) that the
+// walks grow quadratic, and EPO is not computed.
 inline constexpr int kEpoVisitsPerTriangle = 512;
 
 // EPO of the tree `nodes` (the BinaryBvh layout) whose leaf slot i holds leafTriangles[i]; 0 for an

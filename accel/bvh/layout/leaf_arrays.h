@@ -3,8 +3,8 @@
 // in SIMD blocks: triangle_blocks.h.)
 #pragma once
 
-#include "accel/bvh/layout/traversal_allocator.h"
 #include <bvhlab/triangle.h>
+#include "accel/bvh/layout/traversal_allocator.h"
 
 #include <cstdint>
 #include <vector>

@@ -5,9 +5,9 @@
 // quadrics' boxes; its leaves hold copies of the shapes in leaf order.
 #pragma once
 
+#include <bvhlab/quadric_shape.h>
 #include "accel/bvh/layout/bvh_node.h"
 #include "accel/bvh/layout/leaf_arrays.h"
-#include <bvhlab/quadric_shape.h>
 
 #include <cstdint>
 #include <vector>
@@ -18,7 +18,9 @@ struct QuadricLeaves {
     std::vector<uint32_t> primIndices;  // the primitive index of each shape, reported in Hit
     std::vector<QuadricShape> leafShapes;
 
-    size_t leafBytes() const { return primIndices.size() * sizeof(uint32_t) + leafShapes.size() * sizeof(QuadricShape); }
+    size_t leafBytes() const {
+        return primIndices.size() * sizeof(uint32_t) + leafShapes.size() * sizeof(QuadricShape);
+    }
 };
 
 // Laid out as BinaryBvh (root at 0, a padding slot, sibling pairs); leaf l holds

@@ -19,7 +19,7 @@ void* allocateTraversalMemory(size_t bytes) {
     if (bytes < kHugePage) return ::operator new(bytes, kCacheLine);
     // Whole huge pages: the advice covers the array and nothing else.
     const size_t rounded = (bytes + kHugePage - 1) / kHugePage * kHugePage;
-    void* p = ::operator new(rounded, std::align_val_t{kHugePage});
+    void* p = ::operator new (rounded, std::align_val_t{kHugePage});
 #if defined(MADV_HUGEPAGE)
     madvise(p, rounded, MADV_HUGEPAGE);  // advice only: without THP the pages stay small
 #endif
@@ -31,7 +31,7 @@ void freeTraversalMemory(void* p, size_t bytes) {
         ::operator delete(p, kCacheLine);
         return;
     }
-    ::operator delete(p, std::align_val_t{kHugePage});
+    ::operator delete (p, std::align_val_t{kHugePage});
 }
 
 }  // namespace bvhlab

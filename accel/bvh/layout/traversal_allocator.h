@@ -20,7 +20,9 @@ struct TraversalAllocator {
     T* allocate(size_t n) { return static_cast<T*>(allocateTraversalMemory(n * sizeof(T))); }
     void deallocate(T* p, size_t n) { freeTraversalMemory(p, n * sizeof(T)); }
     template <typename U>
-    bool operator==(const TraversalAllocator<U>&) const { return true; }
+    bool operator==(const TraversalAllocator<U>&) const {
+        return true;
+    }
 };
 
 }  // namespace bvhlab

@@ -9,8 +9,8 @@
 // mask and never reports a repeat.
 #pragma once
 
-#include "accel/bvh/layout/traversal_allocator.h"
 #include <bvhlab/triangle.h>
+#include "accel/bvh/layout/traversal_allocator.h"
 
 #include <cstdint>
 #include <vector>

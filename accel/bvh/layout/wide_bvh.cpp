@@ -37,8 +37,7 @@ void orderChildren(WideNode<N>& node) {
             begin[i] = kInfinity;
             if (!(node.lower[0][i] <= node.upper[0][i])) continue;  // empty
             begin[i] = 0.0f;
-            for (int a = 0; a < 3; ++a)
-                begin[i] += (octant >> a & 1) ? -node.upper[a][i] : node.lower[a][i];
+            for (int a = 0; a < 3; ++a) begin[i] += (octant >> a & 1) ? -node.upper[a][i] : node.lower[a][i];
         }
         int lanes[N];
         for (int i = 0; i < N; ++i) lanes[i] = i;
@@ -51,10 +50,10 @@ void orderChildren(WideNode<N>& node) {
 uint32_t leafChild(uint32_t firstBlock, uint32_t triangles) {
     const uint32_t blocks = blocksFor(triangles);
     if (blocks > wide_child::kMaxBlocks || firstBlock + blocks > (1u << wide_child::kFirstBlockBits))
-        throw std::length_error(fmt::format("the wide BVH addresses {} blocks of at most {} in a leaf; this one needs "
-                                            "blocks {} to {}",
-                                            1u << wide_child::kFirstBlockBits, wide_child::kMaxBlocks, firstBlock,
-                                            firstBlock + blocks - 1));
+        throw std::length_error(fmt::format(
+            "the wide BVH addresses {} blocks of at most {} in a leaf; this one needs "
+            "blocks {} to {}",
+            1u << wide_child::kFirstBlockBits, wide_child::kMaxBlocks, firstBlock, firstBlock + blocks - 1));
     return wide_child::leaf(firstBlock, blocks);
 }
 
@@ -118,8 +117,8 @@ private:
             distribute[j - 1] = best;
         }
         const float inner = costs.cTraversal * area + distribute[N - 1];
-        const float leaf = c.triangles <= costs.leafCap ? costs.cIntersect * area * float(blocksFor(c.triangles))
-                                                        : kInfinity;
+        const float leaf =
+            c.triangles <= costs.leafCap ? costs.cIntersect * area * float(blocksFor(c.triangles)) : kInfinity;
         c.asLeaf = leaf <= inner;
         c.cost[0] = std::min(leaf, inner);
         c.spread[0] = 1;

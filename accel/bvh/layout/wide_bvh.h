@@ -65,8 +65,8 @@ struct CollapseCosts {
     uint32_t leafCap;
 };
 
-// Collapses `bvh` (left as it is: BvhAccelerator keeps it for its statistics) by SAH, after Ylitie, Karras and Laine 2017 ("Efficient incoherent
-// ray traversal on GPUs through compressed wide BVHs", section 4.1): bottom up, each binary
+// Collapses `bvh` (left as it is: BvhAccelerator keeps it for its statistics) by SAH, after Ylitie, Karras and Laine
+// 2017 ("Efficient incoherent ray traversal on GPUs through compressed wide BVHs", section 4.1): bottom up, each binary
 // node's subtree gets its cheapest form as at most 1..N lanes of a wide node, where one lane is
 // the node itself, either a leaf of all its triangles (at most leafCap, charged by blocks) or a
 // wide node whose lanes are drawn from its subtree. Small sibling leaves thus merge when fewer

@@ -66,11 +66,7 @@ struct Scalar {
     }
     // Lanes 0-2 = p[0..2], lane 3 = p[2]; may read p[-1], never past p[2]: the last vertex
     // of a triangle that may end its array.
-    static Scalar loadLast3(const float* p)
-        requires(N == 4)
-    {
-        return {{p[0], p[1], p[2], p[2]}};
-    }
+    static Scalar loadLast3(const float* p) requires(N == 4) { return {{p[0], p[1], p[2], p[2]}}; }
     void store(float* p) const { storeu(p); }
     void storeu(float* p) const {
         for (int i = 0; i < N; ++i) p[i] = lane[i];
@@ -85,10 +81,18 @@ struct Scalar {
         for (int i = 0; i < N; ++i) a.lane[i] = op(a.lane[i], b.lane[i]);
         return a;
     }
-    friend Scalar operator+(Scalar a, Scalar b) { return zipWith(a, b, [](float x, float y) { return x + y; }); }
-    friend Scalar operator-(Scalar a, Scalar b) { return zipWith(a, b, [](float x, float y) { return x - y; }); }
-    friend Scalar operator*(Scalar a, Scalar b) { return zipWith(a, b, [](float x, float y) { return x * y; }); }
-    friend Scalar operator/(Scalar a, Scalar b) { return zipWith(a, b, [](float x, float y) { return x / y; }); }
+    friend Scalar operator+(Scalar a, Scalar b) {
+        return zipWith(a, b, [](float x, float y) { return x + y; });
+    }
+    friend Scalar operator-(Scalar a, Scalar b) {
+        return zipWith(a, b, [](float x, float y) { return x - y; });
+    }
+    friend Scalar operator*(Scalar a, Scalar b) {
+        return zipWith(a, b, [](float x, float y) { return x * y; });
+    }
+    friend Scalar operator/(Scalar a, Scalar b) {
+        return zipWith(a, b, [](float x, float y) { return x / y; });
+    }
     // float(double(a) * double(b) - double(c) * double(d)): both products are exact in double,
     // so the result's sign is that of the exact difference, and 0 only when it is 0.
     friend Scalar differenceOfProducts(Scalar a, Scalar b, Scalar c, Scalar d) {
@@ -109,8 +113,12 @@ struct Scalar {
         for (int i = 0; i < N; ++i) a.lane[i] = std::abs(a.lane[i]);
         return a;
     }
-    friend Scalar min(Scalar a, Scalar b) { return zipWith(a, b, [](float x, float y) { return simd::min(x, y); }); }
-    friend Scalar max(Scalar a, Scalar b) { return zipWith(a, b, [](float x, float y) { return simd::max(x, y); }); }
+    friend Scalar min(Scalar a, Scalar b) {
+        return zipWith(a, b, [](float x, float y) { return simd::min(x, y); });
+    }
+    friend Scalar max(Scalar a, Scalar b) {
+        return zipWith(a, b, [](float x, float y) { return simd::max(x, y); });
+    }
     friend Mask operator<=(Scalar a, Scalar b) {
         Mask m{0};
         for (int i = 0; i < N; ++i) m.bits |= uint32_t(a.lane[i] <= b.lane[i]) << i;
@@ -169,8 +177,8 @@ struct Sse {
         return {_mm256_cvtpd_ps(_mm256_sub_pd(ab, cd))};
 #else
         const auto half = [](__m128 a, __m128 b, __m128 c, __m128 d) {
-            return _mm_cvtpd_ps(_mm_sub_pd(_mm_mul_pd(_mm_cvtps_pd(a), _mm_cvtps_pd(b)),
-                                           _mm_mul_pd(_mm_cvtps_pd(c), _mm_cvtps_pd(d))));
+            return _mm_cvtpd_ps(
+                _mm_sub_pd(_mm_mul_pd(_mm_cvtps_pd(a), _mm_cvtps_pd(b)), _mm_mul_pd(_mm_cvtps_pd(c), _mm_cvtps_pd(d))));
         };
         const auto high = [](__m128 x) { return _mm_movehl_ps(x, x); };
         return {_mm_movelh_ps(half(a.v, b.v, c.v, d.v), half(high(a.v), high(b.v), high(c.v), high(d.v)))};
@@ -180,8 +188,12 @@ struct Sse {
     friend Sse fmadd(Sse a, Sse b, Sse c) { return {_mm_fmadd_ps(a.v, b.v, c.v)}; }
     friend Sse fmsub(Sse a, Sse b, Sse c) { return {_mm_fmsub_ps(a.v, b.v, c.v)}; }
 #else  // no fused multiply-add in hardware: std::fma lane by lane, slow but bit for bit the same
-    friend Sse fmadd(Sse a, Sse b, Sse c) { return viaScalar(a, b, c, [](auto x, auto y, auto z) { return fmadd(x, y, z); }); }
-    friend Sse fmsub(Sse a, Sse b, Sse c) { return viaScalar(a, b, c, [](auto x, auto y, auto z) { return fmsub(x, y, z); }); }
+    friend Sse fmadd(Sse a, Sse b, Sse c) {
+        return viaScalar(a, b, c, [](auto x, auto y, auto z) { return fmadd(x, y, z); });
+    }
+    friend Sse fmsub(Sse a, Sse b, Sse c) {
+        return viaScalar(a, b, c, [](auto x, auto y, auto z) { return fmsub(x, y, z); });
+    }
     template <typename Op>
     static Sse viaScalar(Sse a, Sse b, Sse c, Op op) {
         Scalar<4> x, y, z;

@@ -4,8 +4,8 @@
 // first (by the entry distances), the other pushed.
 #pragma once
 
-#include "accel/bvh/simd/kernel_namespace.h"
 #include "accel/bvh/layout/binary_bvh.h"
+#include "accel/bvh/simd/kernel_namespace.h"
 #include "accel/bvh/traverse/box_test.h"
 #include "accel/bvh/traverse/traversal.h"
 

@@ -22,9 +22,9 @@
 // never a missed hit. The entry distance itself is never NaN (tmin is not).
 #pragma once
 
-#include "accel/bvh/simd/kernel_namespace.h"
 #include "accel/bvh/layout/bvh_node.h"
 #include "accel/bvh/layout/wide_bvh.h"
+#include "accel/bvh/simd/kernel_namespace.h"
 #include "accel/bvh/simd/simd.h"
 
 #include <cmath>
@@ -197,8 +197,10 @@ struct WideBoxTest : RaySlabs<Robust> {
 
     // The boxes of `node` the ray overlaps within [tmin, tmax], their bounds at the ray's offsets.
     [[gnu::always_inline]] Hits test(const Node& node, F tmax) const {
-        const float* nearBounds[3] = {bounds(node, nearOffset[0]), bounds(node, nearOffset[1]), bounds(node, nearOffset[2])};
-        const float* farBounds[3] = {bounds(node, farOffset[0]), bounds(node, farOffset[1]), bounds(node, farOffset[2])};
+        const float* nearBounds[3] = {bounds(node, nearOffset[0]), bounds(node, nearOffset[1]),
+                                      bounds(node, nearOffset[2])};
+        const float* farBounds[3] = {bounds(node, farOffset[0]), bounds(node, farOffset[1]),
+                                     bounds(node, farOffset[2])};
         return test(nearBounds, farBounds, tmax);
     }
 

@@ -15,8 +15,8 @@
 // triangles tested up to the one that occludes.
 #pragma once
 
-#include "accel/bvh/simd/kernel_namespace.h"
 #include "accel/bvh/layout/wide_bvh.h"
+#include "accel/bvh/simd/kernel_namespace.h"
 #include "accel/bvh/simd/simd.h"
 #include "accel/bvh/traverse/triangle_block_test.h"
 
@@ -115,7 +115,8 @@ struct PacketTriangleTest {
 
     // How many groups the rays in `lanes` fall into: the tests a triangle takes.
     [[gnu::always_inline]] int groupsOf(int lanes) const {
-        return int((groupLanes[0] & lanes) != 0) + int((groupLanes[1] & lanes) != 0) + int((groupLanes[2] & lanes) != 0);
+        return int((groupLanes[0] & lanes) != 0) + int((groupLanes[1] & lanes) != 0) +
+               int((groupLanes[2] & lanes) != 0);
     }
 
     // The hits of the triangle in lane `lane` of `block` among `lanes` of group `group`, at t in
@@ -147,7 +148,8 @@ struct PacketTriangleTest<K, false> {
 
     PacketTriangleTest(const Ray* rays, int count) : groupLanes{int((1u << count) - 1)} {
         for (int k = 0; k < K; ++k)
-            for (int a = 0; a < 3; ++a) org[a][k] = rays[k < count ? k : 0].org[a], dir[a][k] = rays[k < count ? k : 0].dir[a];
+            for (int a = 0; a < 3; ++a)
+                org[a][k] = rays[k < count ? k : 0].org[a], dir[a][k] = rays[k < count ? k : 0].dir[a];
     }
 
     static int groupsOf(int) { return 1; }
@@ -174,7 +176,8 @@ struct PacketTriangleTest<K, false> {
     const auto repeats = [&](int lane) {  // lane holds the triangle of lane - 1, bit for bit
         for (int v = 0; v < 3; ++v)
             for (int a = 0; a < 3; ++a)
-                if (std::bit_cast<uint32_t>(last.vertex[v][a][lane]) != std::bit_cast<uint32_t>(last.vertex[v][a][lane - 1]))
+                if (std::bit_cast<uint32_t>(last.vertex[v][a][lane]) !=
+                    std::bit_cast<uint32_t>(last.vertex[v][a][lane - 1]))
                     return false;
         return true;
     };
@@ -190,9 +193,9 @@ struct PacketTriangleTest<K, false> {
 // Returns whether any ray hit.
 template <bool Counting, typename Query, bool Robust, int K>
 [[gnu::always_inline]] inline bool testLeafPacket(Query* queries, float* tmax, const float* tmin,
-                                                 const PacketTriangleTest<K, Robust>& test,
-                                                 const TriangleBlockLeaves& leaves, uint32_t child, uint32_t lanesTested,
-                                                 int active, uint64_t* tests) {
+                                                  const PacketTriangleTest<K, Robust>& test,
+                                                  const TriangleBlockLeaves& leaves, uint32_t child,
+                                                  uint32_t lanesTested, int active, uint64_t* tests) {
     using F = simd::Floats<K>;
     constexpr int W = TriangleBlock::kLanes;
     const uint32_t first = wide_child::firstBlock(child);
@@ -206,7 +209,8 @@ template <bool Counting, typename Query, bool Robust, int K>
         F tmaxes = F::load(tmax);
         for (uint32_t i = 0; i < lanesTested; ++i) {
             const LaneHits<F> hits = test.intersect(block[i / W], int(i % W), group, tmins, tmaxes, lanes);
-            if (hits.mask == 0) [[likely]] continue;
+            if (hits.mask == 0) [[likely]]
+                continue;
             hit = true;
             hits.t.store(t), hits.u.store(u), hits.v.store(v);
             for (int m = hits.mask; m != 0; m &= m - 1) {

@@ -6,8 +6,8 @@
 // alone through runQuery: a miss for an invalid ray, the sign-aware box test for tmin < 0.
 #pragma once
 
-#include "accel/bvh/simd/kernel_namespace.h"
 #include "accel/bvh/layout/wide_bvh.h"
+#include "accel/bvh/simd/kernel_namespace.h"
 #include "accel/bvh/traverse/traversal.h"
 
 #include <cstddef>

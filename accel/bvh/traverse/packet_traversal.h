@@ -87,7 +87,8 @@ struct PacketBoxTest {
         const float* bounds = &node.lower[0][0];
         F nearT[3], farT[3];
         for (int a = 0; a < 3; ++a) {
-            const F nearBound = F::broadcast(bounds[nearOffset[a] + c]), farBound = F::broadcast(bounds[farOffset[a] + c]);
+            const F nearBound = F::broadcast(bounds[nearOffset[a] + c]),
+                    farBound = F::broadcast(bounds[farOffset[a] + c]);
             const F o = F::load(org[a]);
             nearT[a] = (nearBound - o) * F::load(inv[a]);
             farT[a] = (farBound - o) * F::load(invFar[a]);
@@ -109,7 +110,8 @@ struct PacketEntry {
 // {make(0), ..., make(K - 1)}: per-ray objects without a default constructor.
 template <int K, typename Make>
 auto arrayOf(Make&& make) {
-    return [&]<size_t... I>(std::index_sequence<I...>) { return std::array{make(I)...}; }(std::make_index_sequence<K>());
+    return [&]<size_t... I>(std::index_sequence<I...>) { return std::array{make(I)...}; }
+    (std::make_index_sequence<K>());
 }
 
 }  // namespace packet_traversal
@@ -191,7 +193,8 @@ void tracePacket(const WideBvh<N>& bvh, const Ray* rays, int count, int octant, 
                     const int k = std::countr_zero(unsigned(m));
                     if constexpr (Counting) ++steps[k];
                     hit |= testLeafBlocks<Counting>(queries[k], triangleTests[k], bvh, current.child, rays[k].tmin,
-                                                    tests[k]) || queries[k].tmax < tmax[k];
+                                                    tests[k]) ||
+                           queries[k].tmax < tmax[k];
                     finished(k);
                 }
             }
@@ -270,8 +273,8 @@ void tracePacket(const WideBvh<N>& bvh, const Ray* rays, int count, int octant, 
 
 // A batch: its valid rays with tmin >= 0 in packets of up to kPacketWidth of one direction
 // octant (a wavefront's camera rays, the shadow rays of one light: the rays of a packet are
-// neighbours where the batch is coherent), the others alone (octant_groups.h). Calls answer(i, query, work) once per ray i, not
-// in order, with its query and its work (queries = 1).
+// neighbours where the batch is coherent), the others alone (octant_groups.h). Calls answer(i, query, work) once per
+// ray i, not in order, with its query and its work (queries = 1).
 template <bool Counting, typename Query, bool Robust, PacketKind Kind, int N, typename Answer>
 void traceAsPackets(const WideBvh<N>& bvh, std::span<const Ray> rays, int fallback, Answer&& answer) {
     constexpr int K = kPacketWidth;

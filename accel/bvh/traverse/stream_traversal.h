@@ -146,7 +146,7 @@ void traceStream(const WideBvh<N>& bvh, const Ray* rays, int count, int octant, 
     uint32_t poolSize = 0;
     alignas(64) float entries[kClosest ? K : 1][N];  // the current node's, per ray and child
 
-    uint64_t live = ~uint64_t(0) >> (64 - count);  // rays not yet answered (an any-hit ray leaves when occluded)
+    uint64_t live = ~uint64_t(0) >> (64 - count);        // rays not yet answered (an any-hit ray leaves when occluded)
     StreamEntry current{wide_child::inner(0), 0, live};  // the root
     for (;;) {
         const uint64_t active = current.rays;

@@ -7,8 +7,8 @@
 // What the counters count (QueryCounters, Havran's terms):
 //   N_TR (traversalSteps): nodes visited. The root is visited by every valid query; any other
 //     node is visited when the ray enters its box before the current closest hit. A node
-//     pushed on the stack and dropped because a closer hit was found meanwhile is not counted. A binary tree's inner visit tests two boxes, so its
-//     box tests = 1 + 2 * (inner nodes visited); a wide tree's steps are wide nodes and
+//     pushed on the stack and dropped because a closer hit was found meanwhile is not counted. A binary tree's inner
+//     visit tests two boxes, so its box tests = 1 + 2 * (inner nodes visited); a wide tree's steps are wide nodes and
 //     leaves, not comparable with a binary tree's.
 //   N_IT (intersectionTests): ray-primitive tests, i.e. the sizes of the leaves visited (an
 //     any-hit query stops counting at the primitive that occludes); spheres and cones are
@@ -21,12 +21,12 @@
 // joined bvh_accelerator.cpp; the trees and the work counted were the same).
 #pragma once
 
-#include "accel/bvh/simd/kernel_namespace.h"
+#include <bvhlab/triangle.h>
 #include "accel/bvh/layout/leaf_arrays.h"
 #include "accel/bvh/layout/quadric_leaves.h"
+#include "accel/bvh/simd/kernel_namespace.h"
 #include "accel/bvh/traverse/traversal_config.h"
 #include "framework/core/accelerator.h"
-#include <bvhlab/triangle.h>
 #include "framework/core/triangle_moller_trumbore.h"
 
 namespace bvhlab {
@@ -91,8 +91,9 @@ template <bool Counting>
 
 // Tests the triangles [first, first + count) of leaf order; true when the query is answered.
 template <typename Query, bool Robust>
-[[gnu::always_inline]] inline bool testLeaf(Query& query, const LeafTriangleTest<Robust>& test, const Triangle* triangles,
-                                           uint32_t first, uint32_t count, float tmin, uint64_t& tests) {
+[[gnu::always_inline]] inline bool testLeaf(Query& query, const LeafTriangleTest<Robust>& test,
+                                            const Triangle* triangles, uint32_t first, uint32_t count, float tmin,
+                                            uint64_t& tests) {
     for (uint32_t i = first, end = first + count; i < end; ++i) {
         ++tests;
         TriangleHitT<float> h;

@@ -74,7 +74,7 @@ inline constexpr FieldKey<&TraversalConfig::singleStep> singleStep{
 
 // The keys of the tests a traversal runs, and those of its kernels and paths.
 inline constexpr std::tuple kTraversalTestKeys{&keys::BVH::robust};
-inline constexpr std::tuple kTraversalPathKeys{&keys::BVH::packetFallback, &keys::BVH::isa,
-                                               &keys::BVH::batchTraversal, &keys::BVH::singleStep};
+inline constexpr std::tuple kTraversalPathKeys{&keys::BVH::packetFallback, &keys::BVH::isa, &keys::BVH::batchTraversal,
+                                               &keys::BVH::singleStep};
 
 }  // namespace bvhlab

@@ -14,10 +14,14 @@ const char* singleStepName(SingleStep step) { return kSingleStepWords[size_t(ste
 
 int isaVectorBits(Isa isa) {
     switch (isa) {
-    case Isa::Auto: return 0;
-    case Isa::Scalar: return 128;
-    case Isa::Avx2: return 256;
-    case Isa::Avx512: return 512;
+        case Isa::Auto:
+            return 0;
+        case Isa::Scalar:
+            return 128;
+        case Isa::Avx2:
+            return 256;
+        case Isa::Avx512:
+            return 512;
     }
     return 0;
 }
@@ -27,10 +31,13 @@ int isaVectorBits(Isa isa) {
 bool cpuRuns(Isa isa) {
     const CpuLevels cpu = cpuLevels();
     switch (isa) {
-    case Isa::Auto:
-    case Isa::Scalar: return true;
-    case Isa::Avx2: return cpu.v3;
-    case Isa::Avx512: return cpu.v4;
+        case Isa::Auto:
+        case Isa::Scalar:
+            return true;
+        case Isa::Avx2:
+            return cpu.v3;
+        case Isa::Avx512:
+            return cpu.v4;
     }
     return false;
 }
@@ -48,9 +55,12 @@ TraversalKernels<Tree> traversalKernels(const TraversalConfig& config) {
         throw InputError(fmt::format("BVH::isa={}: this CPU does not run the {} kernels (it runs up to {})",
                                      isaName(isa), isaName(isa), isaName(bestIsa())));
     switch (isa) {
-    case Isa::Avx512: return kernels::avx512<Tree>(config.robust, config.singleStep);
-    case Isa::Avx2: return kernels::avx2<Tree>(config.robust, config.singleStep);
-    default: return kernels::scalar<Tree>(config.robust, config.singleStep);
+        case Isa::Avx512:
+            return kernels::avx512<Tree>(config.robust, config.singleStep);
+        case Isa::Avx2:
+            return kernels::avx2<Tree>(config.robust, config.singleStep);
+        default:
+            return kernels::scalar<Tree>(config.robust, config.singleStep);
     }
 }
 

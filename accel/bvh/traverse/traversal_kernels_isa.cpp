@@ -2,10 +2,10 @@
 // -DBVHLAB_KERNEL_NS=<isa> -DBVHLAB_KERNEL_ISA=Isa::<Isa> (accel/CMakeLists.txt), so that all it
 // instantiates lives in namespace bvhlab::<isa> (kernel_namespace.h) and the table it exports is
 // kernels::<isa>. The entry points themselves have internal linkage.
-#include "accel/bvh/traverse/traversal_kernels.h"
 #include "accel/bvh/traverse/binary_bvh_traversal.h"
 #include "accel/bvh/traverse/packet_traversal.h"
 #include "accel/bvh/traverse/stream_traversal.h"
+#include "accel/bvh/traverse/traversal_kernels.h"
 #include "accel/bvh/traverse/wide_bvh_traversal.h"
 
 #include <type_traits>
@@ -59,14 +59,19 @@ void traceRange(const Tree& tree, std::span<const Ray> rays, const TraversalConf
         oneByOne();
     } else {
         switch (batchPath<Query>(config, coherence)) {
-        case BatchTraversal::Single: oneByOne(); break;
-        case BatchTraversal::Coherent:
-            traceAsPackets<Counting, Query, Robust, PacketKind::Coherent>(tree, rays, config.packetFallback, answer);
-            break;
-        case BatchTraversal::Stream: traceAsStreams<Counting, Query, Robust>(tree, rays, answer); break;
-        default:
-            traceAsPackets<Counting, Query, Robust, PacketKind::Plain>(tree, rays, config.packetFallback, answer);
-            break;
+            case BatchTraversal::Single:
+                oneByOne();
+                break;
+            case BatchTraversal::Coherent:
+                traceAsPackets<Counting, Query, Robust, PacketKind::Coherent>(tree, rays, config.packetFallback,
+                                                                              answer);
+                break;
+            case BatchTraversal::Stream:
+                traceAsStreams<Counting, Query, Robust>(tree, rays, answer);
+                break;
+            default:
+                traceAsPackets<Counting, Query, Robust, PacketKind::Plain>(tree, rays, config.packetFallback, answer);
+                break;
         }
     }
 }
@@ -74,25 +79,26 @@ void traceRange(const Tree& tree, std::span<const Ray> rays, const TraversalConf
 template <typename Tree, bool Robust, bool Counting, SingleStep Step>
 void findNearestRange(const Tree& tree, std::span<const Ray> rays, std::span<Hit> hits, QueryCounters& counters,
                       std::span<RayCost> costs, const TraversalConfig& config, RayCoherence coherence) {
-    traceRange<ClosestHitQuery, Robust, Counting, Step>(tree, rays, config, coherence,
-                                                  [&](size_t i, const ClosestHitQuery& query, const QueryCounters& work) {
-                                                      counters += work;
-                                                      Hit hit;
-                                                      answerOf(tree, query, hit);
-                                                      hits[i] = hit;
-                                                      if (!costs.empty()) costs[i] = Accelerator::costBetween({}, work);
-                                                  });
+    traceRange<ClosestHitQuery, Robust, Counting, Step>(
+        tree, rays, config, coherence, [&](size_t i, const ClosestHitQuery& query, const QueryCounters& work) {
+            counters += work;
+            Hit hit;
+            answerOf(tree, query, hit);
+            hits[i] = hit;
+            if (!costs.empty()) costs[i] = Accelerator::costBetween({}, work);
+        });
 }
 
 template <typename Tree, bool Robust, bool Counting, SingleStep Step>
 void isOccludedRange(const Tree& tree, std::span<const Ray> rays, std::span<uint8_t> occluded, QueryCounters& counters,
                      std::span<RayCost> costs, const TraversalConfig& config, RayCoherence coherence) {
     traceRange<AnyHitQuery, Robust, Counting, Step>(tree, rays, config, coherence,
-                                              [&](size_t i, const AnyHitQuery& query, const QueryCounters& work) {
-                                                  counters += work;
-                                                  occluded[i] = query.occluded ? 1 : 0;
-                                                  if (!costs.empty()) costs[i] = Accelerator::costBetween({}, work);
-                                              });
+                                                    [&](size_t i, const AnyHitQuery& query, const QueryCounters& work) {
+                                                        counters += work;
+                                                        occluded[i] = query.occluded ? 1 : 0;
+                                                        if (!costs.empty())
+                                                            costs[i] = Accelerator::costBetween({}, work);
+                                                    });
 }
 
 template <typename Tree, bool Robust, bool Counting, SingleStep Step>

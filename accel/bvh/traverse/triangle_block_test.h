@@ -6,11 +6,11 @@
 // binary one, and agree with it hit for hit.
 #pragma once
 
-#include "accel/bvh/simd/kernel_namespace.h"
+#include <bvhlab/triangle.h>
 #include "accel/bvh/layout/triangle_blocks.h"
 #include "accel/bvh/layout/wide_bvh.h"
+#include "accel/bvh/simd/kernel_namespace.h"
 #include "accel/bvh/simd/simd.h"
-#include <bvhlab/triangle.h>
 
 namespace bvhlab {
 inline namespace BVHLAB_KERNEL_NS {
@@ -47,7 +47,8 @@ template <typename F>
     const F cd = c * d;
     const F e = fmsub(a, b, cd);
     const auto certain = abs(e) > fmadd(abs(cd), F::broadcast(kEdgeErrorScale), F::broadcast(kEdgeErrorFloor));
-    if ((movemask(certain) & lanes) == lanes) [[likely]] return e;
+    if ((movemask(certain) & lanes) == lanes) [[likely]]
+        return e;
     return recomputeDoubtfulLanes(certain, e, a, b, c, d);
 }
 
@@ -62,8 +63,8 @@ template <typename F>
     const F zero = F::broadcast(0.0f);
     // Lanes with edge functions of both signs miss; so does a zero determinant. The division
     // only where a lane may hit (a lane's quotient does not depend on the others).
-    const int mixedSigns = movemask((e0 < zero) | (e1 < zero) | (e2 < zero)) &
-                           movemask((e0 > zero) | (e1 > zero) | (e2 > zero));
+    const int mixedSigns =
+        movemask((e0 < zero) | (e1 < zero) | (e2 < zero)) & movemask((e0 > zero) | (e1 > zero) | (e2 > zero));
     const F det = e0 + e1 + e2;
     LaneHits<F> hits;
     if ((~mixedSigns & movemask(det != zero) & lanes) == 0) return hits;
@@ -165,7 +166,8 @@ struct BlockTriangleTest<false> {
 // blocks and leaves.
 [[gnu::always_inline]] inline int closestLane(const BlockHits& hits) {
     int lane = __builtin_ctz(unsigned(hits.mask));
-    if ((hits.mask & (hits.mask - 1)) == 0) [[likely]] return lane;
+    if ((hits.mask & (hits.mask - 1)) == 0) [[likely]]
+        return lane;
     alignas(32) float t[TriangleBlock::kLanes];
     hits.t.store(t);
     for (int m = hits.mask & (hits.mask - 1); m != 0; m &= m - 1) {
@@ -187,14 +189,15 @@ struct BlockTriangleTest<false> {
 // that occludes, padding never.
 template <bool Counting, typename Query, bool Robust>
 [[gnu::always_inline]] inline bool testLeafBlocks(Query& query, const BlockTriangleTest<Robust>& test,
-                                                 const TriangleBlockLeaves& leaves, uint32_t child, float tmin,
-                                                 uint64_t& tests) {
+                                                  const TriangleBlockLeaves& leaves, uint32_t child, float tmin,
+                                                  uint64_t& tests) {
     constexpr int W = TriangleBlock::kLanes;
     const uint32_t first = wide_child::firstBlock(child), end = wide_child::blocks(child);
     const TriangleBlock* blocks = leaves.blocks.data() + first;
     for (uint32_t b = 0; b < end; ++b) {
         const BlockHits hits = test.intersect(blocks[b], tmin, query.tmax);
-        if (hits.mask == 0) [[likely]] continue;
+        if (hits.mask == 0) [[likely]]
+            continue;
         if constexpr (Query::kStopsAtFirstHit) {
             const int lane = __builtin_ctz(unsigned(hits.mask));
             if constexpr (Counting) tests += uint64_t(b) * W + lane + 1;

@@ -8,8 +8,8 @@
 // fixed offsets (WideBoxTest::test<Octant>) and its stack order at a fixed shift.
 #pragma once
 
-#include "accel/bvh/simd/kernel_namespace.h"
 #include "accel/bvh/layout/wide_bvh.h"
+#include "accel/bvh/simd/kernel_namespace.h"
 #include "accel/bvh/traverse/box_test.h"
 #include "accel/bvh/traverse/traversal.h"
 #include "accel/bvh/traverse/triangle_block_test.h"
@@ -25,8 +25,8 @@ inline namespace BVHLAB_KERNEL_NS {
 // tests when Counting. Octant: the ray's direction octant (RaySlabs::octant), or kAnyOctant.
 template <bool Counting, int Octant = kAnyOctant, typename Query, bool NegativeT, bool Robust, int N>
 [[gnu::always_inline]] inline void traverseFrom(const WideBvh<N>& bvh, const WideBoxTest<N, NegativeT, Robust>& boxTest,
-                                               const BlockTriangleTest<Robust>& triangleTest, Query& query,
-                                               uint32_t current, uint64_t& steps, uint64_t& tests) {
+                                                const BlockTriangleTest<Robust>& triangleTest, Query& query,
+                                                uint32_t current, uint64_t& steps, uint64_t& tests) {
     using F = simd::Floats<N>;
     const WideNode<N>* nodes = bvh.nodes.data();
     const float tmin = boxTest.RaySlabs<Robust>::tmin;
@@ -89,14 +89,22 @@ Query traverse(const WideBvh<N>& bvh, const Ray& ray, QueryCounters& counters) {
         return traverseInOctant<Counting, kAnyOctant, Query, NegativeT, Robust>(bvh, ray, counters);
     } else {
         switch (directionOctant(ray.dir)) {
-        case 0: return traverseInOctant<Counting, 0, Query, NegativeT, Robust>(bvh, ray, counters);
-        case 1: return traverseInOctant<Counting, 1, Query, NegativeT, Robust>(bvh, ray, counters);
-        case 2: return traverseInOctant<Counting, 2, Query, NegativeT, Robust>(bvh, ray, counters);
-        case 3: return traverseInOctant<Counting, 3, Query, NegativeT, Robust>(bvh, ray, counters);
-        case 4: return traverseInOctant<Counting, 4, Query, NegativeT, Robust>(bvh, ray, counters);
-        case 5: return traverseInOctant<Counting, 5, Query, NegativeT, Robust>(bvh, ray, counters);
-        case 6: return traverseInOctant<Counting, 6, Query, NegativeT, Robust>(bvh, ray, counters);
-        default: return traverseInOctant<Counting, 7, Query, NegativeT, Robust>(bvh, ray, counters);
+            case 0:
+                return traverseInOctant<Counting, 0, Query, NegativeT, Robust>(bvh, ray, counters);
+            case 1:
+                return traverseInOctant<Counting, 1, Query, NegativeT, Robust>(bvh, ray, counters);
+            case 2:
+                return traverseInOctant<Counting, 2, Query, NegativeT, Robust>(bvh, ray, counters);
+            case 3:
+                return traverseInOctant<Counting, 3, Query, NegativeT, Robust>(bvh, ray, counters);
+            case 4:
+                return traverseInOctant<Counting, 4, Query, NegativeT, Robust>(bvh, ray, counters);
+            case 5:
+                return traverseInOctant<Counting, 5, Query, NegativeT, Robust>(bvh, ray, counters);
+            case 6:
+                return traverseInOctant<Counting, 6, Query, NegativeT, Robust>(bvh, ray, counters);
+            default:
+                return traverseInOctant<Counting, 7, Query, NegativeT, Robust>(bvh, ray, counters);
         }
     }
 }

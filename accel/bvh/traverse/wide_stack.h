@@ -7,8 +7,8 @@
 // primary rays.) An any-hit step pushes them in lane order and stores no distances.
 #pragma once
 
-#include "accel/bvh/simd/kernel_namespace.h"
 #include "accel/bvh/layout/wide_bvh.h"
+#include "accel/bvh/simd/kernel_namespace.h"
 #include "accel/bvh/simd/simd.h"
 
 #include <array>
@@ -109,13 +109,13 @@ template <int N, typename F>
     const int others = mask & ~(1 << nearest);
 #if defined(__AVX2__) && defined(__FMA__)
     if constexpr (N == 8 && std::is_same_v<F, simd::Avx>) {
-        const __m256i order = _mm256_srl_epi32(_mm256_load_si256(reinterpret_cast<const __m256i*>(node.order)),
-                                               _mm_cvtsi32_si128(shift));
+        const __m256i order =
+            _mm256_srl_epi32(_mm256_load_si256(reinterpret_cast<const __m256i*>(node.order)), _mm_cvtsi32_si128(shift));
         // Bit p of `ordered`: the child at position p is pushed.
         const __m256i lanes = _mm256_and_si256(order, _mm256_set1_epi32(7));
         const __m256i bits = _mm256_sllv_epi32(_mm256_set1_epi32(1), lanes);
-        const int ordered = _mm256_movemask_ps(_mm256_castsi256_ps(
-            _mm256_cmpeq_epi32(_mm256_and_si256(bits, _mm256_set1_epi32(others)), bits)));
+        const int ordered = _mm256_movemask_ps(
+            _mm256_castsi256_ps(_mm256_cmpeq_epi32(_mm256_and_si256(bits, _mm256_set1_epi32(others)), bits)));
         const __m256i index = wide_stack::compress(order, ordered);
         const __m256i children = _mm256_load_si256(reinterpret_cast<const __m256i*>(node.child));
         _mm256_storeu_si256(reinterpret_cast<__m256i*>(stack.child + stack.size),

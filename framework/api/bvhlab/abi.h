@@ -32,12 +32,16 @@ namespace abi {
 // The number of fields of an aggregate: how many values brace-initialise it.
 struct AnyField {
     template <typename T>
-    constexpr operator T() const { return T{}; }
+    constexpr operator T() const {
+        return T{};
+    }
 };
 template <typename T, typename... Fields>
 constexpr uint64_t fieldCount() {
-    if constexpr (requires { T{Fields{}..., AnyField{}}; }) return fieldCount<T, Fields..., AnyField>();
-    else return sizeof...(Fields);
+    if constexpr (requires { T{Fields{}..., AnyField{}}; })
+        return fieldCount<T, Fields..., AnyField>();
+    else
+        return sizeof...(Fields);
 }
 
 // FNV-1a of a text.
@@ -64,7 +68,9 @@ uint64_t vtableSlot(MemberFunction function) {
 // A hash of a type as the Itanium C++ ABI mangles it (typeid's name), a spelling every compiler
 // that follows the ABI shares: the class, the parameters, the result and the qualifiers.
 template <typename T>
-uint64_t typeHash() { return hash(typeid(T).name()); }
+uint64_t typeHash() {
+    return hash(typeid(T).name());
+}
 
 // The standard library, and its ABI: libstdc++'s dual ABI (_GLIBCXX_USE_CXX11_ABI, the layout of
 // std::string and std::list) or libc++'s ABI version. A plugin's exceptions and bvhlab's handlers
@@ -88,14 +94,20 @@ inline constexpr uint64_t kItaniumAbi = 0;
 
 }  // namespace abi
 
-#define BVHLAB_ABI_STRUCT(T) {"sizeof(" #T ")", sizeof(T)}, {"alignof(" #T ")", alignof(T)}
-#define BVHLAB_ABI_AGGREGATE(T) BVHLAB_ABI_STRUCT(T), {"field count of " #T, abi::fieldCount<T>()}
-#define BVHLAB_ABI_OFFSET(T, field) {"offsetof(" #T ", " #field ")", offsetof(T, field)}
-#define BVHLAB_ABI_ENUMERATOR(E, name) {#E "::" #name, uint64_t(E::name)}
-#define BVHLAB_ABI_CLASS(T) {"virtual destructor of " #T, std::has_virtual_destructor_v<T>}
-#define BVHLAB_ABI_VIRTUAL(T, function) \
-    {"vtable slot of " #T "::" #function, abi::vtableSlot(&T::function)}, \
-    {"type of " #T "::" #function, abi::typeHash<decltype(&T::function)>()}
+#define BVHLAB_ABI_STRUCT(T) \
+    {"sizeof(" #T ")", sizeof(T)}, { "alignof(" #T ")", alignof(T) }
+#define BVHLAB_ABI_AGGREGATE(T) \
+    BVHLAB_ABI_STRUCT(T), { "field count of " #T, abi::fieldCount<T>() }
+#define BVHLAB_ABI_OFFSET(T, field) \
+    { "offsetof(" #T ", " #field ")", offsetof(T, field) }
+#define BVHLAB_ABI_ENUMERATOR(E, name) \
+    { #E "::" #name, uint64_t(E::name) }
+#define BVHLAB_ABI_CLASS(T) \
+    { "virtual destructor of " #T, std::has_virtual_destructor_v<T> }
+#define BVHLAB_ABI_VIRTUAL(T, function)                                       \
+    {"vtable slot of " #T "::" #function, abi::vtableSlot(&T::function)}, {   \
+        "type of " #T "::" #function, abi::typeHash<decltype(&T::function)>() \
+    }
 
 // The ABI the calling translation unit sees, computed there once. Hidden, so that a plugin's call
 // always runs its own copy, never one the program exports. Every enumerator of a public enum and

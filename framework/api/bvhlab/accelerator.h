@@ -44,8 +44,8 @@ public:
     // batch (bvhlab's BVHs) or to call a native batch API (Embree's stream API). Answers equal the
     // single-ray calls': bvhlab's bit for bit; a native batch API may round differently, within
     // hitsAgree (docs/accuracy.md).
-    virtual void findNearestBatch(View<const Ray> rays, View<Hit> hits, QueryCounters& counters,
-                                  View<RayCost> costs, RayCoherence /*coherence*/) const {
+    virtual void findNearestBatch(View<const Ray> rays, View<Hit> hits, QueryCounters& counters, View<RayCost> costs,
+                                  RayCoherence /*coherence*/) const {
         for (size_t i = 0; i < rays.size(); ++i) {
             const QueryCounters before = counters;
             Hit hit;

@@ -41,8 +41,7 @@ public:
     // `centroidBounds` the box of their centres. Called only for nodes of more than
     // BVH::maxLeaf primitives whose centres are not all equal (near the depth bound the
     // recursion splits at the median itself). Only the order of `prims` may change.
-    virtual size_t split(View<PrimRef> prims, const Bounds3& bounds, const Bounds3& centroidBounds,
-                         bool mayBeLeaf) = 0;
+    virtual size_t split(View<PrimRef> prims, const Bounds3& bounds, const Bounds3& centroidBounds, bool mayBeLeaf) = 0;
 };
 
 // One inner node of a merge tree: its two children. For N primitives, node i < N is prims[i] and
@@ -53,8 +52,8 @@ struct Merge {
 };
 
 struct PluginBuilder {
-    const char* name;         // NAME; NAME4 and NAME8 are added with it
-    const char* description;  // of NAME: what the builder does
+    const char* name;            // NAME; NAME4 and NAME8 are added with it
+    const char* description;     // of NAME: what the builder does
     View<const PluginKey> keys;  // its own keys
     // Exactly one of the two. A split rule is made with `new` once per build thread, used by
     // that thread only and deleted by bvhlab; a merge tree is asked for once per build (its

@@ -24,7 +24,8 @@ struct Cone {
         const DVec3 b(base), a(apex);
         const DVec3 w = math::normalize(a - b);
         const DVec3 reach = math::sqrt(math::max(DVec3(0.0), 1.0 - w * w));
-        const DVec3 baseReach = math::abs(double(baseRadius)) * reach, apexReach = math::abs(double(apexRadius)) * reach;
+        const DVec3 baseReach = math::abs(double(baseRadius)) * reach,
+                    apexReach = math::abs(double(apexRadius)) * reach;
         const DVec3 lower = math::min(b - baseReach, a - apexReach), upper = math::max(b + baseReach, a + apexReach);
         const DVec3 extent = math::max(math::abs(lower), math::abs(upper));
         return boundsRoundedOutward(lower, upper, 0x1p-45 * math::max(math::max(extent.x, extent.y), extent.z));

@@ -24,17 +24,17 @@ inline constexpr size_t kQueryCounterSlots = 16;
 // over the same rays with it on. A structure that always counts may ignore it.
 //
 // Adding a counter: declare it in place of the first unused slot (one fewer unused), add it in
-// addWork and give it a row of kQueryCounters; the reports, JSON and Python list it from there. A counter keeps its slot
-// for good (never removed, never moved), so the size and every offset stay as plugins compiled
-// earlier saw them: such a plugin leaves the new counter at 0, and the plugin ABI does not change.
+// addWork and give it a row of kQueryCounters; the reports, JSON and Python list it from there. A counter keeps its
+// slot for good (never removed, never moved), so the size and every offset stay as plugins compiled earlier saw them:
+// such a plugin leaves the new counter at 0, and the plugin ABI does not change.
 struct QueryCounters {
     uint64_t queries = 0;
-    uint64_t intersectionTests = 0;  // N_IT: ray-primitive tests, every kind
-    uint64_t traversalSteps = 0;     // N_TR: nodes visited
-    uint64_t sphereTests = 0;        // the part of N_IT that tested spheres ...
-    uint64_t coneTests = 0;          // ... and cones (the rest tested triangles)
+    uint64_t intersectionTests = 0;                // N_IT: ray-primitive tests, every kind
+    uint64_t traversalSteps = 0;                   // N_TR: nodes visited
+    uint64_t sphereTests = 0;                      // the part of N_IT that tested spheres ...
+    uint64_t coneTests = 0;                        // ... and cones (the rest tested triangles)
     uint64_t unused[kQueryCounterSlots - 5] = {};  // the slots of counters to come
-    bool counting = true;            // see above; not a count: += and addWork leave it
+    bool counting = true;                          // see above; not a count: += and addWork leave it
 
     // Adds o's work (every counter of kQueryCounters), not its queries: for a query answered by
     // several structures.

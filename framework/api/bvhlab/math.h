@@ -30,17 +30,27 @@ inline double copysign(double x, double sign) { return __builtin_copysign(x, sig
 inline float nextafter(float x, float toward) { return __builtin_nextafterf(x, toward); }
 inline float fma(float a, float b, float c) { return __builtin_fmaf(a, b, c); }
 template <typename Real>
-bool isfinite(Real x) { return __builtin_isfinite(x); }
+bool isfinite(Real x) {
+    return __builtin_isfinite(x);
+}
 template <typename Real>
-bool isnan(Real x) { return __builtin_isnan(x); }
+bool isnan(Real x) {
+    return __builtin_isnan(x);
+}
 template <typename Real>
-bool isnormal(Real x) { return __builtin_isnormal(x); }
+bool isnormal(Real x) {
+    return __builtin_isnormal(x);
+}
 
 // std::min and std::max (the first argument on a tie or a NaN).
 template <typename T>
-constexpr T min(T a, T b) { return b < a ? b : a; }
+constexpr T min(T a, T b) {
+    return b < a ? b : a;
+}
 template <typename T>
-constexpr T max(T a, T b) { return a < b ? b : a; }
+constexpr T max(T a, T b) {
+    return a < b ? b : a;
+}
 
 // GLM's component-wise min, max, abs and sqrt.
 template <typename Real>
@@ -52,9 +62,13 @@ glm::vec<3, Real> max(const glm::vec<3, Real>& a, const glm::vec<3, Real>& b) {
     return {a.x < b.x ? b.x : a.x, a.y < b.y ? b.y : a.y, a.z < b.z ? b.z : a.z};
 }
 template <typename Real>
-glm::vec<3, Real> abs(const glm::vec<3, Real>& v) { return {abs(v.x), abs(v.y), abs(v.z)}; }
+glm::vec<3, Real> abs(const glm::vec<3, Real>& v) {
+    return {abs(v.x), abs(v.y), abs(v.z)};
+}
 template <typename Real>
-glm::vec<3, Real> sqrt(const glm::vec<3, Real>& v) { return {sqrt(v.x), sqrt(v.y), sqrt(v.z)}; }
+glm::vec<3, Real> sqrt(const glm::vec<3, Real>& v) {
+    return {sqrt(v.x), sqrt(v.y), sqrt(v.z)};
+}
 
 // GLM's dot, cross, length and normalize, in GLM's order of operations.
 template <typename Real>
@@ -67,19 +81,19 @@ glm::vec<3, Real> cross(const glm::vec<3, Real>& a, const glm::vec<3, Real>& b) 
     return {a.y * b.z - b.y * a.z, a.z * b.x - b.z * a.x, a.x * b.y - b.x * a.y};
 }
 template <typename Real>
-Real length(const glm::vec<3, Real>& v) { return sqrt(dot(v, v)); }
+Real length(const glm::vec<3, Real>& v) {
+    return sqrt(dot(v, v));
+}
 template <typename Real>
-glm::vec<3, Real> normalize(const glm::vec<3, Real>& v) { return v * (Real(1) / sqrt(dot(v, v))); }
+glm::vec<3, Real> normalize(const glm::vec<3, Real>& v) {
+    return v * (Real(1) / sqrt(dot(v, v)));
+}
 
 }  // namespace math
 
-inline int maxDimension(const Vec3& v) {
-    return (v.x >= v.y && v.x >= v.z) ? 0 : (v.y >= v.z ? 1 : 2);
-}
+inline int maxDimension(const Vec3& v) { return (v.x >= v.y && v.x >= v.z) ? 0 : (v.y >= v.z ? 1 : 2); }
 
-inline bool isFinite(const Vec3& v) {
-    return math::isfinite(v.x) && math::isfinite(v.y) && math::isfinite(v.z);
-}
+inline bool isFinite(const Vec3& v) { return math::isfinite(v.x) && math::isfinite(v.y) && math::isfinite(v.z); }
 
 // Axis-aligned bounding box; the empty box has lower = +inf and upper = -inf so that
 // extending it by any point or box needs no special case.
@@ -92,8 +106,14 @@ struct Bounds3 {
     explicit Bounds3(const Vec3& p) : lower(p), upper(p) {}
 
     bool isEmpty() const { return lower.x > upper.x || lower.y > upper.y || lower.z > upper.z; }
-    void extend(const Vec3& p) { lower = math::min(lower, p); upper = math::max(upper, p); }
-    void extend(const Bounds3& b) { lower = math::min(lower, b.lower); upper = math::max(upper, b.upper); }
+    void extend(const Vec3& p) {
+        lower = math::min(lower, p);
+        upper = math::max(upper, p);
+    }
+    void extend(const Bounds3& b) {
+        lower = math::min(lower, b.lower);
+        upper = math::max(upper, b.upper);
+    }
     Vec3 diagonal() const { return upper - lower; }
     Vec3 center() const { return 0.5f * (lower + upper); }
     int largestAxis() const { return maxDimension(diagonal()); }

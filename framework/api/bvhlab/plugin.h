@@ -23,7 +23,8 @@
 #define BVHLAB_PLUGIN_COMPILER_VERSION(major, minor, patch) \
     BVHLAB_PLUGIN_STRING(major) "." BVHLAB_PLUGIN_STRING(minor) "." BVHLAB_PLUGIN_STRING(patch)
 #if defined(__clang__)
-#define BVHLAB_PLUGIN_COMPILER "Clang " BVHLAB_PLUGIN_COMPILER_VERSION(__clang_major__, __clang_minor__, __clang_patchlevel__)
+#define BVHLAB_PLUGIN_COMPILER \
+    "Clang " BVHLAB_PLUGIN_COMPILER_VERSION(__clang_major__, __clang_minor__, __clang_patchlevel__)
 #elif defined(__GNUC__)
 #define BVHLAB_PLUGIN_COMPILER "GNU " BVHLAB_PLUGIN_COMPILER_VERSION(__GNUC__, __GNUC_MINOR__, __GNUC_PATCHLEVEL__)
 #else
@@ -38,15 +39,15 @@
 // The three symbols bvhlab looks up in a plugin: the ABI it was compiled against (<bvhlab/abi.h>),
 // how it was compiled, then the registration function, called once when the plugin is loaded.
 #define BVHLAB_PLUGIN_EXPORT extern "C" __attribute__((visibility("default")))
-#define BVHLAB_PLUGIN(registrar)                                                                   \
-    BVHLAB_PLUGIN_EXPORT const bvhlab::AbiFigure* bvhlab_plugin_abi(size_t* count) {                \
-        const bvhlab::View<const bvhlab::AbiFigure> figures = bvhlab::abiFigures();               \
-        *count = figures.size();                                                                   \
-        return figures.data();                                                                     \
-    }                                                                                              \
-    BVHLAB_PLUGIN_EXPORT const bvhlab::PluginBuildInfo* bvhlab_plugin_build_info() {                \
+#define BVHLAB_PLUGIN(registrar)                                                                       \
+    BVHLAB_PLUGIN_EXPORT const bvhlab::AbiFigure* bvhlab_plugin_abi(size_t* count) {                   \
+        const bvhlab::View<const bvhlab::AbiFigure> figures = bvhlab::abiFigures();                    \
+        *count = figures.size();                                                                       \
+        return figures.data();                                                                         \
+    }                                                                                                  \
+    BVHLAB_PLUGIN_EXPORT const bvhlab::PluginBuildInfo* bvhlab_plugin_build_info() {                   \
         static constexpr bvhlab::PluginBuildInfo info{BVHLAB_PLUGIN_COMPILER, BVHLAB_PLUGIN_OPTIMIZED, \
-                                                      BVHLAB_PLUGIN_CXX_FLAGS};                     \
-        return &info;                                                                              \
-    }                                                                                              \
+                                                      BVHLAB_PLUGIN_CXX_FLAGS};                        \
+        return &info;                                                                                  \
+    }                                                                                                  \
     BVHLAB_PLUGIN_EXPORT void bvhlab_register_plugin(bvhlab::PluginRegistrar& registrar)

@@ -46,8 +46,10 @@ private:
         size_t begin = 0, end = valid.size();
         while (begin < end) {
             const size_t middle = begin + (end - begin) / 2;
-            if (valid[middle] < sphereBase()) begin = middle + 1;
-            else end = middle;
+            if (valid[middle] < sphereBase())
+                begin = middle + 1;
+            else
+                end = middle;
         }
         return begin;
     }

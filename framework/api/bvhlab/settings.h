@@ -23,11 +23,11 @@ enum class KeyType : uint8_t {
 // The declaration of one key, as plain data a plugin keeps in a constant:
 //   inline constexpr PluginKey kDepth{"KdMed::maxDepth", KeyType::Int, "24", "meaning", 1, 64};
 struct PluginKey {
-    const char* name;          // "Section::key", in a section of the plugin's own
+    const char* name;  // "Section::key", in a section of the plugin's own
     KeyType type;
-    const char* defaultValue;  // as an env file would give it
-    const char* description;   // one line, for `bvhlab keys`
-    double min = 0.0, max = 0.0;          // Int and Float: the inclusive range
+    const char* defaultValue;              // as an env file would give it
+    const char* description;               // one line, for `bvhlab keys`
+    double min = 0.0, max = 0.0;           // Int and Float: the inclusive range
     View<const char* const> choices = {};  // Choice: the words
 };
 

@@ -16,10 +16,10 @@ public:
     constexpr View() = default;
     constexpr View(T* data, size_t size) : data_(data), size_(size) {}
     template <typename Container>
-        requires requires(Container&& c) {
-            static_cast<T*>(c.data());
-            size_t(c.size());
-        }
+    requires requires(Container&& c) {
+        static_cast<T*>(c.data());
+        size_t(c.size());
+    }
     constexpr View(Container&& c) : data_(c.data()), size_(c.size()) {}
     template <size_t N>
     constexpr View(T (&array)[N]) : data_(array), size_(N) {}
@@ -29,8 +29,7 @@ public:
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Winit-list-lifetime"
 #endif
-    constexpr View(std::initializer_list<std::remove_const_t<T>> list)
-        requires std::is_const_v<T>
+    constexpr View(std::initializer_list<std::remove_const_t<T>> list) requires std::is_const_v<T>
         : data_(list.begin()), size_(list.size()) {}
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic pop

@@ -65,7 +65,7 @@ Vec3 polygonNormal(std::span<const Vec3> vertices) {
 Scene readNff(const std::filesystem::path& file, const std::string& bytes) {
     TextParser text(file, bytes, /*hashComments=*/true);
     Scene scene;
-    uint32_t material = 0;  // the default material until the first "f"
+    uint32_t material = 0;    // the default material until the first "f"
     bool hasNormals = false;  // some polygon was a "pp"
     std::vector<uint32_t> polygon;
     PolygonTriangulator triangulator;
@@ -89,8 +89,8 @@ Scene readNff(const std::filesystem::path& file, const std::string& bytes) {
             const float shine = text.readOnLine<float>("Shine");
             const float transmission = text.readOnLine<float>("T");
             const float ior = text.readOnLine<float>("the index of refraction");
-            scene.materials.push_back(Material{.diffuse = kd * colour, .mirror = ks, .shine = shine,
-                                               .transmission = transmission, .ior = ior});
+            scene.materials.push_back(Material{
+                .diffuse = kd * colour, .mirror = ks, .shine = shine, .transmission = transmission, .ior = ior});
             material = uint32_t(scene.materials.size() - 1);
         } else if (keyword == "s") {
             const Vec3 centre = readVec3(text, "the sphere centre");

@@ -53,7 +53,8 @@ ObjScan scanObj(const std::filesystem::path& file, std::string_view text) {
             size_t corners = 0;
             while (!statement.nextOnLine().empty()) ++corners;
             if (corners < 3 || corners > kMaxPolygonCorners) {
-                throw statement.error(fmt::format("face with {} corners; faces need 3 to {}", corners, kMaxPolygonCorners));
+                throw statement.error(
+                    fmt::format("face with {} corners; faces need 3 to {}", corners, kMaxPolygonCorners));
             }
             scan.faceLines.push_back(lineNumber);
         }
@@ -99,8 +100,10 @@ Scene readObj(const std::filesystem::path& file, const std::string& bytes) {
     ObjScan scan = scanObj(file, bytes);
     // tinyobj ignores lines it does not know, so any text would load as an empty scene.
     if (scan.positions.empty() && scan.faceLines.empty() && !scan.firstOther.empty()) {
-        throw inputError(file, 0, fmt::format("not an OBJ file: text with no vertex or face statements (v, f); it "
-                                              "starts {}", quoted(scan.firstOther)));
+        throw inputError(file, 0,
+                         fmt::format("not an OBJ file: text with no vertex or face statements (v, f); it "
+                                     "starts {}",
+                                     quoted(scan.firstOther)));
     }
 
     const TinyobjFile obj = loadWithTinyobj(file, bytes);

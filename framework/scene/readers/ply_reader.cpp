@@ -20,11 +20,12 @@ struct PlyTypeName {
 
 // The original names and their sized aliases.
 constexpr PlyTypeName kPlyTypeNames[] = {
-    {"char", PlyType::Int8},      {"int8", PlyType::Int8},       {"uchar", PlyType::UInt8},   {"uint8", PlyType::UInt8},
-    {"short", PlyType::Int16},    {"int16", PlyType::Int16},     {"ushort", PlyType::UInt16}, {"uint16", PlyType::UInt16},
-    {"int", PlyType::Int32},      {"int32", PlyType::Int32},     {"uint", PlyType::UInt32},   {"uint32", PlyType::UInt32},
-    {"float", PlyType::Float32},  {"float32", PlyType::Float32},
-    {"double", PlyType::Float64}, {"float64", PlyType::Float64},
+    {"char", PlyType::Int8},       {"int8", PlyType::Int8},       {"uchar", PlyType::UInt8},
+    {"uint8", PlyType::UInt8},     {"short", PlyType::Int16},     {"int16", PlyType::Int16},
+    {"ushort", PlyType::UInt16},   {"uint16", PlyType::UInt16},   {"int", PlyType::Int32},
+    {"int32", PlyType::Int32},     {"uint", PlyType::UInt32},     {"uint32", PlyType::UInt32},
+    {"float", PlyType::Float32},   {"float32", PlyType::Float32}, {"double", PlyType::Float64},
+    {"float64", PlyType::Float64},
 };
 
 size_t sizeOf(PlyType type) {
@@ -80,10 +81,14 @@ PlyType parseType(const TextParser& header, std::string_view token) {
 PlyFormat parseFormat(TextParser& header) {
     const std::string_view token = header.nextOnLine();
     PlyFormat format;
-    if (token == "ascii") format = PlyFormat::Ascii;
-    else if (token == "binary_little_endian") format = PlyFormat::BinaryLittleEndian;
-    else if (token == "binary_big_endian") format = PlyFormat::BinaryBigEndian;
-    else throw header.error(fmt::format("unknown format {}", quoted(token)));
+    if (token == "ascii")
+        format = PlyFormat::Ascii;
+    else if (token == "binary_little_endian")
+        format = PlyFormat::BinaryLittleEndian;
+    else if (token == "binary_big_endian")
+        format = PlyFormat::BinaryBigEndian;
+    else
+        throw header.error(fmt::format("unknown format {}", quoted(token)));
     if (header.nextOnLine() != "1.0") throw header.error("expected format version 1.0");
     return format;
 }
@@ -177,13 +182,14 @@ PlyLayout assignRoles(const std::filesystem::path& file, std::vector<PlyElement>
         for (const auto& [name, role] : {std::pair{"x", Role::X}, {"y", Role::Y}, {"z", Role::Z}}) {
             PlyProperty* p = find(*vertex, name);
             if (!p || p->countType) {
-                throw inputError(file, vertex->line, fmt::format("the vertex element has no scalar property '{}'", name));
+                throw inputError(file, vertex->line,
+                                 fmt::format("the vertex element has no scalar property '{}'", name));
             }
             p->role = role;
         }
         PlyProperty* normal[] = {find(*vertex, "nx"), find(*vertex, "ny"), find(*vertex, "nz")};
-        hasNormals = std::all_of(std::begin(normal), std::end(normal),
-                                 [](const PlyProperty* p) { return p && !p->countType; });
+        hasNormals =
+            std::all_of(std::begin(normal), std::end(normal), [](const PlyProperty* p) { return p && !p->countType; });
         if (hasNormals) {
             normal[0]->role = Role::NX;
             normal[1]->role = Role::NY;
@@ -235,14 +241,22 @@ public:
     double value(const PlyProperty& property, PlyType type) {
         if (bytesLeft() < sizeOf(type)) throw truncated(property);
         switch (type) {
-            case PlyType::Int8: return load<int8_t>();
-            case PlyType::UInt8: return load<uint8_t>();
-            case PlyType::Int16: return load<int16_t>();
-            case PlyType::UInt16: return load<uint16_t>();
-            case PlyType::Int32: return load<int32_t>();
-            case PlyType::UInt32: return load<uint32_t>();
-            case PlyType::Float32: return load<float>();
-            case PlyType::Float64: return load<double>();
+            case PlyType::Int8:
+                return load<int8_t>();
+            case PlyType::UInt8:
+                return load<uint8_t>();
+            case PlyType::Int16:
+                return load<int16_t>();
+            case PlyType::UInt16:
+                return load<uint16_t>();
+            case PlyType::Int32:
+                return load<int32_t>();
+            case PlyType::UInt32:
+                return load<uint32_t>();
+            case PlyType::Float32:
+                return load<float>();
+            case PlyType::Float64:
+                return load<double>();
         }
         return 0.0;  // not reached: the switch covers every type
     }
@@ -257,8 +271,9 @@ public:
         if (element.hasLists()) return false;
         const size_t recordBytes = element.minRecordBytes();
         if (element.count > bytesLeft() / recordBytes) {
-            throw inputError(file_, 0, fmt::format("the data ends inside element '{}' ({} records of {} bytes)",
-                                                   element.name, element.count, recordBytes));
+            throw inputError(file_, 0,
+                             fmt::format("the data ends inside element '{}' ({} records of {} bytes)", element.name,
+                                         element.count, recordBytes));
         }
         next_ += element.count * recordBytes;
         return true;
@@ -343,13 +358,26 @@ void readElements(Source& source, const PlyHeader& header, const PlyLayout& layo
                 if (!property.countType) {
                     const float value = float(source.value(property, property.type));
                     switch (property.role) {
-                        case Role::X: position.x = value; break;
-                        case Role::Y: position.y = value; break;
-                        case Role::Z: position.z = value; break;
-                        case Role::NX: normal.x = value; break;
-                        case Role::NY: normal.y = value; break;
-                        case Role::NZ: normal.z = value; break;
-                        default: break;
+                        case Role::X:
+                            position.x = value;
+                            break;
+                        case Role::Y:
+                            position.y = value;
+                            break;
+                        case Role::Z:
+                            position.z = value;
+                            break;
+                        case Role::NX:
+                            normal.x = value;
+                            break;
+                        case Role::NY:
+                            normal.y = value;
+                            break;
+                        case Role::NZ:
+                            normal.z = value;
+                            break;
+                        default:
+                            break;
                     }
                     continue;
                 }

@@ -11,12 +11,12 @@
 namespace bvhlab {
 namespace {
 
-
 TEST(Bvh, RegisteredWithTheirEnvKeys) {
     const EnvRegistry& registry = verify::verifyKeys();
     for (const char* name : {"tdbvh", "sahbvh", "sahbvh4", "sahbvh8", "sweepbvh", "ploc", "ploc8"}) {
         const auto& infos = acceleratorInfos();
-        const auto it = std::find_if(infos.begin(), infos.end(), [&](const AcceleratorInfo& i) { return i.name == name; });
+        const auto it =
+            std::find_if(infos.begin(), infos.end(), [&](const AcceleratorInfo& i) { return i.name == name; });
         ASSERT_NE(it, infos.end()) << name;
         for (const std::string& key : it->envKeys) EXPECT_NE(registry.find(key), nullptr) << key;
     }

@@ -2,8 +2,8 @@
 // along z, and a closed scene of a few hundred triangles.
 #pragma once
 
-#include "framework/core/accelerator.h"
 #include <bvhlab/triangle.h>
+#include "framework/core/accelerator.h"
 #include "framework/scene/procedural.h"
 #include "framework/scene/scene.h"
 

@@ -91,7 +91,8 @@ TEST(Embree, ConfigFromEnv) {
     EXPECT_EQ(static_cast<const EmbreeAccelerator&>(*accel).deviceConfig(), "threads=2");
     env.setOverride("Embree::isa=sse4.2");
     EXPECT_EQ(EmbreeConfig::fromEnv(env).maxIsa, "sse4.2");
-    EXPECT_EQ(static_cast<const EmbreeAccelerator&>(*createAccelerator(env)).deviceConfig(), "threads=2,max_isa=sse4.2");
+    EXPECT_EQ(static_cast<const EmbreeAccelerator&>(*createAccelerator(env)).deviceConfig(),
+              "threads=2,max_isa=sse4.2");
 }
 
 // The kernel width a structure reports (its figure kernel_bits).
@@ -108,8 +109,8 @@ TEST(Embree, IsaLimitsEachDevice) {
     const Scene scene = smallScene();
     const CpuLevels cpu = cpuLevels();
     const int best = cpu.v4 ? 512 : cpu.v3 ? 256 : 128;
-    const std::pair<const char*, int> isas[] = {{"", best}, {"sse2", 128}, {"sse4.2", 128},
-                                                {"avx2", std::min(best, 256)}, {"avx512", best}};
+    const std::pair<const char*, int> isas[] = {
+        {"", best}, {"sse2", 128}, {"sse4.2", 128}, {"avx2", std::min(best, 256)}, {"avx512", best}};
     std::vector<std::unique_ptr<EmbreeAccelerator>> devices;
     for (const auto& [isa, bits] : isas) {
         EmbreeConfig config;

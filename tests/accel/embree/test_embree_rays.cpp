@@ -71,7 +71,7 @@ TEST(Embree, MapsPrimitivesPastSkippedOnes) {
     ASSERT_TRUE(accel.findNearest(rayAlongZ(0.25f, 0.125f), hit, counters));
     EXPECT_EQ(hit.primitive, 1u);
     EXPECT_FLOAT_EQ(hit.t, 2.0f);
-    EXPECT_NEAR(hit.u, 0.25f, 1e-6f);  // weight of v1 = (1,0,z): the x coordinate
+    EXPECT_NEAR(hit.u, 0.25f, 1e-6f);   // weight of v1 = (1,0,z): the x coordinate
     EXPECT_NEAR(hit.v, 0.125f, 1e-6f);  // weight of v2 = (0,1,z): the y coordinate
     const Vec3 p = hitPoint(scene.triangles[hit.primitive], hit);
     EXPECT_NEAR(p.x, 0.25f, 1e-6f);

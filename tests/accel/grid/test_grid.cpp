@@ -21,8 +21,8 @@ namespace bvhlab::test {
 namespace {
 
 using grid::GridResolution;
-using grid::GridSetting;
 using grid::gridResolution;
+using grid::GridSetting;
 
 TEST(GridResolution, WooGivesDTimesNCubicCells) {
     // tetra: 4096 triangles in a 2x2x2 box: 16^3 cells at D = 1, as Havran's table.
@@ -122,15 +122,16 @@ TEST(GridCells, ABudgetBoundsTheReferencesOfHugeOverlappingTriangles) {
     }
     std::vector<uint32_t> valid(tris.size());
     for (uint32_t i = 0; i < valid.size(); ++i) valid[i] = i;
-    const grid::GridCells g = grid::buildGridCells(PrimitiveSet{tris, valid}, {GridSetting::Woo, 1.0, 0.0, std::nullopt});
+    const grid::GridCells g =
+        grid::buildGridCells(PrimitiveSet{tris, valid}, {GridSetting::Woo, 1.0, 0.0, std::nullopt});
     EXPECT_LE(g.references(), std::max<uint64_t>(grid::kMinReferenceBudget, 32 * tris.size()));
     EXPECT_LT(g.densityUsed, 1.0);
 }
 
 TEST(GridPlugin, FoundByNameItsFiguresInTheJson) {
     const auto out = scratchDir("grid_plugin") / "image";
-    const Result r = run("render -DCamera::width=16 -DCamera::height=12 -DASDS::type=grid -DGrid::density=2 --out " +
-                         out.string());
+    const Result r =
+        run("render -DCamera::width=16 -DCamera::height=12 -DASDS::type=grid -DGrid::density=2 --out " + out.string());
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("grid N_OIV:"), std::string::npos) << r.output;
     std::ifstream in(out.string() + ".json");
@@ -139,8 +140,8 @@ TEST(GridPlugin, FoundByNameItsFiguresInTheJson) {
     ASSERT_FALSE(found.empty()) << json.dump();
     const nlohmann::json& f = found.front();
     for (const char* name : {"res_x", "res_y", "res_z", "N_V", "N_EV", "N_OIV"}) EXPECT_TRUE(f.contains(name)) << name;
-    EXPECT_EQ(f["N_V"]["value"].get<double>(),
-              f["res_x"]["value"].get<double>() * f["res_y"]["value"].get<double>() * f["res_z"]["value"].get<double>());
+    EXPECT_EQ(f["N_V"]["value"].get<double>(), f["res_x"]["value"].get<double>() * f["res_y"]["value"].get<double>() *
+                                                   f["res_z"]["value"].get<double>());
     EXPECT_LE(f["N_EV"]["value"].get<double>(), f["N_V"]["value"].get<double>());
 }
 

@@ -152,8 +152,9 @@ TEST(KdTreeAccelerator, EmptySceneAndInvalidRaysMiss) {
 
 TEST(KdTreePlugin, FoundByNameItsFiguresInTheJson) {
     const auto out = scratchDir("kdtree_plugin") / "image";
-    const Result r = run("render -DCamera::width=16 -DCamera::height=12 -DASDS::type=kdtree -DKdTree::maxDepth=12 --out " +
-                         out.string());
+    const Result r =
+        run("render -DCamera::width=16 -DCamera::height=12 -DASDS::type=kdtree -DKdTree::maxDepth=12 --out " +
+            out.string());
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("kdtree references:"), std::string::npos) << r.output;
     std::ifstream in(out.string() + ".json");
@@ -166,8 +167,9 @@ TEST(KdTreePlugin, FoundByNameItsFiguresInTheJson) {
 }
 
 TEST(KdTreePlugin, AKeyOutOfItsRangeIsRefused) {
-    const Result r = run("render -DCamera::width=8 -DCamera::height=8 -DASDS::type=kdtree -DKdTree::emptyBonus=2 --out " +
-                         (scratchDir("kdtree_plugin") / "bad").string());
+    const Result r =
+        run("render -DCamera::width=8 -DCamera::height=8 -DASDS::type=kdtree -DKdTree::emptyBonus=2 --out " +
+            (scratchDir("kdtree_plugin") / "bad").string());
     EXPECT_NE(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("KdTree::emptyBonus"), std::string::npos) << r.output;
 }

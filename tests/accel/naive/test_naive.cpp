@@ -29,8 +29,8 @@ using test::kNaN;
 Scene quadBehindDegenerates() {
     Scene scene;
     scene.name = "quad";
-    scene.positions = {{1, 1, 1}, {0, 0, 2}, {1, 1, 2}, {2, 2, 2}, {0, 0, kNaN}, {kInfinity, 0, 0},
-                       {0, 0, 4}, {2, 0, 4}, {2, 2, 4}, {0, 2, 4}};
+    scene.positions = {{1, 1, 1},         {0, 0, 2}, {1, 1, 2}, {2, 2, 2}, {0, 0, kNaN},
+                       {kInfinity, 0, 0}, {0, 0, 4}, {2, 0, 4}, {2, 2, 4}, {0, 2, 4}};
     scene.indices = {{0, 0, 0}, {1, 2, 3}, {4, 6, 7}, {5, 7, 8}, {6, 7, 8}, {6, 8, 9}, {1, 3, 2}};
     scene.finalize();
     return scene;
@@ -116,7 +116,7 @@ TEST(Naive, CountersPerQuery) {
     Hit hit;
     naive.findNearest(Ray({1.5f, 0.5f, 0}, {0, 0, 1}), hit, counters);  // hit
     EXPECT_EQ(counters.queries, 1u);
-    EXPECT_EQ(counters.intersectionTests, 2u);  // valid triangles only
+    EXPECT_EQ(counters.intersectionTests, 2u);                    // valid triangles only
     naive.findNearest(Ray({5, 5, 0}, {0, 0, 1}), hit, counters);  // miss
     EXPECT_EQ(counters.queries, 2u);
     EXPECT_EQ(counters.intersectionTests, 4u);
@@ -225,7 +225,8 @@ TEST(Naive, CountersMergedAcrossThreads) {
     NaiveAccelerator naive;
     naive.build(scene.primitives());
     const size_t valid = scene.validPrimitives.size();
-    const std::vector<Ray> rays = verify::generateRays(verify::RayKind::Outside, scene.primitives(), scene.bounds, 800, 5);
+    const std::vector<Ray> rays =
+        verify::generateRays(verify::RayKind::Outside, scene.primitives(), scene.bounds, 800, 5);
 
     // Single-threaded reference.
     QueryCounters single;
@@ -282,7 +283,8 @@ TEST(Naive, AgreesWithTheDoubleOracleOnTheDefaultScene) {
     NaiveAccelerator naive;
     naive.build(scene.primitives());
     const verify::Oracle oracle(scene.primitives());
-    const std::vector<Ray> rays = verify::generateRays(verify::RayKind::Outside, scene.primitives(), scene.bounds, 1500, 9);
+    const std::vector<Ray> rays =
+        verify::generateRays(verify::RayKind::Outside, scene.primitives(), scene.bounds, 1500, 9);
     const verify::ComparisonReport report = verify::compareWithNaive(naive, naive, oracle, rays);
     EXPECT_EQ(report.failures(), 0u) << report.summary();
     EXPECT_EQ(report.disagreements, 0u);

@@ -187,8 +187,8 @@ TEST(OctreeTraversal, AgreesWithBruteForce) {
         rays.push_back({(i / 3) % 4 == 3 ? -o : o, (i / 3) % 4 == 3 ? -d : d});
     }
     for (int i = 0; i < 600; ++i)
-        rays.push_back({0.9f * Vec3(u(rng), u(rng), u(rng)), math::normalize(Vec3(u(rng), u(rng), u(rng))), 0.0f,
-                        0.5f});
+        rays.push_back(
+            {0.9f * Vec3(u(rng), u(rng), u(rng)), math::normalize(Vec3(u(rng), u(rng), u(rng))), 0.0f, 0.5f});
 
     for (const Subdivision subdivision : {Subdivision::Centre, Subdivision::Adaptive})
         for (const Traversal traversal : {Traversal::Octree84, Traversal::Octree93})
@@ -223,8 +223,10 @@ TEST(OctreeNodes, ABudgetBoundsTheReferencesOfHugeOverlappingTriangles) {
 
 TEST(OctreePlugin, FoundByNameItsFiguresInTheJson) {
     const auto out = scratchDir("octree_plugin") / "image";
-    const Result r = run("render -DCamera::width=16 -DCamera::height=12 -DASDS::type=octree -DOctree::maxDepth=4 "
-                         "--out " + out.string());
+    const Result r =
+        run("render -DCamera::width=16 -DCamera::height=12 -DASDS::type=octree -DOctree::maxDepth=4 "
+            "--out " +
+            out.string());
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("octree N_OIV:"), std::string::npos) << r.output;
     std::ifstream in(out.string() + ".json");
@@ -238,8 +240,10 @@ TEST(OctreePlugin, FoundByNameItsFiguresInTheJson) {
 }
 
 TEST(OctreePlugin, AnUnknownTraversalIsRefused) {
-    const Result r = run("render -DCamera::width=8 -DCamera::height=8 -DASDS::type=octree -DOctree::traversal=octree89 "
-                         "--out " + (scratchDir("octree_plugin") / "bad").string());
+    const Result r =
+        run("render -DCamera::width=8 -DCamera::height=8 -DASDS::type=octree -DOctree::traversal=octree89 "
+            "--out " +
+            (scratchDir("octree_plugin") / "bad").string());
     EXPECT_NE(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("Octree::traversal"), std::string::npos) << r.output;
 }

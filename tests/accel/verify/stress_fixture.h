@@ -70,8 +70,8 @@ protected:
         std::replace(key.begin(), key.end(), ' ', '_');
         RecordProperty(key, int(count));
         if (count)
-            std::printf("[ REPORT   ] %s: %s: %zu of %zu (%.0f per million)\n", variant().label.c_str(), what.c_str(), count,
-                        of, 1e6 * double(count) / double(std::max<size_t>(of, 1)));
+            std::printf("[ REPORT   ] %s: %s: %zu of %zu (%.0f per million)\n", variant().label.c_str(), what.c_str(),
+                        count, of, 1e6 * double(count) / double(std::max<size_t>(of, 1)));
     }
 };
 
@@ -85,8 +85,8 @@ struct ProbedMesh {
 inline const std::vector<ProbedMesh>& probedMeshes() {
     static const std::vector<ProbedMesh> meshes = [] {
         std::vector<ProbedMesh> list;
-        for (Scene scene : {makeIcosphereMesh(3), makeIcosphereMesh(5), makeSubdividedCubeMesh(8), makeSubdividedCubeMesh(32),
-                            makeTorusMesh(48, 24), makeTorusMesh(128, 64)}) {
+        for (Scene scene : {makeIcosphereMesh(3), makeIcosphereMesh(5), makeSubdividedCubeMesh(8),
+                            makeSubdividedCubeMesh(32), makeTorusMesh(48, 24), makeTorusMesh(128, 64)}) {
             MeshTopology topology = MeshTopology::of(scene);
             ProbeOptions options;
             options.rays = 20000;

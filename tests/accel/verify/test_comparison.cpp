@@ -1,13 +1,13 @@
 // The verification harness must be able to fail: deliberately broken accelerators (naive's loop
 // underneath, one fault each) are caught by the comparison with naive and the oracle, by the
 // judge and by the watertightness probes; and the judge decides hand-made answers as it should.
+#include <bvhlab/triangle.h>
 #include "accel/naive/naive_accelerator.h"
 #include "accel/verify/closed_meshes.h"
 #include "accel/verify/comparison.h"
 #include "accel/verify/generated_scenes.h"
 #include "accel/verify/ray_generators.h"
 #include "accel/verify/watertight_probe.h"
-#include <bvhlab/triangle.h>
 #include "framework/scene/procedural.h"
 
 #include <gtest/gtest.h>
@@ -25,17 +25,17 @@ class FaultyAccelerator final : public BuildStatsAccelerator {
 public:
     enum class Fault {
         None,
-        DropsTriangles,      // builds over 1 in 50 valid triangles fewer
-        ScalesT,             // reports t * 1.01
-        WrongPrimitive,      // reports the next valid primitive
-        SwapsUV,             // u and v exchanged
-        IgnoresTmin,         // clamps tmin to 0
-        FarthestHit,         // the farthest hit instead of the nearest
-        NeverOccluded,       // isOccluded always false
-        OccludedIgnoresTmax, // isOccluded over [tmin, inf)
-        ClobbersHitOnMiss,   // writes a default Hit on a miss
-        LeaksAtEdges,        // misses hits within 1e-4 (barycentric) of an edge
-        BuildsOverAll,       // ignores PrimitiveSet::valid: degenerate triangles included
+        DropsTriangles,       // builds over 1 in 50 valid triangles fewer
+        ScalesT,              // reports t * 1.01
+        WrongPrimitive,       // reports the next valid primitive
+        SwapsUV,              // u and v exchanged
+        IgnoresTmin,          // clamps tmin to 0
+        FarthestHit,          // the farthest hit instead of the nearest
+        NeverOccluded,        // isOccluded always false
+        OccludedIgnoresTmax,  // isOccluded over [tmin, inf)
+        ClobbersHitOnMiss,    // writes a default Hit on a miss
+        LeaksAtEdges,         // misses hits within 1e-4 (barycentric) of an edge
+        BuildsOverAll,        // ignores PrimitiveSet::valid: degenerate triangles included
     };
     explicit FaultyAccelerator(Fault f) : fault_(f) {}
 
@@ -223,7 +223,8 @@ TEST(CorrectnessHarness, WatertightProbesCatchEdgeLeaksAndPassTheOracle) {
 
 TEST(CorrectnessHarness, JudgeOnHandMadeAnswers) {
     // Two unit triangles at z = 1 and z = 2; a ray along +z through the interior of both.
-    const Scene scene = sceneFromTriangles({{{0, 0, 1}, {1, 0, 1}, {0, 1, 1}}, {{0, 0, 2}, {1, 0, 2}, {0, 1, 2}}}, "two");
+    const Scene scene =
+        sceneFromTriangles({{{0, 0, 1}, {1, 0, 1}, {0, 1, 1}}, {{0, 0, 2}, {1, 0, 2}, {0, 1, 2}}}, "two");
     const Oracle oracle(scene.primitives());
     Ray ray;
     ray.org = {0.25f, 0.25f, 0.0f};
@@ -238,12 +239,12 @@ TEST(CorrectnessHarness, JudgeOnHandMadeAnswers) {
     EXPECT_TRUE(oracle.occluded(ray));
 
     EXPECT_EQ(oracle.judge(ray, {1.0f, 0u, 0.25f, 0.25f}).verdict, Verdict::Right);
-    EXPECT_EQ(oracle.judge(ray, Hit{}).verdict, Verdict::Wrong);                      // missed
-    EXPECT_EQ(oracle.judge(ray, {2.0f, 1u, 0.25f, 0.25f}).verdict, Verdict::Wrong);   // the one behind
-    EXPECT_EQ(oracle.judge(ray, {1.0f, 1u, 0.25f, 0.25f}).verdict, Verdict::Wrong);   // wrong primitive
-    EXPECT_EQ(oracle.judge(ray, {1.0f, 0u, 0.5f, 0.25f}).verdict, Verdict::Wrong);    // wrong u
-    EXPECT_EQ(oracle.judge(ray, {1.001f, 0u, 0.25f, 0.25f}).verdict, Verdict::Wrong); // wrong t
-    EXPECT_EQ(oracle.judge(ray, {1.0f, 7u, 0.25f, 0.25f}).verdict, Verdict::Wrong);   // no such primitive
+    EXPECT_EQ(oracle.judge(ray, Hit{}).verdict, Verdict::Wrong);                       // missed
+    EXPECT_EQ(oracle.judge(ray, {2.0f, 1u, 0.25f, 0.25f}).verdict, Verdict::Wrong);    // the one behind
+    EXPECT_EQ(oracle.judge(ray, {1.0f, 1u, 0.25f, 0.25f}).verdict, Verdict::Wrong);    // wrong primitive
+    EXPECT_EQ(oracle.judge(ray, {1.0f, 0u, 0.5f, 0.25f}).verdict, Verdict::Wrong);     // wrong u
+    EXPECT_EQ(oracle.judge(ray, {1.001f, 0u, 0.25f, 0.25f}).verdict, Verdict::Wrong);  // wrong t
+    EXPECT_EQ(oracle.judge(ray, {1.0f, 7u, 0.25f, 0.25f}).verdict, Verdict::Wrong);    // no such primitive
 
     // Through the hypotenuse of the first triangle, exactly: missing it is within rounding
     // (ambiguous), provided the triangle behind is reported.

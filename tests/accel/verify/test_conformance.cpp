@@ -30,7 +30,8 @@ verify::Subject registered(const std::string& name) {
 }
 
 std::string report(const verify::CheckResult& r) {
-    std::string s = fmt::format("{} failures of {} {}{}", r.failures, r.cases, r.unit, r.note.empty() ? "" : " (" + r.note + ")");
+    std::string s =
+        fmt::format("{} failures of {} {}{}", r.failures, r.cases, r.unit, r.note.empty() ? "" : " (" + r.note + ")");
     for (const std::string& e : r.examples) s += "\n    " + e;
     return s;
 }
@@ -79,7 +80,9 @@ public:
         }
         return inner_->findNearest(ray, hit, counters);
     }
-    bool isOccluded(const Ray& ray, QueryCounters& counters) const override { return inner_->isOccluded(ray, counters); }
+    bool isOccluded(const Ray& ray, QueryCounters& counters) const override {
+        return inner_->isOccluded(ray, counters);
+    }
 
 private:
     std::unique_ptr<Accelerator> inner_;

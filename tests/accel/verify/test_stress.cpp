@@ -61,7 +61,8 @@ TEST_P(Stress, ScaleAndTranslationChangeNothing) {
         for (const DVec3& units : offsets) {
             const DVec3 offset = units * size * scale;
             const Scene scene = transformedScene(base, scale, offset);
-            const std::string label = fmt::format("scale {:g} offset ({:g},{:g},{:g}) x size", scale, units.x, units.y, units.z);
+            const std::string label =
+                fmt::format("scale {:g} offset ({:g},{:g},{:g}) x size", scale, units.x, units.y, units.z);
             SCOPED_TRACE(label);
             ProbeOptions options;
             options.rays = isNaive() ? 1000 : 4000;
@@ -88,15 +89,18 @@ TEST_P(Stress, ScaleAndTranslationChangeNothing) {
                 // holds every structure to 1e-3 on a scene without ties.
                 const double bound = sahScaleTolerance(scale);
                 const double relative = (stats.sah->cost - baseSah->cost) / baseSah->cost;
-                RecordProperty(fmt::format("{}.sah_change_at_scale_{:g}", variant().label, scale), fmt::format("{:.2e}", relative));
+                RecordProperty(fmt::format("{}.sah_change_at_scale_{:g}", variant().label, scale),
+                               fmt::format("{:.2e}", relative));
                 if (std::exp2(std::round(std::log2(scale))) == scale) {
                     EXPECT_NEAR(stats.sah->cost, baseSah->cost, 1e-9 * baseSah->cost) << label;
                     EXPECT_EQ(stats.nodes, baseStats.nodes) << label;
                 } else {
                     EXPECT_NEAR(stats.sah->cost, baseSah->cost, bound * baseSah->cost) << label;
                     if (std::abs(relative) > 1e-3)
-                        std::printf("[ NOTE     ] %s: SAH cost at scale %g differs by %.2e from scale 1 (the rounded "
-                                    "coordinates break ties differently)\n", variant().label.c_str(), scale, relative);
+                        std::printf(
+                            "[ NOTE     ] %s: SAH cost at scale %g differs by %.2e from scale 1 (the rounded "
+                            "coordinates break ties differently)\n",
+                            variant().label.c_str(), scale, relative);
                 }
             }
         }

@@ -75,22 +75,26 @@ TEST_P(Stress, RaysStartingOnASurface) {
         QueryCounters counters;
         for (const SurfacePoint& s : points) {
             // Leaving a convex solid from its surface (origin offset outward): nothing to hit.
-            const Ray out{offsetRayOrigin(s.p, s.outward, c.scene.triangles[s.prim]), directionAlong(rng, s.outward), 0.0f, kInfinity};
+            const Ray out{offsetRayOrigin(s.p, s.outward, c.scene.triangles[s.prim]), directionAlong(rng, s.outward),
+                          0.0f, kInfinity};
             Hit h;
             if (accel->findNearest(out, h, counters)) {
                 ++selfHitsLeaving;
-                if (examples.size() < 3) examples.push_back("leaving " + verify::describe(out) + " hit " + verify::describe(h));
+                if (examples.size() < 3)
+                    examples.push_back("leaving " + verify::describe(out) + " hit " + verify::describe(h));
             }
             if (accel->isOccluded(out, counters)) ++occludedLeaving;
             // Entering it (origin offset inward): the far side, never the start.
-            const Ray in{offsetRayOrigin(s.p, -s.outward, c.scene.triangles[s.prim]), directionAlong(rng, -s.outward), 0.0f, kInfinity};
+            const Ray in{offsetRayOrigin(s.p, -s.outward, c.scene.triangles[s.prim]), directionAlong(rng, -s.outward),
+                         0.0f, kInfinity};
             Hit h2;
             if (!accel->findNearest(in, h2, counters)) {
                 ++missesEntering;
                 if (examples.size() < 3) examples.push_back("entering " + verify::describe(in) + " missed");
             } else if (h2.primitive == s.prim) {
                 ++selfHitsEntering;
-                if (examples.size() < 3) examples.push_back("entering " + verify::describe(in) + " hit its start " + verify::describe(h2));
+                if (examples.size() < 3)
+                    examples.push_back("entering " + verify::describe(in) + " hit its start " + verify::describe(h2));
             }
         }
         expectZero("hits leaving " + c.scene.name, selfHitsLeaving, points.size(), examples);
@@ -110,18 +114,20 @@ TEST_P(Stress, AxisParallelRaysInThePlanesOfFaces) {
     std::vector<Ray> rays;
     std::vector<double> expectedT;
     for (int i = 0; i < 3000; ++i) {
-        const int k = int(rng.index(3));                     // travel axis
-        const int j = (k + 1 + int(rng.index(2))) % 3;       // axis whose face plane holds the ray
-        const int m = 3 - k - j;                             // the remaining axis
+        const int k = int(rng.index(3));                // travel axis
+        const int j = (k + 1 + int(rng.index(2))) % 3;  // axis whose face plane holds the ray
+        const int m = 3 - k - j;                        // the remaining axis
         const bool positive = rng.uniform() < 0.5;
         Ray r;
         r.org[k] = positive ? b.lower[k] - 1.0f : b.upper[k] + 1.0f;
         r.org[j] = rng.uniform() < 0.5 ? b.lower[j] : b.upper[j];
         const double s = rng.uniform();
         // A grid line, a cube edge (the ray then runs along an edge of the cube) or anywhere between.
-        r.org[m] = s < 0.2 ? (rng.uniform() < 0.5 ? b.lower[m] : b.upper[m])
-                 : s < 0.5 ? float(double(b.lower[m]) + (double(b.upper[m]) - double(b.lower[m])) * double(rng.index(17)) / 16.0)
-                           : float(rng.uniform(b.lower[m], b.upper[m]));
+        r.org[m] =
+            s < 0.2 ? (rng.uniform() < 0.5 ? b.lower[m] : b.upper[m])
+            : s < 0.5
+                ? float(double(b.lower[m]) + (double(b.upper[m]) - double(b.lower[m])) * double(rng.index(17)) / 16.0)
+                : float(rng.uniform(b.lower[m], b.upper[m]));
         r.dir = Vec3(0.0f);
         r.dir[k] = positive ? 1.0f : -1.0f;
         if (rng.uniform() < 0.5) r.dir[j] = -0.0f;  // the sign of a zero picks the slab
@@ -166,16 +172,23 @@ TEST_P(Stress, NegativeTminSeesBehindTheOrigin) {
     QueryCounters counters;
     for (int i = 0; i < 3000; ++i) {
         Ray r;
-        r.org = Vec3(DVec3(cube.bounds.center()) + 0.45 * DVec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)) *
-                                                      DVec3(cube.bounds.diagonal()));
+        r.org = Vec3(DVec3(cube.bounds.center()) +
+                     0.45 * DVec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1)) *
+                         DVec3(cube.bounds.diagonal()));
         r.dir = Vec3(rng.unitVector());
         if (i % 3 == 0) r.dir[int(rng.index(3))] = 0.0f;  // and axis-parallel in one or two axes
         if (i % 9 == 0) r.dir[int(rng.index(3))] = 0.0f;
         if (r.dir == Vec3(0.0f)) continue;
         switch (i % 3) {
-        case 0: r.tmin = -100.0f, r.tmax = -1e-3f; break;  // only behind
-        case 1: r.tmin = -kInfinity, r.tmax = kInfinity; break;
-        default: r.tmin = -0.5f, r.tmax = 0.25f; break;
+            case 0:
+                r.tmin = -100.0f, r.tmax = -1e-3f;
+                break;  // only behind
+            case 1:
+                r.tmin = -kInfinity, r.tmax = kInfinity;
+                break;
+            default:
+                r.tmin = -0.5f, r.tmax = 0.25f;
+                break;
         }
         ++rays;
         Hit a, b;
@@ -183,7 +196,9 @@ TEST_P(Stress, NegativeTminSeesBehindTheOrigin) {
         naive.findNearest(r, b, counters);
         if (found != b.found() || !hitsAgree(a, b) || accel->isOccluded(r, counters) != b.found()) {
             ++differ;
-            if (examples.size() < 3) examples.push_back(verify::describe(r) + ": " + verify::describe(a) + " vs naive " + verify::describe(b));
+            if (examples.size() < 3)
+                examples.push_back(verify::describe(r) + ": " + verify::describe(a) + " vs naive " +
+                                   verify::describe(b));
         }
     }
     expectZero("answers with negative tmin unlike naive", differ, rays, examples);
@@ -227,7 +242,9 @@ TEST_P(Stress, VeryShortAndVeryLongRays) {
         wrong |= accel->findNearest(startsBeyond, h3, counters) && h3.primitive == prim;
         if (wrong) {
             ++shortWrong;
-            if (examples.size() < 3) examples.push_back(fmt::format("{} toward prim {} at t {:.9g}", verify::describe(reaches), prim, tPlane));
+            if (examples.size() < 3)
+                examples.push_back(
+                    fmt::format("{} toward prim {} at t {:.9g}", verify::describe(reaches), prim, tPlane));
         }
     }
     EXPECT_GT(shortRays, 500u);
@@ -249,7 +266,9 @@ TEST_P(Stress, VeryShortAndVeryLongRays) {
         naiveHits += naive.findNearest(r, n, counters);
         if (!hitsAgree(a, n)) {
             ++longDiffer;
-            if (examples.size() < 3) examples.push_back(verify::describe(r) + ": " + verify::describe(a) + " vs naive " + verify::describe(n));
+            if (examples.size() < 3)
+                examples.push_back(verify::describe(r) + ": " + verify::describe(a) + " vs naive " +
+                                   verify::describe(n));
         }
     }
     EXPECT_GT(naiveHits, toward.size() / 2);

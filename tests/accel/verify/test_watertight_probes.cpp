@@ -77,8 +77,10 @@ TEST(WatertightProbes, CatchANonWatertightTriangleTest) {
         const LeakStats s = countLeaks(*accel, m.probes.probes);
         leaks += s.leaks;
         rays += s.rays;
-        std::printf("[ INFO     ] sahbvh, BVH::robust=false (Moeller-Trumbore) on %s: %zu leaks of %zu (edges %zu, vertices %zu)\n",
-                    m.scene.name.c_str(), s.leaks, s.rays, s.edgeLeaks, s.vertexLeaks);
+        std::printf(
+            "[ INFO     ] sahbvh, BVH::robust=false (Moeller-Trumbore) on %s: %zu leaks of %zu (edges %zu, vertices "
+            "%zu)\n",
+            m.scene.name.c_str(), s.leaks, s.rays, s.edgeLeaks, s.vertexLeaks);
     }
     EXPECT_GT(leaks, 0u) << "the probes did not catch a test that is known not to be watertight (" << rays << " rays)";
 }

@@ -11,8 +11,8 @@
 #include "tests/support/batch_scenes.h"
 #include "tests/support/cli_run.h"
 #include "tests/support/scan_plugin.h"
-#include "tests/support/text_count.h"
 #include "tests/support/test_paths.h"
+#include "tests/support/text_count.h"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -53,7 +53,8 @@ TEST(Batch, RunWritesTablesImagesAndContactSheet) {
     // Markdown: the report's layout, two rows per job, in scene then accelerator order.
     const std::string md = readText(out / "results.md");
     EXPECT_NE(md.find("| #Prims | #Leaves | #Nodes | SAH | T_B [ms] | T_R [µs] | N_IT | N_TR | N_Q | render [ms] |"),
-              std::string::npos) << md;
+              std::string::npos)
+        << md;
     EXPECT_EQ(test::occurrences(md, "| + shadows |"), 4u) << md;
     EXPECT_LT(md.find("| first | naive |"), md.find("| first | sahbvh |"));
     EXPECT_LT(md.find("| first | sahbvh |"), md.find("| second | naive |"));
@@ -62,9 +63,9 @@ TEST(Batch, RunWritesTablesImagesAndContactSheet) {
     // CSV: header and two rows per job.
     const auto csv = csvWithoutTimings(out / "results.csv");
     ASSERT_EQ(csv.size(), 9u);
-    EXPECT_EQ(csv[0], (std::vector<std::string>{"scene", "accel", "shadows", "prims", "leaves", "nodes", "sah", "n_it",
-                                                "n_tr", "n_q", "settings", "plugin", "plugin_crc32",
-                                                "plugin_optimized", "failed"}));
+    EXPECT_EQ(csv[0],
+              (std::vector<std::string>{"scene", "accel", "shadows", "prims", "leaves", "nodes", "sah", "n_it", "n_tr",
+                                        "n_q", "settings", "plugin", "plugin_crc32", "plugin_optimized", "failed"}));
     EXPECT_EQ(csv[1][0], "first");
     EXPECT_EQ(csv[1][2], "false");
     EXPECT_EQ(csv[2][2], "true");
@@ -190,7 +191,8 @@ TEST(Batch, TwoShardsRacingOnOneSceneNeverReadAHalfWrittenEntry) {
         const std::string log = readText(dir / shard);
         EXPECT_TRUE(log.find("read from cache") != std::string::npos ||
                     log.find("(truncated); parsing and rewriting it") != std::string::npos)
-            << shard << ":\n" << log;
+            << shard << ":\n"
+            << log;
     }
     const Result merged = run("batch --merge " + (dir / "shard0").string() + " " + (dir / "shard1").string() +
                               " --out " + (dir / "merged").string());
@@ -283,8 +285,8 @@ TEST(Batch, ShardsOfDifferentBatchesAreNotMerged) {
 TEST(Batch, TablesAndContactSheetCountAndOrderWhatTheyShow) {
     const fs::path dir = makeScenes("counts");
     std::ofstream(dir / "reversed.list") << "second.env\nfirst.env\n";
-    const std::string args = "batch --scenes " + (dir / "reversed.list").string() + " --accel sahbvh,naive -DScene::cacheDir=" +
-                             (dir / "cache").string() + " --out ";
+    const std::string args = "batch --scenes " + (dir / "reversed.list").string() +
+                             " --accel sahbvh,naive -DScene::cacheDir=" + (dir / "cache").string() + " --out ";
     ASSERT_EQ(run(args + (dir / "clean").string()).exitCode, 0);
 
     // A job file of another batch dropped into the folder (copied by hand): neither shown nor counted.
@@ -309,7 +311,8 @@ TEST(Batch, TablesAndContactSheetCountAndOrderWhatTheyShow) {
     EXPECT_EQ(csvWithoutTimings(dir / "out" / "results.csv"), csvWithoutTimings(dir / "clean" / "results.csv"));
 
     // The contact sheet: a row per scene, two tiles per accelerator, as for the clean folder.
-    const Rgb8Image sheet = readPng(dir / "out" / "contact_sheet.png"), clean = readPng(dir / "clean" / "contact_sheet.png");
+    const Rgb8Image sheet = readPng(dir / "out" / "contact_sheet.png"),
+                    clean = readPng(dir / "clean" / "contact_sheet.png");
     EXPECT_EQ(sheet.width, 2 * 10 + 4 * 256 + 3 * 10);
     EXPECT_EQ(sheet.width, clean.width);
     EXPECT_EQ(sheet.height, clean.height);
@@ -367,7 +370,8 @@ TEST(Batch, TablesSayWhatRan) {
     Result r = run(args + " --accel scan");
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("warning: BVH::maxLeaf is read by none of the chosen structures (scan); it is ignored"),
-              std::string::npos) << r.output;
+              std::string::npos)
+        << r.output;
     std::string md = readText(dir / "out" / "results.md");
     EXPECT_EQ(md.find("BVH::"), std::string::npos) << md;
     EXPECT_NE(md.find("- `scan`: Scan::passes=1; plugin scan.so, CRC-32 "), std::string::npos) << md;

@@ -29,19 +29,25 @@ TEST(BatchResume, AnInterruptedBatchRunsOnlyTheJobsItLacks) {
     const fs::path out = dir / "out";
     Result r = run(batchArgs(dir, "out"));
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    EXPECT_TRUE(0 < test::occurrences(r.output, "batch: 0 jobs kept from an earlier run (same result key); 4 to run: 4 new")) << r.output;
+    EXPECT_TRUE(
+        0 < test::occurrences(r.output, "batch: 0 jobs kept from an earlier run (same result key); 4 to run: 4 new"))
+        << r.output;
     const std::string started = readJson(out / "jobs" / "first__sahbvh.json")["run"]["started"];
 
     // As if the run had stopped in its last job.
     fs::remove(out / "jobs" / "second__sahbvh.json");
     r = run(batchArgs(dir, "out"));
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    EXPECT_TRUE(0 < test::occurrences(r.output, "batch: 3 jobs kept from an earlier run (same result key); 1 to run: 1 new")) << r.output;
+    EXPECT_TRUE(
+        0 < test::occurrences(r.output, "batch: 3 jobs kept from an earlier run (same result key); 1 to run: 1 new"))
+        << r.output;
     EXPECT_TRUE(0 < test::occurrences(r.output, "[job 1/1] second sahbvh: rendering with shadows")) << r.output;
     EXPECT_FALSE(0 < test::occurrences(r.output, "first naive")) << r.output;
-    EXPECT_EQ(test::occurrences(r.output, "scene first:"), 0u) << "a scene with nothing to run is not loaded\n" << r.output;
+    EXPECT_EQ(test::occurrences(r.output, "scene first:"), 0u) << "a scene with nothing to run is not loaded\n"
+                                                               << r.output;
     // The scene's new heat maps are drawn at its kept jobs' scale.
-    EXPECT_TRUE(0 < test::occurrences(r.output, "(that of the scene's jobs kept from an earlier run: naive)")) << r.output;
+    EXPECT_TRUE(0 < test::occurrences(r.output, "(that of the scene's jobs kept from an earlier run: naive)"))
+        << r.output;
     EXPECT_EQ(readJson(out / "jobs" / "first__sahbvh.json")["run"]["started"], started);
     EXPECT_TRUE(0 < test::occurrences(readJson(out / "results.json").dump(), "second__sahbvh"));
     EXPECT_TRUE(0 < test::occurrences(r.output, "| second | sahbvh |")) << r.output;
@@ -52,13 +58,15 @@ TEST(BatchResume, AnInterruptedBatchRunsOnlyTheJobsItLacks) {
     std::ofstream(out / "jobs" / "first__naive.json") << job.dump(2);
     r = run(batchArgs(dir, "out"));
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    EXPECT_TRUE(0 < test::occurrences(r.output, "3 jobs kept from an earlier run (same result key); 1 to run: 1 because its heat "
-                                   "maps were not drawn"))
+    EXPECT_TRUE(0 < test::occurrences(r.output,
+                                      "3 jobs kept from an earlier run (same result key); 1 to run: 1 because its heat "
+                                      "maps were not drawn"))
         << r.output;
 
     r = run(batchArgs(dir, "out") + " --fresh");
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    EXPECT_TRUE(0 < test::occurrences(r.output, "0 jobs kept from an earlier run (same result key); 4 to run: 4 because of --fresh"))
+    EXPECT_TRUE(0 < test::occurrences(
+                        r.output, "0 jobs kept from an earlier run (same result key); 4 to run: 4 because of --fresh"))
         << r.output;
 }
 
@@ -71,13 +79,15 @@ TEST(BatchResume, ARebuiltPluginsJobsRunAgain) {
     ASSERT_EQ(r.exitCode, 0) << r.output;
     r = run(args);
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    EXPECT_TRUE(0 < test::occurrences(r.output, "batch: 4 jobs kept from an earlier run (same result key); 0 to run")) << r.output;
+    EXPECT_TRUE(0 < test::occurrences(r.output, "batch: 4 jobs kept from an earlier run (same result key); 0 to run"))
+        << r.output;
 
     test::installScan(dir, 2);
     r = run(args);
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    EXPECT_TRUE(0 < test::occurrences(r.output, "batch: 2 jobs kept from an earlier run (same result key); 2 to run: 2 because "
-                                   "plugin crc32: "))
+    EXPECT_TRUE(0 < test::occurrences(r.output,
+                                      "batch: 2 jobs kept from an earlier run (same result key); 2 to run: 2 because "
+                                      "plugin crc32: "))
         << r.output;
     EXPECT_TRUE(0 < test::occurrences(r.output, "[job 2/2] second scan")) << r.output;
 }

@@ -120,7 +120,8 @@ TEST(BatchSlurm, AShardThatDidNotFinishFailsTheMergeNamingItsLog) {
     const Result merged = runAsSlurm(out / "slurm" / "merge.sbatch");
     EXPECT_EQ(merged.exitCode, 1) << merged.output;
     EXPECT_NE(merged.output.find("error: shard 1/3 did not finish (it failed, was cancelled or never started): see "
-                                 "its log " + (out / "slurm" / "shard-1.log").string()),
+                                 "its log " +
+                                 (out / "slurm" / "shard-1.log").string()),
               std::string::npos)
         << merged.output;
     EXPECT_NE(merged.output.find("1 of 3 shards did not finish: nothing merged"), std::string::npos) << merged.output;
@@ -144,7 +145,8 @@ TEST(BatchSlurm, ARequeuedShardKeepsTheJobsItFinished) {
     const Result requeued = runAsSlurm(script, 0);
     ASSERT_EQ(requeued.exitCode, 0) << requeued.output;
     EXPECT_NE(requeued.output.find("batch: 1 jobs kept from an earlier run (same result key); 1 to run: 1 new"),
-              std::string::npos) << requeued.output;
+              std::string::npos)
+        << requeued.output;
     EXPECT_NE(requeued.output.find("[job 1/1] second naive"), std::string::npos) << requeued.output;
     EXPECT_TRUE(fs::exists(out / "slurm" / "shard-0.done"));
 }

@@ -66,7 +66,8 @@ std::map<std::string, std::string> jobStates(const std::vector<std::string>& job
         std::stringstream lines(test::runShell("scontrol show job --oneliner " + job).output);
         for (std::string line; std::getline(lines, line);) {
             std::smatch m;
-            if (std::regex_search(line, m, record)) states[m[2].matched ? m[2].str() + "_" + m[3].str() : m[1].str()] = m[4];
+            if (std::regex_search(line, m, record))
+                states[m[2].matched ? m[2].str() + "_" + m[3].str() : m[1].str()] = m[4];
         }
     }
     return states;
@@ -86,8 +87,8 @@ std::map<std::string, std::string> waitForMerge(const Submitted& jobs, int secon
         states = jobStates({jobs.shards, jobs.merge});
     }
     for (const auto& [id, state] : states)
-        fmt::print("slurm job {} ({}): {}\n", id, id == jobs.merge ? "merge" : "shard " + id.substr(id.find('_') + 1) + "/3",
-                   state);
+        fmt::print("slurm job {} ({}): {}\n", id,
+                   id == jobs.merge ? "merge" : "shard " + id.substr(id.find('_') + 1) + "/3", state);
     return states;
 }
 

@@ -87,7 +87,7 @@ TEST(CliConventions, KeyValueSlipsGetTheRightForm) {
     Result r = run("keys --env " + env.string());
     EXPECT_EQ(r.exitCode, 1) << r.output;
     EXPECT_NE(r.output.find(env.string() + ":2: 'ASDS::type=sahbvh': env lines are 'Section::key value', with a "
-                            "space; write 'ASDS::type sahbvh'"),
+                                           "space; write 'ASDS::type sahbvh'"),
               std::string::npos)
         << r.output;
     r = run("render -DASDS::type grid --out " + (tempDir() / "slip").string());
@@ -104,9 +104,9 @@ TEST(CliConventions, AccelListsAreCheckedFirstAndNamedAsTyped) {
     std::ofstream(nff) << "v\nfrom 0 0 5\nat 0 0 0\nup 0 1 0\nangle 30\nhither 1\nresolution 4 4\n"
                           "l 0 0 5\nf 1 1 1 1 0 0 0 1\np 3\n-1 -1 0\n1 -1 0\n0 1 0\n";
     const std::string out = (tempDir() / "accel_check").string();
-    for (const std::string& command : {"bench --out " + out + ".json", "stress --out " + out + ".json",
-                                       "spd " + nff.string() + " --out " + out, "tradeoff --out " + out,
-                                       "tradeoff --builders --out " + out}) {
+    for (const std::string& command :
+         {"bench --out " + out + ".json", "stress --out " + out + ".json", "spd " + nff.string() + " --out " + out,
+          "tradeoff --out " + out, "tradeoff --builders --out " + out}) {
         SCOPED_TRACE(command);
         Result r = run(command + " --accel sahbvh,bsptree");
         EXPECT_EQ(r.exitCode, 1) << r.output;
@@ -160,8 +160,8 @@ TEST(CliConventions, RenderRecordsTheSceneReadTheCommandAndTheTime) {
     EXPECT_EQ(j["env"]["Scene::file"]["from"], "--scene");
     const std::string command = j["run"]["command_line"];
     EXPECT_NE(command.find("render --scene " + scene.string()), std::string::npos) << command;
-    EXPECT_TRUE(std::regex_match(j["run"]["started"].get<std::string>(),
-                                 std::regex(R"(\d{4}-\d\d-\d\dT\d\d:\d\d:\d\dZ)")))
+    EXPECT_TRUE(
+        std::regex_match(j["run"]["started"].get<std::string>(), std::regex(R"(\d{4}-\d\d-\d\dT\d\d:\d\d:\d\dZ)")))
         << j["run"]["started"];
 }
 
@@ -169,8 +169,8 @@ TEST(CliConventions, RenderRecordsTheSceneReadTheCommandAndTheTime) {
 TEST(CliConventions, SceneEnvGivesTheCamera) {
     const fs::path scene = quadScene(), sceneEnv = tempDir() / "quad_view.env", out = tempDir() / "view";
     std::ofstream(sceneEnv) << "Camera::from 0 0 7\nCamera::at 0 0 0\nCamera::up 0 1 0\n";
-    Result r = run("render --scene " + scene.string() + " --scene-env " + sceneEnv.string() + kTiny + "--out " +
-                   out.string());
+    Result r =
+        run("render --scene " + scene.string() + " --scene-env " + sceneEnv.string() + kTiny + "--out " + out.string());
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_EQ(readJson(out.string() + ".json")["env"]["Camera::from"]["value"], "0 0 7");
 
@@ -188,7 +188,8 @@ TEST(CliConventions, SceneFileIsLookedForInSceneDir) {
     fs::create_directories(dir);
     std::ofstream(dir / "quad_in_dir.obj") << "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n";
     const fs::path out = tempDir() / "in_dir";
-    const Result r = run("render --scene quad_in_dir.obj -DScene::dir=" + dir.string() + kTiny + "--out " + out.string());
+    const Result r =
+        run("render --scene quad_in_dir.obj -DScene::dir=" + dir.string() + kTiny + "--out " + out.string());
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("scene quad_in_dir: 2 triangles"), std::string::npos) << r.output;
 }
@@ -288,7 +289,8 @@ TEST(CliConventions, SceneFileWithoutSceneEnvIsSaid) {
 // command; a scene file missing under Scene::dir names the key to set, in every command.
 TEST(CliConventions, ScenesTakeNamesAndAMissingSceneNamesTheKey) {
     const std::string nowhere = (tempDir() / "nowhere").string();
-    const std::string hint = "Scene::dir is " + nowhere + " (from -DScene::dir; set it with -DScene::dir=... or a "
+    const std::string hint = "Scene::dir is " + nowhere +
+                             " (from -DScene::dir; set it with -DScene::dir=... or a "
                              "line 'Scene::dir ...' in an env file)";
     const std::string teapotsEnv = (fs::path(test::sourceTree()) / "env" / "scenes" / "teapots.env").string();
     for (const std::string command : {"render --scene teapots", "bench --scenes teapots", "batch --scenes teapots",
@@ -332,9 +334,9 @@ TEST(CliConventions, TheFooterSaysWhyShadowRaysWereNotCast) {
 
 #if !defined(__SANITIZE_ADDRESS__)  // ASan reserves more address space than any ulimit -v below
 TEST(CliConventions, ImageTooLargeForMemoryIsRefusedUpFront) {
-    const Result r = test::runShell("ulimit -v 3000000; " + test::bvhlabProgram() +
-                                    " render -DCamera::width=16384 -DCamera::height=16384 --out " +
-                                    (tempDir() / "huge").string());
+    const Result r =
+        test::runShell("ulimit -v 3000000; " + test::bvhlabProgram() +
+                       " render -DCamera::width=16384 -DCamera::height=16384 --out " + (tempDir() / "huge").string());
     const std::string& output = r.output;
     EXPECT_EQ(r.exitCode, 1) << output;
     EXPECT_NE(output.find("a 16384 x 16384 image needs about"), std::string::npos) << output;

@@ -44,14 +44,16 @@ TEST(Bench, APluginsRowsLeadAndRerunsKeepWholeScenes) {
     Result r = run(args);
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("bench: 0 scenes kept from an earlier run (same result key); 2 to measure: 2 new"),
-              std::string::npos) << r.output;
+              std::string::npos)
+        << r.output;
     // The table: scan's rows, what scan is, and where the reference rows are.
     EXPECT_EQ(test::occurrences(r.output, "  1 scan "), 2u) << r.output;  // a row per scene
     EXPECT_EQ(r.output.find("  1 nothing-guarded"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("  scan: Scan::passes=1; plugin scan.so, CRC-32 "), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("the reference rows (embree, embree-robust, nothing, nothing-guarded, embree-bare) are in "
                             "the JSON; --reference-rows shows them here"),
-              std::string::npos) << r.output;
+              std::string::npos)
+        << r.output;
     const nlohmann::json first = readBench(out);
     ASSERT_EQ(first["scenes"].size(), 2u);
     EXPECT_EQ(rowsOf(first, "first"), 6u);
@@ -62,7 +64,8 @@ TEST(Bench, APluginsRowsLeadAndRerunsKeepWholeScenes) {
     r = run(args + " --reference-rows");
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("bench: 2 scenes kept from an earlier run (same result key); 0 to measure"),
-              std::string::npos) << r.output;
+              std::string::npos)
+        << r.output;
     EXPECT_NE(r.output.find("  1 nothing-guarded"), std::string::npos) << r.output;
     EXPECT_EQ(readBench(out)["rows"], first["rows"]);
 
@@ -73,7 +76,8 @@ TEST(Bench, APluginsRowsLeadAndRerunsKeepWholeScenes) {
     r = run(args);
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("bench: 1 scenes kept from an earlier run (same result key); 1 to measure: 1 new"),
-              std::string::npos) << r.output;
+              std::string::npos)
+        << r.output;
     const nlohmann::json resumed = readBench(out);
     EXPECT_EQ(rowsOf(resumed, "first"), 6u);
     EXPECT_EQ(rowsOf(resumed, "second"), 6u);
@@ -84,5 +88,6 @@ TEST(Bench, APluginsRowsLeadAndRerunsKeepWholeScenes) {
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("bench: 0 scenes kept from an earlier run (same result key); 2 to measure: 2 because "
                             "plugin crc32: "),
-              std::string::npos) << r.output;
+              std::string::npos)
+        << r.output;
 }

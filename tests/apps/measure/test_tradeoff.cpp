@@ -92,7 +92,8 @@ TEST(Tradeoff, QuickRunWritesRowsAndResumes) {
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_TRUE(contains(r.output, "12 configurations measured, 0 kept")) << r.output;
     const fs::path out = dir / "out";
-    for (const char* file : {"tradeoff.csv", "image_error.csv", "tradeoff.md", "soup/reference.exr", "terrain/reference.png"})
+    for (const char* file :
+         {"tradeoff.csv", "image_error.csv", "tradeoff.md", "soup/reference.exr", "terrain/reference.png"})
         EXPECT_TRUE(fs::exists(out / file)) << file;
 
     // tradeoff.csv: a row per scene x configuration, in order.
@@ -183,7 +184,8 @@ TEST(Tradeoff, ByDefaultEveryStructureOfOursIsMeasured) {
     for (const AcceleratorInfo& info : acceleratorInfos()) {
         if (info.name == "naive" || info.name == "embree") continue;
         EXPECT_TRUE(has(builders, info.name)) << info.name;
-        EXPECT_TRUE(info.name == "sahbvh" ? has(series, "sahbvh-K4") && has(series, "sahbvh-K16") : has(series, info.name))
+        EXPECT_TRUE(info.name == "sahbvh" ? has(series, "sahbvh-K4") && has(series, "sahbvh-K16")
+                                          : has(series, info.name))
             << info.name;
     }
     EXPECT_TRUE(has(series, "embree"));
@@ -205,12 +207,24 @@ TEST(Tradeoff, BuildersQuickRunWritesRowsAndResumes) {
     EXPECT_TRUE(contains(r.output, "Spearman")) << r.output;
     // What each configuration is: our builders with their BVH:: keys, Embree's qualities with Embree's.
     EXPECT_TRUE(contains(r.output, "- `sbvh`: BVH::allAxes=false, BVH::batchTraversal=auto, BVH::bins=16")) << r.output;
-    EXPECT_TRUE(contains(r.output, "- `embree-high`: Embree::isa=auto, Embree::quality=high, Embree::robust=false")) << r.output;
+    EXPECT_TRUE(contains(r.output, "- `embree-high`: Embree::isa=auto, Embree::quality=high, Embree::robust=false"))
+        << r.output;
     const fs::path out = dir / "out";
-    const std::vector<std::string> configs = {
-        "sahbvh",           "sahbvh8",           "sbvh",          "sbvh8",           "ploc",
-        "ploc8",            "tdbvh",             "sweepbvh",      "sahbvh+insertion", "sahbvh8+insertion",
-        "ploc8+insertion",  "tdbvh+insertion",   "embree-low",    "embree-medium",   "embree-high"};
+    const std::vector<std::string> configs = {"sahbvh",
+                                              "sahbvh8",
+                                              "sbvh",
+                                              "sbvh8",
+                                              "ploc",
+                                              "ploc8",
+                                              "tdbvh",
+                                              "sweepbvh",
+                                              "sahbvh+insertion",
+                                              "sahbvh8+insertion",
+                                              "ploc8+insertion",
+                                              "tdbvh+insertion",
+                                              "embree-low",
+                                              "embree-medium",
+                                              "embree-high"};
     const size_t n = configs.size();
     const auto rows = readCsv(out / "builders.csv");
     ASSERT_EQ(rows.size(), 2 * n);
@@ -297,8 +311,9 @@ TEST(TradeoffResume, ARebuiltPluginIsMeasuredAgain) {
     test::installScan(dir, 2);
     r = run(args);
     ASSERT_EQ(r.exitCode, 0) << r.output;
-    EXPECT_TRUE(contains(r.output, "tradeoff: 1 configurations kept from an earlier run (same result key); 1 to "
-                                   "measure: 1 because plugin crc32: "))
+    EXPECT_TRUE(contains(r.output,
+                         "tradeoff: 1 configurations kept from an earlier run (same result key); 1 to "
+                         "measure: 1 because plugin crc32: "))
         << r.output;
     EXPECT_TRUE(contains(r.output, "1 configurations measured, 1 kept")) << r.output;
 

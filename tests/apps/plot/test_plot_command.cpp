@@ -31,7 +31,8 @@ TEST(Plot, DrawsABenchJsonFile) {
     const fs::path dir = scratchDir("plot_bench");
     std::ofstream(dir / "tiny.env") << "Camera::width 8\nCamera::height 8\n";
     Result r = run("bench --quiet --scenes " + (dir / "tiny.env").string() +
-                   " --accel sahbvh --queries single --threads 1 --builds 1 --passes 1 --out " + (dir / "bench.json").string());
+                   " --accel sahbvh --queries single --threads 1 --builds 1 --passes 1 --out " +
+                   (dir / "bench.json").string());
     ASSERT_EQ(r.exitCode, 0) << r.output;
     r = run("plot " + (dir / "bench.json").string() + " --out " + (dir / "plots").string());
     ASSERT_EQ(r.exitCode, 0) << r.output;
@@ -75,9 +76,10 @@ TEST(Plot, DrawsATradeoffFolderWithoutTheKSeriesOrSweepbvh) {
 TEST(Plot, DrawsABatchFolder) {
     if (!haveMatplotlib()) GTEST_SKIP() << "no python3-matplotlib for /usr/bin/python3";
     const fs::path dir = scratchDir("plot_batch");
-    std::ofstream(dir / "results.csv") << "scene,accel,shadows,prims,leaves,nodes,sah,t_b_ms,t_r_us,n_it,n_tr,n_q,render_ms\n"
-                                          "cube,sahbvh,true,12,4,7,3.5,0.2,0.05,2.5,6.0,1.2,4.0\n"
-                                          "cube,embree,true,12,,,,0.3,0.04,,,1.2,3.0\n";
+    std::ofstream(dir / "results.csv")
+        << "scene,accel,shadows,prims,leaves,nodes,sah,t_b_ms,t_r_us,n_it,n_tr,n_q,render_ms\n"
+           "cube,sahbvh,true,12,4,7,3.5,0.2,0.05,2.5,6.0,1.2,4.0\n"
+           "cube,embree,true,12,,,,0.3,0.04,,,1.2,3.0\n";
     const Result r = run("plot " + dir.string() + " --out " + (dir / "pngs").string());
     ASSERT_EQ(r.exitCode, 0) << r.output;
     expectPng(dir / "pngs" / "batch.png");

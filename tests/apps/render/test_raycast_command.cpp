@@ -41,11 +41,12 @@ TEST(RaycastCommand, CountsOnlyWhenAskedAsACountingPass) {
         for (const bool any : {false, true}) {
             SCOPED_TRACE(name + (any ? " --any" : ""));
             // The embedded scene and the registry's defaults, as the structure built here.
-            const std::string args = fmt::format("raycast --no-global-env --threads 1 -DASDS::type={} --rays {}{}", name,
-                                                 raysFile.string(), any ? " --any" : "");
+            const std::string args = fmt::format("raycast --no-global-env --threads 1 -DASDS::type={} --rays {}{}",
+                                                 name, raysFile.string(), any ? " --any" : "");
             const test::Result timed = test::run(args + " --out " + (dir / "timed.hits").string());
             ASSERT_EQ(timed.exitCode, 0) << timed.output;
-            EXPECT_NE(timed.output.find(fmt::format(" queries: {}  T_R ", rays.size())), std::string::npos) << timed.output;
+            EXPECT_NE(timed.output.find(fmt::format(" queries: {}  T_R ", rays.size())), std::string::npos)
+                << timed.output;
             EXPECT_EQ(timed.output.find("N_IT"), std::string::npos) << timed.output;
 
             const test::Result counted = test::run(args + " --count --out " + (dir / "counted.hits").string());
@@ -54,7 +55,8 @@ TEST(RaycastCommand, CountsOnlyWhenAskedAsACountingPass) {
             accel->build(scene.primitives());
             std::vector<Hit> hits(rays.size());
             std::vector<uint8_t> occluded(any ? rays.size() : 0);
-            const QueryCounters expected = traceRays(*accel, rays, any, RayCoherence::Incoherent, 1, /*counting=*/true, {hits, occluded, {}});
+            const QueryCounters expected =
+                traceRays(*accel, rays, any, RayCoherence::Incoherent, 1, /*counting=*/true, {hits, occluded, {}});
             EXPECT_GT(expected.traversalSteps, 0u);
             const double n = double(rays.size());
             EXPECT_NE(counted.output.find(fmt::format(" queries: {}  N_IT {:.2f}  N_TR {:.2f}  T_R ", rays.size(),

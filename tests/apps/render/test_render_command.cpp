@@ -12,8 +12,10 @@ TEST(RenderCommand, AKeyTheStructureDoesNotReadIsAWarning) {
                              (test::scratchDir("render_command") / "x").string();
     const test::Result embree = test::run(args + " -DASDS::type=embree");
     ASSERT_EQ(embree.exitCode, 0) << embree.output;
-    EXPECT_NE(embree.output.find("warning: BVH::maxLeaf is read by none of the chosen structures (embree); it is ignored"),
-              std::string::npos) << embree.output;
+    EXPECT_NE(
+        embree.output.find("warning: BVH::maxLeaf is read by none of the chosen structures (embree); it is ignored"),
+        std::string::npos)
+        << embree.output;
     const test::Result bvh = test::run(args + " -DASDS::type=sahbvh");
     ASSERT_EQ(bvh.exitCode, 0) << bvh.output;
     EXPECT_EQ(bvh.output.find("is read by none"), std::string::npos) << bvh.output;

@@ -17,7 +17,8 @@ namespace {
 // A Progress of one style on a memory stream, with a clock the test moves.
 class ProgressUnderTest {
 public:
-    explicit ProgressUnderTest(Progress::Style style) : progress_(std::in_place, style, stream_, [this] { return now_; }) {}
+    explicit ProgressUnderTest(Progress::Style style)
+        : progress_(std::in_place, style, stream_, [this] { return now_; }) {}
     ~ProgressUnderTest() {
         progress_.reset();
         std::fclose(stream_);

@@ -53,8 +53,8 @@ TEST(ResultKey, TheSceneIsItsFilesContentAndTheRestOfTheEnv) {
     EXPECT_EQ(sceneKey(envWith({"Scene::dir=" + (dir / "moved").string(), "Scene::file=a.obj", "Camera::width=64"})),
               before);
     const std::vector<std::string> changes = resultKeyChanges(
-        {{"scene", before}}, {{"scene", sceneKey(envWith({"Scene::dir=" + dir.string(), "Scene::file=a.obj",
-                                                          "Camera::width=32"}))}});
+        {{"scene", before}},
+        {{"scene", sceneKey(envWith({"Scene::dir=" + dir.string(), "Scene::file=a.obj", "Camera::width=32"}))}});
     EXPECT_EQ(changes, std::vector<std::string>{"scene Camera::width: 64 -> 32"});
 }
 
@@ -63,13 +63,15 @@ TEST(ResultKey, TheProgramIsThisProcesssFiles) {
     EXPECT_FALSE(program["commit"].get<std::string>().empty());
     ASSERT_TRUE(program["files"].contains("bvhlab")) << program.dump();
     EXPECT_NE(program["files"]["bvhlab"].get<std::string>().find('-'), std::string::npos);  // SIZE-CRC32
-    EXPECT_EQ(&programIdentity(), &program);  // read once
+    EXPECT_EQ(&programIdentity(), &program);                                                // read once
 }
 
 TEST(ResultKey, ChangesNameThePartAndTheValue) {
     const json before = {{"program", {{"commit", "abc"}, {"files", {{"bvhlab", "10-0000aaaa"}}}}},
-                         {"structure", {{"accel", "scan"}, {"keys", {{"Scan::passes", "1"}}},
-                                        {"plugin", {{"file", "scan.so"}, {"crc32", "11111111"}}}}},
+                         {"structure",
+                          {{"accel", "scan"},
+                           {"keys", {{"Scan::passes", "1"}}},
+                           {"plugin", {{"file", "scan.so"}, {"crc32", "11111111"}}}}},
                          {"measurement", {{"passes", 3}}}};
     json after = before;
     EXPECT_TRUE(resultKeyChanges(before, after).empty());
@@ -77,9 +79,10 @@ TEST(ResultKey, ChangesNameThePartAndTheValue) {
     after["structure"]["keys"]["Scan::passes"] = "2";
     after["structure"]["plugin"]["crc32"] = "22222222";
     after["measurement"]["passes"] = 5;
-    EXPECT_EQ(resultKeyChanges(before, after),
-              (std::vector<std::string>{"measurement passes: 3 -> 5", "plugin crc32: 11111111 -> 22222222",
-                                        "program bvhlab: 10-0000aaaa -> 10-0000bbbb", "structure Scan::passes: 1 -> 2"}));
+    EXPECT_EQ(
+        resultKeyChanges(before, after),
+        (std::vector<std::string>{"measurement passes: 3 -> 5", "plugin crc32: 11111111 -> 22222222",
+                                  "program bvhlab: 10-0000aaaa -> 10-0000bbbb", "structure Scan::passes: 1 -> 2"}));
 }
 
 TEST(ResultKey, AStoredResultIsKeptOnlyUnderTheSameKey) {
@@ -101,6 +104,7 @@ TEST(ResultKey, AStoredResultIsKeptOnlyUnderTheSameKey) {
     count.add(changed);
     EXPECT_EQ(count.kept(), 2u);
     EXPECT_EQ(count.toMeasure(), 2u);
-    EXPECT_EQ(count.summary("jobs", "run"), "2 jobs kept from an earlier run (same result key); 2 to run: 1 new; 1 "
-                                            "because structure BVH::maxLeaf: 2 -> 3");
+    EXPECT_EQ(count.summary("jobs", "run"),
+              "2 jobs kept from an earlier run (same result key); 2 to run: 1 new; 1 "
+              "because structure BVH::maxLeaf: 2 -> 3");
 }

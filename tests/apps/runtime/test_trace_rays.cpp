@@ -42,7 +42,8 @@ struct DefaultSceneRays {
         spec.height = 48;
         const Camera camera(spec);
         for (int y = 0; y < spec.height; ++y)
-            for (int x = 0; x < spec.width; ++x) primary.push_back(camera.generateRay(float(x) + 0.5f, float(y) + 0.5f));
+            for (int x = 0; x < spec.width; ++x)
+                primary.push_back(camera.generateRay(float(x) + 0.5f, float(y) + 0.5f));
         const auto naive = createAccelerator("naive", Env(programKeys()));
         naive->build(scene.primitives());
         std::vector<Hit> hits(primary.size());
@@ -95,8 +96,10 @@ TEST_P(CountingForm, AnswersBitForBitWithCountingOnAndOff) {
         const size_t n = set.rays.size();
         std::vector<Hit> hitsOff(n), hitsOn(n);
         std::vector<uint8_t> occludedOff(set.anyHit ? n : 0), occludedOn(set.anyHit ? n : 0);
-        const QueryCounters off = traceRays(*accel, set.rays, set.anyHit, RayCoherence::Coherent, 2, /*counting=*/false, {hitsOff, occludedOff, {}});
-        const QueryCounters on = traceRays(*accel, set.rays, set.anyHit, RayCoherence::Coherent, 2, /*counting=*/true, {hitsOn, occludedOn, {}});
+        const QueryCounters off = traceRays(*accel, set.rays, set.anyHit, RayCoherence::Coherent, 2, /*counting=*/false,
+                                            {hitsOff, occludedOff, {}});
+        const QueryCounters on = traceRays(*accel, set.rays, set.anyHit, RayCoherence::Coherent, 2, /*counting=*/true,
+                                           {hitsOn, occludedOn, {}});
         EXPECT_TRUE(bitEqual(hitsOff, hitsOn));
         EXPECT_TRUE(bitEqual(occludedOff, occludedOn));
         EXPECT_EQ(off.queries, n);
@@ -129,13 +132,15 @@ TEST(TraceRays, ReportsOnlyQueriesWithCountingOff) {
     const auto accel = builtOver("sahbvh8", d.scene);
     const CountingSpy spy(*accel);
     std::vector<Hit> hits(d.primary.size());
-    const QueryCounters off = traceRays(spy, d.primary, false, RayCoherence::Coherent, 2, /*counting=*/false, {hits, {}, {}});
+    const QueryCounters off =
+        traceRays(spy, d.primary, false, RayCoherence::Coherent, 2, /*counting=*/false, {hits, {}, {}});
     EXPECT_EQ(off.queries, d.primary.size());
     EXPECT_EQ(off.intersectionTests, 0u);
     EXPECT_EQ(off.traversalSteps, 0u);
     EXPECT_EQ(spy.uncountedRays(), d.primary.size());
     EXPECT_EQ(spy.countedRays(), 0u);
-    const QueryCounters on = traceRays(spy, d.primary, false, RayCoherence::Coherent, 2, /*counting=*/true, {hits, {}, {}});
+    const QueryCounters on =
+        traceRays(spy, d.primary, false, RayCoherence::Coherent, 2, /*counting=*/true, {hits, {}, {}});
     EXPECT_EQ(on.intersectionTests, spy.countedIntersectionTests());
     EXPECT_EQ(on.traversalSteps, spy.countedTraversalSteps());
 }
@@ -166,19 +171,24 @@ TEST(TracePasses, TimesWithCountingOffAndCountsInAPassOfItsOwn) {
                 const auto range = std::span(rays).subspan(begin, std::min(kQueryRange, rays.size() - begin));
                 if (kind == QueryKind::Single) {
                     for (size_t i = 0; i < range.size(); ++i)
-                        if (anyHit) accel->isOccluded(range[i], expected);
-                        else accel->findNearest(range[i], hits[i], expected);
+                        if (anyHit)
+                            accel->isOccluded(range[i], expected);
+                        else
+                            accel->findNearest(range[i], hits[i], expected);
                 } else if (anyHit) {
-                    accel->isOccludedBatch(range, std::span(occluded).first(range.size()), expected, {}, RayCoherence::Coherent);
+                    accel->isOccludedBatch(range, std::span(occluded).first(range.size()), expected, {},
+                                           RayCoherence::Coherent);
                 } else {
-                    accel->findNearestBatch(range, std::span(hits).first(range.size()), expected, {}, RayCoherence::Coherent);
+                    accel->findNearestBatch(range, std::span(hits).first(range.size()), expected, {},
+                                            RayCoherence::Coherent);
                 }
             }
             EXPECT_TRUE(verify::sameCounters(r.counters, expected));
             EXPECT_GT(expected.traversalSteps, 0u);
 
             const CountingSpy uncounted(*accel);
-            const PassResult timedOnly = tracePasses(uncounted, rays, anyHit, RayCoherence::Coherent, 2, 2, kind, /*count=*/false);
+            const PassResult timedOnly =
+                tracePasses(uncounted, rays, anyHit, RayCoherence::Coherent, 2, 2, kind, /*count=*/false);
             EXPECT_EQ(uncounted.countedRays(), 0u);
             EXPECT_EQ(timedOnly.counters.queries, rays.size());
             EXPECT_EQ(timedOnly.counters.intersectionTests, 0u);

@@ -47,8 +47,10 @@ TEST(Abi, ListsEveryEnumeratorAndEveryVirtualFunctionOfThePublicHeaders) {
             if (std::regex_search(line, m, classLine)) currentClass = m[1];
             if (std::regex_search(line, m, virtualFunction)) {
                 ++virtuals;
-                EXPECT_TRUE(figures.count("vtable slot of " + currentClass + "::" + m[1].str())) << currentClass << "::" << m[1];
-                EXPECT_TRUE(figures.count("type of " + currentClass + "::" + m[1].str())) << currentClass << "::" << m[1];
+                EXPECT_TRUE(figures.count("vtable slot of " + currentClass + "::" + m[1].str()))
+                    << currentClass << "::" << m[1];
+                EXPECT_TRUE(figures.count("type of " + currentClass + "::" + m[1].str()))
+                    << currentClass << "::" << m[1];
             }
         }
     }

@@ -24,7 +24,8 @@ TEST(QueryCounters, AddWorkAddsEveryCounterOfTheTableButNotTheQueries) {
     const QueryCounters work = distinctCounters(100);
     sum.addWork(work);
     const QueryCounters before = distinctCounters(1);
-    for (const QueryCounter& row : kQueryCounters) EXPECT_EQ(sum.*row.count, before.*row.count + work.*row.count) << row.key;
+    for (const QueryCounter& row : kQueryCounters)
+        EXPECT_EQ(sum.*row.count, before.*row.count + work.*row.count) << row.key;
     EXPECT_EQ(sum.queries, 5u);
     EXPECT_FALSE(sum.counting);
 }

@@ -70,9 +70,10 @@ TEST(Env, DefaultsApplyUntilSet) {
 TEST(Env, ParsesFileWithCommentsAndBlankLines) {
     const EnvRegistry r = testRegistry();
     Env env(r);
-    env.loadFile(writeFile("good.env", "# comment\n\nSet::count 7   # trailing comment\n"
-                                       "Set::flag on\nSet::mode exact\nSet::name two words\n"
-                                       "Set::point 1 2 3\nSet::points 1 2 3, -4 5e-1 6\nSet::file sub/x.obj\n"));
+    env.loadFile(writeFile("good.env",
+                           "# comment\n\nSet::count 7   # trailing comment\n"
+                           "Set::flag on\nSet::mode exact\nSet::name two words\n"
+                           "Set::point 1 2 3\nSet::points 1 2 3, -4 5e-1 6\nSet::file sub/x.obj\n"));
     EXPECT_EQ(env.get(kCount), 7);
     EXPECT_TRUE(env.get(kFlag));
     EXPECT_EQ(env.get(kMode), "exact");
@@ -122,10 +123,9 @@ TEST(Env, UnknownKeyNamesFileLineAndNearestKeys) {
 TEST(Env, BadValuesAreErrorsWithLine) {
     const EnvRegistry r = testRegistry();
     const std::vector<std::string> badLines = {
-        "Set::count 11",      "Set::count 0",       "Set::count 2.5",    "Set::count 3x",
-        "Set::scale nan",     "Set::scale 3",       "Set::scale abc",    "Set::flag maybe",  "Set::mode slow",
-        "Set::point 1 2",     "Set::point 1 2 3 4", "Set::point 1 2 inf", "Set::points 1 2 3, 4 5",
-        "justaword",          "Set: 3",
+        "Set::count 11",      "Set::count 0",       "Set::count 2.5",         "Set::count 3x",  "Set::scale nan",
+        "Set::scale 3",       "Set::scale abc",     "Set::flag maybe",        "Set::mode slow", "Set::point 1 2",
+        "Set::point 1 2 3 4", "Set::point 1 2 inf", "Set::points 1 2 3, 4 5", "justaword",      "Set: 3",
     };
     for (const std::string& line : badLines) {
         Env env(r);

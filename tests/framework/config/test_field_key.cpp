@@ -62,7 +62,8 @@ TEST(FieldKey, BindingsReadAnEnvIntoThePart) {
     bindings.registerWith(registry);
     std::vector<std::string> names;
     bindings.appendNames(names);
-    EXPECT_EQ(names, (std::vector<std::string>{"Part::count", "Part::limit", "Part::scale", "Part::flag", "Part::shape"}));
+    EXPECT_EQ(names,
+              (std::vector<std::string>{"Part::count", "Part::limit", "Part::scale", "Part::flag", "Part::shape"}));
 
     Env env(registry);
     PartSettings defaults;

@@ -48,15 +48,26 @@ TEST(PluginSettings, DeclarationsBecomeTheRegistrysKeys) {
 }
 
 TEST(PluginSettings, AMalformedDeclarationIsRefusedNamingTheKey) {
-    EXPECT_EQ(refusal([] { declarationOf({"depth", KeyType::Int, "1", "no section", 0, 9}); }),
+    EXPECT_EQ(refusal([] {
+                  declarationOf({"depth", KeyType::Int, "1", "no section", 0, 9});
+              }),
               "env key 'depth' is not 'Section::key'");
-    EXPECT_EQ(refusal([] { declarationOf({nullptr, KeyType::Int, "1", "no name"}); }), "env key '' is not 'Section::key'");
+    EXPECT_EQ(refusal([] {
+                  declarationOf({nullptr, KeyType::Int, "1", "no name"});
+              }),
+              "env key '' is not 'Section::key'");
     EXPECT_EQ(refusal([] { declarationOf({"Kd::x", KeyType(99), "1", "?"}); }), "env key 'Kd::x': unknown type 99");
-    EXPECT_EQ(refusal([] { declarationOf({"Kd::x", KeyType::Int, nullptr, "?"}); }),
+    EXPECT_EQ(refusal([] {
+                  declarationOf({"Kd::x", KeyType::Int, nullptr, "?"});
+              }),
               "env key 'Kd::x': no default value (\"\" for none)");
-    EXPECT_EQ(refusal([] { declarationOf({"Kd::x", KeyType::Float, "1", "?", 2, 1}); }),
+    EXPECT_EQ(refusal([] {
+                  declarationOf({"Kd::x", KeyType::Float, "1", "?", 2, 1});
+              }),
               "env key 'Kd::x': its range 2 to 1 is not in order");
-    EXPECT_EQ(refusal([] { declarationOf({"Kd::x", KeyType::Choice, "a", "?"}); }),
+    EXPECT_EQ(refusal([] {
+                  declarationOf({"Kd::x", KeyType::Choice, "a", "?"});
+              }),
               "env key 'Kd::x': a Choice key without choices");
 }
 

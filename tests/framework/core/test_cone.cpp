@@ -85,7 +85,8 @@ double referenceHit(const Ray& ray, const Cone& cone, double size, bool* grazing
             // one near a true cone's tip: moved by the band, the normal turns by up to band / rho,
             // and the agreement allows it 1 - cos = 1e-4, an angle of sqrt(2e-4).
             const L s = fw + t * dw, tolerance = 1e-4L * std::max(std::abs(t), L(size) / glm::length(d));
-            const bool shallow = std::min(distanceFromSurface(t - tolerance), distanceFromSurface(t + tolerance)) < band;
+            const bool shallow =
+                std::min(distanceFromSurface(t - tolerance), distanceFromSurface(t + tolerance)) < band;
             const bool nearTip = std::abs(r0 + k * s) * std::sqrt(2e-4L) < band;
             nearEdge = nearEdge || (inSlab(t) && (shallow || nearTip)) ||
                        std::min(std::abs(s), std::abs(s - height)) < band ||
@@ -114,7 +115,8 @@ void expectHit(const Cone& cone, const Vec3& org, const Vec3& dir, float t, cons
             h = {hf.t, hf.normal};
         }
         EXPECT_NEAR(h.t, t, 1e-5 * std::max(1.0f, t)) << (doublePrecision ? "double" : "float");
-        EXPECT_NEAR(glm::dot(h.normal, glm::normalize(DVec3(normal))), 1.0, 1e-6) << (doublePrecision ? "double" : "float");
+        EXPECT_NEAR(glm::dot(h.normal, glm::normalize(DVec3(normal))), 1.0, 1e-6)
+            << (doublePrecision ? "double" : "float");
     }
 }
 
@@ -136,7 +138,8 @@ TEST(Cone, KnownHitsOnACylinder) {
 
 TEST(Cone, KnownHitsOnATrueCone) {
     // R(z) = 2 - z/2: from x = -10 at height z, t = 10 - R(z); the normal leans up, (-2, 0, 1).
-    for (const float z : {0.5f, 2.0f, 3.5f}) expectHit(kCone, {-10, 0, z}, {1, 0, 0}, 10.0f - (2.0f - z / 2), {-2, 0, 1});
+    for (const float z : {0.5f, 2.0f, 3.5f})
+        expectHit(kCone, {-10, 0, z}, {1, 0, 0}, 10.0f - (2.0f - z / 2), {-2, 0, 1});
     // From inside, on the axis at z = 2: the inner side at R = 1.
     expectHit(kCone, {0, 0, 2}, {0, 1, 0}, 1.0f, {0, 2, 1});
     // Down the axis from above: the apex itself, with the axis for a normal.
@@ -184,8 +187,10 @@ TEST(Cone, IntervalEndsAreInclusive) {
     EXPECT_GT(h.normal.x, 0.99f);  // the far wall, from inside
     for (const float t : {t0, t1}) {
         EXPECT_TRUE(hits(Ray(ray.org, ray.dir, t, t), kCylinder));
-        EXPECT_FALSE(hits(Ray(ray.org, ray.dir, std::nextafter(t, kInfinity), std::nextafter(t, kInfinity)), kCylinder));
-        EXPECT_FALSE(hits(Ray(ray.org, ray.dir, std::nextafter(t, -kInfinity), std::nextafter(t, -kInfinity)), kCylinder));
+        EXPECT_FALSE(
+            hits(Ray(ray.org, ray.dir, std::nextafter(t, kInfinity), std::nextafter(t, kInfinity)), kCylinder));
+        EXPECT_FALSE(
+            hits(Ray(ray.org, ray.dir, std::nextafter(t, -kInfinity), std::nextafter(t, -kInfinity)), kCylinder));
     }
     EXPECT_FALSE(hits(Ray(ray.org, ray.dir, 0.0f, std::nextafter(t0, -kInfinity)), kCylinder));
     EXPECT_FALSE(hits(Ray(ray.org, ray.dir, std::nextafter(t1, kInfinity), kInfinity), kCylinder));
@@ -217,7 +222,8 @@ Ray randomRayTowards(std::mt19937& rng, const Cone& cone, double size) {
     return Ray(org, Vec3((target - widen(org)) * std::exp(U(rng) * 4 - 2)));
 }
 
-test::QuadricAgreement shootRandomRaysAtCones(uint32_t seed, int count, double minSize, double maxSize, double maxOffset) {
+test::QuadricAgreement shootRandomRaysAtCones(uint32_t seed, int count, double minSize, double maxSize,
+                                              double maxOffset) {
     const auto compareOne = [](std::mt19937& rng, double size, const DVec3& offset, test::QuadricAgreement& agreement) {
         const Cone cone = randomCone(rng, size, offset);
         const Ray ray = randomRayTowards(rng, cone, size);
@@ -261,8 +267,9 @@ TEST(Cone, FloatAgreesWithDoubleOnRandomRays) {
 TEST(Cone, FloatAgreesWithDoubleAtHugeAndTinyScalesFarFromTheOrigin) {
     for (const double offset : {0.0, 1e5}) {
         shootRandomRaysAtCones(43, 200000, 1e-3, 1e4, offset)
-            .expectCounts(offset == 0.0 ? "cones of 1e-3 to 1e4 at the origin" : "cones of 1e-3 to 1e4 up to 1e5 from the origin",
-                          60000, 40000, kMaxGrazing);
+            .expectCounts(
+                offset == 0.0 ? "cones of 1e-3 to 1e4 at the origin" : "cones of 1e-3 to 1e4 up to 1e5 from the origin",
+                60000, 40000, kMaxGrazing);
     }
 }
 
@@ -295,7 +302,8 @@ TEST(Cone, BoundsHoldTheSurfaceTightly) {
         const Cone cone = randomCone(rng, size, randomPointWithin(rng, size * 1e3));
         const Bounds3 b = cone.bounds();
         const DVec3 base = widen(cone.base), apex = widen(cone.apex);
-        const DVec3 w = glm::normalize(apex - base), u = glm::normalize(glm::cross(w, randomUnit(rng))), v = glm::cross(w, u);
+        const DVec3 w = glm::normalize(apex - base), u = glm::normalize(glm::cross(w, randomUnit(rng))),
+                    v = glm::cross(w, u);
         DVec3 lower(std::numeric_limits<double>::infinity()), upper(-std::numeric_limits<double>::infinity());
         for (int k = 0; k < 256; ++k) {
             const double phi = k * 2.0 * M_PI / 256;
@@ -346,12 +354,15 @@ TEST(Cone, BaseAndApexAndTheSignOfBothRadiiDoNotChangeTheSurface) {
 TEST(Cone, DegenerateConesAreNeverHit) {
     const Vec3 p(1, 2, 3), q(1, 2, 7);
     const Cone degenerate[] = {
-        {p, 1.0f, p, 1.0f},         // base and apex coincide
-        {p, 0.0f, q, 0.0f},         // a segment
-        {p, 1.0f, q, -1.0f},        // radii of opposite signs
+        {p, 1.0f, p, 1.0f},   // base and apex coincide
+        {p, 0.0f, q, 0.0f},   // a segment
+        {p, 1.0f, q, -1.0f},  // radii of opposite signs
         {p, -2.0f, q, 0.5f},
-        {p, kNaN, q, 1.0f}, {p, 1.0f, q, kInfinity}, {Vec3(kNaN, 2, 3), 1.0f, q, 1.0f}, {p, 1.0f, Vec3(0, -kInfinity, 0), 1.0f},
-        {p, 1e20f, q, 1.0f},        // a radius whose square overflows
+        {p, kNaN, q, 1.0f},
+        {p, 1.0f, q, kInfinity},
+        {Vec3(kNaN, 2, 3), 1.0f, q, 1.0f},
+        {p, 1.0f, Vec3(0, -kInfinity, 0), 1.0f},
+        {p, 1e20f, q, 1.0f},                      // a radius whose square overflows
         {p, 1.0f, p + Vec3(1e-20f, 0, 0), 1.0f},  // an axis whose square underflows
     };
     std::mt19937 rng(47);
@@ -376,7 +387,9 @@ TEST(Cone, DegenerateConesAreNeverHit) {
     EXPECT_TRUE(hits(Ray(p + Vec3(-5, 0, 2), {1, 0, 0}), Cone{p, -1.0f, q, 0.0f}));
 }
 
-TEST(Cone, NaNRaysNeverHit) { test::expectNaNRaysMiss(intersectorOf(kCone), Ray(kOffset + Vec3(-10, 0, 2), {1, 0.01f, 0})); }
+TEST(Cone, NaNRaysNeverHit) {
+    test::expectNaNRaysMiss(intersectorOf(kCone), Ray(kOffset + Vec3(-10, 0, 2), {1, 0.01f, 0}));
+}
 
 }  // namespace
 }  // namespace bvhlab

@@ -113,8 +113,12 @@ TEST(Sphere, IntervalEndsAreInclusiveForBothRoots) {
         EXPECT_GT(glm::dot(farHit.normal, dir), 0.0f) << i;
         for (const float t : {t0, t1}) {
             EXPECT_TRUE(hits<float>(Ray(org, dir, t, t), kSphere)) << i;
-            EXPECT_FALSE(hits<float>(Ray(org, dir, std::nextafter(t, kInfinity), std::nextafter(t, kInfinity)), kSphere)) << i;
-            EXPECT_FALSE(hits<float>(Ray(org, dir, std::nextafter(t, -kInfinity), std::nextafter(t, -kInfinity)), kSphere)) << i;
+            EXPECT_FALSE(
+                hits<float>(Ray(org, dir, std::nextafter(t, kInfinity), std::nextafter(t, kInfinity)), kSphere))
+                << i;
+            EXPECT_FALSE(
+                hits<float>(Ray(org, dir, std::nextafter(t, -kInfinity), std::nextafter(t, -kInfinity)), kSphere))
+                << i;
         }
         EXPECT_FALSE(hits<float>(Ray(org, dir, 0.0f, std::nextafter(t0, -kInfinity)), kSphere)) << i;
         EXPECT_FALSE(hits<float>(Ray(org, dir, std::nextafter(t1, kInfinity), kInfinity), kSphere)) << i;
@@ -139,8 +143,9 @@ TEST(Sphere, ReferenceMatchesAnIndependentSolution) {
         const L disc = b * b - 4 * a * c;
         QuadricHitT<double> h{};
         const bool hit = hits<double>(ray, sphere, &h);
-        const L expected = disc < 0 ? L(-1) : (-b - std::sqrt(disc)) / (2 * a) >= 0 ? (-b - std::sqrt(disc)) / (2 * a)
-                                                                                    : (-b + std::sqrt(disc)) / (2 * a);
+        const L expected = disc < 0                                ? L(-1)
+                           : (-b - std::sqrt(disc)) / (2 * a) >= 0 ? (-b - std::sqrt(disc)) / (2 * a)
+                                                                   : (-b + std::sqrt(disc)) / (2 * a);
         ASSERT_EQ(hit, expected >= 0) << i;
         if (hit) {
             EXPECT_NEAR(h.t, double(expected), 1e-12 * std::max(1.0, h.t)) << i;
@@ -152,7 +157,8 @@ TEST(Sphere, ReferenceMatchesAnIndependentSolution) {
 
 // Random spheres of size `size` around `offset`, rays from 1.5 to 40 radii away (or from
 // inside) aimed near them: about half hit.
-test::QuadricAgreement shootRandomRaysAtSpheres(uint32_t seed, int count, double minSize, double maxSize, double maxOffset) {
+test::QuadricAgreement shootRandomRaysAtSpheres(uint32_t seed, int count, double minSize, double maxSize,
+                                                double maxOffset) {
     const auto compareOne = [](std::mt19937& rng, double size, const DVec3& offset, test::QuadricAgreement& agreement) {
         std::uniform_real_distribution<double> U(0.0, 1.0);
         const Sphere sphere{Vec3(offset + randomUnit(rng) * size), float(size * (0.5 + U(rng)))};
@@ -161,7 +167,8 @@ test::QuadricAgreement shootRandomRaysAtSpheres(uint32_t seed, int count, double
         const Vec3 org = Vec3(c + randomUnit(rng) * distance * double(sphere.radius));
         const DVec3 target = c + randomUnit(rng) * 1.4 * double(sphere.radius);
         const Ray ray = Ray(org, Vec3((target - widen(org)) * std::exp(U(rng) * 4 - 2)));
-        agreement.compare(intersectorOf(sphere), ray, double(sphere.radius), grazingDistance(ray, sphere) < kGrazingBand);
+        agreement.compare(intersectorOf(sphere), ray, double(sphere.radius),
+                          grazingDistance(ray, sphere) < kGrazingBand);
     };
     return test::agreementOnRandomRays(seed, count, minSize, maxSize, maxOffset, compareOne);
 }
@@ -171,7 +178,8 @@ TEST(Sphere, FloatAgreesWithDoubleOnRandomRays) {
 }
 
 TEST(Sphere, FloatAgreesWithDoubleAtHugeAndTinyScalesFarFromTheOrigin) {
-    shootRandomRaysAtSpheres(34, 200000, 1e-3, 1e4, 0.0).expectCounts("spheres of 1e-3 to 1e4 at the origin", 60000, 60000, 200);
+    shootRandomRaysAtSpheres(34, 200000, 1e-3, 1e4, 0.0)
+        .expectCounts("spheres of 1e-3 to 1e4 at the origin", 60000, 60000, 200);
     shootRandomRaysAtSpheres(35, 200000, 1e-3, 1e4, 1e5)
         .expectCounts("spheres of 1e-3 to 1e4 up to 1e5 from the origin", 60000, 60000, 200);
 }
@@ -231,8 +239,16 @@ TEST(Sphere, DegenerateSpheresAreNeverHit) {
     // the centre from many directions, and from inside, all miss.
     const Vec3 c(1, 2, 3);
     const Sphere degenerate[] = {
-        {c, 0.0f}, {c, -0.0f}, {c, kNaN}, {c, kInfinity}, {c, -kInfinity}, {Vec3(1, kNaN, 3), 1.0f},
-        {Vec3(kInfinity, 2, 3), 1.0f}, {c, 1e-20f}, {c, 1e20f}, {c, -1e20f},
+        {c, 0.0f},
+        {c, -0.0f},
+        {c, kNaN},
+        {c, kInfinity},
+        {c, -kInfinity},
+        {Vec3(1, kNaN, 3), 1.0f},
+        {Vec3(kInfinity, 2, 3), 1.0f},
+        {c, 1e-20f},
+        {c, 1e20f},
+        {c, -1e20f},
     };
     std::mt19937 rng(39);
     int tested = 0;

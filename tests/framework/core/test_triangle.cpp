@@ -98,7 +98,8 @@ TEST(Triangle, RandomHitsReturnTheirParameters) {
 
 TEST(Triangle, Misses) {
     // Beside each edge and beyond each vertex, from both sides.
-    const Vec3 outside[] = {{2.5f, 0.5f, 0}, {0.5f, 3, 0}, {2.5f, 3.5f, 0}, {3.5f, 0.9f, 0}, {0.9f, 5.5f, 0}, {-1, -1, 0}};
+    const Vec3 outside[] = {{2.5f, 0.5f, 0}, {0.5f, 3, 0},    {2.5f, 3.5f, 0},
+                            {3.5f, 0.9f, 0}, {0.9f, 5.5f, 0}, {-1, -1, 0}};
     for (const Vec3& p : outside) {
         EXPECT_FALSE(hitsF(Ray(p, {0, 0, 1}), kTri)) << p.x << " " << p.y;
         EXPECT_FALSE(hitsF(Ray(p + Vec3(0, 0, 10), {0, 0, -1}), kTri)) << p.x << " " << p.y;
@@ -140,7 +141,8 @@ TEST(Triangle, ExactEdgeAndVertexPointsAreHits) {
             for (const Vec3& d : dirs) {
                 const Ray ray = Ray(p - 4.0f * d, d);
                 TriangleHitT<float> h{};
-                EXPECT_TRUE(hits<float>(ray, tri, &h)) << p.x << "," << p.y << " dir " << d.x << "," << d.y << "," << d.z;
+                EXPECT_TRUE(hits<float>(ray, tri, &h))
+                    << p.x << "," << p.y << " dir " << d.x << "," << d.y << "," << d.z;
                 EXPECT_NEAR(h.t, 4.0f, 1e-5f);
                 EXPECT_TRUE(hitsD(ray, tri));
             }
@@ -169,10 +171,10 @@ TEST(Triangle, IntervalEndsAreInclusive) {
         const Ray base = Ray(p - 3.0f * dir, dir, -kInfinity, kInfinity);
         TriangleHitT<float> h{};
         if (!hits<float>(base, kTri, &h)) continue;
-        const float t = h.t;  // t does not depend on the interval
-        EXPECT_TRUE(hitsF(Ray(base.org, dir, t, t), kTri)) << i;                 // [t, t]
-        EXPECT_TRUE(hitsF(Ray(base.org, dir, t, kInfinity), kTri)) << i;         // tmin == t
-        EXPECT_TRUE(hitsF(Ray(base.org, dir, 0.0f, t), kTri)) << i;              // tmax == t
+        const float t = h.t;                                              // t does not depend on the interval
+        EXPECT_TRUE(hitsF(Ray(base.org, dir, t, t), kTri)) << i;          // [t, t]
+        EXPECT_TRUE(hitsF(Ray(base.org, dir, t, kInfinity), kTri)) << i;  // tmin == t
+        EXPECT_TRUE(hitsF(Ray(base.org, dir, 0.0f, t), kTri)) << i;       // tmax == t
         EXPECT_FALSE(hitsF(Ray(base.org, dir, std::nextafter(t, kInfinity), kInfinity), kTri)) << i;
         EXPECT_FALSE(hitsF(Ray(base.org, dir, 0.0f, std::nextafter(t, -kInfinity)), kTri)) << i;
         TriangleHitT<double> hd{};

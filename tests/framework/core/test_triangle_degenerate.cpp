@@ -23,9 +23,15 @@ TEST(Triangle, DegenerateTrianglesAreNeverHit) {
     const Vec3 p(1, 2, 3), q(3, 1, 2);
     const Vec3 mid(2, 1.5f, 2.5f);  // exactly (p + q) / 2
     const Triangle degenerate[] = {
-        {p, p, p}, {p, p, q}, {p, q, p}, {q, p, p},
-        {p, q, Vec3(1, kNaN, 2)}, {Vec3(kNaN), p, q}, {Vec3(kNaN), Vec3(kNaN), Vec3(kNaN)},
-        {p, q, Vec3(kInfinity, 0, 0)}, {Vec3(-kInfinity), q, Vec3(2, 4, 5)},
+        {p, p, p},
+        {p, p, q},
+        {p, q, p},
+        {q, p, p},
+        {p, q, Vec3(1, kNaN, 2)},
+        {Vec3(kNaN), p, q},
+        {Vec3(kNaN), Vec3(kNaN), Vec3(kNaN)},
+        {p, q, Vec3(kInfinity, 0, 0)},
+        {Vec3(-kInfinity), q, Vec3(2, 4, 5)},
     };
     std::mt19937 rng(17);
     int tested = 0;
@@ -58,8 +64,9 @@ TEST(Triangle, CollinearTrianglesAreFlaggedDegenerate) {
     const Vec3 p(1, 2, 3), q(3, 1, 2), mid(2, 1.5f, 2.5f);
     int hitByRandomRays = 0;
     std::mt19937 rng(18);
-    for (const Triangle& tri : {Triangle{p, mid, q}, Triangle{p, q, mid}, Triangle{mid, p, q},
-                                Triangle{{0, 0, 0}, {1, 1, 1}, {3, 3, 3}}, Triangle{{0.5f, 0, 0}, {0.25f, 0, 0}, {8, 0, 0}}}) {
+    for (const Triangle& tri :
+         {Triangle{p, mid, q}, Triangle{p, q, mid}, Triangle{mid, p, q}, Triangle{{0, 0, 0}, {1, 1, 1}, {3, 3, 3}},
+          Triangle{{0.5f, 0, 0}, {0.25f, 0, 0}, {8, 0, 0}}}) {
         EXPECT_TRUE(isDegenerate(tri));
         for (const Vec3& target : {tri.v0, tri.v1, 0.5f * (tri.v0 + tri.v2)}) {
             for (const Vec3& dir : {Vec3(1, 0, 0), Vec3(0, -1, 0), Vec3(0, 0, 1), Vec3(1, 1, 1), Vec3(-1, 1, -1)}) {
@@ -73,8 +80,10 @@ TEST(Triangle, CollinearTrianglesAreFlaggedDegenerate) {
         }
     }
     // Not an expectation on intersectTriangle, a record of why the valid list matters.
-    std::printf("[ NOTE     ] collinear triangles hit by %d of 1500 random rays through them "
-                "(excluded from accelerators by isDegenerate)\n", hitByRandomRays);
+    std::printf(
+        "[ NOTE     ] collinear triangles hit by %d of 1500 random rays through them "
+        "(excluded from accelerators by isDegenerate)\n",
+        hitByRandomRays);
     // Near-degenerate but not exactly: not flagged (they are real, if thin, triangles).
     EXPECT_FALSE(isDegenerate({p, q, mid + Vec3(0, 0, 1e-3f)}));
 }
@@ -83,9 +92,9 @@ TEST(Triangle, NormalsThatCannotBeNormalisedAreDegenerate) {
     // Finite, non-zero cross products whose squared length leaves float's range: the
     // renderer's glm::normalize would give a NaN normal (and ray_offset.h an int cast of NaN)
     // or a zero one.
-    const Triangle tiny{{0, 0, 0}, {1e-20f, 0, 0}, {0, 1e-20f, 0}};        // cross 1e-40, squared 0
-    const Triangle sliver{{0, 0, 0}, {1, 0, 0}, {0.5f, 1e-40f, 0}};         // a denormal height
-    const Triangle huge{{0, 0, 0}, {1e19f, 0, 0}, {5e18f, 1e19f, 0}};       // cross 1e38, squared inf
+    const Triangle tiny{{0, 0, 0}, {1e-20f, 0, 0}, {0, 1e-20f, 0}};    // cross 1e-40, squared 0
+    const Triangle sliver{{0, 0, 0}, {1, 0, 0}, {0.5f, 1e-40f, 0}};    // a denormal height
+    const Triangle huge{{0, 0, 0}, {1e19f, 0, 0}, {5e18f, 1e19f, 0}};  // cross 1e38, squared inf
     for (const Triangle& tri : {tiny, sliver, huge}) {
         ASSERT_TRUE(isFinite(tri.geometricNormal()));
         ASSERT_NE(tri.geometricNormal(), Vec3(0.0f));
@@ -101,7 +110,8 @@ TEST(Triangle, NaNRaysNeverHit) {
     ASSERT_TRUE(hitsF(good, kTri));
     for (int field = 0; field < 8; ++field) {
         Ray ray = good;
-        float* fields[8] = {&ray.org.x, &ray.org.y, &ray.org.z, &ray.dir.x, &ray.dir.y, &ray.dir.z, &ray.tmin, &ray.tmax};
+        float* fields[8] = {&ray.org.x, &ray.org.y, &ray.org.z, &ray.dir.x,
+                            &ray.dir.y, &ray.dir.z, &ray.tmin,  &ray.tmax};
         *fields[field] = kNaN;
         EXPECT_FALSE(ray.isValid()) << field;
         EXPECT_FALSE(hitsF(ray, kTri)) << "NaN in field " << field;

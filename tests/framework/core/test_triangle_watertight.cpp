@@ -66,8 +66,8 @@ WatertightCounts shootThroughSharedEdges(bool consistent, uint32_t seed, int pai
             if (!hitsF(ray, t1) && !hitsF(ray, t2)) {
                 ++counts.leaksFloat;
                 if (counts.leaksFloat <= 3)
-                    ADD_FAILURE() << "float leak between two triangles sharing an edge: org=(" << org.x << ", "
-                                  << org.y << ", " << org.z << ") through (" << p.x << ", " << p.y << ", " << p.z
+                    ADD_FAILURE() << "float leak between two triangles sharing an edge: org=(" << org.x << ", " << org.y
+                                  << ", " << org.z << ") through (" << p.x << ", " << p.y << ", " << p.z
                                   << "), edge s=" << s << (consistent ? " (consistent winding)" : " (same direction)");
             }
             if (!hitsD(ray, t1) && !hitsD(ray, t2)) ++counts.leaksDouble;
@@ -105,7 +105,8 @@ TEST(Triangle, WatertightAroundASharedVertex) {
         std::vector<Vec3> rim;
         for (int i = 0; i < 6; ++i) {
             const double phi = (i + 0.3 * U(rng)) * 2.0 * M_PI / 6.0;
-            rim.push_back(Vec3(center + scale * (std::cos(phi) * e1 + std::sin(phi) * e2 + 0.3 * (U(rng) - 0.5) * axis)));
+            rim.push_back(
+                Vec3(center + scale * (std::cos(phi) * e1 + std::sin(phi) * e2 + 0.3 * (U(rng) - 0.5) * axis)));
         }
         const Vec3 apex = Vec3(center);
         std::vector<Triangle> fan;
@@ -141,7 +142,8 @@ TEST(Triangle, EdgeFunctionHasTheExactSign) {
         const float a = U(rng) * scale, b = U(rng) * scale, c = U(rng) * scale;
         // d so that c*d is a*b to within rounding, nudged by a few ulps either way or not.
         float d = c != 0.0f ? float(double(a) * double(b) / double(c)) : U(rng);
-        for (int k = int(rng() % 5) - 2; k != 0; k += k > 0 ? -1 : 1) d = std::nextafter(d, k > 0 ? kInfinity : -kInfinity);
+        for (int k = int(rng() % 5) - 2; k != 0; k += k > 0 ? -1 : 1)
+            d = std::nextafter(d, k > 0 ? kInfinity : -kInfinity);
         const double exact = double(a) * double(b) - double(c) * double(d);
         const float e = edgeFunction(a, b, c, d);
         ASSERT_EQ((e > 0) - (e < 0), (exact > 0) - (exact < 0)) << a << " " << b << " " << c << " " << d;

@@ -82,7 +82,7 @@ TEST(Heatmap, FixedScaleSaturatesAboveIt) {
     const Rgb8Image fixed = readPng(dir / "fixed.png"), own = readPng(dir / "own.png");
     EXPECT_EQ(pixel(fixed, 50, 0), pixel(fixed, 99, 0));  // both at or above the full scale
     EXPECT_NE(pixel(own, 50, 0), pixel(own, 98, 0));
-    EXPECT_EQ(pixel(own, 98, 0), pixel(fixed, 50, 0));    // the top colour
+    EXPECT_EQ(pixel(own, 98, 0), pixel(fixed, 50, 0));  // the top colour
 }
 
 TEST(Heatmap, RenderRecordsTheScaleInItsJson) {
@@ -108,8 +108,10 @@ TEST(Heatmap, RenderRecordsTheScaleInItsJson) {
 
 TEST(Heatmap, NoneForAStructureWithoutCounters) {
     const fs::path dir = test::scratchDir("heatmap");
-    const test::Result r = test::run("render -DASDS::type=embree -DCamera::width=16 -DCamera::height=12 "
-                                     "-DOutput::heatmap=true --out " + (dir / "embree").string());
+    const test::Result r = test::run(
+        "render -DASDS::type=embree -DCamera::width=16 -DCamera::height=12 "
+        "-DOutput::heatmap=true --out " +
+        (dir / "embree").string());
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_FALSE(fs::exists(dir / "embree.heatmap.png"));
     EXPECT_NE(r.output.find("heat map: none written: embree counts no traversal steps"), std::string::npos) << r.output;

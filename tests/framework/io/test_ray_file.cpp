@@ -10,13 +10,12 @@
 using namespace bvhlab;
 
 namespace {
-std::filesystem::path tempPath(const std::string& name) {
-    return test::scratchDir("rayfile") / name;
-}
+std::filesystem::path tempPath(const std::string& name) { return test::scratchDir("rayfile") / name; }
 }  // namespace
 
 TEST(RayFile, RoundTrip) {
-    const std::vector<Ray> rays = {{Vec3(1, 2, 3), Vec3(0, 0, -2), 0.5f, 100.0f}, {Vec3(-1), Vec3(1, 0, 0), 0.0f, kInfinity}};
+    const std::vector<Ray> rays = {{Vec3(1, 2, 3), Vec3(0, 0, -2), 0.5f, 100.0f},
+                                   {Vec3(-1), Vec3(1, 0, 0), 0.0f, kInfinity}};
     writeRayFile(tempPath("r.bin"), rays);
     const std::vector<Ray> back = readRayFile(tempPath("r.bin"));
     ASSERT_EQ(back.size(), 2u);

@@ -19,7 +19,7 @@ TEST(Camera, CentreRayLooksAtTarget) {
 
 TEST(Camera, FieldOfViewAndOrientation) {
     const Camera cam(CameraSpec{Vec3(0), Vec3(0, 0, -1), Vec3(0, 1, 0), 90.0f, 100, 100});
-    const Ray top = cam.generateRay(50.0f, 0.0f);     // top edge, middle
+    const Ray top = cam.generateRay(50.0f, 0.0f);      // top edge, middle
     const Ray right = cam.generateRay(100.0f, 50.0f);  // right edge, middle
     EXPECT_NEAR(top.dir.y / -top.dir.z, 1.0f, 1e-5f);  // tan(45 degrees)
     EXPECT_NEAR(right.dir.x / -right.dir.z, 1.0f, 1e-5f);

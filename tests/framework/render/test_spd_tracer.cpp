@@ -36,7 +36,9 @@ CameraSpec cameraAt(const Vec3& from, float lookZ) {
 
 Material matte() { return Material{.diffuse = Vec3(0.8f)}; }
 Material mirror() { return Material{.diffuse = Vec3(0.2f), .mirror = 0.8f, .shine = 20.0f}; }
-Material glass() { return Material{.diffuse = Vec3(0.1f), .mirror = 0.1f, .shine = 100.0f, .transmission = 0.9f, .ior = 1.5f}; }
+Material glass() {
+    return Material{.diffuse = Vec3(0.1f), .mirror = 0.1f, .shine = 100.0f, .transmission = 0.9f, .ior = 1.5f};
+}
 
 SpdCounts countsWith(const Scene& scene, const Accelerator& accel, const SpdRules& rules) {
     Framebuffer fb(scene.camera->width, scene.camera->height);

@@ -50,12 +50,14 @@ TEST(Statistics, EveryCounterOfTheTableIsPrintedAndInTheJson) {
 
     const std::string table = formatStatsTable(row);
     const std::string header = table.substr(0, table.find('\n'));
-    const std::string primaryLine = table.substr(header.size() + 1, table.find('\n', header.size() + 1) - header.size() - 1);
+    const std::string primaryLine =
+        table.substr(header.size() + 1, table.find('\n', header.size() + 1) - header.size() - 1);
     for (const QueryCounter& c : kQueryCounters) {
         if (!c.column) continue;
         EXPECT_NE(header.find(std::string(" ") + c.column + " "), std::string::npos) << c.column << "\n" << table;
         EXPECT_NE(primaryLine.find(fmt::format(" {:.2f} ", double(counters.*c.count) / 4.0)), std::string::npos)
-            << c.column << "\n" << table;
+            << c.column << "\n"
+            << table;
     }
 }
 

@@ -106,14 +106,16 @@ TEST(PolygonTriangulation, ADenseGridOfRaysHitsExactlyThePolygon) {
         const double cellArea = cell.x * cell.y, area = polygonArea(polygon);
         // Only cells the boundary crosses can go either way.
         double perimeter = 0.0;
-        for (size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) perimeter += glm::length(polygon[i] - polygon[j]);
+        for (size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++)
+            perimeter += glm::length(polygon[i] - polygon[j]);
         EXPECT_NEAR(double(hits) * cellArea, area, perimeter * std::max(cell.x, cell.y));
     }
 }
 
 TEST(PolygonTriangulation, ConvexPolygonsStayTheFanFromTheirFirstCorner) {
     Polygon2 hexagon;
-    for (int i = 0; i < 6; ++i) hexagon.emplace_back(std::cos(i * std::numbers::pi / 3), std::sin(i * std::numbers::pi / 3));
+    for (int i = 0; i < 6; ++i)
+        hexagon.emplace_back(std::cos(i * std::numbers::pi / 3), std::sin(i * std::numbers::pi / 3));
     // A quad with a corner on the straight line between its neighbours is convex too.
     for (const Polygon2& polygon : {hexagon, Polygon2{{0, 0}, {1, 0}, {2, 0}, {2, 1}, {0, 1}}}) {
         const Triangulated t = triangulate(polygon);
@@ -144,7 +146,8 @@ TEST(PolygonTriangulation, PolygonsWithoutAnExactCoverAreRefusedWithTheReason) {
     // twice), a figure with two edges touching at a corner given twice, an edge that doubles back.
     EXPECT_EQ(problem({{0, 0}, {1, 1}, {1, 0}, {0, 1}}), PolygonProblem::SelfIntersecting);
     Polygon2 pentagram;
-    for (int i = 0; i < 5; ++i) pentagram.emplace_back(std::cos(i * 4 * std::numbers::pi / 5), std::sin(i * 4 * std::numbers::pi / 5));
+    for (int i = 0; i < 5; ++i)
+        pentagram.emplace_back(std::cos(i * 4 * std::numbers::pi / 5), std::sin(i * 4 * std::numbers::pi / 5));
     EXPECT_EQ(problem(pentagram), PolygonProblem::SelfIntersecting);
     EXPECT_EQ(problem({{0, 0}, {2, 0}, {2, 2}, {1, 1}, {0, 2}, {1, 1}}), PolygonProblem::SelfIntersecting);
     EXPECT_EQ(problem({{0, 0}, {2, 0}, {1, 0}, {1, 1}, {0, 1}}), PolygonProblem::SelfIntersecting);
@@ -185,8 +188,9 @@ TEST(PolygonTriangulation, TheReadersSkipAndNameAPolygonWithoutACover) {
     EXPECT_EQ(scene.report.skippedPolygons, 1u);
     EXPECT_EQ(scene.report.earClippedPolygons, 1u);
     ASSERT_EQ(scene.report.warnings.size(), 1u);
-    EXPECT_EQ(scene.report.warnings[0], "bowtie.nff:12: polygon of 4 vertices skipped: self-intersecting "
-                                        "(edges cross, touch or double back)");
+    EXPECT_EQ(scene.report.warnings[0],
+              "bowtie.nff:12: polygon of 4 vertices skipped: self-intersecting "
+              "(edges cross, touch or double back)");
     EXPECT_EQ(scene.materialIds.size(), scene.indices.size());
 
     const std::string obj = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0.5 0.2 0\nv 0 1 0\nf 1 2 3 4 5\nf 1 3 2 5\n";
@@ -217,9 +221,10 @@ TEST(PolygonTriangulation, ASceneOfOnlySkippedPolygonsIsAnError) {
 }
 
 TEST(PolygonTriangulation, APlyFaceOfManyCornersBeforeItsVerticesIsAnError) {
-    const std::string ply = "ply\nformat ascii 1.0\nelement face 1\nproperty list uchar int vertex_indices\n"
-                            "element vertex 4\nproperty float x\nproperty float y\nproperty float z\nend_header\n"
-                            "4 0 1 2 3\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n";
+    const std::string ply =
+        "ply\nformat ascii 1.0\nelement face 1\nproperty list uchar int vertex_indices\n"
+        "element vertex 4\nproperty float x\nproperty float y\nproperty float z\nend_header\n"
+        "4 0 1 2 3\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n";
     EXPECT_THROW(readPly("faces_first.ply", ply), InputError);
 }
 

@@ -18,9 +18,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path cacheScratchDir() {
-    return test::scratchDir("scene_cache");
-}
+fs::path cacheScratchDir() { return test::scratchDir("scene_cache"); }
 
 Scene richScene() {
     Scene scene = makeDefaultScene();  // several materials, a camera and a light

@@ -88,9 +88,9 @@ TEST(SceneErrors, PlyNamedObj) {
 }
 
 TEST(SceneErrors, NffWithOnlyDegenerateSpheresAndCones) {
-    expectLoadError("spheres.nff", "s 0 0 0 0\ns 2 0 0 1e-30\nc 0 0 0 1 0 0 0 0.5\n",
-                    {"spheres.nff:", "nothing to render", "2 spheres and 1 cones/cylinders are degenerate",
-                     "no polygons"});
+    expectLoadError(
+        "spheres.nff", "s 0 0 0 0\ns 2 0 0 1e-30\nc 0 0 0 1 0 0 0 0.5\n",
+        {"spheres.nff:", "nothing to render", "2 spheres and 1 cones/cylinders are degenerate", "no polygons"});
 }
 
 }  // namespace

@@ -41,9 +41,8 @@ TEST_P(SharedScenes, LoadWithTheirStatedCounts) {
     EXPECT_EQ(scene.triangleCount(), expected.triangles);
     EXPECT_EQ(scene.spheres.size(), expected.spheres);
     EXPECT_EQ(scene.cones.size(), expected.cones);
-    EXPECT_EQ(scene.validPrimitives.size(),
-              scene.primitiveCount() - scene.report.degenerateTriangles - scene.report.degenerateSpheres -
-                  scene.report.degenerateCones);
+    EXPECT_EQ(scene.validPrimitives.size(), scene.primitiveCount() - scene.report.degenerateTriangles -
+                                                scene.report.degenerateSpheres - scene.report.degenerateCones);
     EXPECT_EQ(scene.triangles.size(), scene.triangleCount());
     EXPECT_FALSE(scene.bounds.isEmpty());
 }
@@ -56,11 +55,13 @@ INSTANTIATE_TEST_SUITE_P(Files, SharedScenes,
                                          SharedScene{"sibenik.obj", 75'284}, SharedScene{"spd_tree_tess.ply", 540'542},
                                          SharedScene{"teapots.obj", 202'242}, SharedScene{"nff/teapot.nff", 2'328},
                                          SharedScene{"nff/tetra.nff", 4'096}, SharedScene{"nff/mount.nff", 8'192, 4},
-                                         SharedScene{"nff/balls.nff", 2, 7'381}, SharedScene{"nff/rings.nff", 2, 4'200, 4'200},
+                                         SharedScene{"nff/balls.nff", 2, 7'381},
+                                         SharedScene{"nff/rings.nff", 2, 4'200, 4'200},
                                          SharedScene{"nff/tree.nff", 2, 4'095, 4'095}),
                          [](const testing::TestParamInfo<SharedScene>& info) {
                              std::string name = fs::path(info.param.file).stem().string();
-                             std::replace_if(name.begin(), name.end(), [](char c) { return !std::isalnum(c); }, '_');
+                             std::replace_if(
+                                 name.begin(), name.end(), [](char c) { return !std::isalnum(c); }, '_');
                              return name;
                          });
 
@@ -77,7 +78,7 @@ TEST(SharedScenesDetail, TeapotNffMaterialsLightsAndNormals) {
     EXPECT_EQ(scene.camera->from, Vec3(4.86f, 7.2f, 5.4f));
     EXPECT_EQ(scene.camera->width, 512);
     EXPECT_EQ(scene.lights.size(), 2u);
-    EXPECT_EQ(scene.materials.size(), 4u);  // the default and three "f"
+    EXPECT_EQ(scene.materials.size(), 4u);                    // the default and three "f"
     EXPECT_EQ(scene.normals.size(), scene.positions.size());  // pp polygons give normals
 }
 

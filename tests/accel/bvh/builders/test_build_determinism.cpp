@@ -11,10 +11,10 @@
 namespace bvhlab {
 namespace {
 
-using test::Soup;
 using test::allBuilders;
 using test::mixedScaleSoup;
 using test::randomSoup;
+using test::Soup;
 
 TEST(Bvh, SimdAndScalarBuildTheSameTree) {
     const Soup soups[] = {randomSoup(5000, 43), mixedScaleSoup(3000, 47)};
@@ -54,7 +54,8 @@ TEST(Bvh, SameTreeWhateverTheThreadCount) {
         }
         for (size_t t = 1; t < trees.size(); ++t) {
             ASSERT_EQ(trees[t].nodes.size(), trees[0].nodes.size());
-            EXPECT_EQ(std::memcmp(trees[t].nodes.data(), trees[0].nodes.data(), trees[0].nodes.size() * sizeof(BvhNode)), 0);
+            EXPECT_EQ(
+                std::memcmp(trees[t].nodes.data(), trees[0].nodes.data(), trees[0].nodes.size() * sizeof(BvhNode)), 0);
             EXPECT_EQ(trees[t].primIndices, trees[0].primIndices);
         }
         BuildStats parallel, sequential;
@@ -69,7 +70,8 @@ TEST(Bvh, SameTreeWhateverTheThreadCount) {
             acc.add(refs[i]);
         }
         BinaryBvh depthFirst;
-        depthFirst.nodes = kind.splitRule(BvhBuildConfig{})->build(refs, {0, uint32_t(refs.size()), acc.bounds(), acc.centroidBounds()});
+        depthFirst.nodes = kind.splitRule(BvhBuildConfig{})
+                               ->build(refs, {0, uint32_t(refs.size()), acc.bounds(), acc.centroidBounds()});
         depthFirst.primIndices.resize(refs.size());
         for (size_t i = 0; i < refs.size(); ++i) depthFirst.primIndices[i] = refs[i].prim;
         depthFirst.leafTriangles.resize(refs.size());

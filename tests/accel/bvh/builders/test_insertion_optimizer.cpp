@@ -30,8 +30,10 @@ TEST(InsertionOptimizer, LowersTheSahAndKeepsTheInvariants) {
     // How far below the builder's SAH the optimised tree must at least be. On uniform random
     // triangles the spatial median is already close to the SAH builders (-5.5 % measured); on
     // the scenes of docs/builders.md, "Studies", it drops far more.
-    const std::pair<BuilderRecord, double> kinds[] = {
-        {builderRecord("tdbvh"), 0.97}, {builderRecord("sahbvh"), 1.0}, {builderRecord("sweepbvh"), 1.0}, {builderRecord("ploc"), 1.0}};
+    const std::pair<BuilderRecord, double> kinds[] = {{builderRecord("tdbvh"), 0.97},
+                                                      {builderRecord("sahbvh"), 1.0},
+                                                      {builderRecord("sweepbvh"), 1.0},
+                                                      {builderRecord("ploc"), 1.0}};
     for (const auto& [kind, bound] : kinds) {
         SCOPED_TRACE(kind.name);
         const double before = sahOf(buildBvh(kind, BvhBuildConfig{}, soup.prims()));
@@ -45,7 +47,8 @@ TEST(InsertionOptimizer, LowersTheSahAndKeepsTheInvariants) {
 // not rise either. Leaves charged by blocks (the wide layouts) change nothing for the pass.
 TEST(InsertionOptimizer, NeverRaisesTheSah) {
     const Soup soup = randomSoup(3000, 5, 10.0f, 3.0f);
-    for (const BuilderRecord& kind : {builderRecord("tdbvh"), builderRecord("sahbvh"), builderRecord("sbvh"), builderRecord("ploc")}) {
+    for (const BuilderRecord& kind :
+         {builderRecord("tdbvh"), builderRecord("sahbvh"), builderRecord("sbvh"), builderRecord("ploc")}) {
         for (int shift : {0, 3}) {
             SCOPED_TRACE(kind.name + " block shift " + std::to_string(shift));
             BvhBuildConfig plain;
@@ -69,7 +72,8 @@ TEST(InsertionOptimizer, SameTreeWhateverTheThreadCount) {
             trees.push_back(buildBvh(kind, config, soup.prims()));
         }
         ASSERT_EQ(trees[1].nodes.size(), trees[0].nodes.size());
-        EXPECT_EQ(std::memcmp(trees[1].nodes.data(), trees[0].nodes.data(), trees[0].nodes.size() * sizeof(BvhNode)), 0);
+        EXPECT_EQ(std::memcmp(trees[1].nodes.data(), trees[0].nodes.data(), trees[0].nodes.size() * sizeof(BvhNode)),
+                  0);
         EXPECT_EQ(trees[1].primIndices, trees[0].primIndices);
     }
 }
@@ -108,7 +112,8 @@ TEST(InsertionOptimizer, StaysWithinTheDepthBound) {
 TEST(InsertionOptimizer, TinyScenes) {
     for (size_t n : {0, 1, 2, 3}) {
         const Soup soup = randomSoup(n, 19 + uint32_t(n));
-        for (const BuilderRecord& kind : {builderRecord("tdbvh"), builderRecord("sahbvh"), builderRecord("sbvh"), builderRecord("ploc")}) {
+        for (const BuilderRecord& kind :
+             {builderRecord("tdbvh"), builderRecord("sahbvh"), builderRecord("sbvh"), builderRecord("ploc")}) {
             SCOPED_TRACE(kind.name + " with " + std::to_string(n) + " triangles");
             BvhBuildConfig config = insertionConfig();
             config.shared.maxLeaf = 1;

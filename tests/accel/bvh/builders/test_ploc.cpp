@@ -12,11 +12,11 @@
 namespace bvhlab {
 namespace {
 
-using test::Soup;
-using test::TreeFacts;
 using test::buildAndCheck;
 using test::checkTree;
 using test::randomSoup;
+using test::Soup;
+using test::TreeFacts;
 
 // ploc is deterministic: the neighbour search, the merges and the leaf forming run over fixed
 // chunks, ties broken by a total order on pairs, so the tree is the same at 1, 2 and all threads.
@@ -30,7 +30,8 @@ TEST(Ploc, SameTreeWhateverTheThreadCount) {
     }
     for (size_t t = 1; t < trees.size(); ++t) {
         ASSERT_EQ(trees[t].nodes.size(), trees[0].nodes.size());
-        EXPECT_EQ(std::memcmp(trees[t].nodes.data(), trees[0].nodes.data(), trees[0].nodes.size() * sizeof(BvhNode)), 0);
+        EXPECT_EQ(std::memcmp(trees[t].nodes.data(), trees[0].nodes.data(), trees[0].nodes.size() * sizeof(BvhNode)),
+                  0);
         EXPECT_EQ(trees[t].primIndices, trees[0].primIndices);
     }
 }
@@ -72,8 +73,10 @@ TEST(Ploc, CoincidentTrianglesPairUp) {
 // on a soup (within 15 %), and its leaves hold up to leafCap primitives.
 TEST(Ploc, SahNearTheBinnedBuild) {
     const Soup soup = randomSoup(20000, 73);
-    BvhAccelerator<BinaryBvh> ploc(builderRecord("ploc"), BvhBuildConfig{}), sah(builderRecord("sahbvh"), BvhBuildConfig{});
-    const double plocSah = timedBuild(ploc, soup.prims()).sah->cost, binnedSah = timedBuild(sah, soup.prims()).sah->cost;
+    BvhAccelerator<BinaryBvh> ploc(builderRecord("ploc"), BvhBuildConfig{}),
+        sah(builderRecord("sahbvh"), BvhBuildConfig{});
+    const double plocSah = timedBuild(ploc, soup.prims()).sah->cost,
+                 binnedSah = timedBuild(sah, soup.prims()).sah->cost;
     EXPECT_LT(plocSah, 1.15 * binnedSah);
     const TreeFacts facts = checkTree(ploc.bvh(), soup);
     EXPECT_GT(facts.maxLeaf, 2u);

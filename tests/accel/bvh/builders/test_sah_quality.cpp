@@ -9,9 +9,9 @@
 namespace bvhlab {
 namespace {
 
-using test::Soup;
 using test::checkTree;
 using test::randomSoup;
+using test::Soup;
 using test::triangleAndCopy;
 
 double sahOfBuild(const BuilderRecord& kind, const BvhBuildConfig& config, const Soup& soup) {
@@ -97,7 +97,8 @@ TEST(Bvh, SahChargedByBlocksKeepsABlockOfTrianglesTogether) {
             }
             size_t smallInner = 0;
             const uint32_t block = shift == 0 ? 4u : 1u << shift;
-            for (size_t i = 0; i < bvh.nodes.size(); ++i) smallInner += i != 1 && !bvh.nodes[i].isLeaf() && below[i] <= block;
+            for (size_t i = 0; i < bvh.nodes.size(); ++i)
+                smallInner += i != 1 && !bvh.nodes[i].isLeaf() && below[i] <= block;
             if (shift != 0) {
                 EXPECT_EQ(smallInner, 0u);
             } else {

@@ -4,8 +4,8 @@
 // where they must (long thin diagonal triangles), no budget giving sahbvh's tree, one tree
 // whatever the thread count, and both queries against brute force where references are split.
 // The whole-scene oracle runs over every registered accelerator, sbvh and sbvh8 included.
-#include "accel/bvh/builders/reference_split.h"
 #include "accel/bvh/builder_table.h"
+#include "accel/bvh/builders/reference_split.h"
 #include "accel/bvh/bvh_accelerator.h"
 #include "accel/naive/naive_accelerator.h"
 #include "framework/core/timed_build.h"
@@ -47,7 +47,8 @@ Soup mixedSoup(size_t n, uint32_t seed) {
     Soup soup = diagonalSlivers(n / 10, seed);
     while (soup.triangles.size() < n) {
         const Vec3 p(pos(rng), pos(rng), pos(rng));
-        const Triangle t{p, p + Vec3(offset(rng), offset(rng), offset(rng)), p + Vec3(offset(rng), offset(rng), offset(rng))};
+        const Triangle t{p, p + Vec3(offset(rng), offset(rng), offset(rng)),
+                         p + Vec3(offset(rng), offset(rng), offset(rng))};
         if (!isDegenerate(t)) soup.add(t);
     }
     return soup;
@@ -74,7 +75,8 @@ size_t checkSbvh(const BinaryBvh& bvh, const Soup& soup, float growth) {
     for (size_t i = 0; i < refs; ++i) {
         const Triangle& a = bvh.leafTriangles[i];
         const Triangle& b = soup.triangles[bvh.primIndices[i]];
-        EXPECT_TRUE(a.v0 == b.v0 && a.v1 == b.v1 && a.v2 == b.v2) << "leaf triangle " << i << " is not the whole triangle";
+        EXPECT_TRUE(a.v0 == b.v0 && a.v1 == b.v1 && a.v2 == b.v2)
+            << "leaf triangle " << i << " is not the whole triangle";
     }
     std::vector<int> covered(refs, 0);
     std::vector<std::pair<uint32_t, int>> stack{{0, 0}};
@@ -99,7 +101,8 @@ size_t checkSbvh(const BinaryBvh& bvh, const Soup& soup, float growth) {
         } else {
             EXPECT_TRUE(node.index >= 2 && node.index % 2 == 0);
             const Bounds3 both = unionOf(bvh.nodes[node.index].box(), bvh.nodes[node.index + 1].box());
-            EXPECT_TRUE(both.lower == box.lower && both.upper == box.upper) << "node " << index << " is not its children's box";
+            EXPECT_TRUE(both.lower == box.lower && both.upper == box.upper)
+                << "node " << index << " is not its children's box";
             stack.push_back({node.index, depth + 1});
             stack.push_back({node.index + 1, depth + 1});
         }
@@ -116,7 +119,8 @@ TEST(Sbvh, InvariantsWithSplitReferences) {
                 BvhBuildConfig config;
                 config.shared.simd = simd;
                 config.binnedSah.allAxes = allAxes;
-                const size_t refs = checkSbvh(buildBvh(builderRecord("sbvh"), config, soup.prims()), soup, config.sbvh.growth);
+                const size_t refs =
+                    checkSbvh(buildBvh(builderRecord("sbvh"), config, soup.prims()), soup, config.sbvh.growth);
                 EXPECT_GT(refs, soup.valid.size()) << "no spatial split";
             }
         }
@@ -129,7 +133,8 @@ TEST(Sbvh, StatsCountPrimitivesAndReferences) {
     BvhAccelerator<BinaryBvh> accel(builderRecord("sbvh"), BvhBuildConfig{});
     const BuildStats stats = timedBuild(accel, soup.prims());
     EXPECT_EQ(stats.primitives, soup.valid.size());
-    EXPECT_NEAR(stats.avgLeafPrimitives.value() * double(stats.leaves.value()), double(accel.bvh().primIndices.size()), 1e-6);
+    EXPECT_NEAR(stats.avgLeafPrimitives.value() * double(stats.leaves.value()), double(accel.bvh().primIndices.size()),
+                1e-6);
     EXPECT_GT(accel.bvh().primIndices.size(), soup.valid.size());
 }
 
@@ -182,7 +187,8 @@ TEST(Sbvh, ReferenceSplitBoxesHoldTheTriangleParts) {
     std::mt19937 rng(7);
     std::uniform_real_distribution<float> pos(-100.0f, 100.0f), unit(0.0f, 1.0f);
     for (int trial = 0; trial < 2000; ++trial) {
-        const Triangle t{{pos(rng), pos(rng), pos(rng)}, {pos(rng), pos(rng), pos(rng)}, {pos(rng), pos(rng), pos(rng)}};
+        const Triangle t{
+            {pos(rng), pos(rng), pos(rng)}, {pos(rng), pos(rng), pos(rng)}, {pos(rng), pos(rng), pos(rng)}};
         Bounds3 box = t.bounds();
         // Half the trials cut a reference already chopped by a first plane.
         if (trial % 2) box = splitReference(t, box, int(rng() % 3), box.center()[rng() % 3]).first;
@@ -234,7 +240,8 @@ TEST(Sbvh, QueriesAgreeWithBruteForceOnSplitReferences) {
     BvhAccelerator<WideBvh<8>> wide(builderRecord("sbvh"), BvhBuildConfig{});
     binary.build(soup.prims());
     wide.build(soup.prims());
-    for (const Accelerator* accel : {static_cast<const Accelerator*>(&binary), static_cast<const Accelerator*>(&wide)}) {
+    for (const Accelerator* accel :
+         {static_cast<const Accelerator*>(&binary), static_cast<const Accelerator*>(&wide)}) {
         SCOPED_TRACE(std::string(accel->name()));
         std::mt19937 rng(9);
         int mismatches = 0, hits = 0;
@@ -249,7 +256,8 @@ TEST(Sbvh, QueriesAgreeWithBruteForceOnSplitReferences) {
                 ADD_FAILURE() << "ray " << i << ": naive t=" << expected.t << " prim " << expected.primitive
                               << ", sbvh t=" << actual.t << " prim " << actual.primitive;
             }
-            if (naive.isOccluded(ray, c) != accel->isOccluded(ray, c)) ++mismatches, ADD_FAILURE() << "ray " << i << ": occlusion";
+            if (naive.isOccluded(ray, c) != accel->isOccluded(ray, c))
+                ++mismatches, ADD_FAILURE() << "ray " << i << ": occlusion";
         }
         EXPECT_GT(hits, 4000);
     }

@@ -14,14 +14,14 @@
 namespace bvhlab {
 namespace {
 
-using test::Soup;
-using test::TreeFacts;
 using test::allBuilders;
 using test::buildAndCheck;
 using test::checkTree;
 using test::expectAgreesWithNaive;
 using test::mixedScaleSoup;
 using test::randomSoup;
+using test::Soup;
+using test::TreeFacts;
 
 TEST(Bvh, InvariantsOnRandomScenes) {
     const Soup soup = randomSoup(3000, 1);
@@ -42,8 +42,9 @@ TEST(Bvh, InvariantsOnRandomScenes) {
     nodeBox.spatialMedian.splitBox = MedianSplitBox::NodeBox;
     BvhBuildConfig manyBins;
     manyBins.binnedSah.bins = 256;
-    for (const auto& [kind, config] : {std::pair{builderRecord("sahbvh"), allAxes}, std::pair{builderRecord("tdbvh"), nodeBox},
-                                       std::pair{builderRecord("sahbvh"), manyBins}}) {
+    for (const auto& [kind, config] :
+         {std::pair{builderRecord("sahbvh"), allAxes}, std::pair{builderRecord("tdbvh"), nodeBox},
+          std::pair{builderRecord("sahbvh"), manyBins}}) {
         BvhAccelerator<BinaryBvh> accel(kind, config);
         buildAndCheck(accel, soup);
     }
@@ -156,9 +157,9 @@ TEST(Bvh, CentresOnALineOnAPlaneAndClustered) {
     std::uniform_real_distribution<float> u(0.0f, 100.0f);
     for (int i = 0; i < 4000; ++i) {
         const float x = u(rng), y = u(rng);
-        line.add({{x - 1, -1, 0}, {x + 1, -1, 0}, {x, 2, 0}});        // centres on the x axis
+        line.add({{x - 1, -1, 0}, {x + 1, -1, 0}, {x, 2, 0}});             // centres on the x axis
         plane.add({{x - 1, y - 1, 0}, {x + 1, y - 1, 0}, {x, y + 2, 0}});  // centres in z = 0
-        const float c = float(i % 8) * 10.0f;                          // 8 points, 500 each
+        const float c = float(i % 8) * 10.0f;                              // 8 points, 500 each
         clusters.add({{c - 1, -1, 0}, {c + 1, -1, 0}, {c, 2, 0}});
     }
     for (const Soup* soup : {&line, &plane, &clusters}) {
@@ -220,7 +221,6 @@ protected:
         return Split{{range.begin, range.begin, {}, {}}, range};
     }
 };
-
 
 // An empty half would become a node of count 0, which reads as an inner node: the recursion
 // refuses it instead of building a tree that traverses garbage.

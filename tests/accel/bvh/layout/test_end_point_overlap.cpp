@@ -35,9 +35,9 @@ BinaryBvh twoLeafTree(const Triangle& a, const Triangle& b) {
 }
 
 TEST(EndPointOverlap, ClippedAreaOfKnownCases) {
-    EXPECT_DOUBLE_EQ(clippedArea(kUnit, {{0, 0, 0}, {1, 1, 0}}), 0.5);  // the triangle's own box
+    EXPECT_DOUBLE_EQ(clippedArea(kUnit, {{0, 0, 0}, {1, 1, 0}}), 0.5);          // the triangle's own box
     EXPECT_DOUBLE_EQ(clippedArea(kUnit, {{-1, -1, -1}, {0.5f, 2, 1}}), 0.375);  // x <= 0.5: 0.5 - 0.5^3
-    EXPECT_DOUBLE_EQ(clippedArea(kUnit, {{0.5f, 0.5f, -1}, {2, 2, 1}}), 0.0);  // touches a corner only
+    EXPECT_DOUBLE_EQ(clippedArea(kUnit, {{0.5f, 0.5f, -1}, {2, 2, 1}}), 0.0);   // touches a corner only
     EXPECT_DOUBLE_EQ(clippedArea(kUnit, {{2, 2, 2}, {3, 3, 3}}), 0.0);
     EXPECT_NEAR(clippedArea(kUnit, {{0.25f, 0.25f, -1}, {0.5f, 0.5f, 1}}), 0.0625, 1e-12);  // a square inside it
 }
@@ -67,7 +67,8 @@ double bruteForceEpo(const BinaryBvh& bvh, double cTraversal, double cIntersect)
     for (size_t i = bvh.nodes.size(); i-- > 0;) {
         if (i == 1) continue;
         const BvhNode& n = bvh.nodes[i];
-        ranges[i] = n.isLeaf() ? Range{n.index, n.index + n.count} : Range{ranges[n.index].first, ranges[n.index + 1].end};
+        ranges[i] =
+            n.isLeaf() ? Range{n.index, n.index + n.count} : Range{ranges[n.index].first, ranges[n.index + 1].end};
         for (uint32_t t = 0; t < bvh.leafTriangles.size(); ++t)
             if (t < ranges[i].first || t >= ranges[i].end)
                 overlap += (n.isLeaf() ? cIntersect : cTraversal) * clippedArea(bvh.leafTriangles[t], n.box());
@@ -114,7 +115,8 @@ TEST(EndPointOverlap, LeftOutWhereBoxesOverlapEverything) {
 TEST(EndPointOverlap, ReportedUpToTheTriangleLimit) {
     const auto [soup, valid] = test::randomSoup(3000, 7, 10.0f, 1.0f);
     const PrimitiveSet prims{soup, valid};
-    BvhAccelerator<WideBvh<8>> within(builderRecord("ploc"), {}, {}, {3000}), above(builderRecord("ploc"), {}, {}, {2999});
+    BvhAccelerator<WideBvh<8>> within(builderRecord("ploc"), {}, {}, {3000}),
+        above(builderRecord("ploc"), {}, {}, {2999});
     const BuildStats in = timedBuild(within, prims), out = timedBuild(above, prims);
     ASSERT_TRUE(in.epo.has_value());
     EXPECT_GT(*in.epo, 0.0);

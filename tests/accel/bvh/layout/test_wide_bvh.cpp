@@ -15,9 +15,9 @@
 namespace bvhlab {
 namespace {
 
-using test::Soup;
 using test::allBuilders;
 using test::randomSoup;
+using test::Soup;
 
 TEST(Bvh, NodeIsThirtyTwoBytes) {
     EXPECT_EQ(sizeof(BvhNode), 32u);
@@ -113,10 +113,12 @@ void expectCollapseKeepsEveryTriangleOnce(size_t n, uint32_t seed) {
                 ASSERT_LE(firstBlock + blocks, wide.blocks.size());
                 for (uint32_t b = firstBlock; b < firstBlock + blocks; ++b) ++blockOwners[b];
                 for (uint32_t p = first; p < first + blocks * TriangleBlock::kLanes; ++p) {
-                    const Triangle tri = wide.blocks[p / TriangleBlock::kLanes].triangle(int(p % TriangleBlock::kLanes));
+                    const Triangle tri =
+                        wide.blocks[p / TriangleBlock::kLanes].triangle(int(p % TriangleBlock::kLanes));
                     if (p >= first + count) {
                         const uint32_t last = first + count - 1;
-                        const Triangle repeated = wide.blocks[last / TriangleBlock::kLanes].triangle(int(last % TriangleBlock::kLanes));
+                        const Triangle repeated =
+                            wide.blocks[last / TriangleBlock::kLanes].triangle(int(last % TriangleBlock::kLanes));
                         EXPECT_EQ(wide.primIndices[p], kInvalidPrimitive);
                         EXPECT_TRUE(tri.v0 == repeated.v0 && tri.v1 == repeated.v1 && tri.v2 == repeated.v2)
                             << "padding repeats the leaf's last triangle";
@@ -236,12 +238,15 @@ TEST(Bvh, SameWideTreeWhateverTheThreadCount) {
         arena.execute([&] { trees.push_back(collapseToWide<8>(binary, costs)); });
     }
     trees.push_back(collapseToWide<8>(binary, costs));  // outside any arena: all threads
-    ASSERT_GT(trees[0].blocks.size(), 8 * 512u);  // the root's lanes reach wide_bvh.cpp's kParallelBlocks
+    ASSERT_GT(trees[0].blocks.size(), 8 * 512u);        // the root's lanes reach wide_bvh.cpp's kParallelBlocks
     for (size_t t = 1; t < trees.size(); ++t) {
         ASSERT_EQ(trees[t].nodes.size(), trees[0].nodes.size());
         ASSERT_EQ(trees[t].blocks.size(), trees[0].blocks.size());
-        EXPECT_EQ(std::memcmp(trees[t].nodes.data(), trees[0].nodes.data(), trees[0].nodes.size() * sizeof(WideNode<8>)), 0);
-        EXPECT_EQ(std::memcmp(trees[t].blocks.data(), trees[0].blocks.data(), trees[0].blocks.size() * sizeof(TriangleBlock)), 0);
+        EXPECT_EQ(
+            std::memcmp(trees[t].nodes.data(), trees[0].nodes.data(), trees[0].nodes.size() * sizeof(WideNode<8>)), 0);
+        EXPECT_EQ(
+            std::memcmp(trees[t].blocks.data(), trees[0].blocks.data(), trees[0].blocks.size() * sizeof(TriangleBlock)),
+            0);
         EXPECT_EQ(trees[t].primIndices, trees[0].primIndices);
     }
 }

@@ -33,8 +33,13 @@ void simdOpResults(const float* a, const float* b, const float* c, uint32_t* out
     put(abs(va)), put(min(va, vb)), put(max(va, vb));
     put(select(va >= vb, va, vb)), put(F::broadcast(a[0]));
     put(F::load(a));  // a is aligned for N lanes
-    const int masks[] = {movemask(va <= vb), movemask(va >= vb), movemask(va < vb), movemask(va > vb),
-                         movemask(va != vb), movemask((va < vb) & (va != vb)), movemask((va < vb) | (va > vb))};
+    const int masks[] = {movemask(va <= vb),
+                         movemask(va >= vb),
+                         movemask(va < vb),
+                         movemask(va > vb),
+                         movemask(va != vb),
+                         movemask((va < vb) & (va != vb)),
+                         movemask((va < vb) | (va > vb))};
     for (int m : masks) *out++ = uint32_t(m);
     int32_t truncated[N];
     F::loadu(c).truncateToInt(truncated);

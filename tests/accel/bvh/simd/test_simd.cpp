@@ -21,9 +21,14 @@ void avx512SimdOpResults(const float* a, const float* b, const float* c, uint32_
 namespace {
 
 float specialOrRandom(std::mt19937& rng) {
-    constexpr float kSpecial[] = {0.0f, -0.0f, std::numeric_limits<float>::infinity(),
-                                  -std::numeric_limits<float>::infinity(), std::numeric_limits<float>::quiet_NaN(),
-                                  std::numeric_limits<float>::denorm_min(), 1.0f, -1.0f};
+    constexpr float kSpecial[] = {0.0f,
+                                  -0.0f,
+                                  std::numeric_limits<float>::infinity(),
+                                  -std::numeric_limits<float>::infinity(),
+                                  std::numeric_limits<float>::quiet_NaN(),
+                                  std::numeric_limits<float>::denorm_min(),
+                                  1.0f,
+                                  -1.0f};
     if (rng() % 4 == 0) return kSpecial[rng() % std::size(kSpecial)];
     return std::uniform_real_distribution<float>(-100.0f, 100.0f)(rng);
 }
@@ -80,7 +85,8 @@ TEST(Simd, DifferenceOfProductsHasTheExactSign) {
     // 3 * (1/3 rounded) vs 1 * (3 * (1/3 rounded)) rounded: exact products differ by a tiny amount.
     const float third = 1.0f / 3.0f;
     alignas(16) float r[4];
-    differenceOfProducts(F::broadcast(3.0f), F::broadcast(third), F::broadcast(1.0f), F::broadcast(3.0f * third)).storeu(r);
+    differenceOfProducts(F::broadcast(3.0f), F::broadcast(third), F::broadcast(1.0f), F::broadcast(3.0f * third))
+        .storeu(r);
     const double exact = 3.0 * double(third) - double(3.0f * third);
     EXPECT_EQ(r[0] < 0.0f, exact < 0.0) << r[0] << " exact " << exact;
     EXPECT_EQ(r[0] == 0.0f, exact == 0.0) << r[0] << " exact " << exact;

@@ -86,10 +86,18 @@ Case makeCase(std::mt19937& rng, bool negativeTmin) {
     for (int a = 0; a < 3; ++a) {
         const float p = c.ray.org[a] + t * c.ray.dir[a];
         switch (rng() % 4) {
-            case 0: c.lo[a] = c.hi[a] = p; break;  // flat
-            case 1: c.lo[a] = p, c.hi[a] = p + std::abs(unit(rng)) * size; break;
-            case 2: c.lo[a] = p - std::abs(unit(rng)) * size, c.hi[a] = p; break;
-            default: c.lo[a] = std::nextafter(p, INFINITY), c.hi[a] = c.lo[a] + std::abs(unit(rng)) * size; break;
+            case 0:
+                c.lo[a] = c.hi[a] = p;
+                break;  // flat
+            case 1:
+                c.lo[a] = p, c.hi[a] = p + std::abs(unit(rng)) * size;
+                break;
+            case 2:
+                c.lo[a] = p - std::abs(unit(rng)) * size, c.hi[a] = p;
+                break;
+            default:
+                c.lo[a] = std::nextafter(p, INFINITY), c.hi[a] = c.lo[a] + std::abs(unit(rng)) * size;
+                break;
         }
     }
     return c;
@@ -97,9 +105,9 @@ Case makeCase(std::mt19937& rng, bool negativeTmin) {
 
 std::ostream& operator<<(std::ostream& out, const Case& c) {
     const Ray& r = c.ray;
-    return out << "org " << r.org[0] << " " << r.org[1] << " " << r.org[2] << " dir " << r.dir[0] << " " << r.dir[1] << " "
-               << r.dir[2] << " tmin " << r.tmin << " tmax " << r.tmax << " lo " << c.lo[0] << " " << c.lo[1] << " " << c.lo[2]
-               << " hi " << c.hi[0] << " " << c.hi[1] << " " << c.hi[2];
+    return out << "org " << r.org[0] << " " << r.org[1] << " " << r.org[2] << " dir " << r.dir[0] << " " << r.dir[1]
+               << " " << r.dir[2] << " tmin " << r.tmin << " tmax " << r.tmax << " lo " << c.lo[0] << " " << c.lo[1]
+               << " " << c.lo[2] << " hi " << c.hi[0] << " " << c.hi[1] << " " << c.hi[2];
 }
 
 template <bool NegativeT, bool Robust>

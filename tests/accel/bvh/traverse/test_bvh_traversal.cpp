@@ -15,12 +15,12 @@
 namespace bvhlab {
 namespace {
 
-using test::Soup;
 using test::addLatticeSquares;
 using test::allBuilders;
 using test::buildAndCheck;
 using test::expectAgreesWithNaive;
 using test::randomSoup;
+using test::Soup;
 using test::triangleAndCopy;
 
 // BVH::robust=false (Moeller-Trumbore, plain boxes) is not watertight at edges, but away from

@@ -38,8 +38,8 @@ Soup randomScene(uint32_t seed) {
     }
     for (int x = -10; x < 10; x += 2)
         for (int z = -10; z < 10; z += 2) {
-            const Vec3 a(float(x), -10.0f, float(z)), b(float(x + 2), -10.0f, float(z)), c(float(x + 2), -10.0f, float(z + 2)),
-                d(float(x), -10.0f, float(z + 2));
+            const Vec3 a(float(x), -10.0f, float(z)), b(float(x + 2), -10.0f, float(z)),
+                c(float(x + 2), -10.0f, float(z + 2)), d(float(x), -10.0f, float(z + 2));
             soup.add({a, b, c});
             soup.add({a, c, d});
         }
@@ -56,9 +56,10 @@ Soup duplicatesScene() {
     };
     for (int x = -8; x < 8; ++x)
         for (int z = -8; z < 8; ++z) {
-            quad(Vec3(float(x), 0.0f, float(z)), Vec3(float(x + 1), 0.0f, float(z)), Vec3(float(x + 1), 0.0f, float(z + 1)),
-                 Vec3(float(x), 0.0f, float(z + 1)));
-            quad(Vec3(float(x), 0.3f * float(z), -4.0f - float(z)), Vec3(float(x + 1), 0.3f * float(z), -4.0f - float(z)),
+            quad(Vec3(float(x), 0.0f, float(z)), Vec3(float(x + 1), 0.0f, float(z)),
+                 Vec3(float(x + 1), 0.0f, float(z + 1)), Vec3(float(x), 0.0f, float(z + 1)));
+            quad(Vec3(float(x), 0.3f * float(z), -4.0f - float(z)),
+                 Vec3(float(x + 1), 0.3f * float(z), -4.0f - float(z)),
                  Vec3(float(x + 1), 0.3f * float(z + 1), -5.0f - float(z)),
                  Vec3(float(x), 0.3f * float(z + 1), -5.0f - float(z)));
         }
@@ -73,7 +74,8 @@ std::vector<Ray> primaryRays(Vec3 eye, int width, int height) {
                up = glm::cross(right, forward);
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {
-            const float u = (float(x) + 0.5f) / float(width) * 2.0f - 1.0f, v = (float(y) + 0.5f) / float(height) * 2.0f - 1.0f;
+            const float u = (float(x) + 0.5f) / float(width) * 2.0f - 1.0f,
+                        v = (float(y) + 0.5f) / float(height) * 2.0f - 1.0f;
             Ray r{eye, forward + 0.8f * u * right + 0.8f * v * up};
             const size_t i = rays.size();
             if (i % 29 == 0) r.tmin = -5.0f;
@@ -305,7 +307,8 @@ void expectSixteenRayPacketsAsSingle() {
             for (count = 1; count < 16 && begin + count < rays.size(); ++count)
                 if (directionOctant(rays[begin + count].dir) != octant) break;
             tracePacket<true, ClosestHitQuery, true, 16, Kind>(
-                tree, rays.data() + begin, int(count), octant, fallback, [&](int k, const ClosestHitQuery& query, const QueryCounters&) {
+                tree, rays.data() + begin, int(count), octant, fallback,
+                [&](int k, const ClosestHitQuery& query, const QueryCounters&) {
                     QueryCounters counters;
                     Hit packet, single;
                     answerOf(tree, query, packet);
@@ -314,17 +317,19 @@ void expectSixteenRayPacketsAsSingle() {
                     ++compared;
                 });
             tracePacket<true, AnyHitQuery, true, 16, Kind>(tree, rays.data() + begin, int(count), octant, fallback,
-                                               [&](int k, const AnyHitQuery& query, const QueryCounters&) {
-                                                   QueryCounters counters;
-                                                   EXPECT_EQ(query.occluded, accel.isOccluded(rays[begin + k], counters));
-                                               });
+                                                           [&](int k, const AnyHitQuery& query, const QueryCounters&) {
+                                                               QueryCounters counters;
+                                                               EXPECT_EQ(query.occluded,
+                                                                         accel.isOccluded(rays[begin + k], counters));
+                                                           });
         }
         EXPECT_EQ(compared, rays.size());
     }
 }
 TEST(PacketTraversal, SixteenRayPacketsAnswerAsSingleRays) { expectSixteenRayPacketsAsSingle<PacketKind::Plain>(); }
-TEST(CoherentTraversal, SixteenRayPacketsAnswerAsSingleRays) { expectSixteenRayPacketsAsSingle<PacketKind::Coherent>(); }
-
+TEST(CoherentTraversal, SixteenRayPacketsAnswerAsSingleRays) {
+    expectSixteenRayPacketsAsSingle<PacketKind::Coherent>();
+}
 
 // Every ray set on `soup` through streams, for a layout.
 template <typename Layout>
@@ -356,24 +361,25 @@ TEST(StreamTraversal, StreamsOfEveryLengthAnswerAsSingleRays) {
     for (int count = 1; count <= kStreamSize; begin += size_t(count), ++count) {
         ASSERT_LE(begin + size_t(count), rays.size());
         const Ray* stream = rays.data() + begin;
-        traceStream<true, ClosestHitQuery, true>(tree, stream, count, 0, [&](int k, const ClosestHitQuery& query,
-                                                                            const QueryCounters& work) {
-            QueryCounters counters;
-            Hit batch, single;
-            answerOf(tree, query, batch);
-            accel.findNearest(stream[k], single, counters);
-            EXPECT_TRUE(bitEqual(batch, single)) << "stream of " << count << ", ray " << k;
-            EXPECT_EQ(work.queries, 1u);
-            EXPECT_GE(work.traversalSteps, 1u);  // the root
-            ++compared;
-        });
-        traceStream<false, AnyHitQuery, true>(tree, stream, count, 0, [&](int k, const AnyHitQuery& query,
-                                                                         const QueryCounters& work) {
-            QueryCounters counters;
-            EXPECT_EQ(query.occluded, accel.isOccluded(stream[k], counters)) << "stream of " << count << ", ray " << k;
-            EXPECT_EQ(work.traversalSteps, 0u);  // the form that counts nothing
-            EXPECT_EQ(work.intersectionTests, 0u);
-        });
+        traceStream<true, ClosestHitQuery, true>(
+            tree, stream, count, 0, [&](int k, const ClosestHitQuery& query, const QueryCounters& work) {
+                QueryCounters counters;
+                Hit batch, single;
+                answerOf(tree, query, batch);
+                accel.findNearest(stream[k], single, counters);
+                EXPECT_TRUE(bitEqual(batch, single)) << "stream of " << count << ", ray " << k;
+                EXPECT_EQ(work.queries, 1u);
+                EXPECT_GE(work.traversalSteps, 1u);  // the root
+                ++compared;
+            });
+        traceStream<false, AnyHitQuery, true>(tree, stream, count, 0,
+                                              [&](int k, const AnyHitQuery& query, const QueryCounters& work) {
+                                                  QueryCounters counters;
+                                                  EXPECT_EQ(query.occluded, accel.isOccluded(stream[k], counters))
+                                                      << "stream of " << count << ", ray " << k;
+                                                  EXPECT_EQ(work.traversalSteps, 0u);  // the form that counts nothing
+                                                  EXPECT_EQ(work.intersectionTests, 0u);
+                                              });
     }
     EXPECT_EQ(compared, size_t(kStreamSize) * (kStreamSize + 1) / 2);
 }

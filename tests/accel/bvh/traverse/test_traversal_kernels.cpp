@@ -142,8 +142,10 @@ void expectSameAnswers(const Answers& a, const Answers& reference, const std::st
         EXPECT_EQ(a.costs[i].traversalSteps, reference.costs[i].traversalSteps) << what << " ray " << i;
     }
     expectSameCounters(a.single, reference.single, what);
-    if (sameBatchWork) expectSameCounters(a.batch, reference.batch, what + " batch");
-    else EXPECT_EQ(a.batch.queries, reference.batch.queries) << what;
+    if (sameBatchWork)
+        expectSameCounters(a.batch, reference.batch, what + " batch");
+    else
+        EXPECT_EQ(a.batch.queries, reference.batch.queries) << what;
 }
 
 template <typename Layout>
@@ -163,8 +165,8 @@ void expectKernelsAgree(const char* layout) {
                 std::printf("[ kernels  ] %s robust=%d %s: %s against scalar\n", layout, int(robust),
                             batchTraversalName(path), isaName(isa));
                 const Answers a = answersOf<Layout>({.robust = robust, .isa = isa, .batchTraversal = path}, soup, rays);
-                const std::string what = std::string(layout) + " " + isaName(isa) + (robust ? "" : " not robust") + " " +
-                                         batchTraversalName(path);
+                const std::string what = std::string(layout) + " " + isaName(isa) + (robust ? "" : " not robust") +
+                                         " " + batchTraversalName(path);
                 expectSameAnswers(a, reference, what, sameGroups(path, isa, Isa::Scalar));
             }
         }

@@ -1,8 +1,8 @@
 // The wide layouts' leaf test (traverse/triangle_block_test.h) answers as the shared scalar
 // watertight test, lane for lane and bit for bit: random rays, rays aimed at vertices and edge
 // points (where rounding decides), axis-parallel rays, and the padding lanes of short leaves.
-#include "accel/bvh/traverse/triangle_block_test.h"
 #include "accel/bvh/traverse/traversal.h"
+#include "accel/bvh/traverse/triangle_block_test.h"
 #include "accel/verify/verify_rng.h"
 #include "framework/core/triangle_moller_trumbore.h"
 
@@ -25,7 +25,8 @@ std::vector<Triangle> fanAround(verify::VerifyRng& rng, Vec3 centre, int count) 
     for (int i = 0; i < count; ++i) {
         const float a0 = 6.2831853f * float(i) / float(count), a1 = 6.2831853f * float(i + 1) / float(count);
         const float r = float(rng.uniform(0.5, 2.0));
-        fan.push_back({centre, centre + r * (std::cos(a0) * u + std::sin(a0) * v), centre + r * (std::cos(a1) * u + std::sin(a1) * v)});
+        fan.push_back({centre, centre + r * (std::cos(a0) * u + std::sin(a0) * v),
+                       centre + r * (std::cos(a1) * u + std::sin(a1) * v)});
     }
     return fan;
 }
@@ -36,10 +37,18 @@ std::vector<Ray> probeRays(verify::VerifyRng& rng, const std::vector<Triangle>& 
         const Triangle& tri = tris[rng.index(tris.size())];
         Vec3 target;
         switch (i % 4) {
-            case 0: target = tri.v0; break;                                       // a vertex
-            case 1: target = tri.v1 + float(rng.uniform()) * (tri.v2 - tri.v1); break;  // an edge point
-            case 2: target = tri.v0 + float(rng.uniform()) * (tri.v1 - tri.v0); break;
-            default: target = (tri.v0 + tri.v1 + tri.v2) * (1.0f / 3.0f) + Vec3(rng.uniform(-1, 1), rng.uniform(-1, 1), 0.0f);
+            case 0:
+                target = tri.v0;
+                break;  // a vertex
+            case 1:
+                target = tri.v1 + float(rng.uniform()) * (tri.v2 - tri.v1);
+                break;  // an edge point
+            case 2:
+                target = tri.v0 + float(rng.uniform()) * (tri.v1 - tri.v0);
+                break;
+            default:
+                target =
+                    (tri.v0 + tri.v1 + tri.v2) * (1.0f / 3.0f) + Vec3(rng.uniform(-1, 1), rng.uniform(-1, 1), 0.0f);
         }
         Ray ray;
         ray.org = target + Vec3(rng.unitVector()) * float(rng.logUniform(0.1, 100.0));
@@ -64,7 +73,9 @@ template <bool Robust>
 void expectLanesAnswerAsScalar(uint64_t seed) {
     verify::VerifyRng rng(seed);
     std::vector<Triangle> tris = fanAround(rng, Vec3(0.3f, -1.7f, 2.9f), 8);
-    for (int i = 0; i < 8; ++i) tris.push_back({rng.inBox({Vec3(-3), Vec3(3)}), rng.inBox({Vec3(-3), Vec3(3)}), rng.inBox({Vec3(-3), Vec3(3)})});
+    for (int i = 0; i < 8; ++i)
+        tris.push_back(
+            {rng.inBox({Vec3(-3), Vec3(3)}), rng.inBox({Vec3(-3), Vec3(3)}), rng.inBox({Vec3(-3), Vec3(3)})});
     size_t hits = 0;
     for (const Ray& ray : probeRays(rng, tris, 4000)) {
         const ShearedRay sheared(ray);
@@ -73,8 +84,9 @@ void expectLanesAnswerAsScalar(uint64_t seed) {
             const BlockHits block = test.intersect(blockOf(tris, first, kLanes), ray.tmin, ray.tmax);
             for (int lane = 0; lane < kLanes; ++lane) {
                 TriangleHitT<float> h{};  // set only on a hit; {} keeps GCC from warning
-                const bool hit = Robust ? intersectTriangle(sheared, tris[first + lane], ray.tmin, ray.tmax, h)
-                                        : intersectTriangleMollerTrumbore(ray, tris[first + lane], ray.tmin, ray.tmax, h);
+                const bool hit = Robust
+                                     ? intersectTriangle(sheared, tris[first + lane], ray.tmin, ray.tmax, h)
+                                     : intersectTriangleMollerTrumbore(ray, tris[first + lane], ray.tmin, ray.tmax, h);
                 ASSERT_EQ(bool(block.mask >> lane & 1), hit) << "triangle " << first + lane;
                 if (!hit) continue;
                 ++hits;
@@ -123,7 +135,7 @@ TEST(TriangleBlock, PaddingLanesRepeatTheLastTriangle) {
 TEST(TriangleBlock, LeafCountsAndChoosesAsTheScalarLoop) {
     verify::VerifyRng rng(13);
     std::vector<Triangle> tris = fanAround(rng, Vec3(0.0f), 2 * kLanes - 1);
-    tris.push_back(tris[2]);  // a duplicate: equal t in two lanes
+    tris.push_back(tris[2]);                                     // a duplicate: equal t in two lanes
     for (uint32_t count : {1u, 3u, 4u, 5u, 8u, 9u, 13u, 16u}) {  // one block, and two
         TriangleBlockLeaves leaves;
         std::vector<uint32_t> prims(count);

@@ -90,8 +90,9 @@ TEST(NffReader, SpheresAndConesAloneLoad) {
 }
 
 TEST(NffReader, DegenerateSpheresAndConesAreCountedAndSkipped) {
-    const Scene scene = loadText("balls.nff", "p 4\n-1 -1 0\n1 -1 0\n1 1 0\n-1 1 0\ns 0 0 1 0.5\ns 0 0 2 0\n"
-                                              "c 0 0 0 1 0 0 0 1\nc 0 0 0 1 0 0 1 -1\nc 0 0 0 1 0 0 1 0\n");
+    const Scene scene = loadText("balls.nff",
+                                 "p 4\n-1 -1 0\n1 -1 0\n1 1 0\n-1 1 0\ns 0 0 1 0.5\ns 0 0 2 0\n"
+                                 "c 0 0 0 1 0 0 0 1\nc 0 0 0 1 0 0 1 -1\nc 0 0 0 1 0 0 1 0\n");
     EXPECT_EQ(scene.validPrimitives, (std::vector<uint32_t>{0, 1, 2, 6}));
     EXPECT_EQ(scene.report.degenerateSpheres, 1u);
     EXPECT_EQ(scene.report.degenerateCones, 2u);

@@ -40,7 +40,9 @@ TEST(OffReader, Errors) {
     expectLoadError("count.off", "OFF\n-3 1 0\n", {"count.off:2:", "vertex count"});
 }
 
-TEST(ReaderFuzz, Off) { fuzzReader(readOff, "OFF\n# c\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n4 0 1 2 3 1 1 1\n"); }
+TEST(ReaderFuzz, Off) {
+    fuzzReader(readOff, "OFF\n# c\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n4 0 1 2 3 1 1 1\n");
+}
 
 }  // namespace
 }  // namespace bvhlab::test

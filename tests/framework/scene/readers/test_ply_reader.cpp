@@ -31,8 +31,10 @@ TEST_P(PlyEncodings, SkipsWhatItDoesNotUseAndKeepsTheRest) {
     EXPECT_EQ(scene.report.degenerateTriangles, 1u);
     EXPECT_EQ(scene.validPrimitives, (std::vector<uint32_t>{1}));
     ASSERT_EQ(scene.report.warnings.size(), 3u);  // material and edge were skipped, and the quad
-    EXPECT_NE(scene.report.warnings[2].find("polygon of 4 vertices skipped: not planar (element 'face', record 1 of 3)"),
-              std::string::npos) << scene.report.warnings[2];
+    EXPECT_NE(
+        scene.report.warnings[2].find("polygon of 4 vertices skipped: not planar (element 'face', record 1 of 3)"),
+        std::string::npos)
+        << scene.report.warnings[2];
 }
 
 TEST_P(PlyEncodings, TruncatedDataIsAnError) {
@@ -54,41 +56,51 @@ INSTANTIATE_TEST_SUITE_P(PlyReader, PlyEncodings,
                          });
 
 TEST(PlyReader, AsciiWithCarriageReturnsAndFanOrder) {
-    const Scene scene = loadText("crlf.ply",
-                                 "ply\r\nformat ascii 1.0\r\nelement vertex 5\r\nproperty float x\r\nproperty float y\r\n"
-                                 "property float z\r\nelement face 1\r\nproperty list uchar int vertex_indices\r\nend_header\r\n"
-                                 "0 0 0\r\n1 0 0\r\n1 1 0\r\n0.5 2 0\r\n0 1 0\r\n5 0 1 2 3 4\r\n");
+    const Scene scene =
+        loadText("crlf.ply",
+                 "ply\r\nformat ascii 1.0\r\nelement vertex 5\r\nproperty float x\r\nproperty float y\r\n"
+                 "property float z\r\nelement face 1\r\nproperty list uchar int vertex_indices\r\nend_header\r\n"
+                 "0 0 0\r\n1 0 0\r\n1 1 0\r\n0.5 2 0\r\n0 1 0\r\n5 0 1 2 3 4\r\n");
     EXPECT_EQ(scene.indices, (std::vector<uvec3>{{0, 1, 2}, {0, 2, 3}, {0, 3, 4}}));
     EXPECT_TRUE(scene.normals.empty());
 }
 
 TEST(PlyReader, Errors) {
-    const std::string vertexHeader = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n";
+    const std::string vertexHeader =
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n";
     const std::string faceHeader = "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
     const std::string vertices = "0 0 0\n1 0 0\n0 1 0\n";
     expectLoadError("magic.ply", "plx\nformat ascii 1.0\nend_header\n", {"magic.ply:1:"});
-    expectLoadError("keyword.ply", "ply\nformat ascii 1.0\nelemnt vertex 3\nend_header\n", {"keyword.ply:3:", "'elemnt'"});
-    expectLoadError("type.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty flt x\nend_header\n", {"type.ply:4:", "'flt'"});
+    expectLoadError("keyword.ply", "ply\nformat ascii 1.0\nelemnt vertex 3\nend_header\n",
+                    {"keyword.ply:3:", "'elemnt'"});
+    expectLoadError("type.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty flt x\nend_header\n",
+                    {"type.ply:4:", "'flt'"});
     expectLoadError("format.ply", "ply\nformat binary 1.0\nend_header\n", {"format.ply:2:"});
     expectLoadError("count.ply", "ply\nformat ascii 1.0\nelement vertex -3\nend_header\n", {"count.ply:3:"});
     expectLoadError("noend.ply", vertexHeader, {"noend.ply:7:", "end_header"});
-    expectLoadError("noz.ply", "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\nend_header\n",
+    expectLoadError("noz.ply",
+                    "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\nend_header\n",
                     {"noz.ply:3:", "'z'"});
-    expectLoadError("noindices.ply", vertexHeader + "element face 0\nproperty int vertex_indices\nend_header\n" + vertices,
+    expectLoadError("noindices.ply",
+                    vertexHeader + "element face 0\nproperty int vertex_indices\nend_header\n" + vertices,
                     {"noindices.ply:7:", "vertex_indices"});
     expectLoadError("range.ply", vertexHeader + faceHeader + vertices + "3 0 1 3\n", {"range.ply:13:", "out of range"});
-    expectLoadError("negative.ply", vertexHeader + faceHeader + vertices + "3 0 -1 2\n", {"negative.ply:13:", "out of range"});
-    expectLoadError("garbage.ply", vertexHeader + faceHeader + "0 0 0\n1 O 0\n0 1 0\n3 0 1 2\n", {"garbage.ply:11:", "'O'"});
+    expectLoadError("negative.ply", vertexHeader + faceHeader + vertices + "3 0 -1 2\n",
+                    {"negative.ply:13:", "out of range"});
+    expectLoadError("garbage.ply", vertexHeader + faceHeader + "0 0 0\n1 O 0\n0 1 0\n3 0 1 2\n",
+                    {"garbage.ply:11:", "'O'"});
     expectLoadError("fraction.ply", vertexHeader + faceHeader + vertices + "3 0 1.5 2\n", {"fraction.ply:13:"});
     expectLoadError("short.ply", vertexHeader + faceHeader + vertices + "3 0 1\n", {"short.ply:", "end of the file"});
 
     // A header that promises more than the file holds must fail on the data, without
     // allocating for the promise.
-    const std::string liar = "ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nproperty float x\n"
-                             "property float y\nproperty float z\nelement face 4000000000\n"
-                             "property list uchar int vertex_indices\nend_header\n";
+    const std::string liar =
+        "ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nproperty float x\n"
+        "property float y\nproperty float z\nelement face 4000000000\n"
+        "property list uchar int vertex_indices\nend_header\n";
     expectLoadError("liar.ply", liar + std::string(30, '\0'), {"liar.ply", "element 'vertex', record 3 of 4000000000"});
-    expectLoadError("huge.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 99999999999\nproperty float x\nend_header\n",
+    expectLoadError("huge.ply",
+                    "ply\nformat binary_little_endian 1.0\nelement vertex 99999999999\nproperty float x\nend_header\n",
                     {"huge.ply:3:"});
 }
 
