@@ -213,6 +213,70 @@ void check(State& state, RTCDevice device, const char* call) {
         fmt::format("Embree error in {}: {}{}{}", call, errorName(code), message.empty() ? "" : ": ", message));
 }
 
+// The valid triangles as geometry kTriangleGeometry: Embree's primID i is our valid triangle i.
+template <typename State>
+void attachTriangles(State& state, RTCDevice device, RTCScene scene, RTCBuildQuality quality, const PrimitiveSet& prims,
+                     std::span<const uint32_t> validTriangles) {
+    const size_t count = validTriangles.size();
+    std::unique_ptr<RTCGeometryTy, GeometryDeleter> geometry(rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE));
+    check(state, device, "rtcNewGeometry");
+    // Only used when the scene quality is low (two-level structure); a hint otherwise.
+    rtcSetGeometryBuildQuality(geometry.get(), quality);
+    // Embree-allocated buffers: Embree over-allocates the vertex buffer so that its last
+    // element can be read with a 16-byte load (the padding rule shared buffers must obey).
+    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry.get(), RTC_BUFFER_TYPE_VERTEX, 0,
+                                                                 RTC_FORMAT_FLOAT3, 3 * sizeof(float), 3 * count));
+    check(state, device, "rtcSetNewGeometryBuffer(vertex)");
+    auto* indices = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(geometry.get(), RTC_BUFFER_TYPE_INDEX, 0,
+                                                                   RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), count));
+    check(state, device, "rtcSetNewGeometryBuffer(index)");
+    // Its vertices are copied in order, so Embree's u, v are the weights of v1 and v2 as in our
+    // Hit convention.
+    for (size_t i = 0; i < count; ++i) {
+        std::memcpy(vertices + 9 * i, &prims.triangles[validTriangles[i]], sizeof(Triangle));
+        indices[3 * i + 0] = uint32_t(3 * i + 0);
+        indices[3 * i + 1] = uint32_t(3 * i + 1);
+        indices[3 * i + 2] = uint32_t(3 * i + 2);
+    }
+    rtcCommitGeometry(geometry.get());
+    check(state, device, "rtcCommitGeometry");
+    rtcAttachGeometryByID(scene, geometry.get(), kTriangleGeometry);  // the scene holds a reference
+    check(state, device, "rtcAttachGeometry");
+}
+
+// Spheres (x y z radius each) as geometry kSphereGeometry, Embree's own point spheres.
+template <typename State>
+void attachSpheres(State& state, RTCDevice device, RTCScene scene, RTCBuildQuality quality,
+                   const std::vector<float>& spheres) {
+    std::unique_ptr<RTCGeometryTy, GeometryDeleter> geometry(rtcNewGeometry(device, RTC_GEOMETRY_TYPE_SPHERE_POINT));
+    check(state, device, "rtcNewGeometry(sphere)");
+    rtcSetGeometryBuildQuality(geometry.get(), quality);
+    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+        geometry.get(), RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), spheres.size() / 4));
+    check(state, device, "rtcSetNewGeometryBuffer(sphere)");
+    std::copy(spheres.begin(), spheres.end(), vertices);
+    rtcCommitGeometry(geometry.get());
+    rtcAttachGeometryByID(scene, geometry.get(), kSphereGeometry);
+    check(state, device, "rtcAttachGeometry(sphere)");
+}
+
+// Cones as geometry kConeGeometry, user primitives tested by ConeGeometry; `cones` must outlive
+// the scene (Embree keeps a pointer to them).
+template <typename State>
+void attachCones(State& state, RTCDevice device, RTCScene scene, RTCBuildQuality quality, std::vector<Cone>& cones) {
+    std::unique_ptr<RTCGeometryTy, GeometryDeleter> geometry(rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER));
+    check(state, device, "rtcNewGeometry(user)");
+    rtcSetGeometryBuildQuality(geometry.get(), quality);
+    rtcSetGeometryUserPrimitiveCount(geometry.get(), unsigned(cones.size()));
+    rtcSetGeometryUserData(geometry.get(), cones.data());
+    rtcSetGeometryBoundsFunction(geometry.get(), &ConeGeometry::bounds, nullptr);
+    rtcSetGeometryIntersectFunction(geometry.get(), &ConeGeometry::intersect);
+    rtcSetGeometryOccludedFunction(geometry.get(), &ConeGeometry::occluded);
+    rtcCommitGeometry(geometry.get());
+    rtcAttachGeometryByID(scene, geometry.get(), kConeGeometry);
+    check(state, device, "rtcAttachGeometry(user)");
+}
+
 }  // namespace
 
 void EmbreeAccelerator::DeviceDeleter::operator()(RTCDeviceTy* device) const { rtcReleaseDevice(device); }
@@ -276,58 +340,9 @@ void EmbreeAccelerator::build(const PrimitiveSet& prims) {
 
     // With no valid primitive the scene stays without geometry: committing an empty scene is
     // fine and every query then misses.
-    if (count > 0) {
-        std::unique_ptr<RTCGeometryTy, GeometryDeleter> geometry(rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE));
-        check(*state_, device, "rtcNewGeometry");
-        // Only used when the scene quality is low (two-level structure); a hint otherwise.
-        rtcSetGeometryBuildQuality(geometry.get(), quality);
-        // Embree-allocated buffers: Embree over-allocates the vertex buffer so that its last
-        // element can be read with a 16-byte load (the padding rule shared buffers must obey).
-        auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geometry.get(), RTC_BUFFER_TYPE_VERTEX, 0,
-                                                                     RTC_FORMAT_FLOAT3, 3 * sizeof(float), 3 * count));
-        check(*state_, device, "rtcSetNewGeometryBuffer(vertex)");
-        auto* indices = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(geometry.get(), RTC_BUFFER_TYPE_INDEX, 0,
-                                                                       RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), count));
-        check(*state_, device, "rtcSetNewGeometryBuffer(index)");
-        // Embree's primID i is our primitive valid[i]; its vertices are copied in order, so
-        // Embree's u, v are the weights of v1 and v2 as in our Hit convention.
-        for (size_t i = 0; i < count; ++i) {
-            std::memcpy(vertices + 9 * i, &prims.triangles[validTriangles[i]], sizeof(Triangle));
-            indices[3 * i + 0] = uint32_t(3 * i + 0);
-            indices[3 * i + 1] = uint32_t(3 * i + 1);
-            indices[3 * i + 2] = uint32_t(3 * i + 2);
-        }
-        rtcCommitGeometry(geometry.get());
-        check(*state_, device, "rtcCommitGeometry");
-        rtcAttachGeometryByID(scene.get(), geometry.get(), kTriangleGeometry);  // the scene holds a reference
-        check(*state_, device, "rtcAttachGeometry");
-    }
-    if (!spheres.empty()) {
-        std::unique_ptr<RTCGeometryTy, GeometryDeleter> geometry(
-            rtcNewGeometry(device, RTC_GEOMETRY_TYPE_SPHERE_POINT));
-        check(*state_, device, "rtcNewGeometry(sphere)");
-        rtcSetGeometryBuildQuality(geometry.get(), quality);
-        auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-            geometry.get(), RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT4, 4 * sizeof(float), spheres.size() / 4));
-        check(*state_, device, "rtcSetNewGeometryBuffer(sphere)");
-        std::copy(spheres.begin(), spheres.end(), vertices);
-        rtcCommitGeometry(geometry.get());
-        rtcAttachGeometryByID(scene.get(), geometry.get(), kSphereGeometry);
-        check(*state_, device, "rtcAttachGeometry(sphere)");
-    }
-    if (!cones_.empty()) {
-        std::unique_ptr<RTCGeometryTy, GeometryDeleter> geometry(rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER));
-        check(*state_, device, "rtcNewGeometry(user)");
-        rtcSetGeometryBuildQuality(geometry.get(), quality);
-        rtcSetGeometryUserPrimitiveCount(geometry.get(), unsigned(cones_.size()));
-        rtcSetGeometryUserData(geometry.get(), cones_.data());
-        rtcSetGeometryBoundsFunction(geometry.get(), &ConeGeometry::bounds, nullptr);
-        rtcSetGeometryIntersectFunction(geometry.get(), &ConeGeometry::intersect);
-        rtcSetGeometryOccludedFunction(geometry.get(), &ConeGeometry::occluded);
-        rtcCommitGeometry(geometry.get());
-        rtcAttachGeometryByID(scene.get(), geometry.get(), kConeGeometry);
-        check(*state_, device, "rtcAttachGeometry(user)");
-    }
+    if (count > 0) attachTriangles(*state_, device, scene.get(), quality, prims, validTriangles);
+    if (!spheres.empty()) attachSpheres(*state_, device, scene.get(), quality, spheres);
+    if (!cones_.empty()) attachCones(*state_, device, scene.get(), quality, cones_);
     const int64_t bytesBefore = state_->bytes.load();
     // Embree silently skips primitives with a coordinate beyond 1.844e18 (finite ones of
     // ours included); rays can then pass through them.

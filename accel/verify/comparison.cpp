@@ -47,25 +47,28 @@ std::string ComparisonReport::summary() const {
     return s;
 }
 
-ComparisonReport compareWithReference(const Accelerator& accel, const Reference& ref, const Oracle& oracle,
-                                      std::span<const Ray> rays, size_t maxExamples, bool occlusion) {
-    ComparisonReport report;
-    report.rays = rays.size();
-    auto exampleIn = [&](std::vector<std::string>& list, size_t i, const std::string& what) {
+namespace {
+
+// Compares one structure's answers with the reference ray by ray into a report, keeping the first
+// few examples of each kind of failure.
+struct RayComparison {
+    ComparisonReport& report;
+    std::span<const Ray> rays;
+    size_t maxExamples;
+
+    void exampleIn(std::vector<std::string>& list, size_t i, const std::string& what) const {
         if (list.size() < maxExamples) list.push_back(fmt::format("ray #{} {}: {}", i, describe(rays[i]), what));
-    };
-    auto example = [&](size_t i, const std::string& what) { exampleIn(report.examples, i, what); };
-    auto occlusionExample = [&](size_t i, const std::string& what) { exampleIn(report.occlusionExamples, i, what); };
-    // Without naive's answers (computeOracleReference), naive is the oracle.
-    const bool withNaive = !ref.naive.empty();
-    // Without the oracle's answers (an empty Reference), the interface contract alone.
-    const bool judged = !ref.oracle.empty();
-    const Hit sentinel{-12345.0f, 0xDEADBEEFu, 7.0f, 9.0f};
-    for (size_t i = 0; i < rays.size(); ++i) {
-        const Ray& ray = rays[i];
+    }
+    void example(size_t i, const std::string& what) const { exampleIn(report.examples, i, what); }
+    void occlusionExample(size_t i, const std::string& what) const { exampleIn(report.occlusionExamples, i, what); }
+
+    // findNearest's answer to ray i (Hit{} for a miss), its return value and count checked
+    // against the interface's contract.
+    Hit nearest(const Accelerator& accel, size_t i) const {
+        const Hit sentinel{-12345.0f, 0xDEADBEEFu, 7.0f, 9.0f};
         QueryCounters counters;
         Hit hit = sentinel;
-        const bool found = accel.findNearest(ray, hit, counters);
+        const bool found = accel.findNearest(rays[i], hit, counters);
         if (counters.queries != 1) {
             ++report.queriesMiscounted;
             example(i, fmt::format("findNearest counted {} queries", counters.queries));
@@ -78,40 +81,47 @@ ComparisonReport compareWithReference(const Accelerator& accel, const Reference&
         }
         const Hit a = found ? hit : Hit{};
         report.accelHits += a.found();
-        if (judged) {
-            const Hit n = withNaive ? ref.naive[i] : ref.oracle[i].toHit();
-            report.naiveHits += n.found();
-            const bool naiveWrong = withNaive && ref.naiveVerdict[i] == Verdict::Wrong;
-            report.naiveWrong += naiveWrong;
+        return a;
+    }
 
-            const Judgement ja = oracle.judge(ray, a, ref.oracle[i]);
-            const bool accelWrong = ja.verdict == Verdict::Wrong;
-            report.accelWrong += accelWrong;
-            report.accelVsOracle += !agree(a, ref.oracle[i].toHit());
-            if (!agree(a, n)) {
-                ++report.disagreements;
-                if (accelWrong && naiveWrong)
-                    ++report.bothWrong;
-                else if (accelWrong)
-                    ++report.accelOnlyWrong;
-                else if (naiveWrong)
-                    ++report.naiveOnlyWrong;
-                else
-                    ++report.ambiguous;
-            }
-            if (accelWrong && !withNaive)
-                example(i, fmt::format("structure {} [{}: {}]; reference {}", describe(a), verdictName(ja.verdict),
-                                       ja.reason, describe(ref.oracle[i])));
-            else if (accelWrong || naiveWrong)
-                example(i, fmt::format("accelerator {} [{}: {}]; naive {} [{}{}{}]; oracle {}", describe(a),
-                                       verdictName(ja.verdict), ja.reason, describe(n),
-                                       verdictName(ref.naiveVerdict[i]), naiveWrong ? ": " : "",
-                                       naiveWrong ? ref.naiveReason[i] : "", describe(ref.oracle[i])));
+    // The answer `a` to ray i judged against the oracle, and against naive's answer when the
+    // reference has it (without it, naive is the oracle).
+    void judge(const Reference& ref, const Oracle& oracle, size_t i, const Hit& a) const {
+        const bool withNaive = !ref.naive.empty();
+        const Hit n = withNaive ? ref.naive[i] : ref.oracle[i].toHit();
+        report.naiveHits += n.found();
+        const bool naiveWrong = withNaive && ref.naiveVerdict[i] == Verdict::Wrong;
+        report.naiveWrong += naiveWrong;
+
+        const Judgement ja = oracle.judge(rays[i], a, ref.oracle[i]);
+        const bool accelWrong = ja.verdict == Verdict::Wrong;
+        report.accelWrong += accelWrong;
+        report.accelVsOracle += !agree(a, ref.oracle[i].toHit());
+        if (!agree(a, n)) {
+            ++report.disagreements;
+            if (accelWrong && naiveWrong)
+                ++report.bothWrong;
+            else if (accelWrong)
+                ++report.accelOnlyWrong;
+            else if (naiveWrong)
+                ++report.naiveOnlyWrong;
+            else
+                ++report.ambiguous;
         }
-        if (!occlusion) continue;
+        if (accelWrong && !withNaive)
+            example(i, fmt::format("structure {} [{}: {}]; reference {}", describe(a), verdictName(ja.verdict),
+                                   ja.reason, describe(ref.oracle[i])));
+        else if (accelWrong || naiveWrong)
+            example(i,
+                    fmt::format("accelerator {} [{}: {}]; naive {} [{}{}{}]; oracle {}", describe(a),
+                                verdictName(ja.verdict), ja.reason, describe(n), verdictName(ref.naiveVerdict[i]),
+                                naiveWrong ? ": " : "", naiveWrong ? ref.naiveReason[i] : "", describe(ref.oracle[i])));
+    }
 
-        // isOccluded must answer "is there a hit" exactly as findNearest did, except for a hit
-        // within hitsAgree's tolerance of an interval end.
+    // isOccluded must answer "is there a hit" exactly as findNearest did (`a`), except for a hit
+    // within hitsAgree's tolerance of an interval end.
+    void occlusion(const Accelerator& accel, size_t i, const Hit& a) const {
+        const Ray& ray = rays[i];
         QueryCounters occCounters;
         const bool occluded = accel.isOccluded(ray, occCounters);
         if (occCounters.queries != 1) {
@@ -141,6 +151,22 @@ ComparisonReport compareWithReference(const Accelerator& accel, const Reference&
                                                 shorter.tmax, describe(a)));
             }
         }
+    }
+};
+
+}  // namespace
+
+ComparisonReport compareWithReference(const Accelerator& accel, const Reference& ref, const Oracle& oracle,
+                                      std::span<const Ray> rays, size_t maxExamples, bool occlusion) {
+    ComparisonReport report;
+    report.rays = rays.size();
+    const RayComparison compare{report, rays, maxExamples};
+    // Without the oracle's answers (an empty Reference), the interface contract alone.
+    const bool judged = !ref.oracle.empty();
+    for (size_t i = 0; i < rays.size(); ++i) {
+        const Hit a = compare.nearest(accel, i);
+        if (judged) compare.judge(ref, oracle, i, a);
+        if (occlusion) compare.occlusion(accel, i, a);
     }
     return report;
 }

@@ -157,6 +157,90 @@ MeshTopology MeshTopology::of(const Scene& scene) {
     return m;
 }
 
+namespace {
+
+using Rim = std::vector<std::pair<DVec3, DVec3>>;  // segments bounding the faces around a point
+
+// A point on an interior vertex, or inside an interior edge, of a mesh.
+struct ProbePoint {
+    DVec3 p;
+    uint32_t feature;  // the vertex or the edge
+    bool atVertex;
+    double localSize;  // the mean length of the vertex's edges, or the edge's length
+};
+
+// A random point on one of `vertices` (with probability vertexFraction) or `edges`, with the faces
+// around it and their rim.
+ProbePoint pickPoint(const MeshTopology& m, const std::vector<uint32_t>& vertices, const std::vector<uint32_t>& edges,
+                     double vertexFraction, VerifyRng& rng, std::vector<uint32_t>& faces, Rim& rim) {
+    faces.clear();
+    rim.clear();
+    const bool atVertex = edges.empty() || (!vertices.empty() && rng.uniform() < vertexFraction);
+    if (atVertex) {
+        const uint32_t v = vertices[rng.index(vertices.size())];
+        const DVec3& p = m.vertices[v];
+        double sum = 0.0;
+        for (uint32_t k = m.starOffsets[v]; k < m.starOffsets[v + 1]; ++k) {
+            const MeshTopology::Face& f = m.faces[m.starFaces[k]];
+            faces.push_back(m.starFaces[k]);
+            const int at = f.v[0] == v ? 0 : f.v[1] == v ? 1 : 2;
+            const DVec3& u = m.vertices[f.v[(at + 1) % 3]];
+            const DVec3& w = m.vertices[f.v[(at + 2) % 3]];
+            rim.emplace_back(u, w);
+            sum += glm::length(u - p);
+        }
+        return {p, v, true, sum / double(faces.size())};
+    }
+    const uint32_t edge = edges[rng.index(edges.size())];
+    const MeshTopology::Edge& e = m.interiorEdges[edge];
+    const DVec3 &a = m.vertices[e.a], &b = m.vertices[e.b];
+    const DVec3 p = a + rng.uniform(0.01, 0.99) * (b - a);
+    for (uint32_t fi : e.faces) {
+        faces.push_back(fi);
+        const MeshTopology::Face& f = m.faces[fi];
+        const uint32_t c = f.v[0] != e.a && f.v[0] != e.b ? f.v[0] : f.v[1] != e.a && f.v[1] != e.b ? f.v[1] : f.v[2];
+        rim.emplace_back(a, m.vertices[c]);
+        rim.emplace_back(b, m.vertices[c]);
+    }
+    return {p, edge, false, glm::length(b - a)};
+}
+
+// How squarely the least front-facing of `faces` faces direction d (the smallest cosine).
+double worstFacing(const MeshTopology& m, const std::vector<uint32_t>& faces, const DVec3& d) {
+    double worst = 1.0;
+    for (uint32_t f : faces) worst = std::min(worst, glm::dot(m.faces[f].normal, d));
+    return worst;
+}
+
+// A direction within the cone where every one of `faces` is front-facing by more than sinMin;
+// zero when none is found.
+DVec3 frontFacingDirection(const MeshTopology& m, const std::vector<uint32_t>& faces, double sinMin, VerifyRng& rng) {
+    DVec3 mean(0.0);
+    for (uint32_t f : faces) mean += m.faces[f].normal;
+    if (!(glm::length(mean) > 1e-9)) return DVec3(0.0);
+    mean = glm::normalize(mean);
+    for (int tries = 0; tries < 8; ++tries) {
+        const DVec3 d = glm::normalize(mean + rng.uniform(0.0, 1.2) * rng.unitVector());
+        if (worstFacing(m, faces, d) > sinMin) return d;
+    }
+    return DVec3(0.0);
+}
+
+// Whether the ray towards p along u, from `length` away, passes clear of the rim by more than
+// the float ray and the float triangle test may stray from the point: a few roundings of the
+// distances involved; 256 float epsilons leave a wide margin.
+bool clearOfRim(const DVec3& p, const DVec3& u, double length, const Rim& rim) {
+    constexpr double kStrayUlps = 256.0 * 0x1.0p-24;
+    double reach = 0.0;
+    for (const auto& [a, b] : rim) reach = std::max({reach, glm::length(a - p), glm::length(b - p)});
+    const double stray = kStrayUlps * (length + reach);
+    for (const auto& [a, b] : rim)
+        if (distanceAcross(p, u, a, b) < stray) return false;
+    return true;
+}
+
+}  // namespace
+
 ProbeSet makeWatertightProbes(const MeshTopology& m, const ProbeOptions& o) {
     ProbeSet set;
     std::vector<uint32_t> vertices;
@@ -173,97 +257,30 @@ ProbeSet makeWatertightProbes(const MeshTopology& m, const ProbeOptions& o) {
     VerifyRng rng(o.seed * 0x2545F4914F6CDD1Dull + 0x1234567);
     const double radius = 0.5 * glm::length(DVec3(m.bounds.diagonal()));
     const double sinMin = std::sin(o.minDegreesFromGrazing * std::numbers::pi / 180.0);
-    // Bound on how far (across the ray) the float ray and the float triangle test may stray from
-    // the point, in units of the float epsilon times the distances involved: a few roundings
-    // suffice; 256 leaves a wide margin.
-    constexpr double kStrayUlps = 256.0 * 0x1.0p-24;
-
     std::vector<uint32_t> faces;
-    std::vector<std::pair<DVec3, DVec3>> rim;  // segments bounding the faces around the point
+    Rim rim;
     set.probes.reserve(o.rays);
     for (size_t r = 0; r < o.rays; ++r) {
         for (int attempt = 0; attempt < o.maxAttemptsPerRay; ++attempt) {
             ++set.candidates;
-            faces.clear();
-            rim.clear();
-            const bool atVertex = edges.empty() || (!vertices.empty() && rng.uniform() < o.vertexFraction);
-            DVec3 p;
-            uint32_t feature;
-            double localSize;
-            if (atVertex) {
-                feature = vertices[rng.index(vertices.size())];
-                p = m.vertices[feature];
-                double sum = 0.0;
-                for (uint32_t k = m.starOffsets[feature]; k < m.starOffsets[feature + 1]; ++k) {
-                    const MeshTopology::Face& f = m.faces[m.starFaces[k]];
-                    faces.push_back(m.starFaces[k]);
-                    const int at = f.v[0] == feature ? 0 : f.v[1] == feature ? 1 : 2;
-                    const DVec3& u = m.vertices[f.v[(at + 1) % 3]];
-                    const DVec3& w = m.vertices[f.v[(at + 2) % 3]];
-                    rim.emplace_back(u, w);
-                    sum += glm::length(u - p);
-                }
-                localSize = sum / double(faces.size());
-            } else {
-                feature = edges[rng.index(edges.size())];
-                const MeshTopology::Edge& e = m.interiorEdges[feature];
-                const DVec3 &a = m.vertices[e.a], &b = m.vertices[e.b];
-                p = a + rng.uniform(0.01, 0.99) * (b - a);
-                localSize = glm::length(b - a);
-                for (uint32_t fi : e.faces) {
-                    faces.push_back(fi);
-                    const MeshTopology::Face& f = m.faces[fi];
-                    const uint32_t c = f.v[0] != e.a && f.v[0] != e.b   ? f.v[0]
-                                       : f.v[1] != e.a && f.v[1] != e.b ? f.v[1]
-                                                                        : f.v[2];
-                    rim.emplace_back(a, m.vertices[c]);
-                    rim.emplace_back(b, m.vertices[c]);
-                }
-            }
-
-            // A direction within the cone where every face around p is front-facing by > sinMin.
-            DVec3 mean(0.0);
-            for (uint32_t f : faces) mean += m.faces[f].normal;
-            if (!(glm::length(mean) > 1e-9)) continue;
-            mean = glm::normalize(mean);
-            auto worstFacing = [&](const DVec3& d) {
-                double worst = 1.0;
-                for (uint32_t f : faces) worst = std::min(worst, glm::dot(m.faces[f].normal, d));
-                return worst;
-            };
-            DVec3 out(0.0);
-            for (int tries = 0; tries < 8; ++tries) {
-                const DVec3 d = glm::normalize(mean + rng.uniform(0.0, 1.2) * rng.unitVector());
-                if (worstFacing(d) > sinMin) {
-                    out = d;
-                    break;
-                }
-            }
+            const ProbePoint point = pickPoint(m, vertices, edges, o.vertexFraction, rng, faces, rim);
+            const DVec3 out = frontFacingDirection(m, faces, sinMin, rng);
             if (out == DVec3(0.0)) continue;
 
-            const double lo = o.minDistance * localSize, hi = std::max(o.maxDistance * radius, lo * 1.0001);
+            const double lo = o.minDistance * point.localSize, hi = std::max(o.maxDistance * radius, lo * 1.0001);
             if (!(lo > 0) || !std::isfinite(hi)) continue;
             const double distance = rng.logUniform(lo, hi);
-            const Vec3 org(p + distance * out);
+            const Vec3 org(point.p + distance * out);
             if (!isFinite(org)) continue;
-            const DVec3 toP = p - DVec3(org);
+            const DVec3 toP = point.p - DVec3(org);
             const double length = glm::length(toP);
             if (!(length > 0)) continue;
             const DVec3 u = toP / length;
-            if (worstFacing(-u) <= sinMin) continue;  // the rounded origin moved the ray too far
-            double reach = 0.0;
-            for (const auto& [a, b] : rim) reach = std::max({reach, glm::length(a - p), glm::length(b - p)});
-            const double stray = kStrayUlps * (length + reach);
-            bool clear = true;
-            for (const auto& [a, b] : rim)
-                if (distanceAcross(p, u, a, b) < stray) {
-                    clear = false;
-                    break;
-                }
-            if (!clear) continue;
+            if (worstFacing(m, faces, -u) <= sinMin) continue;  // the rounded origin moved the ray too far
+            if (!clearOfRim(point.p, u, length, rim)) continue;
 
             const Ray ray{org, Vec3(u), 0.0f, float(o.tmaxFactor * length)};
-            set.probes.push_back({ray, p, feature, atVertex});
+            set.probes.push_back({ray, point.p, point.feature, point.atVertex});
             break;
         }
     }

@@ -42,15 +42,9 @@ Soup diagonalSlivers(size_t n, uint32_t seed) {
 
 // Small triangles anywhere, and a tenth of them slivers: a scene of both kinds.
 Soup mixedSoup(size_t n, uint32_t seed) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> pos(0.0f, 10.0f), offset(-0.5f, 0.5f);
     Soup soup = diagonalSlivers(n / 10, seed);
-    while (soup.triangles.size() < n) {
-        const Vec3 p(pos(rng), pos(rng), pos(rng));
-        const Triangle t{p, p + Vec3(offset(rng), offset(rng), offset(rng)),
-                         p + Vec3(offset(rng), offset(rng), offset(rng))};
-        if (!isDegenerate(t)) soup.add(t);
-    }
+    const Soup rest = test::randomSoup(n - soup.triangles.size(), seed, 10.0f, 0.5f);
+    for (const Triangle& t : rest.triangles) soup.add(t);
     return soup;
 }
 
