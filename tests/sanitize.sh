@@ -13,7 +13,9 @@
 # Extra arguments go to ctest.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-cmake -S . -B build-san -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBVHLAB_SANITIZE=ON
+# Not warnings as errors: at -O1 under ASan GCC 12 warns (-Wmaybe-uninitialized) inside <regex>.
+cmake -S . -B build-san -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBVHLAB_SANITIZE=ON \
+  -DCMAKE_COMPILE_WARNING_AS_ERROR=OFF
 cmake --build build-san -j "$(nproc)"
 not_here='SharedScenes|SlurmCluster|PluginExample|PackageAddSubdirectory|ClangPluginLoads|RelocatedInstall'
 not_here+='|^Format$|^ConfigureIsQuiet$'
