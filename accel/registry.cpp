@@ -135,13 +135,28 @@ void registerAcceleratorKeys(EnvRegistry& registry) {
     for (EnvKey& key : ownAdditions().keys()) registry.add(std::move(key));
 }
 
-std::unique_ptr<Accelerator> createAccelerator(const std::string& name, const Env& env) {
+namespace {
+
+// Throws InputError naming the unknown accelerator and the known ones.
+const AcceleratorInfo& acceleratorNamed(const std::string& name) {
+    if (const AcceleratorInfo* info = findAccelerator(name)) return *info;
     std::vector<std::string> names;
-    for (const AcceleratorInfo& info : acceleratorInfos()) {
-        if (info.name == name) return info.create(env);
-        names.push_back(info.name);
-    }
+    for (const AcceleratorInfo& info : acceleratorInfos()) names.push_back(info.name);
     throw InputError(fmt::format("unknown accelerator '{}' (known: {})", name, fmt::join(names, ", ")));
+}
+
+}  // namespace
+
+std::unique_ptr<Accelerator> createAccelerator(const std::string& name, const Env& env) {
+    return acceleratorNamed(name).create(env);
+}
+
+std::unique_ptr<TwoLevelAccelerator> createTwoLevel(std::vector<Instance> instances, const std::string& bottom,
+                                                    const Env& env) {
+    auto create = acceleratorNamed(bottom).create;
+    auto values = std::make_shared<const Env>(env);
+    return std::make_unique<TwoLevelAccelerator>(
+        std::move(instances), [create, values] { return create(*values); }, bvhSettingsFromEnv(env).build);
 }
 
 }  // namespace bvhlab

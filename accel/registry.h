@@ -6,6 +6,7 @@
 #pragma once
 
 #include "accel/plugins/plugin_additions.h"
+#include "accel/twolevel/two_level_accelerator.h"
 #include "framework/config/env.h"
 #include "framework/core/accelerator.h"
 
@@ -53,6 +54,12 @@ std::unique_ptr<Accelerator> createAccelerator(const std::string& name, const En
 inline std::unique_ptr<Accelerator> createAccelerator(const Env& env) {
     return createAccelerator(env.get(keys::ASDS::type), env);
 }
+
+// Two levels over `instances`: each instance's structure the accelerator `bottom` made with the
+// env's values, the top level built by binned SAH with the env's BVH:: keys. Throws as
+// createAccelerator does for an unknown `bottom`.
+std::unique_ptr<TwoLevelAccelerator> createTwoLevel(std::vector<Instance> instances, const std::string& bottom,
+                                                    const Env& env);
 
 // ASDS::type, ASDS::plugins and the keys of bvhlab's own accelerators (a plugin's are
 // registered when it is loaded).
