@@ -79,6 +79,8 @@ std::string readFileBytes(const std::filesystem::path& file) {
     throw inputError(file, 0, fmt::format("cannot read: {}", message));
 }
 
+bool readsOtherFiles(const std::filesystem::path& file) { return lowercaseExtension(uncompressedName(file)) == ".aff"; }
+
 std::filesystem::path uncompressedName(const std::filesystem::path& file) {
     return lowercaseExtension(file) == ".gz" ? file.stem() : file.filename();
 }

@@ -13,6 +13,10 @@ Scene loadScene(const std::filesystem::path& file);
 // An animated scene (.aff, optionally .gz), at its start time. A still format is an error.
 AnimatedScene loadAnimatedScene(const std::filesystem::path& file);
 
+// True for a format whose scene can span other files (AFF's includes): a checksum of `file`
+// alone does not identify its content, so the scene cache passes it by.
+bool readsOtherFiles(const std::filesystem::path& file);
+
 // The file's name as loadScene reads it: without its folder and a trailing .gz (a10.obj.gz -> a10.obj).
 std::filesystem::path uncompressedName(const std::filesystem::path& file);
 
