@@ -41,18 +41,15 @@ struct TransformNode {
     glm::dmat4 local{1.0};  // static nodes
 };
 
-template <typename T>
-struct Range {
+// Elements first .. first + count - 1 of one of the Scene's arrays.
+struct IndexRange {
     uint32_t first = 0, count = 0;
     uint32_t end() const { return first + count; }
 };
 
 struct RigidPart {
     int node = -1;  // the innermost transform; its chain up to the root places the part
-    Range<Vec3> vertices;
-    Range<glm::uvec3> triangles;
-    Range<Sphere> spheres;
-    Range<Cone> cones;
+    IndexRange vertices, triangles, spheres, cones;
     // The geometry in the part's object space, before any of its transforms.
     std::vector<Vec3> positions;
     std::vector<Vec3> normals;  // empty when the scene has no normals; zero: none at this vertex

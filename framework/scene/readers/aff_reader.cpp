@@ -22,7 +22,8 @@
 //   angles in degrees. Visibility keys are read and ignored (a warning): objects stay visible.
 //   `k camera` moves the `v` block's eye (translation) and turns its view (rotation: looking
 //   along -z, y up); `la NAME x y z [r g b]` is a light whose position follows `k NAME`'s
-//   translation.
+//   translation. Lights and the viewpoint are in world space wherever they stand, as BART's
+//   parser takes them.
 // - `tpa N`: N keys of a time and three vertices with normals, interpolated linearly, held
 //   before the first key and after the last (BART's definition).
 // - `m`: `vertices N`, optional `normals N`, optional `texturecoords N FILE`, `triangles N`

@@ -268,6 +268,33 @@ TEST(AffReader, IncludesInsideTransforms) {
     expectDerivedAsFinalize(animated.scene);
 }
 
+// Includes above the detail level are skipped; visibility keys and keyframes that move nothing are
+// warnings; keyframes read again (a file included twice) replace the earlier ones.
+TEST(AffReader, DetailLevelsAndWarnings) {
+    TempDir dir;
+    dir.write("tri.aff", "p 3\n0 0 0\n1 0 0\n0 1 0\n");
+    for (const char* y : {"1", "3"}) {
+        dir.write(
+            fmt::format("keys{}.aff", y),
+            fmt::format("k up\n{{\n transl 4\n -1 0 0 0 0 0 0\n 0 0 0 0 0 0 0\n 1 0 {} 0 0 0 0\n 2 0 2 0 0 0 0\n}}\n",
+                        y));
+    }
+    const fs::path root = dir.write("root.aff",
+                                    "i 0 tri.aff\ni 1 tri.aff\nd 1\ni 1 tri.aff\ni 2 tri.aff\n"
+                                    "x up\n{\n i 0 tri.aff\n}\ni 0 keys1.aff\ni 0 keys3.aff\n"
+                                    "k unused\n{\n visibility 2\n 0 1\n 1 0\n}\n");
+    AnimatedScene animated = loadAnimatedScene(root);
+    EXPECT_EQ(animated.scene.triangleCount(), 3u);
+    const auto warns = [&](std::string_view part) {
+        return std::any_of(animated.scene.report.warnings.begin(), animated.scene.report.warnings.end(),
+                           [&](const std::string& w) { return w.find(part) != std::string::npos; });
+    };
+    EXPECT_TRUE(warns("root.aff:12: keyframes 'k unused' move nothing"));
+    EXPECT_TRUE(warns("1 visibility keyframe blocks ignored"));
+    animated.setTime(1.0f);
+    expectVec(animated.scene.triangles[2].v0, {0, 3, 0});  // keys3.aff's key
+}
+
 TEST(AffReader, LineEndsCommentsAndOtherEncodings) {
     const AnimatedScene lf = loadSample();
     const AnimatedScene crlf = loadSample("\r\n");
