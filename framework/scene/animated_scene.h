@@ -48,9 +48,10 @@ struct IndexRange {
 };
 
 struct RigidPart {
-    int node = -1;  // the innermost transform; its chain up to the root places the part
+    int node = -1;  // its innermost animated transform, whose chain up to the root places the part
     IndexRange vertices, triangles, spheres, cones;
-    // The geometry in the part's object space, before any of its transforms.
+    // The geometry in the part's object space: the static transforms below `node` applied (at
+    // load), those of `node`'s chain not.
     std::vector<Vec3> positions;
     std::vector<Vec3> normals;  // empty when the scene has no normals; zero: none at this vertex
     std::vector<Sphere> objectSpheres;
@@ -59,7 +60,7 @@ struct RigidPart {
 
 struct AnimatedTriangle {
     uint32_t triangle = 0;     // in the Scene; its three vertices are its own
-    int node = -1;             // the transform it is under, if animated; -1: keys in world space
+    int node = -1;             // its innermost animated transform, or -1: keys in world space
     std::vector<float> times;  // ascending
     std::vector<std::array<Vec3, 3>> positions, normals;  // per key
 };

@@ -130,7 +130,6 @@ private:
     uint32_t material_ = 0;
     int detail_ = 0;
     bool hasNormals_ = false;
-    bool hasAnimation_ = false;
     size_t textureReferences_ = 0;
     size_t visibilityBlocks_ = 0;
     PolygonTriangulator triangulator_;
@@ -227,7 +226,6 @@ void AffReader::readEntity(TextParser& text, std::string_view keyword, const fs:
         if (frames < 1 || frames > (int64_t(1) << 30))
             throw text.error(fmt::format("{} frames: need 1 or more", frames));
         out_.frameCount = int(frames);
-        hasAnimation_ = true;
     } else {
         throw text.error(fmt::format("unknown AFF keyword {}", quoted(keyword)));
     }
@@ -423,7 +421,6 @@ void AffReader::readKeyframes(TextParser& text, const fs::path& file) {
     use.defined = true;
     use.definition = origin;
     if (name == "camera") out_.cameraTrack = index;
-    hasAnimation_ = true;
 
     for (std::string_view type = text.next(); type != "}"; type = text.next()) {
         if (type.empty()) throw inputError(origin.file, origin.line, fmt::format("missing '}}' of 'k {}'", name));
@@ -591,7 +588,6 @@ void AffReader::finish(const fs::path& root) {
         scene_.report.warnings.push_back(fmt::format("{}: {} visibility keyframe blocks ignored (objects stay visible)",
                                                      root.string(), visibilityBlocks_));
     scene_.report.skippedTextureReferences = textureReferences_;
-    if (!hasAnimation_) out_.startTime = out_.endTime = 0.0f;
     scene_.finalize();
     out_.prepare();
 }
