@@ -116,7 +116,7 @@ void bindScene(py::module_& m) {
         });
 
     m.def("load_scene", &loadNamedScene, py::arg("scene") = "", py::arg("env") = py::none(),
-          "A scene file (.obj .ply .off .nff, optionally .gz) or a scene's name (env/scenes/NAME.env), as "
+          "A scene file (.obj .ply .off .nff .aff, optionally .gz) or a scene's name (env/scenes/NAME.env), as "
           "bvhlab --scene reads it, with env/global.env, the scene's env file and `env` layered; empty: "
           "Scene::file, else the embedded scene.");
 

@@ -8,9 +8,9 @@ namespace bvhlab {
 
 namespace keys::Scene {
 inline constexpr PathKey dir{"Scene::dir", "../shared/scenes", "folder that relative Scene::file names are read from"};
-inline constexpr TextKey file{
-    "Scene::file", "",
-    "scene file (.obj .ply .off .nff, optionally .gz), relative to Scene::dir; empty = the embedded default scene"};
+inline constexpr TextKey file{"Scene::file", "",
+                              "scene file (.obj .ply .off .nff .aff, optionally .gz), relative to Scene::dir; empty = "
+                              "the embedded default scene"};
 inline constexpr PathKey cacheDir{
     "Scene::cacheDir", "$XDG_CACHE_HOME/bvhlab/scenes",
     "binary cache of parsed scenes, keyed by the source file's bytes (bvhlab batch); empty = no cache"};

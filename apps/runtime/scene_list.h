@@ -1,6 +1,6 @@
 // The scenes a batch, bench, tradeoff or stress run goes over, as --scenes names them: scene
 // env files (.env: camera, lights, Scene::file), .list files of env files (one per line,
-// relative to the list's folder, `#` comments), scene files (.obj .ply .off .nff, .gz; here or
+// relative to the list's folder, `#` comments), scene files (.obj .ply .off .nff .aff, .gz; here or
 // in Scene::dir), each taken with the env file under env/scenes/ that names it (sceneEnvFor),
 // or scenes' names (teapots for env/scenes/teapots.env), as --scene takes them (chooseScene).
 #pragma once

@@ -34,7 +34,7 @@ Scene loadSceneFor(const Env& env, bool useCache, SceneLoadInfo* info) {
     Scene scene;
     if (path.empty()) {
         scene = makeDefaultScene();
-    } else if (cacheDir.empty()) {
+    } else if (cacheDir.empty() || readsOtherFiles(path)) {
         scene = loadScene(path);
     } else {
         CachedScene cached = loadSceneCached(path, cacheDir);

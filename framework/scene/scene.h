@@ -47,8 +47,9 @@ struct LoadReport {
     size_t degenerateTriangles = 0;  // see isDegenerate (scene.h, sphere.h, cone.h): kept,
     size_t degenerateSpheres = 0;    // never built over
     size_t degenerateCones = 0;
-    size_t skippedPolygons = 0;     // faces of 4+ vertices without an exact cover (PolygonProblem)
-    size_t earClippedPolygons = 0;  // non-convex faces, triangulated by ear clipping
+    size_t skippedPolygons = 0;           // faces of 4+ vertices without an exact cover (PolygonProblem)
+    size_t earClippedPolygons = 0;        // non-convex faces, triangulated by ear clipping
+    size_t skippedTextureReferences = 0;  // AFF's textures (tt, ttp, texturecoords): geometry read, image not
     std::vector<std::string> warnings;
 };
 

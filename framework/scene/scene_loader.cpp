@@ -20,8 +20,11 @@ struct SceneFormat {
     bool text;  // binary data is refused before the reader sees it
 };
 
-constexpr SceneFormat kSceneFormats[] = {
-    {".obj", readObj, true}, {".ply", readPly, false}, {".off", readOff, true}, {".nff", readNff, true}};
+constexpr SceneFormat kSceneFormats[] = {{".obj", readObj, true},
+                                         {".ply", readPly, false},
+                                         {".off", readOff, true},
+                                         {".nff", readNff, true},
+                                         {".aff", readAff, true}};
 
 // The text readers skip (OBJ) or misread what they do not know, so binary data would load as
 // an empty or garbled scene. Text holds no control characters but whitespace (and DOS's
@@ -56,12 +59,13 @@ std::string readFileBytes(const std::filesystem::path& file) {
     if (!gz) throw inputError(file, 0, fmt::format("cannot open: {}", std::strerror(errno)));
     gzbuffer(gz.get(), 1 << 20);
 
-    constexpr unsigned kChunkBytes = 1 << 24;
+    // Chunks that double up to 16 MiB: a small file (AFF includes many) zeroes little.
+    constexpr unsigned kMaxChunkBytes = 1 << 24;
     std::string bytes;
-    for (;;) {
+    for (unsigned chunk = 1 << 16;; chunk = std::min(2 * chunk, kMaxChunkBytes)) {
         const size_t used = bytes.size();
-        bytes.resize(used + kChunkBytes);  // std::string grows its capacity geometrically
-        const int n = gzread(gz.get(), bytes.data() + used, kChunkBytes);
+        bytes.resize(used + chunk);  // std::string grows its capacity geometrically
+        const int n = gzread(gz.get(), bytes.data() + used, chunk);
         bytes.resize(used + std::max(n, 0));
         if (n <= 0) break;
     }
@@ -75,6 +79,8 @@ std::string readFileBytes(const std::filesystem::path& file) {
     throw inputError(file, 0, fmt::format("cannot read: {}", message));
 }
 
+bool readsOtherFiles(const std::filesystem::path& file) { return lowercaseExtension(uncompressedName(file)) == ".aff"; }
+
 std::filesystem::path uncompressedName(const std::filesystem::path& file) {
     return lowercaseExtension(file) == ".gz" ? file.stem() : file.filename();
 }
@@ -85,7 +91,7 @@ Scene loadScene(const std::filesystem::path& file) {
     const auto format = std::find_if(std::begin(kSceneFormats), std::end(kSceneFormats),
                                      [&](const SceneFormat& f) { return ext == f.extension; });
     if (format == std::end(kSceneFormats)) {
-        throw inputError(file, 0, "unknown scene format; supported: .obj .ply .off .nff, each optionally .gz");
+        throw inputError(file, 0, "unknown scene format; supported: .obj .ply .off .nff .aff, each optionally .gz");
     }
 
     const std::string bytes = readFileBytes(file);
@@ -96,6 +102,19 @@ Scene loadScene(const std::filesystem::path& file) {
     scene.finalize();
     requireSomethingToRender(scene);
     return scene;
+}
+
+AnimatedScene loadAnimatedScene(const std::filesystem::path& file) {
+    const std::filesystem::path uncompressed = uncompressedName(file);
+    if (lowercaseExtension(uncompressed) != ".aff")
+        throw inputError(file, 0, "not an animated scene: supported: .aff, optionally .gz");
+    const std::string bytes = readFileBytes(file);
+    requireText(file, bytes, ".aff");
+    AnimatedScene animated = readAnimatedAff(file, bytes);
+    animated.scene.name = uncompressed.stem().string();
+    animated.scene.source = file;
+    requireSomethingToRender(animated.scene);
+    return animated;
 }
 
 void requireSomethingToRender(const Scene& scene) {

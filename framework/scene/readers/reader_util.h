@@ -33,6 +33,9 @@ public:
     // The parser keeps a reference to the file name for its errors.
     TextParser(std::filesystem::path&&, std::string_view, bool, size_t = 1) = delete;
 
+    // Also comments out the rest of a line from a token starting with `c` (AFF's '%').
+    void alsoCommentWith(char c) { otherComment_ = c; }
+
     // The next token on the current line, or empty at its end.
     std::string_view nextOnLine() {
         if (atLineEnd()) return {};
@@ -54,7 +57,8 @@ public:
     // True when the current line holds no more tokens (comments do not count).
     bool atLineEnd() {
         while (pos_ < text_.size() && isSpace(text_[pos_]) && text_[pos_] != '\n') ++pos_;
-        if (hashComments_ && pos_ < text_.size() && text_[pos_] == '#') {
+        if (pos_ < text_.size() &&
+            ((hashComments_ && text_[pos_] == '#') || (otherComment_ && text_[pos_] == otherComment_))) {
             while (pos_ < text_.size() && text_[pos_] != '\n') ++pos_;
         }
         return pos_ == text_.size() || text_[pos_] == '\n';
@@ -90,6 +94,7 @@ public:
     size_t line() const { return line_; }
     // Byte offset of the parser in the text, for readers that switch to binary data.
     size_t offset() const { return pos_; }
+    size_t bytesLeft() const { return text_.size() - pos_; }
     InputError error(const std::string& message) const { return inputError(file_, line_, message); }
 
 private:
@@ -109,6 +114,7 @@ private:
     const std::filesystem::path& file_;
     std::string_view text_;
     bool hashComments_;
+    char otherComment_ = '\0';
     size_t pos_ = 0;
     size_t line_;
 };

@@ -1,0 +1,20 @@
+// Checks on a Scene whose vertices were moved in place (AnimatedScene::setTime).
+#pragma once
+
+#include "framework/scene/scene.h"
+
+#include <gtest/gtest.h>
+
+namespace bvhlab::test {
+
+// What setTime derives must be what a full finalize derives from the moved vertices.
+inline void expectDerivedAsFinalize(const Scene& scene) {
+    Scene fresh = scene;
+    fresh.finalize();
+    EXPECT_EQ(scene.bounds.lower, fresh.bounds.lower);
+    EXPECT_EQ(scene.bounds.upper, fresh.bounds.upper);
+    EXPECT_EQ(scene.validPrimitives, fresh.validPrimitives);
+    for (size_t i = 0; i < scene.triangleCount(); ++i) ASSERT_EQ(scene.triangles[i].v1, fresh.triangles[i].v1) << i;
+}
+
+}  // namespace bvhlab::test
