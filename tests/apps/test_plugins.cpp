@@ -22,8 +22,9 @@ const std::string kThrowing = kPlugins + "/throwing.so";
 const std::string kBuilders = kPlugins + "/builders.so";
 const std::string kCrashing = kPlugins + "/crashing.so";
 const std::string kUnoptimized = kPlugins + "/throwing_unoptimized.so";
-// The test plugins but throwing_unoptimized.so are compiled as this file is.
-#ifdef __OPTIMIZE__
+// The test plugins but throwing_unoptimized.so are compiled as this file is, but for the sanitizer
+// build, which compiles them at -O1 and the test sources at -O0 (tests/CMakeLists.txt).
+#if defined(__OPTIMIZE__) || defined(__SANITIZE_ADDRESS__)
 constexpr bool kPluginsOptimized = true;
 #else
 constexpr bool kPluginsOptimized = false;
@@ -271,8 +272,16 @@ TEST(Plugins, APluginCompiledWithoutOptimisationIsMeasuredWithAWarning) {
     EXPECT_NE(plugin["cxx_flags"].get<std::string>().find("-O0"), std::string::npos) << plugin.dump();
 }
 
+// Under AddressSanitizer (tests/sanitize.sh) pairs8 alone: the three share the adapter's code up
+// to the wide layouts' collapse, and the layouts' traversal runs there in the conformance suite.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr const char* kPairsTrees[] = {"pairs8"};
+#else
+constexpr const char* kPairsTrees[] = {"pairs", "pairs4", "pairs8"};
+#endif
+
 TEST(Plugins, ABuilderBecomesThreeAcceleratorsThatAnswerAsTheReference) {
-    for (const char* name : {"pairs", "pairs4", "pairs8"}) {
+    for (const char* name : kPairsTrees) {
         const Result r =
             run(fmt::format("check --plugin {} --accel {} --checks agreement,mixed-primitives", kBuilders, name));
         EXPECT_EQ(r.exitCode, 0) << name << "\n" << r.output;
