@@ -31,7 +31,7 @@ template <typename Layout>
 std::unique_ptr<Accelerator> makeBvhAccelerator(const BuilderMaker& makeBuilder, const Env& env) {
     const BvhSettings settings = bvhSettingsFromEnv(env);
     return std::make_unique<BvhAccelerator<Layout>>(makeBuilder(env), settings.build, settings.traversal,
-                                                    settings.stats);
+                                                    settings.stats, settings.update);
 }
 
 std::vector<AcceleratorInfo> bvhInfos(const std::string& name, const std::string& description,

@@ -12,6 +12,7 @@ BvhBuildConfig& build(BvhSettings& s) { return s.build; }
 InsertionConfig& insertion(BvhSettings& s) { return s.build.insertion; }
 TraversalConfig& traversal(BvhSettings& s) { return s.traversal; }
 BvhStatsConfig& stats(BvhSettings& s) { return s.stats; }
+BvhUpdateConfig& update(BvhSettings& s) { return s.update; }
 BvhSettings& settings(BvhSettings& s) { return s; }
 
 }  // namespace
@@ -25,6 +26,7 @@ const BvhKeys& bvhCommonKeys() {
         {kBvhOptimizeKeys, build},
         {kInsertionKeys, insertion},
         {kTraversalPathKeys, traversal},
+        {kBvhUpdateKeys, update},
     });
     return bound;
 }
