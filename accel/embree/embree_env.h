@@ -12,8 +12,9 @@ namespace keys::Embree {
 inline constexpr std::string_view kQualities[] = {"low", "medium", "high", "refit"};
 inline constexpr ChoiceKey quality{
     "Embree::quality", "medium", kQualities,
-    "Embree build quality: low (two-level, fastest build), medium (default), high (spatial splits), refit (two-level, "
-    "each geometry's tree built to be refitted by an update: RTC_BUILD_QUALITY_REFIT; the others have no update)"};
+    "Embree build quality: low (two-level, fastest build), medium (default), high (spatial splits), refit (a dynamic "
+    "two-level scene, each geometry's tree built to be refitted by an update: RTC_BUILD_QUALITY_REFIT; the others "
+    "have no update)"};
 inline constexpr BoolKey robust{
     "Embree::robust", "false",
     "RTC_SCENE_FLAG_ROBUST: robust traversal, no optimisations that reduce arithmetic accuracy"};
