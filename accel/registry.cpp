@@ -7,6 +7,7 @@
 #include "accel/naive/naive_accelerator.h"
 #include "accel/plugins/guarded_accelerator.h"
 #include "accel/plugins/plugin_builder.h"
+#include "framework/config/plugin_settings.h"
 #include "framework/core/error.h"
 
 #include <fmt/ranges.h>
@@ -15,75 +16,89 @@ namespace bvhlab {
 
 namespace {
 
-std::string wideDescription(const std::string& builder, int width) {
-    return fmt::format(
-        "{}'s tree (leaves charged by blocks of eight) in {}-wide nodes, {} child boxes tested at "
-        "once, leaves eight triangles at once, in the SIMD kernels BVH::isa chooses at run time; N_TR "
-        "counts wide steps",
-        builder, width, width == 4 ? "four" : "eight");
+// bvhlab's own accelerators, added through the registrar a plugin's entry point is given.
+void addOwnAccelerators(PluginRegistrar& registrar) {
+    registrar.addAccelerator({"naive",
+                              "brute force: tests every triangle; the reference the others are tested against",
+                              {},
+                              [](const PluginSettings&) -> Accelerator* { return new NaiveAccelerator(); }});
+    const PluginKeyList embreeKeys(embreeKeyDeclarations());
+    registrar.addAccelerator(
+        {"embree", "Intel Embree 3 (rtcIntersect1/rtcOccluded1): the speed reference; no counters, no visible tree",
+         embreeKeys.view(),
+         [](const PluginSettings& keys) -> Accelerator* { return new EmbreeAccelerator(EmbreeConfig::from(keys)); }});
+    addBvhAccelerators(registrar);
 }
 
-// The accelerator of a builder over one layout: NAME (binary), NAME4 or NAME8. `makeBuilder`
-// gives the builder with the env's values (a plugin's reads its own keys there).
-using BuilderMaker = std::function<BuilderRecord(const Env&)>;
-
-template <typename Layout>
-std::unique_ptr<Accelerator> makeBvhAccelerator(const BuilderMaker& makeBuilder, const Env& env) {
-    const BvhSettings settings = bvhSettingsFromEnv(env);
-    return std::make_unique<BvhAccelerator<Layout>>(makeBuilder(env), settings.build, settings.traversal,
-                                                    settings.stats, settings.update);
+const PluginAdditions& ownAdditions() {
+    static const PluginAdditions additions = [] {
+        RecordingRegistrar registrar;
+        addOwnAccelerators(registrar);
+        checkAdditions("bvhlab", registrar.additions);
+        return std::move(registrar.additions);
+    }();
+    return additions;
 }
 
-std::vector<AcceleratorInfo> bvhInfos(const std::string& name, const std::string& description,
-                                      std::vector<std::string> keys, const std::vector<int>& wideLayouts,
-                                      const BuilderMaker& makeBuilder) {
-    bvhCommonKeys().appendNames(keys);
-    std::vector<AcceleratorInfo> infos = {
-        {name,
-         description,
-         keys,
-         [makeBuilder](const Env& env) { return makeBvhAccelerator<BinaryBvh>(makeBuilder, env); },
-         {}}};
-    for (int width : wideLayouts) {
-        auto create = [makeBuilder, width](const Env& env) {
-            return width == 4 ? makeBvhAccelerator<WideBvh<4>>(makeBuilder, env)
-                              : makeBvhAccelerator<WideBvh<8>>(makeBuilder, env);
-        };
-        infos.push_back({name + std::to_string(width), wideDescription(name, width), keys, create, {}});
-    }
-    return infos;
+std::vector<std::string> namesOf(const std::vector<EnvKey>& keys) {
+    std::vector<std::string> names;
+    for (const EnvKey& key : keys) names.push_back(key.name);
+    return names;
 }
 
-// bvhlab's own: brute force, Embree, and the accelerators of each builder of the table.
-std::vector<AcceleratorInfo> ownInfos() {
-    std::vector<std::string> embreeKeyNames;
-    embreeKeys().appendNames(embreeKeyNames);
-    std::vector<AcceleratorInfo> infos = {
-        {"naive",
-         "brute force: tests every triangle; the reference the others are tested against",
-         {},
-         [](const Env&) { return std::make_unique<NaiveAccelerator>(); },
-         {}},
-        {"embree",
-         "Intel Embree 3 (rtcIntersect1/rtcOccluded1): the speed reference; no counters, no visible tree",
-         embreeKeyNames,
-         [](const Env& env) { return std::make_unique<EmbreeAccelerator>(env); },
-         {}},
+// An accelerator as the registry keeps it: made with the values of its keys in the run's env.
+AcceleratorInfo infoOf(const PluginAcceleratorEntry& a, const std::string& plugin) {
+    std::vector<std::string> keyNames = namesOf(a.keys);
+    auto create = [create = a.create, keyNames, name = a.name](const Env& env) {
+        const EnvPluginSettings settings(env, keyNames, fmt::format("accelerator '{}'", name));
+        return std::unique_ptr<Accelerator>(create(settings));
     };
-    for (const BuilderTableEntry& entry : bvhBuilderTable()) {
-        const BuilderRecord& builder = entry.builder;
-        std::vector<std::string> keys;
-        for (const BvhKeys* own : entry.keys) own->appendNames(keys);
-        for (AcceleratorInfo& info : bvhInfos(builder.name, entry.description, keys, entry.wideLayouts,
-                                              [&builder](const Env&) { return builder; }))
-            infos.push_back(std::move(info));
-    }
-    return infos;
+    return {a.name, a.description, std::move(keyNames), std::move(create), plugin};
+}
+
+// A plugin's builder over one layout: its own keys, and those every BVH accelerator reads.
+template <typename Layout>
+std::unique_ptr<Accelerator> makePluginBvh(const LoadedBuilder& builder, const std::vector<std::string>& keyNames,
+                                           const Env& env) {
+    const EnvPluginSettings keys(env, keyNames, fmt::format("builder '{}'", builder.name));
+    const BvhSettings settings = bvhSettings(keys, {});
+    return std::make_unique<BvhAccelerator<Layout>>(pluginBuilderRecord(builder, env), settings.build,
+                                                    settings.traversal, settings.stats, settings.update);
+}
+
+std::vector<AcceleratorInfo> builderInfos(const PluginBuilderEntry& b, const std::string& plugin) {
+    std::vector<std::string> keyNames = b.builder.keys;
+    for (std::string& key : namesOf(bvhKeyDeclarations({}))) keyNames.push_back(std::move(key));
+    const LoadedBuilder& builder = b.builder;
+    return {
+        {builder.name, b.description, keyNames,
+         [builder, keyNames](const Env& env) { return makePluginBvh<BinaryBvh>(builder, keyNames, env); }, plugin},
+        {builder.name + "4", wideBvhDescription(builder.name, 4), keyNames,
+         [builder, keyNames](const Env& env) { return makePluginBvh<WideBvh<4>>(builder, keyNames, env); }, plugin},
+        {builder.name + "8", wideBvhDescription(builder.name, 8), keyNames,
+         [builder, keyNames](const Env& env) { return makePluginBvh<WideBvh<8>>(builder, keyNames, env); }, plugin},
+    };
 }
 
 std::vector<AcceleratorInfo>& registeredInfos() {
-    static std::vector<AcceleratorInfo> infos = ownInfos();
+    static std::vector<AcceleratorInfo> infos = [] {
+        std::vector<AcceleratorInfo> own;
+        for (const PluginAcceleratorEntry& a : ownAdditions().accelerators) own.push_back(infoOf(a, {}));
+        return own;
+    }();
     return infos;
+}
+
+// A plugin's accelerator behind the guard: its factory's and its calls' exceptions become
+// PluginErrors naming it.
+AcceleratorInfo guarded(AcceleratorInfo info) {
+    info.create = [create = std::move(info.create), plugin = info.plugin, name = info.name](const Env& env) {
+        std::unique_ptr<Accelerator> accel = guardPlugin(plugin, name, "its factory", [&] { return create(env); });
+        if (!accel)
+            throw PluginError(fmt::format("plugin {}, accelerator '{}': its factory returned nothing", plugin, name));
+        return guardAccelerator(std::move(accel), plugin, name);
+    };
+    return info;
 }
 
 }  // namespace
@@ -101,25 +116,15 @@ std::unique_ptr<Accelerator> guardLikeAPlugin(std::unique_ptr<Accelerator> inner
     return guardAccelerator(std::move(inner), plugin, name);
 }
 
-void addAccelerator(AcceleratorInfo info) {
-    if (const AcceleratorInfo* taken = findAccelerator(info.name))
-        throw InputError(fmt::format("{}: accelerator '{}' is already defined by {}", info.plugin, info.name,
-                                     taken->plugin.empty() ? "bvhlab" : taken->plugin));
-    info.create = [create = std::move(info.create), plugin = info.plugin, name = info.name](const Env& env) {
-        std::unique_ptr<Accelerator> accel = guardPlugin(plugin, name, "its factory", [&] { return create(env); });
-        if (!accel)
-            throw PluginError(fmt::format("plugin {}, accelerator '{}': its factory returned nothing", plugin, name));
-        return guardAccelerator(std::move(accel), plugin, name);
-    };
-    registeredInfos().push_back(std::move(info));
-}
-
-void addBvhBuilder(const LoadedBuilder& builder, const std::string& description, const std::string& plugin) {
-    for (AcceleratorInfo& info : bvhInfos(builder.name, description, builder.keys, {4, 8},
-                                          [builder](const Env& env) { return pluginBuilderRecord(builder, env); })) {
-        info.plugin = plugin;
-        addAccelerator(std::move(info));
-    }
+void addPluginAccelerators(const PluginAdditions& additions, const std::string& plugin) {
+    for (const std::string& name : additions.acceleratorNames())
+        if (const AcceleratorInfo* taken = findAccelerator(name))
+            throw InputError(fmt::format("{}: accelerator '{}' is already defined by {}", plugin, name,
+                                         taken->plugin.empty() ? "bvhlab" : taken->plugin));
+    for (const PluginAcceleratorEntry& a : additions.accelerators)
+        registeredInfos().push_back(guarded(infoOf(a, plugin)));
+    for (const PluginBuilderEntry& b : additions.builders)
+        for (AcceleratorInfo& info : builderInfos(b, plugin)) registeredInfos().push_back(guarded(std::move(info)));
 }
 
 void registerAcceleratorKeys(EnvRegistry& registry) {
@@ -127,17 +132,31 @@ void registerAcceleratorKeys(EnvRegistry& registry) {
     for (const AcceleratorInfo& info : acceleratorInfos()) names.push_back(info.name);
     registry.add(keys::ASDS::type.declaration(names));
     registry.add(keys::ASDS::plugins);
-    embreeKeys().registerWith(registry);
-    registerBvhKeys(registry);
+    for (EnvKey& key : ownAdditions().keys()) registry.add(std::move(key));
 }
 
-std::unique_ptr<Accelerator> createAccelerator(const std::string& name, const Env& env) {
+namespace {
+
+// Throws InputError naming the unknown accelerator and the known ones.
+const AcceleratorInfo& acceleratorNamed(const std::string& name) {
+    if (const AcceleratorInfo* info = findAccelerator(name)) return *info;
     std::vector<std::string> names;
-    for (const AcceleratorInfo& info : acceleratorInfos()) {
-        if (info.name == name) return info.create(env);
-        names.push_back(info.name);
-    }
+    for (const AcceleratorInfo& info : acceleratorInfos()) names.push_back(info.name);
     throw InputError(fmt::format("unknown accelerator '{}' (known: {})", name, fmt::join(names, ", ")));
+}
+
+}  // namespace
+
+std::unique_ptr<Accelerator> createAccelerator(const std::string& name, const Env& env) {
+    return acceleratorNamed(name).create(env);
+}
+
+std::unique_ptr<TwoLevelAccelerator> createTwoLevel(std::vector<Instance> instances, const std::string& bottom,
+                                                    const Env& env) {
+    auto create = acceleratorNamed(bottom).create;
+    auto values = std::make_shared<const Env>(env);
+    return std::make_unique<TwoLevelAccelerator>(
+        std::move(instances), [create, values] { return create(*values); }, bvhSettingsFromEnv(env).build);
 }
 
 }  // namespace bvhlab

@@ -1,9 +1,12 @@
-// Creates accelerators by name. `ASDS::type` in env chooses one. An accelerator of bvhlab's own
-// is an entry in registry.cpp besides its folder and library, a BVH builder an entry in
-// accel/bvh/builder_table.cpp besides its file (docs/adding-an-accelerator.md lists every file).
+// Creates accelerators by name. `ASDS::type` in env chooses one. Every accelerator comes through
+// the registrar a plugin's entry point is given (<bvhlab/registrar.h>), bvhlab's own too
+// (registry.cpp): an accelerator of bvhlab's is a call there besides its folder and library, a
+// BVH builder an entry in accel/bvh/builder_table.cpp besides its file
+// (docs/adding-an-accelerator.md lists every file).
 #pragma once
 
-#include "accel/plugins/plugin_builder.h"
+#include "accel/plugins/plugin_additions.h"
+#include "accel/twolevel/two_level_accelerator.h"
 #include "framework/config/env.h"
 #include "framework/core/accelerator.h"
 
@@ -34,25 +37,29 @@ struct AcceleratorInfo {
 const std::vector<AcceleratorInfo>& acceleratorInfos();
 const AcceleratorInfo* findAccelerator(const std::string& name);
 
-// Adds a plugin's accelerator (info.plugin set). Its build and queries are guarded: an exception
-// thrown inside reaches the caller as a PluginError naming the plugin and the accelerator.
-// Throws InputError if the name is taken.
-void addAccelerator(AcceleratorInfo info);
+// Adds what a plugin's entry point added (`plugin`: its file): its accelerators, and the
+// accelerators NAME, NAME4 and NAME8 of each of its builders (accel/plugins/plugin_builder.h).
+// Their builds and queries are guarded: an exception thrown inside reaches the caller as a
+// PluginError naming the plugin and the accelerator. Throws InputError if a name is taken (then
+// it adds nothing).
+void addPluginAccelerators(const PluginAdditions& additions, const std::string& plugin);
 
 // `inner` behind the guard every plugin's accelerator is called through, as if `plugin` had
 // added it: for measuring what the guard costs (bvhlab bench's nothing-guarded row).
 std::unique_ptr<Accelerator> guardLikeAPlugin(std::unique_ptr<Accelerator> inner, const std::string& plugin,
                                               const std::string& name);
 
-// Adds a plugin's builder as the accelerators NAME, NAME4 and NAME8 (accel/plugins/plugin_builder.h),
-// described by `description` and guarded as addAccelerator's are.
-void addBvhBuilder(const LoadedBuilder& builder, const std::string& description, const std::string& plugin);
-
 // Throws InputError naming the unknown accelerator and the known ones.
 std::unique_ptr<Accelerator> createAccelerator(const std::string& name, const Env& env);
 inline std::unique_ptr<Accelerator> createAccelerator(const Env& env) {
     return createAccelerator(env.get(keys::ASDS::type), env);
 }
+
+// Two levels over `instances`: each instance's structure the accelerator `bottom` made with the
+// env's values, the top level built by binned SAH with the env's BVH:: keys. Throws as
+// createAccelerator does for an unknown `bottom`.
+std::unique_ptr<TwoLevelAccelerator> createTwoLevel(std::vector<Instance> instances, const std::string& bottom,
+                                                    const Env& env);
 
 // ASDS::type, ASDS::plugins and the keys of bvhlab's own accelerators (a plugin's are
 // registered when it is loaded).

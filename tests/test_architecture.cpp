@@ -41,7 +41,10 @@ const std::map<std::string, std::vector<std::string>> kMayInclude = {
      {"framework/core", "framework/config", "accel/bvh/simd", "accel/bvh/layout", "accel/bvh/builders",
       "accel/bvh/traverse"}},
     {"accel/plugins", {"framework/core", "framework/config", "accel/bvh/builders"}},
-    {"accel", {"framework/core", "framework/config", "accel/naive", "accel/embree", "accel/bvh", "accel/plugins"}},
+    {"accel/twolevel", {"framework/core", "accel/bvh/simd", "accel/bvh/layout", "accel/bvh/builders"}},
+    {"accel",
+     {"framework/core", "framework/config", "accel/naive", "accel/embree", "accel/bvh", "accel/plugins",
+      "accel/twolevel"}},
     // Verification reaches the structures it compares with through the registry alone.
     {"accel/verify", {"framework/core", "framework/config", "framework/scene", "framework/render", "accel"}},
 };

@@ -5,10 +5,15 @@
 #include "accel/bvh/builders/sbvh_builder.h"
 #include "accel/bvh/builders/spatial_median_builder.h"
 #include "accel/bvh/builders/sweep_sah_builder.h"
+#include "accel/bvh/bvh_accelerator.h"
+#include "framework/config/plugin_settings.h"
 
 #include <fmt/core.h>
 
+#include <array>
 #include <stdexcept>
+#include <type_traits>
+#include <utility>
 
 namespace bvhlab {
 
@@ -33,10 +38,9 @@ BinaryBvh sbvh(const BvhBuildConfig& c, const PrimitiveSet& prims) {
 }
 BinaryBvh ploc(const BvhBuildConfig& c, const PrimitiveSet& prims) { return buildPlocBvh(c.shared, c.ploc, prims); }
 
-}  // namespace
-
-const std::vector<BuilderTableEntry>& bvhBuilderTable() {
-    static const std::vector<BuilderTableEntry> table = {
+// The table, its size known where the accelerators' factories are made (addBvhAccelerators).
+const auto& table() {
+    static const auto table = std::to_array<BuilderTableEntry>({
         {splitRule("tdbvh", spatialMedian),
          "BVH by spatial median: the middle of the longest axis (BVH::tdbvhSplit), object median fallback",
          {&spatialMedianKeys()},
@@ -59,12 +63,53 @@ const std::vector<BuilderTableEntry>& bvhBuilderTable() {
          "BVH by full-sweep SAH over all N-1 planes per axis: the exact reference for sahbvh; slow build",
          {&sahTerminationKeys()},
          {}},
-    };
+    });
     return table;
 }
 
+// The factory of the accelerator of table entry `Entry` in `Layout`: a plain function, as the
+// registrar takes factories.
+template <size_t Entry, typename Layout>
+Accelerator* createBvh(const PluginSettings& keys) {
+    const BuilderTableEntry& entry = table()[Entry];
+    const BvhSettings settings = bvhSettings(keys, entry.keys);
+    return new BvhAccelerator<Layout>(entry.builder, settings.build, settings.traversal, settings.stats,
+                                      settings.update);
+}
+
+template <size_t Entry>
+void addAccelerators(PluginRegistrar& registrar) {
+    const BuilderTableEntry& entry = table()[Entry];
+    const PluginKeyList keys(bvhKeyDeclarations(entry.keys));
+    const std::string& name = entry.builder.name;
+    registrar.addAccelerator({name.c_str(), entry.description.c_str(), keys.view(), createBvh<Entry, BinaryBvh>});
+    for (int width : entry.wideLayouts)
+        registrar.addAccelerator({(name + std::to_string(width)).c_str(), wideBvhDescription(name, width).c_str(),
+                                  keys.view(),
+                                  width == 4 ? createBvh<Entry, WideBvh<4>> : createBvh<Entry, WideBvh<8>>});
+}
+
+template <size_t... Entries>
+void addEachEntry(PluginRegistrar& registrar, std::index_sequence<Entries...>) {
+    (addAccelerators<Entries>(registrar), ...);
+}
+
+}  // namespace
+
+void addBvhAccelerators(PluginRegistrar& registrar) {
+    addEachEntry(registrar, std::make_index_sequence<std::tuple_size_v<std::remove_cvref_t<decltype(table())>>>());
+}
+
+std::string wideBvhDescription(const std::string& builder, int width) {
+    return fmt::format(
+        "{}'s tree (leaves charged by blocks of eight) in {}-wide nodes, {} child boxes tested at "
+        "once, leaves eight triangles at once, in the SIMD kernels BVH::isa chooses at run time; N_TR "
+        "counts wide steps",
+        builder, width, width == 4 ? "four" : "eight");
+}
+
 const BuilderRecord& builderRecord(std::string_view name) {
-    for (const BuilderTableEntry& entry : bvhBuilderTable())
+    for (const BuilderTableEntry& entry : table())
         if (entry.builder.name == name) return entry.builder;
     throw std::invalid_argument(fmt::format("no BVH builder named '{}'", name));
 }

@@ -1,5 +1,7 @@
 #include "accel/bvh/bvh_env.h"
 
+#include "framework/config/plugin_settings.h"
+
 #include <span>
 
 namespace bvhlab {
@@ -15,9 +17,8 @@ BvhStatsConfig& stats(BvhSettings& s) { return s.stats; }
 BvhUpdateConfig& update(BvhSettings& s) { return s.update; }
 BvhSettings& settings(BvhSettings& s) { return s; }
 
-}  // namespace
-
-const BvhKeys& bvhCommonKeys() {
+// The keys every BVH accelerator reads, whatever its builder.
+const BvhKeys& commonKeys() {
     static const BvhKeys bound = BvhKeys::join({
         {kBuildKeys, shared},
         {kTraversalTestKeys, traversal},
@@ -30,6 +31,8 @@ const BvhKeys& bvhCommonKeys() {
     });
     return bound;
 }
+
+}  // namespace
 
 const BvhKeys& sahTerminationKeys() {
     static const BvhKeys bound(kSahTerminationKeys, shared);
@@ -60,25 +63,27 @@ const BvhKeys& plocKeys() {
     return bound;
 }
 
-namespace {
-
-std::span<const BvhKeys* const> allKeys() {
-    static const BvhKeys* const all[] = {&bvhCommonKeys(), &sahTerminationKeys(), &spatialMedianKeys(),
-                                         &binnedSahKeys(), &sbvhKeys(),           &plocKeys()};
-    return all;
+std::vector<EnvKey> bvhKeyDeclarations(std::span<const BvhKeys* const> own) {
+    std::vector<EnvKey> keys;
+    for (const BvhKeys* part : own) part->appendDeclarations(keys);
+    commonKeys().appendDeclarations(keys);
+    return keys;
 }
 
-}  // namespace
-
-void registerBvhKeys(EnvRegistry& registry) {
-    for (const BvhKeys* keys : allKeys()) keys->registerWith(registry);
+BvhSettings bvhSettings(const PluginSettings& keys, std::span<const BvhKeys* const> own) {
+    BvhSettings settings;
+    for (const BvhKeys* part : own) part->read(keys, settings);
+    commonKeys().read(keys, settings);
+    settings.build.shared.threads = settings.threads != 0 ? settings.threads : keys.getInt(kThreadsKey);
+    return settings;
 }
 
 BvhSettings bvhSettingsFromEnv(const Env& env) {
-    BvhSettings settings;
-    for (const BvhKeys* keys : allKeys()) keys->read(env, settings);
-    settings.build.shared.threads = settings.threads != 0 ? settings.threads : env.get(keys::SetRayTracing::threads);
-    return settings;
+    static const BvhKeys* const all[] = {&sahTerminationKeys(), &spatialMedianKeys(), &binnedSahKeys(), &sbvhKeys(),
+                                         &plocKeys()};
+    std::vector<std::string> names;
+    for (const EnvKey& key : bvhKeyDeclarations(all)) names.push_back(key.name);
+    return bvhSettings(EnvPluginSettings(env, std::move(names), "the BVH keys"), all);
 }
 
 }  // namespace bvhlab

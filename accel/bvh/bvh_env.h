@@ -1,8 +1,7 @@
 // The env keys of the BVH accelerators (builder_table.h), all in section BVH::. Each is declared
 // once, beside the Config field it fills (a FieldKey: builders/*.h, traversal_config.h,
 // bvh_accelerator.h), in its Config's list of keys; bvh_env.cpp binds each list, once, to the
-// part of BvhSettings it fills: the bindings register the keys, list those each accelerator
-// reads and read them.
+// part of BvhSettings it fills: the bindings declare the keys to the registrar and read them.
 #pragma once
 
 #include "accel/bvh/builders/bvh_builder.h"
@@ -12,7 +11,9 @@
 #include "framework/config/env.h"
 #include "framework/config/key_bindings.h"
 
+#include <span>
 #include <tuple>
+#include <vector>
 
 namespace bvhlab {
 
@@ -35,8 +36,6 @@ inline constexpr std::tuple kBvhThreadsKeys{&keys::BVH::threads};
 
 using BvhKeys = KeyBindings<BvhSettings>;
 
-// The keys every BVH accelerator reads, whatever its builder.
-const BvhKeys& bvhCommonKeys();
 // The keys of the builders' own options; builder_table.cpp says which builder reads which.
 const BvhKeys& sahTerminationKeys();
 const BvhKeys& spatialMedianKeys();
@@ -44,9 +43,13 @@ const BvhKeys& binnedSahKeys();
 const BvhKeys& sbvhKeys();
 const BvhKeys& plocKeys();
 
-void registerBvhKeys(EnvRegistry& registry);
+// The declarations of the keys of `own`, then of those every BVH accelerator reads.
+std::vector<EnvKey> bvhKeyDeclarations(std::span<const BvhKeys* const> own);
 
-// Every BVH key's value (a builder uses its own and the shared ones).
+// The values of the keys of `own` and of those every BVH accelerator reads, as a structure reads its keys
+// (<bvhlab/settings.h>); BVH::threads 0 is SetRayTracing::threads.
+BvhSettings bvhSettings(const PluginSettings& keys, std::span<const BvhKeys* const> own);
+// Every BVH key's value in `env`.
 BvhSettings bvhSettingsFromEnv(const Env& env);
 
 }  // namespace bvhlab

@@ -68,7 +68,6 @@ class EmbreeAccelerator final : public BuildStatsAccelerator, public NativeBatch
 public:
     // Creates the device; throws EmbreeError when Embree refuses (e.g. unsupported CPU).
     explicit EmbreeAccelerator(const EmbreeConfig& config = {});
-    explicit EmbreeAccelerator(const Env& env) : EmbreeAccelerator(EmbreeConfig::fromEnv(env)) {}
     ~EmbreeAccelerator() override;
     EmbreeAccelerator(const EmbreeAccelerator&) = delete;
     EmbreeAccelerator& operator=(const EmbreeAccelerator&) = delete;

@@ -1,6 +1,10 @@
 #include "accel/embree/embree_env.h"
 
+#include "framework/config/plugin_settings.h"
+
 namespace bvhlab {
+
+namespace {
 
 const KeyBindings<EmbreeConfig>& embreeKeys() {
     static const KeyBindings<EmbreeConfig> bound = {
@@ -19,11 +23,25 @@ const KeyBindings<EmbreeConfig>& embreeKeys() {
     return bound;
 }
 
-EmbreeConfig EmbreeConfig::fromEnv(const Env& env) {
+}  // namespace
+
+std::vector<EnvKey> embreeKeyDeclarations() {
+    std::vector<EnvKey> keys;
+    embreeKeys().appendDeclarations(keys);
+    return keys;
+}
+
+EmbreeConfig EmbreeConfig::from(const PluginSettings& keys) {
     EmbreeConfig config;
-    embreeKeys().read(env, config);
-    if (config.threads == 0) config.threads = env.get(keys::SetRayTracing::threads);
+    embreeKeys().read(keys, config);
+    if (config.threads == 0) config.threads = keys.getInt(kThreadsKey);
     return config;
+}
+
+EmbreeConfig EmbreeConfig::fromEnv(const Env& env) {
+    std::vector<std::string> names;
+    for (const EnvKey& key : embreeKeyDeclarations()) names.push_back(key.name);
+    return from(EnvPluginSettings(env, std::move(names), "accelerator 'embree'"));
 }
 
 }  // namespace bvhlab

@@ -1,10 +1,13 @@
 // The env keys of the `embree` accelerator and the config they fill: each key declared once here
-// and bound once (embreeKeys) to what it sets; the binding registers it, lists it as a key the
-// accelerator reads and reads it.
+// and bound once (embree_env.cpp) to what it sets; the binding declares it to the registrar and
+// reads it.
 #pragma once
 
 #include "framework/config/common_keys.h"
+#include "framework/config/env.h"
 #include "framework/config/key_bindings.h"
+
+#include <vector>
 
 namespace bvhlab {
 
@@ -36,10 +39,12 @@ struct EmbreeConfig {
     int threads = 0;     // as passed to rtcNewDevice: 0 = all hardware threads
     std::string maxIsa;  // as passed to rtcNewDevice's max_isa: empty = no limit (Embree::isa=auto)
 
-    // Embree::quality, Embree::robust, Embree::threads (0 = SetRayTracing::threads) and Embree::isa.
+    // Embree::quality, Embree::robust, Embree::threads (0 = SetRayTracing::threads) and Embree::isa,
+    // as a structure reads its keys (<bvhlab/settings.h>).
+    static EmbreeConfig from(const PluginSettings& keys);
     static EmbreeConfig fromEnv(const Env& env);
 };
 
-const KeyBindings<EmbreeConfig>& embreeKeys();
+std::vector<EnvKey> embreeKeyDeclarations();
 
 }  // namespace bvhlab

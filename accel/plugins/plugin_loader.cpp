@@ -1,6 +1,5 @@
 #include "accel/plugins/plugin_loader.h"
 
-#include "framework/config/plugin_settings.h"
 #include "framework/core/error.h"
 
 #include <dlfcn.h>
@@ -11,86 +10,7 @@
 #include <optional>
 
 namespace bvhlab {
-namespace {
-
-std::string textOf(const char* text) { return text ? text : ""; }
-
-// The declarations of keys, checked (declarationOf throws, naming what is wrong, out of the
-// plugin's entry point: openPlugin reports it naming the file).
-std::vector<EnvKey> declarationsOf(View<const PluginKey> keys) {
-    std::vector<EnvKey> declared;
-    for (const PluginKey& key : keys) declared.push_back(declarationOf(key));
-    return declared;
-}
-
-std::vector<std::string> namesOf(const std::vector<EnvKey>& keys) {
-    std::vector<std::string> names;
-    for (const EnvKey& key : keys) names.push_back(key.name);
-    return names;
-}
-
-// What the entry point adds, copied as it is given (its views may point to temporaries).
-class Registrar final : public PluginRegistrar {
-public:
-    void addAccelerator(const PluginAccelerator& a) override {
-        accelerators.push_back({textOf(a.name), textOf(a.description), declarationsOf(a.keys), a.create});
-    }
-    void addBuilder(const PluginBuilder& b) override {
-        std::vector<EnvKey> keys = declarationsOf(b.keys);
-        builders.push_back({{textOf(b.name), namesOf(keys), b.splitRule, b.mergeTree}, textOf(b.description), keys});
-    }
-    std::vector<PluginAcceleratorEntry> accelerators;
-    std::vector<PluginBuilderEntry> builders;
-};
-
-// What a plugin adds, checked in itself before any of it is registered.
-void checkAdditions(const std::string& file, const OpenedPlugin& plugin) {
-    if (plugin.accelerators.empty() && plugin.builders.empty())
-        throw inputError(file, 0, "the plugin adds no accelerator and no builder");
-    std::vector<std::string> names;
-    for (const std::string& name : plugin.acceleratorNames()) {
-        if (name.empty() || name.find_first_of(" \t,:=/") != std::string::npos)
-            throw inputError(file, 0, fmt::format("accelerator name '{}' must be one word without , : = or /", name));
-        if (std::count(names.begin(), names.end(), name))
-            throw inputError(file, 0, fmt::format("accelerator '{}' is already defined by this plugin", name));
-        names.push_back(name);
-    }
-    std::vector<std::string> keyNames;
-    for (const EnvKey& key : plugin.keys()) {
-        if (std::count(keyNames.begin(), keyNames.end(), key.name))
-            throw inputError(file, 0, fmt::format("env key '{}' is declared twice", key.name));
-        keyNames.push_back(key.name);
-    }
-    for (const PluginAcceleratorEntry& a : plugin.accelerators)
-        if (!a.create) throw inputError(file, 0, fmt::format("accelerator '{}' has no factory", a.name));
-    for (const PluginBuilderEntry& b : plugin.builders)
-        if (bool(b.builder.splitRule) == bool(b.builder.mergeTree))
-            throw inputError(
-                file, 0, fmt::format("builder '{}' must give exactly one of splitRule and mergeTree", b.builder.name));
-}
-
-}  // namespace
-
 void CloseLibrary::operator()(void* library) const { dlclose(library); }
-
-std::vector<std::string> PluginBuilderEntry::acceleratorNames() const {
-    return {builder.name, builder.name + "4", builder.name + "8"};
-}
-
-std::vector<std::string> OpenedPlugin::acceleratorNames() const {
-    std::vector<std::string> names;
-    for (const PluginAcceleratorEntry& a : accelerators) names.push_back(a.name);
-    for (const PluginBuilderEntry& b : builders)
-        for (std::string& name : b.acceleratorNames()) names.push_back(std::move(name));
-    return names;
-}
-
-std::vector<EnvKey> OpenedPlugin::keys() const {
-    std::vector<EnvKey> keys;
-    for (const PluginAcceleratorEntry& a : accelerators) keys.insert(keys.end(), a.keys.begin(), a.keys.end());
-    for (const PluginBuilderEntry& b : builders) keys.insert(keys.end(), b.keys.begin(), b.keys.end());
-    return keys;
-}
 
 std::string abiFingerprint(View<const AbiFigure> figures) {
     uint64_t h = abi::hash("");
@@ -195,11 +115,11 @@ OpenedPlugin openPlugin(const std::filesystem::path& file) {
     plugin.abi = abiFingerprint(abi);
 
     const PluginBuildInfo& build = *buildInfo();
-    plugin.compiler = textOf(build.compiler);
-    plugin.cxxFlags = textOf(build.cxxFlags);
+    plugin.compiler = pluginText(build.compiler);
+    plugin.cxxFlags = pluginText(build.cxxFlags);
     plugin.optimized = build.optimized;
 
-    Registrar registrar;
+    RecordingRegistrar registrar;
     try {
         registerPlugin(registrar);
     } catch (const std::exception& e) {
@@ -207,9 +127,8 @@ OpenedPlugin openPlugin(const std::filesystem::path& file) {
     } catch (...) {
         throw inputError(file, 0, "its entry point threw an exception that is not a std::exception");
     }
-    plugin.accelerators = std::move(registrar.accelerators);
-    plugin.builders = std::move(registrar.builders);
-    checkAdditions(name, plugin);
+    plugin.additions = std::move(registrar.additions);
+    checkAdditions(name, plugin.additions);
     return plugin;
 }
 

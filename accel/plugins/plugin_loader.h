@@ -4,8 +4,7 @@
 // and returned; the caller registers it where it belongs (apps/runtime/plugins.h).
 #pragma once
 
-#include "accel/plugins/plugin_builder.h"
-#include "framework/config/env_key.h"
+#include "accel/plugins/plugin_additions.h"
 
 #include <bvhlab/plugin.h>
 
@@ -15,23 +14,6 @@
 #include <vector>
 
 namespace bvhlab {
-
-// A plugin's accelerator as its entry point added it, copied.
-struct PluginAcceleratorEntry {
-    std::string name, description;
-    std::vector<EnvKey> keys;
-    Accelerator* (*create)(const PluginSettings&) = nullptr;
-};
-
-// A plugin's builder as its entry point added it, copied; it adds the accelerators NAME, NAME4
-// and NAME8 (acceleratorNames).
-struct PluginBuilderEntry {
-    LoadedBuilder builder;
-    std::string description;
-    std::vector<EnvKey> keys;
-
-    std::vector<std::string> acceleratorNames() const;
-};
 
 // Closes a plugin file (dlclose).
 struct CloseLibrary {
@@ -45,23 +27,17 @@ struct OpenedPlugin {
     std::string compiler;        // PluginBuildInfo
     std::string cxxFlags;        // empty when not recorded (a plugin built without bvhlab_add_plugin)
     bool optimized = false;
-    std::vector<PluginAcceleratorEntry> accelerators;
-    std::vector<PluginBuilderEntry> builders;
+    PluginAdditions additions;  // what its entry point added
 
     // The open file: closed when this is dropped, unless released once what the plugin adds is
     // registered (its code must then stay loaded for the life of the process).
     std::unique_ptr<void, CloseLibrary> library;
-
-    std::vector<std::string> acceleratorNames() const;  // its accelerators', then its builders'
-    std::vector<EnvKey> keys() const;                   // every key it declares
 };
 
 // Opens `file` (absolute) and asks its entry point what it adds. Throws InputError naming the file when it cannot be
 // opened, is not a bvhlab plugin, was built against another ABI (both fingerprints and where they differ named), its
-// entry point throws, or what it adds is malformed: no accelerator and no builder, a name that is
-// not one word, a name or key given twice, a key that is not `Section::key` or not well declared,
-// an accelerator without a factory, a builder without exactly one of its two functions. On a
-// refusal the file is closed.
+// entry point throws (a key not well declared among them), or what it adds is malformed
+// (checkAdditions, plugin_additions.h). On a refusal the file is closed.
 OpenedPlugin openPlugin(const std::filesystem::path& file);
 
 // A hash of an ABI's figures, to name it in one word: 16 hex digits.

@@ -4,7 +4,6 @@
 #include "accel/registry.h"
 #include "apps/runtime/program_keys.h"
 #include "framework/config/install_paths.h"
-#include "framework/config/plugin_settings.h"
 #include "framework/core/error.h"
 #include "framework/report/provenance.h"
 #include "framework/scene/scene_cache.h"
@@ -29,29 +28,13 @@ std::deque<LoadedPlugin>& pluginList() {
 // What `plugin` adds must be new to the run: checked before any of it is registered.
 void checkIsNew(const OpenedPlugin& plugin) {
     const std::string file = plugin.file.string();
-    for (const std::string& name : plugin.acceleratorNames())
+    for (const std::string& name : plugin.additions.acceleratorNames())
         if (const AcceleratorInfo* taken = findAccelerator(name))
             throw InputError(fmt::format("{}: accelerator '{}' is already defined by {}", file, name,
                                          taken->plugin.empty() ? "bvhlab" : taken->plugin));
-    for (const EnvKey& key : plugin.keys())
+    for (const EnvKey& key : plugin.additions.keys())
         if (programKeys().find(key.name))
             throw InputError(fmt::format("{}: env key '{}' is already declared", file, key.name));
-}
-
-// Adds what `plugin` adds to the registry and its keys to the program's.
-void registerPlugin(const OpenedPlugin& plugin) {
-    const std::string file = plugin.file.string();
-    for (const PluginAcceleratorEntry& a : plugin.accelerators) {
-        std::vector<std::string> keyNames;
-        for (const EnvKey& key : a.keys) keyNames.push_back(key.name);
-        auto create = [create = a.create, keyNames, name = a.name](const Env& env) {
-            const EnvPluginSettings settings(env, keyNames, fmt::format("accelerator '{}'", name));
-            return std::unique_ptr<Accelerator>(create(settings));
-        };
-        addAccelerator({a.name, a.description, keyNames, std::move(create), file});
-    }
-    for (const PluginBuilderEntry& b : plugin.builders) addBvhBuilder(b.builder, b.description, file);
-    registerPluginKeys(file, plugin.keys());
 }
 
 }  // namespace
@@ -67,7 +50,8 @@ const LoadedPlugin& loadPlugin(const std::filesystem::path& given) {
 
     OpenedPlugin opened = openPlugin(file);
     checkIsNew(opened);
-    registerPlugin(opened);
+    addPluginAccelerators(opened.additions, file.string());
+    registerPluginKeys(file.string(), opened.additions.keys());
     opened.library.release();  // its code is now the registry's
 
     const SceneCacheKey checksum = sceneCacheKey(file);
@@ -75,7 +59,7 @@ const LoadedPlugin& loadPlugin(const std::filesystem::path& given) {
                         checksum.size,
                         checksum.crc32,
                         opened.abi,
-                        opened.acceleratorNames(),
+                        opened.additions.acceleratorNames(),
                         opened.compiler,
                         opened.cxxFlags,
                         opened.optimized};

@@ -71,10 +71,19 @@ EnvKey declarationOf(const PluginKey& key) {
     return declared;
 }
 
+PluginKeyList::PluginKeyList(std::vector<EnvKey> keys) : keys_(std::move(keys)) {
+    for (const EnvKey& key : keys_) {
+        std::vector<const char*>& words = choices_.emplace_back();
+        for (const std::string& choice : key.choices) words.push_back(choice.c_str());
+        pluginKeys_.push_back(
+            {key.name.c_str(), key.type, key.defaultValue.c_str(), key.description.c_str(), key.min, key.max, words});
+    }
+}
+
 std::string EnvPluginSettings::checked(const char* key, std::initializer_list<KeyType> types,
                                        const char* getter) const {
     const std::string name = key ? key : "";
-    if (std::find(keys_.begin(), keys_.end(), name) == keys_.end())
+    if (name != kThreadsKey && std::find(keys_.begin(), keys_.end(), name) == keys_.end())
         throw std::invalid_argument(fmt::format("{} read the key '{}', which it did not declare (its keys: {})", owner_,
                                                 name,
                                                 keys_.empty() ? "none" : fmt::format("{}", fmt::join(keys_, ", "))));

@@ -18,6 +18,22 @@ namespace bvhlab {
 // description, a range whose ends are not in order, a Choice without words.
 EnvKey declarationOf(const PluginKey& key);
 
+// bvhlab's own declarations as PluginKeys, for its structures to give the registrar as a plugin
+// does. Owns the text the PluginKeys point to, so it neither copies nor moves.
+class PluginKeyList {
+public:
+    explicit PluginKeyList(std::vector<EnvKey> keys);
+    PluginKeyList(const PluginKeyList&) = delete;
+    PluginKeyList& operator=(const PluginKeyList&) = delete;
+
+    View<const PluginKey> view() const { return pluginKeys_; }
+
+private:
+    std::vector<EnvKey> keys_;
+    std::vector<std::vector<const char*>> choices_;
+    std::vector<PluginKey> pluginKeys_;
+};
+
 // The values in `env` of the keys `keys` (their names), for their owner, "accelerator 'scan'".
 // A getter throws std::invalid_argument naming the key when it is none of `keys` or is of
 // another type. Not for two threads at once (it keeps the text it returns).

@@ -81,23 +81,26 @@ BinaryBvh buildBvh(const BuilderRecord& builder, const BvhBuildConfig& config, c
     return bvh;
 }
 
+std::vector<BvhNode, TraversalAllocator<BvhNode>> buildOverBoxes(const BvhBuildConfig& config, std::span<PrimRef> refs,
+                                                                 const SplitRuleFactory& rule) {
+    const SplitRuleFactory binnedSah = [](const BvhBuildConfig& c) {
+        return std::make_unique<BinnedSahBuilder>(c.shared, c.binnedSah);
+    };
+    BoundsAccumulator<simd::Scalar<4>> acc;
+    for (const PrimRef& ref : refs) acc.add(ref);
+    return buildNodes(rule ? rule : binnedSah, config, refs,
+                      {0, uint32_t(refs.size()), acc.bounds(), acc.centroidBounds()});
+}
+
 QuadricBvh buildQuadricBvh(const BuilderRecord& builder, const BvhBuildConfig& config, const PrimitiveSet& prims) {
     // Few primitives as a rule (the SPD scenes have thousands, not millions): plain loops. The
     // builders of whole trees are for the millions of triangles (ploc) or clip them (sbvh); their
     // spheres and cones get binned SAH, as a plugin's do.
-    const SplitRuleFactory binnedSah = [](const BvhBuildConfig& c) {
-        return std::make_unique<BinnedSahBuilder>(c.shared, c.binnedSah);
-    };
     const std::span<const uint32_t> valid = prims.validQuadrics();
     std::vector<PrimRef> refs(valid.size());
-    BoundsAccumulator<simd::Scalar<4>> acc;
-    for (size_t i = 0; i < valid.size(); ++i) {
-        refs[i] = PrimRef::of(boundsOf(prims.quadric(valid[i])), valid[i]);
-        acc.add(refs[i]);
-    }
+    for (size_t i = 0; i < valid.size(); ++i) refs[i] = PrimRef::of(boundsOf(prims.quadric(valid[i])), valid[i]);
     QuadricBvh bvh;
-    bvh.nodes = buildNodes(builder.splitRule && !builder.fromPlugin ? builder.splitRule : binnedSah, config, refs,
-                           {0, uint32_t(refs.size()), acc.bounds(), acc.centroidBounds()});
+    bvh.nodes = buildOverBoxes(config, refs, builder.fromPlugin ? SplitRuleFactory() : builder.splitRule);
     for (const PrimRef& ref : refs) {
         bvh.primIndices.push_back(ref.prim);
         bvh.leafShapes.push_back(prims.quadric(ref.prim));

@@ -12,6 +12,7 @@
 
 #include <functional>
 #include <memory>
+#include <span>
 #include <string>
 #include <string_view>
 #include <tuple>
@@ -64,6 +65,12 @@ struct BuilderRecord {
 // or its own tree, then the leaf arrays (primitive indices and triangles in leaf order), then
 // the optimisation the config asks for.
 BinaryBvh buildBvh(const BuilderRecord& builder, const BvhBuildConfig& config, const PrimitiveSet& prims);
+
+// A tree over boxes, `refs` reordered into leaf order (leaf l holds refs[l.index, l.index +
+// l.count)), by `rule` (none: binned SAH): the spheres' and cones' tree, a two-level structure's
+// top level.
+std::vector<BvhNode, TraversalAllocator<BvhNode>> buildOverBoxes(const BvhBuildConfig& config, std::span<PrimRef> refs,
+                                                                 const SplitRuleFactory& rule = {});
 
 // buildBvh over the valid spheres and cones (their boxes), with their shapes in leaf order.
 QuadricBvh buildQuadricBvh(const BuilderRecord& builder, const BvhBuildConfig& config, const PrimitiveSet& prims);

@@ -32,9 +32,13 @@ struct PluginKey {
 };
 
 // The resolved values of a plugin's own keys (defaults, then env files, then -D), read by name
-// with the getter of the key's type. A name the plugin did not declare, or a getter of another
-// type, throws an exception that names the key; values were checked when they were set, so a
-// declared key read by its type never fails. Text a getter returns lives as long as the settings.
+// with the getter of the key's type. Besides its own keys a structure may read the run's
+// kThreadsKey (Int: its build's thread count, 0 = all hardware threads). A name the plugin did
+// not declare, or a getter of another type, throws an exception that names the key; values were
+// checked when they were set, so a declared key read by its type never fails. Text a getter
+// returns lives as long as the settings.
+inline constexpr const char* kThreadsKey = "SetRayTracing::threads";
+
 class PluginSettings {
 public:
     virtual bool getBool(const char* key) const = 0;

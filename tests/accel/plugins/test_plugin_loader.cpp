@@ -13,21 +13,21 @@ namespace {
 TEST(PluginLoader, ReturnsWhatThePluginAddsAndRegistersNothing) {
     const OpenedPlugin plugin = openPlugin(testPlugins() + "/throwing.so");
     EXPECT_EQ(plugin.abi, abiFingerprint(abiFigures()));
-    EXPECT_EQ(plugin.acceleratorNames(),
+    EXPECT_EQ(plugin.additions.acceleratorNames(),
               (std::vector<std::string>{"throwing", "throwing_query", "throwing_factory", "throwing_misread"}));
-    ASSERT_EQ(plugin.keys().size(), 2u);
-    EXPECT_EQ(plugin.keys()[0].name, "Throwing::unused");
-    EXPECT_EQ(plugin.keys()[0].type, KeyType::Int);
+    ASSERT_EQ(plugin.additions.keys().size(), 2u);
+    EXPECT_EQ(plugin.additions.keys()[0].name, "Throwing::unused");
+    EXPECT_EQ(plugin.additions.keys()[0].type, KeyType::Int);
     EXPECT_NE(plugin.library, nullptr);
     EXPECT_EQ(findAccelerator("throwing"), nullptr);
 }
 
 TEST(PluginLoader, ABuilderAddsItsThreeAccelerators) {
     const OpenedPlugin plugin = openPlugin(testPlugins() + "/builders.so");
-    ASSERT_FALSE(plugin.builders.empty());
-    EXPECT_EQ(plugin.builders[0].acceleratorNames(), (std::vector<std::string>{"pairs", "pairs4", "pairs8"}));
-    EXPECT_TRUE(plugin.builders[0].builder.mergeTree);
-    EXPECT_FALSE(plugin.builders[0].builder.splitRule);
+    ASSERT_FALSE(plugin.additions.builders.empty());
+    EXPECT_EQ(plugin.additions.builders[0].acceleratorNames(), (std::vector<std::string>{"pairs", "pairs4", "pairs8"}));
+    EXPECT_TRUE(plugin.additions.builders[0].builder.mergeTree);
+    EXPECT_FALSE(plugin.additions.builders[0].builder.splitRule);
 }
 
 TEST(PluginLoader, APluginOfAnotherAbiIsRefusedBeforeItsEntryPointRuns) {

@@ -1,6 +1,8 @@
 // Keys declared by the fields they fill: the type and default come from the field, a list of
-// them binds a Config inside larger settings, and reading an env sets the fields.
+// them binds a Config inside larger settings, and reading an env (as a structure reads its keys)
+// sets the fields.
 #include "framework/config/key_bindings.h"
+#include "framework/config/plugin_settings.h"
 
 #include <gtest/gtest.h>
 
@@ -59,15 +61,20 @@ TEST(FieldKey, ShortestTextReadsBack) {
 TEST(FieldKey, BindingsReadAnEnvIntoThePart) {
     const KeyBindings<PartSettings> bindings(kPartKeys, [](PartSettings& s) -> PartConfig& { return s.part; });
     EnvRegistry registry;
-    bindings.registerWith(registry);
+    std::vector<EnvKey> declared;
+    bindings.appendDeclarations(declared);
     std::vector<std::string> names;
-    bindings.appendNames(names);
+    for (const EnvKey& key : declared) {
+        registry.add(key);
+        names.push_back(key.name);
+    }
     EXPECT_EQ(names,
               (std::vector<std::string>{"Part::count", "Part::limit", "Part::scale", "Part::flag", "Part::shape"}));
 
     Env env(registry);
+    const EnvPluginSettings keys(env, names, "the part");
     PartSettings defaults;
-    bindings.read(env, defaults);
+    bindings.read(keys, defaults);
     EXPECT_EQ(defaults.part.count, PartConfig{}.count);
     EXPECT_EQ(defaults.part.scale, PartConfig{}.scale);
     EXPECT_EQ(defaults.part.shape, PartShape::Square);
@@ -78,7 +85,7 @@ TEST(FieldKey, BindingsReadAnEnvIntoThePart) {
     env.set(kPartFlag, "false", "test");
     env.set(kPartShape, "round", "test");
     PartSettings read;
-    bindings.read(env, read);
+    bindings.read(keys, read);
     EXPECT_EQ(read.part.count, 3);
     EXPECT_EQ(read.part.limit, 5u);
     EXPECT_EQ(read.part.scale, 0.25f);

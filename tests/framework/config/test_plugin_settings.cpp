@@ -1,6 +1,7 @@
 // A plugin's keys on bvhlab's side (framework/config/plugin_settings.h): declarations checked as
 // they are registered, values read by name and type, and a key the plugin did not declare or
 // reads with another type refused naming it.
+#include "framework/config/common_keys.h"
 #include "framework/config/plugin_settings.h"
 
 #include <gtest/gtest.h>
@@ -103,6 +104,31 @@ TEST(PluginSettings, AKeyNotDeclaredOrReadWithAnotherTypeIsRefusedNamingIt) {
               "accelerator 'kd' read the key 'Other::flag', which it did not declare (its keys: Kd::depth)");
     EXPECT_EQ(refusal([&] { settings.getBool(nullptr); }),
               "accelerator 'kd' read the key '', which it did not declare (its keys: Kd::depth)");
+}
+
+TEST(PluginSettings, EveryStructureMayReadTheRunsThreadCount) {
+    EnvRegistry registry = registryOf({kDepth});
+    registerCommonKeys(registry);
+    Env env(registry);
+    env.setOverride(std::string(kThreadsKey) + "=3");
+    const EnvPluginSettings settings(env, {"Kd::depth"}, "accelerator 'kd'");
+    EXPECT_EQ(settings.getInt(kThreadsKey), 3);
+}
+
+TEST(PluginKeyList, GivesBackTheDeclarationsItIsMadeOf) {
+    const std::vector<EnvKey> keys = {declarationOf(kDepth), declarationOf(kShape)};
+    const PluginKeyList list(keys);
+    ASSERT_EQ(list.view().size(), 2u);
+    for (size_t i = 0; i < keys.size(); ++i) {
+        const EnvKey back = declarationOf(list.view()[i]);
+        EXPECT_EQ(back.name, keys[i].name);
+        EXPECT_EQ(back.type, keys[i].type);
+        EXPECT_EQ(back.defaultValue, keys[i].defaultValue);
+        EXPECT_EQ(back.description, keys[i].description);
+        EXPECT_EQ(back.min, keys[i].min);
+        EXPECT_EQ(back.max, keys[i].max);
+        EXPECT_EQ(back.choices, keys[i].choices);
+    }
 }
 
 }  // namespace
