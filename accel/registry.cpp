@@ -63,7 +63,7 @@ std::unique_ptr<Accelerator> makePluginBvh(const LoadedBuilder& builder, const s
     const EnvPluginSettings keys(env, keyNames, fmt::format("builder '{}'", builder.name));
     const BvhSettings settings = bvhSettings(keys, {});
     return std::make_unique<BvhAccelerator<Layout>>(pluginBuilderRecord(builder, env), settings.build,
-                                                    settings.traversal, settings.stats);
+                                                    settings.traversal, settings.stats, settings.update);
 }
 
 std::vector<AcceleratorInfo> builderInfos(const PluginBuilderEntry& b, const std::string& plugin) {

@@ -73,7 +73,8 @@ template <size_t Entry, typename Layout>
 Accelerator* createBvh(const PluginSettings& keys) {
     const BuilderTableEntry& entry = table()[Entry];
     const BvhSettings settings = bvhSettings(keys, entry.keys);
-    return new BvhAccelerator<Layout>(entry.builder, settings.build, settings.traversal, settings.stats);
+    return new BvhAccelerator<Layout>(entry.builder, settings.build, settings.traversal, settings.stats,
+                                      settings.update);
 }
 
 template <size_t Entry>

@@ -2,11 +2,13 @@
 #include "accel/bvh/builders/build_threads.h"
 
 #include "accel/bvh/layout/end_point_overlap.h"
+#include "accel/bvh/layout/refit.h"
 #include "accel/bvh/traverse/binary_bvh_traversal.h"
 
 #include <fmt/format.h>
 
 #include <bit>
+#include <stdexcept>
 #include <type_traits>
 
 namespace bvhlab {
@@ -26,12 +28,14 @@ struct LayoutWidth<WideBvh<N>> {
 
 template <typename Layout>
 BvhAccelerator<Layout>::BvhAccelerator(BuilderRecord builder, const BvhBuildConfig& build,
-                                       const TraversalConfig& traversal, const BvhStatsConfig& stats)
+                                       const TraversalConfig& traversal, const BvhStatsConfig& stats,
+                                       const BvhUpdateConfig& update)
     : builder_(std::move(builder)),
       build_(build),
       traversal_(traversal),
       kernels_(traversalKernels<Layout>(traversal)),
       stats_(stats),
+      update_(update),
       name_(builder_.name) {
     if constexpr (LayoutWidth<Layout>::value > 2) {
         name_ += std::to_string(LayoutWidth<Layout>::value);
@@ -47,7 +51,9 @@ void BvhAccelerator<Layout>::build(const PrimitiveSet& prims) {
     // in leaf order), including a collapse and the quadric tree.
     tree_ = Layout();
     binary_ = BinaryBvh();
+    binaryStale_ = false;
     statistics_.reset();
+    prims_ = prims;
     quadrics_ = QuadricBvh();
     triangles_ = prims.validTriangles().size();
     BinaryBvh binary = buildBvh(builder_, build_, prims);
@@ -66,8 +72,43 @@ void BvhAccelerator<Layout>::build(const PrimitiveSet& prims) {
 }
 
 template <typename Layout>
+bool BvhAccelerator<Layout>::update(const PrimitiveSet& prims) {
+    if (update_.mode == BvhUpdate::Rebuild) return false;
+    if (prims.triangles.size() != prims_.triangles.size() || prims.spheres.size() != prims_.spheres.size() ||
+        prims.cones.size() != prims_.cones.size() || prims.valid.size() != prims_.valid.size())
+        throw std::invalid_argument(
+            fmt::format("{}: an update over {} primitives ({} valid); the structure was built over {} ({} valid)",
+                        name_, prims.triangles.size() + prims.spheres.size() + prims.cones.size(), prims.valid.size(),
+                        prims_.triangles.size() + prims_.spheres.size() + prims_.cones.size(), prims_.valid.size()));
+    prims_ = prims;
+    statistics_.reset();
+    onThreads(build_.shared.threads, [&] {
+        if constexpr (std::is_same_v<Layout, BinaryBvh>) {
+            refitBinary(tree_, prims);
+            if (update_.mode == BvhUpdate::Insertion) optimizeByInsertion(tree_, build_.insertion.iterations);
+        } else if (update_.mode == BvhUpdate::Insertion) {
+            refitBinary(binary_, prims);
+            optimizeByInsertion(binary_, build_.insertion.iterations);
+            const CollapseCosts costs{build_.shared.cTraversal, build_.shared.cIntersect,
+                                      build_.shared.effectiveLeafCap()};
+            tree_ = collapseToWide<LayoutWidth<Layout>::value>(binary_, costs);
+            binaryStale_ = false;
+        } else {
+            refitWide(tree_, prims);
+            binaryStale_ = true;
+        }
+        if (!quadrics_.empty()) refitQuadrics(quadrics_, prims);
+    });
+    return true;
+}
+
+template <typename Layout>
 BuildStats BvhAccelerator<Layout>::buildStats() const {
     if (statistics_) return *statistics_;
+    if (binaryStale_ || binary_.leafTriangles.size() != binary_.primIndices.size()) {
+        onThreads(build_.shared.threads, [&] { refitBinary(binary_, prims_); });
+        binaryStale_ = false;
+    }
     const BinaryBvh& binary = binaryTree();
     BuildStats stats;
     fillTreeStats(binary, build_.shared.cTraversal, build_.shared.cIntersect, stats);
@@ -88,7 +129,7 @@ BuildStats BvhAccelerator<Layout>::buildStats() const {
                              fmt::format("vector width of the traversal kernels that ran: {} (BVH::isa={})",
                                          isaName(kernels_.isa), isaName(traversal_.isa))});
     statistics_ = stats;
-    binary_ = BinaryBvh();
+    decltype(binary_.leafTriangles)().swap(binary_.leafTriangles);
     return stats;
 }
 

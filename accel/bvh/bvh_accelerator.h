@@ -15,6 +15,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 #include <tuple>
 
 namespace bvhlab {
@@ -32,18 +33,44 @@ inline constexpr FieldKey<&BvhStatsConfig::epoMaxTriangles> epoMaxTriangles{
 }  // namespace keys::BVH
 inline constexpr std::tuple kBvhStatsKeys{&keys::BVH::epoMaxTriangles};
 
+// What an update does after the primitives moved (Accelerator::update).
+enum class BvhUpdate {
+    Refit,      // the boxes and the leaves' copies of the primitives recomputed, the tree kept
+    Insertion,  // a refit, then the insertion optimiser's passes on the binary tree (collapsed again)
+    Rebuild,    // no update: update() returns false and the caller builds again
+};
+inline constexpr std::string_view kBvhUpdateWords[] = {"refit", "insertion", "rebuild"};
+
+struct BvhUpdateConfig {
+    BvhUpdate mode = BvhUpdate::Refit;
+};
+
+namespace keys::BVH {
+inline constexpr FieldKey<&BvhUpdateConfig::mode> update{
+    "BVH::update", kBvhUpdateWords,
+    "after primitives moved: refit (boxes recomputed bottom-up, the tree kept), insertion (a refit, then "
+    "BVH::optimizeIterations passes of the insertion optimiser; wide layouts collapsed again), or rebuild (no update: "
+    "the caller builds again)"};
+}  // namespace keys::BVH
+inline constexpr std::tuple kBvhUpdateKeys{&keys::BVH::update};
+
 template <typename Layout>
 class BvhAccelerator final : public BuildStatsAccelerator {
 public:
     BvhAccelerator(BuilderRecord builder, const BvhBuildConfig& build, const TraversalConfig& traversal = {},
-                   const BvhStatsConfig& stats = {});
+                   const BvhStatsConfig& stats = {}, const BvhUpdateConfig& update = {});
 
     const char* name() const override { return name_.c_str(); }
     // The build includes a collapse to wide nodes and the quadric tree.
     void build(const PrimitiveSet& prims) override;
+    // By BVH::update: a refit of the layout (a wide one refitted itself, not collapsed again) and
+    // of the quadric tree, parallel on the build's threads; or a refit and the insertion
+    // optimiser. Throws std::invalid_argument when the counts of `prims` differ from the build's.
+    bool update(const PrimitiveSet& prims) override;
     // #Nodes, #Leaves, depth, SAH and EPO are the binary tree's (the same formula for every
     // builder), with the quadric tree's added (combineTreeStats); memory is the layouts'.
-    // Computed on the first call after a build, then kept.
+    // Computed on the first call after a build or an update, then kept. After a refit of a wide
+    // layout, of its binary tree refitted here (untimed) as the wide one was.
     BuildStats buildStats() const override;
     bool findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const override;
     bool isOccluded(const Ray& ray, QueryCounters& counters) const override;
@@ -69,14 +96,19 @@ private:
     // (traversal_kernels.h): chosen once, here, with the robustness setting.
     TraversalKernels<Layout> kernels_;
     BvhStatsConfig stats_;
+    BvhUpdateConfig update_;
     std::string name_;  // the builder's name, with the width of a wide layout: sahbvh, sahbvh4
     Layout tree_;
-    // A wide layout's binary tree, kept from build() to the first buildStats() call: the figures
-    // are the binary tree's, and computing them in build() would time them. It holds about the
-    // memory of the wide tree again, so that call keeps the figures and frees it. Empty for
-    // Layout = BinaryBvh (tree_ is the binary tree). Not for buildStats() on two threads at once.
+    // A wide layout's binary tree, whole from build() to the first buildStats() call: the figures
+    // are the binary tree's, and computing them in build() would time them. Its leaf triangles
+    // hold most of the memory of the wide tree again, so that call keeps the figures and frees
+    // them; the nodes and primitive indices stay, for the statistics after an update and for
+    // the insertion update. Empty for Layout = BinaryBvh (tree_ is the binary tree). Not for
+    // buildStats() on two threads at once.
     mutable BinaryBvh binary_;
+    mutable bool binaryStale_ = false;  // a wide layout was refitted, binary_ not yet
     mutable std::optional<BuildStats> statistics_;
+    PrimitiveSet prims_;    // of the last build or update
     size_t triangles_ = 0;  // valid triangles built over
     QuadricBvh quadrics_;   // the spheres and cones, when the scene has any (quadric_leaves.h)
 };

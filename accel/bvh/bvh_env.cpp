@@ -14,6 +14,7 @@ BvhBuildConfig& build(BvhSettings& s) { return s.build; }
 InsertionConfig& insertion(BvhSettings& s) { return s.build.insertion; }
 TraversalConfig& traversal(BvhSettings& s) { return s.traversal; }
 BvhStatsConfig& stats(BvhSettings& s) { return s.stats; }
+BvhUpdateConfig& update(BvhSettings& s) { return s.update; }
 BvhSettings& settings(BvhSettings& s) { return s; }
 
 // The keys every BVH accelerator reads, whatever its builder.
@@ -26,6 +27,7 @@ const BvhKeys& commonKeys() {
         {kBvhOptimizeKeys, build},
         {kInsertionKeys, insertion},
         {kTraversalPathKeys, traversal},
+        {kBvhUpdateKeys, update},
     });
     return bound;
 }

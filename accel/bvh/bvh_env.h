@@ -22,6 +22,7 @@ struct BvhSettings {
     BvhBuildConfig build;
     TraversalConfig traversal;
     BvhStatsConfig stats;
+    BvhUpdateConfig update;
     int threads = 0;  // BVH::threads as given; 0 = SetRayTracing::threads. build.shared.threads is the count
 };
 

@@ -74,6 +74,10 @@ public:
 
     const char* name() const override { return "embree"; }
     void build(const PrimitiveSet& prims) override;
+    // With Embree::quality=refit, the moved vertices, spheres and cones written into the
+    // geometries (rtcUpdateGeometryBuffer, rtcCommitGeometry) and the scene committed, which
+    // refits each geometry's tree; at the other qualities there is no update (false).
+    bool update(const PrimitiveSet& prims) override;
     BuildStats buildStats() const override;
     bool findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const override;
     bool isOccluded(const Ray& ray, QueryCounters& counters) const override;
@@ -138,6 +142,7 @@ private:
     bool findNearestInParts(const Ray& ray, Hit& hit) const;
     bool isOccludedInParts(const Ray& ray) const;
     std::vector<Cone> cones_;  // the user geometry's primitives, read by its callbacks
+    PrimitiveSet built_;       // the last build's or update's, whose counts an update keeps
     size_t primitives_ = 0;    // the last build's, for statistics()
     std::optional<size_t> bytes_;
 };

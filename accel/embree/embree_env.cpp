@@ -11,7 +11,10 @@ const KeyBindings<EmbreeConfig>& embreeKeys() {
         {keys::Embree::quality,
          [](EmbreeConfig& c, const std::string& v) {
              // The choices the key allows, medium the remaining one.
-             c.quality = v == "low" ? EmbreeQuality::Low : v == "high" ? EmbreeQuality::High : EmbreeQuality::Medium;
+             c.quality = v == "low"     ? EmbreeQuality::Low
+                         : v == "high"  ? EmbreeQuality::High
+                         : v == "refit" ? EmbreeQuality::Refit
+                                        : EmbreeQuality::Medium;
          }},
         {keys::Embree::robust, [](EmbreeConfig& c, bool v) { c.robust = v; }},
         {keys::Embree::threads, [](EmbreeConfig& c, int v) { c.threads = v; }},

@@ -12,10 +12,12 @@
 namespace bvhlab {
 
 namespace keys::Embree {
-inline constexpr std::string_view kQualities[] = {"low", "medium", "high"};
+inline constexpr std::string_view kQualities[] = {"low", "medium", "high", "refit"};
 inline constexpr ChoiceKey quality{
     "Embree::quality", "medium", kQualities,
-    "Embree build quality: low (two-level, fastest build), medium (default), high (spatial splits)"};
+    "Embree build quality: low (two-level, fastest build), medium (default), high (spatial splits), refit (a dynamic "
+    "two-level scene, each geometry's tree built to be refitted by an update: RTC_BUILD_QUALITY_REFIT; the others "
+    "have no update)"};
 inline constexpr BoolKey robust{
     "Embree::robust", "false",
     "RTC_SCENE_FLAG_ROBUST: robust traversal, no optimisations that reduce arithmetic accuracy"};
@@ -29,7 +31,7 @@ inline constexpr ChoiceKey isa{
     "CPU's best, that best. avx2 beside BVH::isa=avx2 compares kernels of one vector width (bvhlab bench --isa-pairs)"};
 }  // namespace keys::Embree
 
-enum class EmbreeQuality { Low, Medium, High };
+enum class EmbreeQuality { Low, Medium, High, Refit };
 
 struct EmbreeConfig {
     EmbreeQuality quality = EmbreeQuality::Medium;

@@ -17,6 +17,9 @@ public:
     void build(const PrimitiveSet& prims) override {
         guard(running("build()", nullptr, prims.valid.size()), [&] { inner_->build(prims); });
     }
+    bool update(const PrimitiveSet& prims) override {
+        return guard(running("update()", nullptr, prims.valid.size()), [&] { return inner_->update(prims); });
+    }
     void statistics(BuildStatistics& out) const override {
         guard(running("statistics()"), [&] { inner_->statistics(out); });
     }

@@ -12,16 +12,6 @@
 #include <mutex>
 
 namespace bvhlab::verify {
-namespace {
-
-// One scene with its oracle and, per ray kind, the rays and (when a check judges answers) the
-// oracle's answers: computed once per process, shared by every structure and check.
-struct SceneCase {
-    Scene scene;
-    std::unique_ptr<Oracle> oracle;
-    std::vector<std::pair<RayKind, std::vector<Ray>>> rays;
-    std::vector<Reference> reference;
-};
 
 const SceneCase& sceneCase(const NamedSceneFactory& factory, const std::vector<Ray>& extraRays, double rayScale,
                            bool judged) {
@@ -52,6 +42,8 @@ const SceneCase& sceneCase(const NamedSceneFactory& factory, const std::vector<R
             slot->reference.push_back(computeOracleReference(*slot->oracle, rays));
     return *slot;
 }
+
+namespace {
 
 enum class Queries { Nearest, Occlusion, Both };
 
@@ -97,13 +89,6 @@ CheckResult compareOnScenes(const Subject& subject, const CheckOptions& options,
     return result;
 }
 
-std::vector<NamedSceneFactory> agreementScenes() {
-    std::vector<NamedSceneFactory> scenes;
-    for (const NamedSceneFactory& f : generatedScenes())
-        if (f.name != "degenerate_mix") scenes.push_back(f);  // the degenerate-triangles check's
-    return scenes;
-}
-
 // Rays aimed at the finite vertices of the degenerate triangles (and at their midpoints), from
 // random directions and along z: whatever they hit must be a valid primitive.
 std::vector<Ray> raysAtDegenerateTriangles(const Scene& scene) {
@@ -127,6 +112,13 @@ std::vector<Ray> raysAtDegenerateTriangles(const Scene& scene) {
 }
 
 }  // namespace
+
+std::vector<NamedSceneFactory> agreementScenes() {
+    std::vector<NamedSceneFactory> scenes;
+    for (const NamedSceneFactory& f : generatedScenes())
+        if (f.name != "degenerate_mix") scenes.push_back(f);  // the degenerate-triangles check's
+    return scenes;
+}
 
 CheckResult agreement(const Subject& subject, const CheckOptions& options) {
     return compareOnScenes(subject, options, "agreement", agreementScenes(), {}, Queries::Nearest);

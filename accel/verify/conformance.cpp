@@ -75,6 +75,10 @@ const std::vector<CheckInfo>& conformanceChecks() {
         {"watertight", "probes at the edges and vertices of closed meshes do not leak (if promised)", watertight},
         {"builds-at-the-edge", "bounded time, memory and depth on degenerate inputs, answers as naive's",
          buildsAtTheEdge},
+        {"update",
+         "after the primitives moved, the updated structure answers as the reference and a fresh build do, without "
+         "leaks (if it has an update)",
+         update},
         {"cost",
          fmt::format("N_IT + N_TR per ray against sahbvh's on a mid-size scene: a warning past {:g}x", kCostFactor),
          cost},

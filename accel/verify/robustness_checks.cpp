@@ -2,6 +2,7 @@
 
 #include "accel/verify/closed_meshes.h"
 #include "accel/verify/generated_scenes.h"
+#include "accel/verify/moved_scene.h"
 #include "accel/verify/ray_generators.h"
 #include "accel/verify/stress_checks.h"
 #include "accel/verify/watertight_probe.h"
@@ -10,6 +11,7 @@
 
 #include <map>
 #include <mutex>
+#include <tuple>
 
 namespace bvhlab::verify {
 namespace {
@@ -75,40 +77,46 @@ CheckResult buildsAtTheEdge(const Subject& subject, const CheckOptions& options)
     return result;
 }
 
+const ProbedMeshes& probedMeshes(const CheckOptions& options, size_t rays, bool moved) {
+    static std::mutex mutex;
+    static std::map<std::tuple<double, size_t, bool>, ProbedMeshes> cache;
+    const std::lock_guard lock(mutex);
+    ProbedMeshes& slot = cache[{options.rayScale, rays, moved}];
+    if (slot.empty())
+        for (Scene scene : {makeIcosphereMesh(3), makeSubdividedCubeMesh(8), makeTorusMesh(48, 24)}) {
+            if (moved) scene = movedScene(scene);
+            ProbeOptions probeOptions;
+            probeOptions.rays = scaled(rays, options);
+            probeOptions.seed = scene.triangleCount();
+            ProbeSet probes = makeWatertightProbes(MeshTopology::of(scene), probeOptions);
+            slot.emplace_back(std::move(scene), std::move(probes));
+        }
+    return slot;
+}
+
+void tallyLeaks(const Subject& subject, const CheckOptions& options, const Scene& scene, const LeakStats& stats,
+                CheckResult& result, size_t& reported) {
+    result.cases += stats.rays;
+    const size_t leaks = stats.leaks + stats.occlusionLeaks;
+    if (isExternal(subject.name)) {
+        reported += leaks;
+        return;
+    }
+    result.failures += leaks + stats.batchLeaks + stats.batchOcclusionLeaks;
+    for (const std::string& e : stats.examples)
+        addExample(result, options, scene.name, e + " (tmin 0); reference: a hit in [0, tmax]");
+}
+
 CheckResult watertight(const Subject& subject, const CheckOptions& options) {
     CheckResult result = newResult("watertight", "probes");
-    static std::mutex mutex;
-    static std::map<double, std::vector<std::pair<Scene, ProbeSet>>> cache;
-    std::vector<std::pair<Scene, ProbeSet>>* meshes;
-    {
-        const std::lock_guard lock(mutex);
-        auto& slot = cache[options.rayScale];
-        if (slot.empty())
-            for (Scene scene : {makeIcosphereMesh(3), makeSubdividedCubeMesh(8), makeTorusMesh(48, 24)}) {
-                ProbeOptions probeOptions;
-                probeOptions.rays = scaled(10000, options);
-                probeOptions.seed = scene.triangleCount();
-                ProbeSet probes = makeWatertightProbes(MeshTopology::of(scene), probeOptions);
-                slot.emplace_back(std::move(scene), std::move(probes));
-            }
-        meshes = &slot;
-    }
-    const bool promised = !isExternal(subject.name);
+    const ProbedMeshes& meshes = probedMeshes(options, 10000, false);
     size_t reported = 0;
-    for (const auto& [scene, probes] : *meshes) {
+    for (const auto& [scene, probes] : meshes) {
         const auto accel = buildOn(subject, scene, result, options);
         ++result.scenes;
-        const LeakStats s = countLeaks(*accel, probes.probes, options.threads, options.maxExamples);
-        result.cases += s.rays;
-        const size_t leaks = s.leaks + s.occlusionLeaks;
-        if (!promised) {
-            reported += leaks;
-        } else {
-            result.failures += leaks + s.batchLeaks + s.batchOcclusionLeaks;
-            for (const std::string& e : s.examples)
-                addExample(result, options, scene.name, e + " (tmin 0); reference: a hit in [0, tmax]");
-        }
-        reportProgress(options, result.scenes, meshes->size());
+        tallyLeaks(subject, options, scene, countLeaks(*accel, probes.probes, options.threads, options.maxExamples),
+                   result, reported);
+        reportProgress(options, result.scenes, meshes.size());
     }
     if (reported)
         result.note =

@@ -124,7 +124,7 @@ void addCheckCommand(CLI::App& app) {
     CLI::App* command = app.add_subcommand(
         "check",
         "the conformance suite for one accelerator: agreement with a double-precision reference, any-hit, batch, "
-        "mixed primitives, degenerate triangles, watertightness, builds at the edge, cost against sahbvh "
+        "mixed primitives, degenerate triangles, watertightness, builds at the edge, updates, cost against sahbvh "
         "(docs/accuracy.md)");
     addEnvOptions(*command, options->env);
     addThreadsOption(*command, options->env);

@@ -51,6 +51,23 @@ PythonAccelerator build(std::shared_ptr<PythonScene> scene, const std::string& n
     return built;
 }
 
+// The structure updated to `scene`'s primitives, timed as bvhlab times an update; false (and
+// nothing changed) when it has none.
+bool update(PythonAccelerator& self, std::shared_ptr<PythonScene> scene, int threads) {
+    checkThreads(threads);
+    std::optional<BuildStats> stats;
+    {
+        py::gil_scoped_release release;
+        tbb::task_arena(threads > 0 ? threads : tbb::info::default_concurrency()).execute([&] {
+            stats = timedUpdate(*self.accel, scene->scene.primitives());
+        });
+    }
+    if (!stats) return false;
+    self.scene = std::move(scene);  // the structure keeps views of its primitives
+    self.stats = *stats;
+    return true;
+}
+
 // Answers the arrays' rays into a new array of Record, one per ray, as bvhlab raycast answers
 // them (forEachRayRange), with the GIL released: each range is read into its thread's buffers,
 // answered by the batch call, and written in place by write(answers, costs, records). The
@@ -153,6 +170,11 @@ void bindAccelerator(py::module_& m) {
         .def("occluded", &occluded, py::arg("origins"), py::arg("directions"), py::arg("tmin") = 0.0f,
              py::arg("tmax") = std::numeric_limits<float>::infinity(), py::arg("threads") = 0,
              py::arg("counters") = false, py::arg("coherent") = false, occludedDoc.c_str())
+        .def("update", &update, py::arg("scene"), py::arg("threads") = 0,
+             "Updates the structure after the primitives moved: `scene` has the built scene's primitives (the "
+             "same counts and valid ones, e.g. the same file at another time) at new positions. True when it "
+             "answers for them now (stats: the updated structure's, build_ms the update's time); False when the "
+             "structure has no update (build it again with bvhlab.build). Other counts: ValueError.")
         .def("__repr__", [](const PythonAccelerator& a) {
             return fmt::format("<bvhlab.Accelerator {} over '{}'>", a.accel->name(), a.scene->scene.name);
         });

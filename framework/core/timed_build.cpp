@@ -6,15 +6,41 @@
 
 namespace bvhlab {
 
-BuildStats timedBuild(Accelerator& accel, const PrimitiveSet& prims) {
+namespace {
+
+// The wall and process CPU time of call(), as the statistics' buildMs and buildCpuMs.
+template <typename Call>
+BuildStats timedStatistics(Accelerator& accel, Call&& call, bool& done) {
     const auto start = std::chrono::steady_clock::now();
     const double cpuStart = processCpuMs();
-    accel.build(prims);
+    done = call();
     const double cpuEnd = processCpuMs();
     const auto end = std::chrono::steady_clock::now();
-    BuildStats stats = statisticsOf(accel);
+    if (!done) return {};
+    BuildStats stats = statisticsOf(accel);  // untimed
     stats.buildMs = std::chrono::duration<double, std::milli>(end - start).count();
     stats.buildCpuMs = cpuEnd - cpuStart;
+    return stats;
+}
+
+}  // namespace
+
+BuildStats timedBuild(Accelerator& accel, const PrimitiveSet& prims) {
+    bool built = false;
+    return timedStatistics(
+        accel,
+        [&] {
+            accel.build(prims);
+            return true;
+        },
+        built);
+}
+
+std::optional<BuildStats> timedUpdate(Accelerator& accel, const PrimitiveSet& prims) {
+    bool updated = false;
+    BuildStats stats = timedStatistics(
+        accel, [&] { return accel.update(prims); }, updated);
+    if (!updated) return std::nullopt;
     return stats;
 }
 

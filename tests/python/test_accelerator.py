@@ -205,3 +205,25 @@ def test_bad_build(quad_scene, name, env, message):
 def test_missing_plugin(tmp_path):
     with pytest.raises(bvhlab.InputError, match="nothing.so"):
         bvhlab.load_plugin(tmp_path / "nothing.so")
+
+
+@pytest.mark.parametrize("name,env", [("sahbvh", {}), ("sahbvh8", {}), ("naive", {}), ("embree", {}),
+                                      ("embree", {"Embree::quality": "refit"})])
+def test_update_after_the_quad_moved(quad_scene, name, env):
+    """accel.update(scene): the quad lowered and shifted answers as a fresh build over it; Embree has an update
+    at Embree::quality=refit only."""
+    accel = bvhlab.build(quad_scene, name, env=env)
+    square = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [0, 1, 0]], dtype=np.float32)
+    moved = bvhlab.Scene.from_arrays(square + np.float32([0.25, 0, -0.5]), np.array([[0, 1, 2], [0, 2, 3]]))
+    updated = accel.update(moved)
+    assert updated == (name != "embree" or bool(env))
+    if not updated:
+        return
+    origins, directions = rays_down(1000)
+    hits = accel.intersect(origins, directions)
+    fresh = bvhlab.build(moved, name, env=env).intersect(origins, directions)
+    np.testing.assert_array_equal(hits["t"], fresh["t"])
+    assert np.allclose(hits["t"][hits["prim"] >= 0], 1.5, rtol=1e-6) and np.any(hits["prim"] >= 0)
+    if name != "naive":
+        with pytest.raises(ValueError, match="built over"):
+            accel.update(bvhlab.Scene.from_arrays(square[:3], np.array([[0, 1, 2]])))

@@ -26,26 +26,6 @@ WideNode<N> emptyWideNode() {
     return n;
 }
 
-// Fills node.order: per octant, the lanes far to near by where each box begins along the
-// octant's diagonal (the corner a ray of that octant reaches first), ties in lane order; empty
-// lanes farthest.
-template <int N>
-void orderChildren(WideNode<N>& node) {
-    for (int octant = 0; octant < 8; ++octant) {
-        float begin[N];
-        for (int i = 0; i < N; ++i) {
-            begin[i] = kInfinity;
-            if (!(node.lower[0][i] <= node.upper[0][i])) continue;  // empty
-            begin[i] = 0.0f;
-            for (int a = 0; a < 3; ++a) begin[i] += (octant >> a & 1) ? -node.upper[a][i] : node.lower[a][i];
-        }
-        int lanes[N];
-        for (int i = 0; i < N; ++i) lanes[i] = i;
-        std::stable_sort(lanes, lanes + N, [&](int x, int y) { return begin[x] > begin[y]; });
-        for (int p = 0; p < N; ++p) node.order[p] |= uint32_t(lanes[p]) << (3 * octant);
-    }
-}
-
 // A leaf's child word; throws when the layout cannot address it.
 uint32_t leafChild(uint32_t firstBlock, uint32_t triangles) {
     const uint32_t blocks = blocksFor(triangles);
@@ -263,6 +243,29 @@ private:
 }  // namespace
 
 template <int N>
+void orderChildren(WideNode<N>& node) {
+    std::fill_n(node.order, N, 0u);
+    for (int octant = 0; octant < 8; ++octant) {
+        float begin[N];
+        for (int i = 0; i < N; ++i) {
+            begin[i] = kInfinity;
+            if (!(node.lower[0][i] <= node.upper[0][i])) continue;  // empty
+            begin[i] = 0.0f;
+            for (int a = 0; a < 3; ++a) begin[i] += (octant >> a & 1) ? -node.upper[a][i] : node.lower[a][i];
+        }
+        // Far to near, ties in lane order: an insertion sort, stable, and without the buffer
+        // std::stable_sort allocates (a refit orders every node again).
+        int lanes[N];
+        for (int i = 0; i < N; ++i) {
+            int p = i;
+            for (; p > 0 && begin[lanes[p - 1]] < begin[i]; --p) lanes[p] = lanes[p - 1];
+            lanes[p] = i;
+        }
+        for (int p = 0; p < N; ++p) node.order[p] |= uint32_t(lanes[p]) << (3 * octant);
+    }
+}
+
+template <int N>
 WideBvh<N> collapseToWide(const BinaryBvh& bvh, const CollapseCosts& costs) {
     WideBvh<N> wide;
     if (bvh.empty()) return wide;
@@ -287,6 +290,8 @@ WideBvh<N> collapseToWide(const BinaryBvh& bvh, const CollapseCosts& costs) {
     return wide;
 }
 
+template void orderChildren<4>(WideNode<4>&);
+template void orderChildren<8>(WideNode<8>&);
 template WideBvh<4> collapseToWide<4>(const BinaryBvh&, const CollapseCosts&);
 template WideBvh<8> collapseToWide<8>(const BinaryBvh&, const CollapseCosts&);
 

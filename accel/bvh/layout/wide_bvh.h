@@ -53,6 +53,12 @@ inline int directionOctant(const Vec3& dir) {
     return (std::signbit(dir.x) ? 1 : 0) | (std::signbit(dir.y) ? 2 : 0) | (std::signbit(dir.z) ? 4 : 0);
 }
 
+// Fills node.order from the node's boxes: per octant, the lanes far to near by where each box
+// begins along the octant's diagonal (the corner a ray of that octant reaches first), ties in
+// lane order; empty lanes farthest. Instantiated for N = 4 and 8.
+template <int N>
+void orderChildren(WideNode<N>& node);
+
 // Root at 0. Empty when there is nothing to build over.
 template <int N>
 using WideBvh = NodeTree<WideNode<N>, TriangleBlockLeaves>;

@@ -174,6 +174,7 @@ inline constexpr uint64_t kItaniumAbi = 0;
         BVHLAB_ABI_CLASS(Accelerator),
         BVHLAB_ABI_VIRTUAL(Accelerator, name),
         BVHLAB_ABI_VIRTUAL(Accelerator, build),
+        BVHLAB_ABI_VIRTUAL(Accelerator, update),
         BVHLAB_ABI_VIRTUAL(Accelerator, statistics),
         BVHLAB_ABI_VIRTUAL(Accelerator, findNearest),
         BVHLAB_ABI_VIRTUAL(Accelerator, isOccluded),

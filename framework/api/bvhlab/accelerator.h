@@ -1,6 +1,6 @@
 // The interface every acceleration structure implements (nanoGolem style): build over the
-// scene's primitives (triangles, spheres, cones), then answer closest-hit and any-hit
-// queries, counting its work.
+// scene's primitives (triangles, spheres, cones), update after they moved, then answer
+// closest-hit and any-hit queries, counting its work.
 #pragma once
 
 #include <bvhlab/counters.h>
@@ -22,6 +22,17 @@ public:
     // Builds over prims.valid; keeps views of prims' arrays, which must outlive it. Does the
     // build and nothing else: the caller's clocks around this call are T_B.
     virtual void build(const PrimitiveSet& prims) = 0;
+
+    // Updates the structure after its primitives moved, in place of a build: `prims` is the
+    // last build's set (or the last update's) with the same index space and the same `valid`,
+    // only positions changed (vertices, centres, radii), its arrays possibly new ones, which
+    // then must outlive it as build()'s. A primitive that became degenerate stays in `valid` and
+    // is never hit. Returns true when the structure now answers for the new positions as a
+    // fresh build would (its tree may be worse: statistics() then describe the updated one);
+    // false when it has no update, leaving it as it was: the caller then calls build(prims).
+    // Another index space or valid set is the caller's error (std::invalid_argument, where
+    // the structure can tell). Timed by the caller, as build() is.
+    virtual bool update(const PrimitiveSet& /*prims*/) { return false; }
 
     // Writes the statistics of the last build into `out` (primitives built over, and the tree's
     // figures where it has a tree: nodes, leaves, SAH, EPO, bytes, its own figures). Never

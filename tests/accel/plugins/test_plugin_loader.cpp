@@ -49,6 +49,21 @@ std::vector<AbiFigure> figuresWith(std::string_view what, uint64_t value) {
     return figures;
 }
 
+TEST(PluginLoader, APluginWithoutUpdateIsAskedToBeRebuilt) {
+    // Headers older than Accelerator::update: its figures absent, the later slots one lower.
+    std::vector<AbiFigure> older;
+    const uint64_t updateSlot = abi::vtableSlot(&Accelerator::update);
+    for (AbiFigure f : abiFigures()) {
+        const std::string_view what = f.what;
+        if (what.ends_with("Accelerator::update")) continue;
+        if (what.starts_with("vtable slot of Accelerator::") && f.value > updateSlot) --f.value;
+        older.push_back(f);
+    }
+    const std::string message = abiMismatch(older);
+    EXPECT_NE(message.find("vtable slot of Accelerator::update is absent in the plugin"), std::string::npos) << message;
+    EXPECT_NE(message.find("rebuild it against this bvhlab's include/bvhlab"), std::string::npos) << message;
+}
+
 TEST(PluginLoader, ItsOwnFiguresMatch) { EXPECT_EQ(abiMismatch(abiFigures()), ""); }
 
 TEST(PluginLoader, APluginOfLibcxxIsAskedForLibstdcxx) {

@@ -111,6 +111,43 @@ TEST(CheckSuiteCanFail, AnAcceleratorThatDropsHitsFailsNamingARay) {
         EXPECT_TRUE(verify::runCheck(name, registered("sahbvh"), options).passed()) << name;
 }
 
+// A registered structure whose update claims success and changes nothing: it still answers
+// for the primitives where they were built.
+class StaleUpdate final : public Accelerator {
+public:
+    StaleUpdate() : inner_(createAccelerator("sahbvh8", Env(verify::verifyKeys()))) {}
+    const char* name() const override { return "stale-update"; }
+    void build(const PrimitiveSet& prims) override { inner_->build(prims); }
+    bool update(const PrimitiveSet&) override { return true; }
+    void statistics(BuildStatistics& out) const override { inner_->statistics(out); }
+    bool findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const override {
+        return inner_->findNearest(ray, hit, counters);
+    }
+    bool isOccluded(const Ray& ray, QueryCounters& counters) const override {
+        return inner_->isOccluded(ray, counters);
+    }
+
+private:
+    std::unique_ptr<Accelerator> inner_;
+};
+
+TEST(CheckSuiteCanFail, AnUpdateThatMovesNothingFailsAndNoUpdateIsSkipped) {
+    verify::CheckOptions options;
+    options.rayScale = 0.2;
+    const verify::CheckResult stale =
+        verify::runCheck("update", {"stale-update", [] { return std::make_unique<StaleUpdate>(); }}, options);
+    EXPECT_GT(stale.failures, stale.cases / 20) << report(stale);
+    ASSERT_FALSE(stale.examples.empty());
+    EXPECT_TRUE(stale.examples.front().starts_with("update on moved ")) << stale.examples.front();
+    const verify::Subject rebuilt{"sahbvh", [] {
+                                      Env env(verify::verifyKeys());
+                                      env.setOverride("BVH::update=rebuild");
+                                      return createAccelerator("sahbvh", env);
+                                  }};
+    const verify::CheckResult none = verify::runCheck("update", rebuilt, options);
+    EXPECT_TRUE(none.skipped) << report(none);
+}
+
 TEST(CheckSuiteCanFail, UnknownCheckIsAnInputErrorListingTheKnownOnes) {
     try {
         verify::findCheck("nosuch");

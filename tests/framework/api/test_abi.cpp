@@ -63,6 +63,7 @@ TEST(Abi, AVirtualFunctionsSlotIsItsPlaceInTheTable) {
     // destructor), then come its functions in the order they are declared.
     EXPECT_EQ(abi::vtableSlot(&Accelerator::name), 2u);
     EXPECT_EQ(abi::vtableSlot(&Accelerator::build), 3u);
+    EXPECT_EQ(abi::vtableSlot(&Accelerator::update), 4u);
     EXPECT_EQ(abi::vtableSlot(&PluginRegistrar::addAccelerator), 0u);
     EXPECT_EQ(abi::vtableSlot(&PluginRegistrar::addBuilder), 1u);
 }
