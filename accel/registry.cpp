@@ -1,5 +1,7 @@
 #include "accel/registry.h"
 
+#include "accel/twolevel/two_level_accelerator.h"
+
 #include "accel/bvh/builder_table.h"
 #include "accel/bvh/bvh_accelerator.h"
 #include "accel/bvh/bvh_env.h"
@@ -151,8 +153,8 @@ std::unique_ptr<Accelerator> createAccelerator(const std::string& name, const En
     return acceleratorNamed(name).create(env);
 }
 
-std::unique_ptr<TwoLevelAccelerator> createTwoLevel(std::vector<Instance> instances, const std::string& bottom,
-                                                    const Env& env) {
+std::unique_ptr<InstancedAccelerator> createInstanced(std::vector<Instance> instances, const std::string& bottom,
+                                                      const Env& env) {
     auto create = acceleratorNamed(bottom).create;
     auto values = std::make_shared<const Env>(env);
     return std::make_unique<TwoLevelAccelerator>(

@@ -6,9 +6,9 @@
 #pragma once
 
 #include "accel/plugins/plugin_additions.h"
-#include "accel/twolevel/two_level_accelerator.h"
 #include "framework/config/env.h"
 #include "framework/core/accelerator.h"
+#include "framework/core/instanced_accelerator.h"
 
 #include <functional>
 #include <memory>
@@ -56,10 +56,10 @@ inline std::unique_ptr<Accelerator> createAccelerator(const Env& env) {
 }
 
 // Two levels over `instances`: each instance's structure the accelerator `bottom` made with the
-// env's values, the top level built by binned SAH with the env's BVH:: keys. Throws as
+// env's values, under our top level built by binned SAH with the env's BVH:: keys. Throws as
 // createAccelerator does for an unknown `bottom`.
-std::unique_ptr<TwoLevelAccelerator> createTwoLevel(std::vector<Instance> instances, const std::string& bottom,
-                                                    const Env& env);
+std::unique_ptr<InstancedAccelerator> createInstanced(std::vector<Instance> instances, const std::string& bottom,
+                                                      const Env& env);
 
 // ASDS::type, ASDS::plugins and the keys of bvhlab's own accelerators (a plugin's are
 // registered when it is loaded).

@@ -35,18 +35,6 @@ Bounds3 transformedBox(const Bounds3& box, const glm::dmat4& m) {
 
 }  // namespace
 
-uint32_t Instance::worldPrimitive(uint32_t objectPrim) const {
-    switch (prims.kind(objectPrim)) {
-        case PrimitiveKind::Triangle:
-            return worldTriangleBase + objectPrim;
-        case PrimitiveKind::Sphere:
-            return worldSphereBase + (objectPrim - prims.sphereBase());
-        case PrimitiveKind::Cone:
-            break;
-    }
-    return worldConeBase + (objectPrim - prims.coneBase());
-}
-
 TwoLevelAccelerator::TwoLevelAccelerator(std::vector<Instance> instances, MakeBottom makeBottom,
                                          const BvhBuildConfig& top)
     : instances_(std::move(instances)), makeBottom_(std::move(makeBottom)), topConfig_(top) {}
@@ -66,7 +54,11 @@ void TwoLevelAccelerator::build(const PrimitiveSet&) {
     buildTop();
 }
 
-void TwoLevelAccelerator::setTransforms(View<const glm::dmat4> objectToWorld) {
+void TwoLevelAccelerator::moveInstances(View<const glm::dmat4> objectToWorld, View<const uint32_t> deformed) {
+    for (uint32_t i : deformed) {
+        if (!bottoms_[i]->update(instances_[i].prims)) bottoms_[i]->build(instances_[i].prims);
+        objectBoxes_[i] = boundsOfValid(instances_[i].prims);
+    }
     for (size_t i = 0; i < instances_.size(); ++i) {
         instances_[i].objectToWorld = objectToWorld[i];
         placeInstance(i);

@@ -67,7 +67,7 @@ std::vector<Ray> raysInto(const Soup& world, size_t n, uint32_t seed) {
     return rays;
 }
 
-void expectAnswersAsBruteForce(const TwoLevelAccelerator& twoLevel, const Soup& world, uint32_t seed) {
+void expectAnswersAsBruteForce(const Accelerator& twoLevel, const Soup& world, uint32_t seed) {
     const std::unique_ptr<Accelerator> naive = createAccelerator("naive", Env(verify::verifyKeys()));
     naive->build(world.prims());
     size_t hits = 0;
@@ -87,28 +87,28 @@ void expectAnswersAsBruteForce(const TwoLevelAccelerator& twoLevel, const Soup& 
 }
 
 // The scene placed at time 0 and its two levels, built, with `bottom` under the top level.
-std::unique_ptr<TwoLevelAccelerator> builtAtTimeZero(InstancedWorld& scene, const std::string& bottom) {
+std::unique_ptr<InstancedAccelerator> builtAtTimeZero(InstancedWorld& scene, const std::string& bottom) {
     scene.place(placements(0.0));
-    std::unique_ptr<TwoLevelAccelerator> twoLevel =
-        createTwoLevel(scene.instances(placements(0.0)), bottom, Env(verify::verifyKeys()));
+    std::unique_ptr<InstancedAccelerator> twoLevel =
+        createInstanced(scene.instances(placements(0.0)), bottom, Env(verify::verifyKeys()));
     twoLevel->build({});
     return twoLevel;
 }
 
 TEST(TwoLevel, AnswersAsBruteForceOverThePlacedTrianglesBeforeAndAfterAMove) {
     InstancedWorld scene;
-    const std::unique_ptr<TwoLevelAccelerator> twoLevel = builtAtTimeZero(scene, "sahbvh8");
+    const std::unique_ptr<InstancedAccelerator> twoLevel = builtAtTimeZero(scene, "sahbvh8");
     expectAnswersAsBruteForce(*twoLevel, scene.world, 7);
 
     const std::vector<glm::dmat4> moved = placements(1.25);
     scene.place(moved);
-    twoLevel->setTransforms(moved);
+    twoLevel->moveInstances(moved, {});
     expectAnswersAsBruteForce(*twoLevel, scene.world, 8);
 }
 
 TEST(TwoLevel, CountsBothLevelsAndOneQueryPerRay) {
     InstancedWorld scene;
-    const std::unique_ptr<TwoLevelAccelerator> twoLevel = builtAtTimeZero(scene, "naive");
+    const std::unique_ptr<InstancedAccelerator> twoLevel = builtAtTimeZero(scene, "naive");
     QueryCounters counters;
     size_t found = 0;
     const std::vector<Ray> rays = raysInto(scene.world, 100, 3);
@@ -125,7 +125,7 @@ TEST(TwoLevel, CountsBothLevelsAndOneQueryPerRay) {
 
 TEST(TwoLevel, AnUnknownBottomStructureIsRefusedByName) {
     const Env env(verify::verifyKeys());
-    EXPECT_THROW(createTwoLevel({}, "nosuch", env), InputError);
+    EXPECT_THROW(createInstanced({}, "nosuch", env), InputError);
 }
 
 }  // namespace
