@@ -106,6 +106,8 @@ public:
 
     // The primitives setTime moves (PrimitiveSet's index space), ascending.
     const std::vector<uint32_t>& movingPrimitives() const { return moving_; }
+    // The valid primitives that never move, ascending.
+    const std::vector<uint32_t>& staticPrimitives() const { return staticValid_; }
 
 private:
     void rebuildValidPrimitives();
