@@ -17,11 +17,12 @@ void addStressCommand(CLI::App& app);
 void addTradeoffCommand(CLI::App& app);
 void addSpdCommand(CLI::App& app);
 void addCheckCommand(CLI::App& app);
+void addAnimateCommand(CLI::App& app);
 
 // In the order `bvhlab --help` lists them.
 inline constexpr void (*kCommands[])(CLI::App&) = {
-    addRenderCommand,   addRaycastCommand, addRaysCommand,  addBenchCommand, addBatchCommand, addStressCommand,
-    addTradeoffCommand, addSpdCommand,     addCheckCommand, addKeysCommand,  addPlotCommand,
+    addRenderCommand,   addRaycastCommand, addRaysCommand,    addBenchCommand, addBatchCommand, addStressCommand,
+    addTradeoffCommand, addSpdCommand,     addAnimateCommand, addCheckCommand, addKeysCommand,  addPlotCommand,
 };
 
 }  // namespace bvhlab

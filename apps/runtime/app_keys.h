@@ -46,6 +46,21 @@ inline constexpr PathKey reference{
     "bvhlab spd: folder of Havran's havran_stats_grids.txt and havran_stats_octrees.txt"};
 }  // namespace keys::Spd
 
+namespace keys::Animate {
+inline constexpr std::string_view kPolicies[] = {"rebuild", "refit", "adaptive", "twolevel"};
+inline constexpr ChoiceKey policy{
+    "Animate::policy", "adaptive", kPolicies,
+    "how a structure follows an animation (bvhlab animate, docs/animation.md): rebuild every frame; refit (the "
+    "structure's update: BVH::update, Embree::quality=refit); adaptive (refit, and rebuild when the SAH has grown "
+    "past Animate::sahGrowth or every Animate::rebuildEvery frames); twolevel (a structure per rigid part under a "
+    "top level)"};
+inline constexpr FloatKey sahGrowth{
+    "Animate::sahGrowth", "1.3", 1, 1e9,
+    "adaptive: rebuild once the refitted tree's SAH exceeds this factor of the SAH of its last build"};
+inline constexpr IntKey rebuildEvery{"Animate::rebuildEvery", "0", 0, 1000000,
+                                     "adaptive: rebuild at least every this many frames; 0 = only when the SAH grew"};
+}  // namespace keys::Animate
+
 // Keys that change no figure of any run: what is written (Output::*) and where parsed scenes
 // are cached. Batch and tradeoff leave them out of what a stored result must match.
 inline bool changesNoFigure(std::string_view name) {

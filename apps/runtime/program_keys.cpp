@@ -25,6 +25,9 @@ void registerAppKeys(EnvRegistry& r) {
     r.add(keys::Spd::maxDepth);
     r.add(keys::Spd::reference);
     r.add(keys::Spd::twoSidedScenes);
+    r.add(keys::Animate::policy);
+    r.add(keys::Animate::sahGrowth);
+    r.add(keys::Animate::rebuildEvery);
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 
 #include "framework/core/accelerator.h"
 
+#include <functional>
 #include <optional>
 
 namespace bvhlab {
@@ -16,7 +17,11 @@ BuildStats timedBuild(Accelerator& accel, const PrimitiveSet& prims);
 
 // Updates `accel` to `prims` (Accelerator::update), timing update() alone as timedBuild times
 // build(): the updated structure's statistics with buildMs and buildCpuMs the update's (T_update).
-// std::nullopt when the structure has no update (it is as it was; build it again).
-std::optional<BuildStats> timedUpdate(Accelerator& accel, const PrimitiveSet& prims);
+// std::nullopt when the structure has no update (it is as it was; build it again). With
+// `statisticsTimed` the statistics count in T_update: for a caller that decides by them.
+std::optional<BuildStats> timedUpdate(Accelerator& accel, const PrimitiveSet& prims, bool statisticsTimed = false);
+
+// Any other change of a structure (two levels' moveInstances), timed as timedBuild times build().
+BuildStats timedChange(Accelerator& accel, const std::function<void()>& change);
 
 }  // namespace bvhlab
