@@ -5,6 +5,7 @@
 #include "apps/measure/measured_configs.h"
 #include "apps/measure/rank_statistics.h"
 #include "apps/runtime/atomic_write.h"
+#include "apps/runtime/table_text.h"
 
 #include <fmt/core.h>
 
@@ -26,10 +27,6 @@ struct TimeKeys {
     const char* trace;
     explicit TimeKeys(int threads) : trace(threads == 1 ? "t_r_cpu_us" : "t_r_us") {}
 };
-
-double number(const json& v) { return v.is_number() ? v.get<double>() : NAN; }
-
-std::string fixed(double v, int digits) { return std::isfinite(v) ? fmt::format("{:.{}f}", v, digits) : ""; }
 
 double geoMean(const std::vector<double>& values) {
     double logSum = 0.0;
@@ -75,7 +72,7 @@ std::vector<std::string> frontOf(const RowsByLabel& rows, X x, Y y) {
 std::string rho(const std::optional<double>& r) { return r ? fmt::format("{:+.2f}", *r) : "n/a"; }
 
 std::string triple(const double (&v)[kSets], int digits) {
-    return fmt::format("{} / {} / {}", fixed(v[0], digits), fixed(v[1], digits), fixed(v[2], digits));
+    return fmt::format("{} / {} / {}", fixedCell(v[0], digits), fixedCell(v[1], digits), fixedCell(v[2], digits));
 }
 
 // The initials of the ray sets on whose front a row lies ("ps": primary and shadow).
@@ -88,10 +85,10 @@ std::string paretoMarks(const bool (&p)[kSets]) {
 Row rowOf(json stored, const TimeKeys& keys) {
     Row row;
     row.stored = std::move(stored);
-    row.build = number(row.stored[keys.build]);
-    row.sah = number(row.stored["sah"]);
-    row.epo = number(row.stored["epo"]);
-    for (size_t s = 0; s < kSets; ++s) row.trace[s] = number(row.stored[kBuilderRaySets[s]][keys.trace]);
+    row.build = jsonNumber(row.stored[keys.build]);
+    row.sah = jsonNumber(row.stored["sah"]);
+    row.epo = jsonNumber(row.stored["epo"]);
+    for (size_t s = 0; s < kSets; ++s) row.trace[s] = jsonNumber(row.stored[kBuilderRaySets[s]][keys.trace]);
     return row;
 }
 
@@ -105,7 +102,7 @@ void compareWithinScene(RowsByLabel& byLabel, const TimeKeys& keys) {
             if (base) row.toBaseline[s] = row.trace[s] / base->trace[s];
             if (high) row.toHigh[s] = row.trace[s] / high->trace[s];
             if (base && base->stored.contains("bare"))
-                row.toBare[s] = row.trace[s] / number(base->stored["bare"][kBuilderRaySets[s]][keys.trace]);
+                row.toBare[s] = row.trace[s] / jsonNumber(base->stored["bare"][kBuilderRaySets[s]][keys.trace]);
         }
     }
     for (size_t s = 0; s < kSets; ++s)
@@ -156,7 +153,7 @@ std::string buildersCsv(const Measured& measured, const std::vector<std::string>
     csv += ",failed\n";
     const std::string csvHeader = csv;
     auto cell = [](const json& v, int digits) {
-        return v.is_number_float() ? fixed(v.get<double>(), digits)
+        return v.is_number_float() ? fixedCell(v.get<double>(), digits)
                : v.is_number()     ? std::to_string(v.get<long long>())
                                    : "";
     };
@@ -173,13 +170,13 @@ std::string buildersCsv(const Measured& measured, const std::vector<std::string>
             csv += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}", scene, config.label,
                                j["accel"].get<std::string>(), cell(j["threads"], 0), cell(j["prims"], 0),
                                j["build_ms_all"].size(), cell(j["build_ms"], 3), cell(j["build_cpu_ms"], 3),
-                               fixed(r.buildRatio, 4), cell(j["sah"], 6), cell(j["epo"], 6), cell(j["nodes"], 0),
+                               fixedCell(r.buildRatio, 4), cell(j["sah"], 6), cell(j["epo"], 6), cell(j["nodes"], 0),
                                cell(j["leaves"], 0), cell(j["avg_leaf"], 3), cell(j["max_leaf"], 0));
             for (size_t s = 0; s < kSets; ++s) {
                 const json& t = j[kBuilderRaySets[s]];
                 csv += fmt::format(",{},{},{},{},{},{},{},{},{}", cell(t["rays"], 0), cell(t["t_r_us"], 5),
                                    cell(t["t_r_cpu_us"], 5), cell(t["n_it"], 3), cell(t["n_tr"], 3),
-                                   fixed(r.toBaseline[s], 4), fixed(r.toHigh[s], 4), fixed(r.toBare[s], 4),
+                                   fixedCell(r.toBaseline[s], 4), fixedCell(r.toHigh[s], 4), fixedCell(r.toBare[s], 4),
                                    r.pareto[s] ? 1 : 0);
             }
             csv += ",\n";  // not failed
@@ -195,10 +192,10 @@ std::string summaryCsv(const Summary& summary, const std::vector<AccelConfig>& c
     for (const AccelConfig& config : configs) {
         if (!summary.means.count(config.label)) continue;
         const Row& m = summary.means.at(config.label);
-        csv += fmt::format("{},{},{}", config.label, summary.sceneCount.at(config.label), fixed(m.buildRatio, 4));
+        csv += fmt::format("{},{},{}", config.label, summary.sceneCount.at(config.label), fixedCell(m.buildRatio, 4));
         for (size_t s = 0; s < kSets; ++s)
-            csv += fmt::format(",{},{},{},{}", fixed(m.toBaseline[s], 4), fixed(m.toHigh[s], 4), fixed(m.toBare[s], 4),
-                               m.pareto[s] ? 1 : 0);
+            csv += fmt::format(",{},{},{},{}", fixedCell(m.toBaseline[s], 4), fixedCell(m.toHigh[s], 4),
+                               fixedCell(m.toBare[s], 4), m.pareto[s] ? 1 : 0);
         csv += "\n";
     }
     return csv;
@@ -235,11 +232,12 @@ std::string sceneTable(const Measured& measured, const std::vector<std::string>&
             const Row* row = measured.row(scene, config.label);
             if (!row) continue;
             const Row& r = *row;
-            md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", scene, config.label,
-                              fixed(r.build, 1), fixed(r.buildRatio, 2), fixed(r.sah, 2), fixed(r.epo, 3),
-                              r.stored["leaves"].is_number() ? std::to_string(r.stored["leaves"].get<long long>()) : "",
-                              triple(r.trace, 3), triple(r.toBaseline, 2), triple(r.toHigh, 2), triple(r.toBare, 2),
-                              paretoMarks(r.pareto));
+            md +=
+                fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", scene, config.label,
+                            fixedCell(r.build, 1), fixedCell(r.buildRatio, 2), fixedCell(r.sah, 2), fixedCell(r.epo, 3),
+                            r.stored["leaves"].is_number() ? std::to_string(r.stored["leaves"].get<long long>()) : "",
+                            triple(r.trace, 3), triple(r.toBaseline, 2), triple(r.toHigh, 2), triple(r.toBare, 2),
+                            paretoMarks(r.pareto));
         }
     return md;
 }
@@ -253,7 +251,7 @@ std::string summaryTable(const Summary& summary, const std::vector<AccelConfig>&
         if (!summary.means.count(config.label)) continue;
         const Row& m = summary.means.at(config.label);
         md += fmt::format("| {} | {} | {} | {} | {} | {} | {} |\n", config.label, summary.sceneCount.at(config.label),
-                          fixed(m.buildRatio, 2), triple(m.toBaseline, 2), triple(m.toHigh, 2), triple(m.toBare, 2),
+                          fixedCell(m.buildRatio, 2), triple(m.toBaseline, 2), triple(m.toHigh, 2), triple(m.toBare, 2),
                           paretoMarks(m.pareto));
     }
     return md;

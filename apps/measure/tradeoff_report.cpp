@@ -6,6 +6,7 @@
 #include "apps/runtime/atomic_write.h"
 #include "apps/runtime/output_paths.h"
 #include "apps/runtime/result_key.h"
+#include "apps/runtime/table_text.h"
 
 #include <fmt/core.h>
 #include <fmt/ranges.h>
@@ -21,15 +22,7 @@ namespace {
 
 using nlohmann::json;
 
-std::string cell(const json& v, const char* format = "{}") {
-    if (v.is_null()) return "";
-    if (v.is_number_float()) return fmt::format(fmt::runtime(format), v.get<double>());
-    if (v.is_number()) return fmt::format("{}", v.get<long long>());
-    if (v.is_string()) return v.get<std::string>();
-    return v.dump();
-}
-
-std::string shown(const json& v, const char* format) { return v.is_null() ? "n/a" : cell(v, format); }
+std::string shown(const json& v, const char* format) { return v.is_null() ? "n/a" : jsonCell(v, format); }
 
 json ratio(const json& a, const json& b) {
     return a.is_number() && b.is_number() && b.get<double>() > 0 ? json(a.get<double>() / b.get<double>()) : json();
@@ -42,27 +35,6 @@ json geoMean(const std::vector<json>& values) {
     for (const json& v : values)
         if (v.is_number() && v.get<double>() > 0) logSum += std::log(v.get<double>()), ++n;
     return n ? json(std::exp(logSum / n)) : json();
-}
-
-// A Markdown table of `rows` under `headers` (with their alignments, "---" or "---:"), without the
-// columns that are n/a in every row: a run without sweepbvh has no gap, one without sahbvh no
-// build ratio, and a column of n/a would only push the measured ones apart.
-std::string markdownTable(const std::vector<std::string>& headers, const std::vector<std::string>& alignments,
-                          const std::vector<std::vector<std::string>>& rows) {
-    std::vector<size_t> kept;
-    for (size_t c = 0; c < headers.size(); ++c)
-        if (rows.empty() || std::any_of(rows.begin(), rows.end(), [&](const auto& row) { return row[c] != "n/a"; }))
-            kept.push_back(c);
-    auto line = [&](const std::vector<std::string>& cells) {
-        std::string text = "|";
-        for (size_t c : kept) text += " " + cells[c] + " |";
-        return text + "\n";
-    };
-    std::string table = line(headers) + "|";
-    for (size_t c : kept) table += alignments[c] + "|";
-    table += "\n";
-    for (const std::vector<std::string>& row : rows) table += line(row);
-    return table;
 }
 
 // One row of tradeoff.csv: the stored JSON flattened, with the gap to sweepbvh.
@@ -116,40 +88,40 @@ std::vector<std::string> tradeoffCsvCells(const std::string& scene, const std::s
     const json& s = r.stored["shadow"];
     return {scene,
             label,
-            cell(r.at("accel")),
-            cell(r.at("bins")),
-            cell(r.at("prims")),
+            jsonCell(r.at("accel")),
+            jsonCell(r.at("bins")),
+            jsonCell(r.at("prims")),
             std::to_string(r.stored["build_ms_all"].size()),
-            cell(r.at("build_ms"), "{:.3f}"),
-            cell(r.at("build_cpu_ms"), "{:.3f}"),
-            cell(r.at("sah"), "{:.6f}"),
-            cell(r.gap, "{:.6f}"),
-            cell(r.at("nodes")),
-            cell(r.at("leaves")),
-            cell(p["rays"]),
-            cell(p["t_r_us"], "{:.4f}"),
-            cell(p["t_r_cpu_us"], "{:.4f}"),
-            cell(p["n_it"], "{:.3f}"),
-            cell(p["n_tr"], "{:.3f}"),
-            cell(s["rays"]),
-            cell(s["t_r_us"], "{:.4f}"),
-            cell(s["t_r_cpu_us"], "{:.4f}"),
-            cell(s["n_it"], "{:.3f}"),
-            cell(s["n_tr"], "{:.3f}"),
-            cell(r.at("series_width")),
-            cell(r.at("series_height")),
+            jsonCell(r.at("build_ms"), "{:.3f}"),
+            jsonCell(r.at("build_cpu_ms"), "{:.3f}"),
+            jsonCell(r.at("sah"), "{:.6f}"),
+            jsonCell(r.gap, "{:.6f}"),
+            jsonCell(r.at("nodes")),
+            jsonCell(r.at("leaves")),
+            jsonCell(p["rays"]),
+            jsonCell(p["t_r_us"], "{:.4f}"),
+            jsonCell(p["t_r_cpu_us"], "{:.4f}"),
+            jsonCell(p["n_it"], "{:.3f}"),
+            jsonCell(p["n_tr"], "{:.3f}"),
+            jsonCell(s["rays"]),
+            jsonCell(s["t_r_us"], "{:.4f}"),
+            jsonCell(s["t_r_cpu_us"], "{:.4f}"),
+            jsonCell(s["n_it"], "{:.3f}"),
+            jsonCell(s["n_tr"], "{:.3f}"),
+            jsonCell(r.at("series_width")),
+            jsonCell(r.at("series_height")),
             std::to_string(maxSpp),
-            cell(r.series(0, "render_ms"), "{:.3f}"),
-            cell(r.lastSeries("render_ms"), "{:.3f}"),
-            cell(r.series(0, "render_cpu_ms"), "{:.3f}"),
-            cell(r.lastSeries("render_cpu_ms"), "{:.3f}"),
-            cell(r.series(0, "time_to_image_ms"), "{:.3f}"),
-            cell(r.lastSeries("time_to_image_ms"), "{:.3f}"),
-            cell(r.series(0, "time_to_image_cpu_ms"), "{:.3f}"),
-            cell(r.lastSeries("time_to_image_cpu_ms"), "{:.3f}"),
-            cell(p["mismatches"]),
-            cell(s["mismatches"]),
-            cell(r.stored["same_image_1spp"].value("pixels_differing", json())),
+            jsonCell(r.series(0, "render_ms"), "{:.3f}"),
+            jsonCell(r.lastSeries("render_ms"), "{:.3f}"),
+            jsonCell(r.series(0, "render_cpu_ms"), "{:.3f}"),
+            jsonCell(r.lastSeries("render_cpu_ms"), "{:.3f}"),
+            jsonCell(r.series(0, "time_to_image_ms"), "{:.3f}"),
+            jsonCell(r.lastSeries("time_to_image_ms"), "{:.3f}"),
+            jsonCell(r.series(0, "time_to_image_cpu_ms"), "{:.3f}"),
+            jsonCell(r.lastSeries("time_to_image_cpu_ms"), "{:.3f}"),
+            jsonCell(p["mismatches"]),
+            jsonCell(s["mismatches"]),
+            jsonCell(r.stored["same_image_1spp"].value("pixels_differing", json())),
             ""};
 }
 
@@ -191,12 +163,14 @@ std::string imageErrorCsv(const Measured& measured, const std::vector<std::strin
         const Row& ref = referenceRow(byConfig->second);
         for (size_t i = 0; i < spps.size(); ++i) {
             const std::optional<double> spread = rmseSpread(byConfig->second, i);
-            errors += fmt::format("{},{},{},{},{}", scene, spps[i], cell(ref.series(i, "rmse"), "{:.7f}"),
-                                  cell(ref.series(i, "psnr"), "{:.4f}"), spread ? fmt::format("{:.3g}", *spread) : "");
+            errors +=
+                fmt::format("{},{},{},{},{}", scene, spps[i], jsonCell(ref.series(i, "rmse"), "{:.7f}"),
+                            jsonCell(ref.series(i, "psnr"), "{:.4f}"), spread ? fmt::format("{:.3g}", *spread) : "");
             for (const char* key : {"render_ms", "render_cpu_ms"})
                 for (const AccelConfig& config : configs) {
                     errors += ',';
-                    if (const Row* r = measured.row(scene, config.label)) errors += cell(r->series(i, key), "{:.3f}");
+                    if (const Row* r = measured.row(scene, config.label))
+                        errors += jsonCell(r->series(i, key), "{:.3f}");
                 }
             errors += "\n";
         }
@@ -238,8 +212,8 @@ std::string sceneTable(const Measured& measured, const std::vector<std::string>&
                  shown(r.stored["primary"]["t_r_cpu_us"], "{:.3f}"), shown(r.stored["shadow"]["t_r_cpu_us"], "{:.3f}"),
                  shown(r.series(0, "time_to_image_cpu_ms"), "{:.0f}"),
                  shown(r.lastSeries("time_to_image_cpu_ms"), "{:.0f}"),
-                 fmt::format("{} / {}", cell(r.stored["primary"]["mismatches"]),
-                             cell(r.stored["shadow"]["mismatches"]))});
+                 fmt::format("{} / {}", jsonCell(r.stored["primary"]["mismatches"]),
+                             jsonCell(r.stored["shadow"]["mismatches"]))});
         }
     return markdownTable({"scene", "config", "T_B [ms]", "SAH", "gap [%]", "T_R primary [µs]", "T_R shadow [µs]",
                           "image 1 spp [ms]", fmt::format("image {} spp [ms]", maxSpp), "mismatches primary / shadow"},
