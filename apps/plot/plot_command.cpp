@@ -1,6 +1,6 @@
-// `bvhlab plot PATH [--out DIR]`: draws the plots of a bench, tradeoff, tradeoff --builders or
-// batch output. Which one PATH is, is read from what it holds; the plot script of that output
-// (apps/plot/*.py, installed as PREFIX/share/bvhlab/apps/plot) runs under Debian's
+// `bvhlab plot PATH [--out DIR]`: draws the plots of a bench, tradeoff, tradeoff --builders,
+// batch or animate output. Which one PATH is, is read from what it holds; the plot script of that
+// output (apps/plot/*.py, installed as PREFIX/share/bvhlab/apps/plot) runs under Debian's
 // /usr/bin/python3 with its matplotlib, which a python3 earlier on PATH may not see.
 #include "apps/cli/command_line.h"
 #include "apps/cli/commands.h"
@@ -31,23 +31,26 @@ namespace fs = std::filesystem;
 
 constexpr const char* kPython = "/usr/bin/python3";
 
-// The plot script of the output at `path`: a bench JSON file, or a folder holding the files that
-// tradeoff, tradeoff --builders or batch write.
+// The plot script of the output at `path`: a bench or animate JSON file, or a folder holding the
+// files that animate, tradeoff, tradeoff --builders or batch write.
 std::string plotScriptFor(const fs::path& path) {
     if (fs::is_directory(path)) {
         for (const auto& [file, script] :
-             {std::pair{"tradeoff.csv", "plot_tradeoff.py"}, std::pair{"builders.csv", "plot_builders.py"},
-              std::pair{"results.csv", "plot_batch.py"}})
+             {std::pair{"animate.json", "plot_animate.py"}, std::pair{"tradeoff.csv", "plot_tradeoff.py"},
+              std::pair{"builders.csv", "plot_builders.py"}, std::pair{"results.csv", "plot_batch.py"}})
             if (fs::is_regular_file(path / file)) return script;
         throw inputError(path, 0,
                          "holds no output that bvhlab plot draws: no tradeoff.csv (tradeoff), builders.csv "
-                         "(tradeoff --builders) or results.csv (batch); a bench's output is its JSON file");
+                         "(tradeoff --builders), results.csv (batch) or animate.json (animate); a bench's output "
+                         "is its JSON file");
     }
     if (!fs::is_regular_file(path)) throw inputError(path, 0, "no such file or folder");
     std::ifstream in(path);
     const nlohmann::json json = nlohmann::json::parse(in, nullptr, false);
+    if (!json.is_discarded() && json.is_object() && json.contains("contenders") && json.contains("frames"))
+        return "plot_animate.py";
     if (json.is_discarded() || !json.is_object() || !json.contains("rows") || !json.contains("passes"))
-        throw inputError(path, 0, "is not the JSON file of bvhlab bench, nor a folder of tradeoff or batch");
+        throw inputError(path, 0, "is not the JSON file of bvhlab bench or animate, nor a folder of tradeoff or batch");
     return "plot_bench.py";
 }
 
@@ -82,14 +85,16 @@ void addPlotCommand(CLI::App& app) {
     auto options = std::make_shared<Options>();
     CLI::App* command = app.add_subcommand(
         "plot",
-        "draw the plots of a bench JSON file or a tradeoff, tradeoff --builders or batch folder (PNG files; "
-        "Debian's /usr/bin/python3 with python3-matplotlib)");
+        "draw the plots of a bench or animate JSON file or a tradeoff, tradeoff --builders, batch or animate "
+        "folder (PNG files; Debian's /usr/bin/python3 with python3-matplotlib)");
     command
         ->add_option("path", options->path,
-                     "bench's JSON file, or the --out folder of tradeoff, tradeoff --builders or batch")
+                     "bench's or animate's JSON file, or the --out folder of tradeoff, tradeoff --builders, batch "
+                     "or animate")
         ->required();
-    command->add_option("--out", options->out,
-                        "folder of the PNG files (default: PATH/plots for a folder, the JSON file's folder for bench)");
+    command->add_option(
+        "--out", options->out,
+        "folder of the PNG files (default: PATH/plots for a folder, the JSON file's folder for a file)");
     command->callback([options] {
         const int code = runGuarded([&] {
             const fs::path script = dataFile("apps/plot") / plotScriptFor(options->path);

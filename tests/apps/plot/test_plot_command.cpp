@@ -1,6 +1,7 @@
-// `bvhlab plot` (apps/plot/): it tells a bench JSON file from a tradeoff and a batch folder, and
-// the scripts draw their PNG files; a tradeoff run without the K series of sahbvh and without
+// `bvhlab plot` (apps/plot/): it tells a bench or animate JSON file from a tradeoff, batch or
+// animate folder, and the scripts draw their PNG files; a tradeoff run without the K series of sahbvh and without
 // sweepbvh plots what it has. Skipped where Debian's matplotlib is missing (setup.sh installs it).
+#include "tests/support/animate_results.h"
 #include "tests/support/cli_run.h"
 #include "tests/support/scratch_dir.h"
 #include "tests/support/test_paths.h"
@@ -83,6 +84,27 @@ TEST(Plot, DrawsABatchFolder) {
     const Result r = run("plot " + dir.string() + " --out " + (dir / "pngs").string());
     ASSERT_EQ(r.exitCode, 0) << r.output;
     expectPng(dir / "pngs" / "batch.png");
+}
+
+// animate's results file: as the folder animate wrote (plots into its plots/) and as the file
+// (plots beside it); Embree's contenders report no SAH, and a failed one has nothing to draw.
+TEST(Plot, DrawsAnAnimateFolderAndFile) {
+    if (!haveMatplotlib()) GTEST_SKIP() << "no python3-matplotlib for /usr/bin/python3";
+    const fs::path dir = scratchDir("plot_animate");
+    std::ofstream(dir / "animate.json") << smallAnimateResults().dump();
+    Result r = run("plot " + dir.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    expectPng(dir / "plots" / "animate_cost.png");
+    expectPng(dir / "plots" / "animate_sah.png");
+
+    nlohmann::json embreeOnly = smallAnimateResults();
+    embreeOnly["contenders"].erase(0);  // sahbvh8/refit
+    embreeOnly["contenders"].erase(0);  // sahbvh8/adaptive
+    std::ofstream(dir / "embree.json") << embreeOnly.dump();
+    r = run("plot " + (dir / "embree.json").string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    expectPng(dir / "embree_cost.png");
+    expectPng(dir / "embree_sah.png");  // saying that no contender reports its SAH
 }
 
 TEST(Plot, AFolderOfNoKnownOutputIsRefusedNamingWhatItLooksFor) {
