@@ -1,8 +1,9 @@
 // Embree's own two levels behind InstancedAccelerator, the peer of our TwoLevelAccelerator: one
 // device; per instance, one Embree scene over the instance's primitives in object space, built as
 // EmbreeAccelerator builds its only one (embree_scene.h); over them a top scene of Embree
-// instance geometries, one per instance, placed by its transform. Embree carries a ray into an
-// instance's object space itself.
+// instance geometries, one per instance, placed by its transform, with the same flags and
+// quality as the instance scenes (newEmbreeScene). Embree carries a ray into an instance's object
+// space itself.
 //
 // Moving: rigid instances get their new transforms and the top scene is committed again; a
 // deformed instance's moved primitives are written into its scene's buffers and that scene is

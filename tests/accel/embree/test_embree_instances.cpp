@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <stdexcept>
 #include <string>
 
 namespace bvhlab::test {
@@ -101,6 +102,26 @@ TEST(EmbreeInstances, RaysWithANegativeTminAnswerAsBruteForce) {
         behind += found && expected.t < 0.0f;
     }
     EXPECT_GT(behind, 20u);
+}
+
+// An instance without a valid primitive has nothing for Embree to place: it is left out of the
+// top scene, and the others' answers and moves are as without it.
+TEST(EmbreeInstances, AnInstanceWithoutPrimitivesIsLeftOut) {
+    InstancedWorld scene;
+    scene.place(placements(0.0));
+    std::vector<Instance> instances = scene.instances(placements(0.0));
+    instances.insert(instances.begin() + 1, Instance{});
+    EmbreeInstances accel(std::move(instances));
+    EXPECT_THROW(accel.moveInstances(placements(1.0), {}), std::logic_error);  // before build()
+    accel.build({});
+    expectAnswersAsBruteForce(accel, scene.world, 10);
+
+    std::vector<glm::dmat4> moved = placements(0.75);
+    EXPECT_THROW(accel.moveInstances(moved, {}), std::invalid_argument);  // one transform short
+    scene.place(moved);
+    moved.insert(moved.begin() + 1, glm::dmat4(1.0));
+    accel.moveInstances(moved, {});
+    expectAnswersAsBruteForce(accel, scene.world, 11);
 }
 
 TEST(EmbreeInstances, ReportsInstancesPrimitivesAndEmbreesBytes) {
