@@ -6,6 +6,7 @@
 #include "accel/bvh/bvh_accelerator.h"
 #include "accel/bvh/bvh_env.h"
 #include "accel/embree/embree_accelerator.h"
+#include "accel/embree/embree_instances.h"
 #include "accel/naive/naive_accelerator.h"
 #include "accel/plugins/guarded_accelerator.h"
 #include "accel/plugins/plugin_builder.h"
@@ -155,6 +156,7 @@ std::unique_ptr<Accelerator> createAccelerator(const std::string& name, const En
 
 std::unique_ptr<InstancedAccelerator> createInstanced(std::vector<Instance> instances, const std::string& bottom,
                                                       const Env& env) {
+    if (bottom == "embree") return std::make_unique<EmbreeInstances>(std::move(instances), EmbreeConfig::fromEnv(env));
     auto create = acceleratorNamed(bottom).create;
     auto values = std::make_shared<const Env>(env);
     return std::make_unique<TwoLevelAccelerator>(

@@ -55,9 +55,10 @@ inline std::unique_ptr<Accelerator> createAccelerator(const Env& env) {
     return createAccelerator(env.get(keys::ASDS::type), env);
 }
 
-// Two levels over `instances`: each instance's structure the accelerator `bottom` made with the
-// env's values, under our top level built by binned SAH with the env's BVH:: keys. Throws as
-// createAccelerator does for an unknown `bottom`.
+// Two levels over `instances`. With `bottom` "embree", Embree's own instancing (EmbreeInstances,
+// configured by the env's Embree:: keys); otherwise ours (TwoLevelAccelerator): each instance's
+// structure the accelerator `bottom` made with the env's values, under our top level built by
+// binned SAH with the env's BVH:: keys. Throws as createAccelerator does for an unknown `bottom`.
 std::unique_ptr<InstancedAccelerator> createInstanced(std::vector<Instance> instances, const std::string& bottom,
                                                       const Env& env);
 

@@ -5,17 +5,13 @@
 // Embree has no counters and no visible tree: N_IT, N_TR, the node statistics and the SAH
 // cost are unavailable (hasCounters() is false, those optional BuildStats fields stay empty);
 // only counters.queries is counted. BuildStats::bytes is Embree's own memory for the structure
-// as its memory monitor reports it (see build()).
+// as its memory monitor reports it (EmbreeScene::bytes).
 //
-// ISA: Embree::isa limits the device's kernels (max_isa); buildStats' figure kernel_bits says
-// what width ran. Each instance owns its device, so structures of different ISAs never share one.
-//
-// Threads: each instance owns one RTCDevice created with "threads=N". Embree applies this
-// process-wide: while a device lives it installs a tbb::global_control limiting all TBB
-// parallelism in the process (with several devices alive, the largest request wins; 0 =
-// unlimited). Our own builders and the renderer then run under the same limit, which is what
-// makes build times comparable -- but it also means that merely constructing this accelerator
-// changes the thread count of everything else in the process.
+// ISA and threads: each instance owns its device (embree_device.h), so structures of different
+// ISAs never share one; buildStats' figure kernel_bits says what width ran. The device's thread
+// count applies process-wide: merely constructing this accelerator changes the thread count of
+// everything else in the process (our builders and the renderer then run under the same limit,
+// which is what makes build times comparable).
 //
 // Interval semantics (see findNearest in the .cpp): ours is the closed [tmin, tmax]; Embree
 // makes no promise for hits exactly at (or very near) either end -- its default test excludes
@@ -25,30 +21,16 @@
 // Embree, whose Debian build asserts on them.
 #pragma once
 
-#include "accel/embree/embree_env.h"
+#include "accel/embree/embree_device.h"
+#include "accel/embree/embree_scene.h"
 #include "framework/core/accelerator.h"
 
-#include <array>
 #include <memory>
-#include <optional>
-#include <stdexcept>
+#include <string>
 #include <string_view>
 #include <vector>
 
-// Embree's opaque handles (embree3/rtcore_device.h, rtcore_geometry.h; the Debian build has no
-// API namespace). Declared here so that users of this header need not see Embree's headers;
-// the .cpp checks that they match.
-struct RTCDeviceTy;
-struct RTCSceneTy;
-
 namespace bvhlab {
-
-// An error reported by Embree (device creation, buffer allocation, commit). The message names
-// the Embree call, the error code and Embree's own description.
-class EmbreeError : public std::runtime_error {
-public:
-    using std::runtime_error::runtime_error;
-};
 
 // Rays prepared for one of Embree's APIs, whose answers can be read after trace(): what the
 // tests compare across the APIs. The APIs: "single", one rtcIntersect1 / rtcOccluded1 per ray;
@@ -108,43 +90,15 @@ public:
 
     const EmbreeConfig& config() const { return config_; }
     // The device's configuration string, e.g. "threads=1" or "threads=1,max_isa=avx2".
-    const std::string& deviceConfig() const { return deviceConfig_; }
+    const std::string& deviceConfig() const { return device_.configString(); }
     // The vector width of the kernels Embree runs on this device, in bits: 128 (SSE), 256 (AVX,
     // AVX2) or 512 (AVX-512). buildStats() reports it as the figure kernel_bits, as BVH's.
-    int kernelBits() const;
+    int kernelBits() const { return device_.kernelBits(); }
 
 private:
-    struct DeviceState;  // error and memory callbacks' payload; must outlive the device
-    struct DeviceDeleter {
-        void operator()(RTCDeviceTy* device) const;
-    };
-    struct SceneDeleter {
-        void operator()(RTCSceneTy* scene) const;
-    };
-
     EmbreeConfig config_;
-    std::string deviceConfig_;
-    std::unique_ptr<DeviceState> state_;
-    std::unique_ptr<RTCDeviceTy, DeviceDeleter> device_;  // declared after state_, before scene_:
-    std::unique_ptr<RTCSceneTy, SceneDeleter> scene_;     // released scene first, then device
-    // Per Embree geometry (triangles, spheres, cones): its primID -> our primitive index, as a
-    // table, or as an offset where the geometry's primitives are consecutive ones of ours (no
-    // degenerate one left out): then a hit costs no load from a table as large as the scene.
-    struct PrimitiveMap {
-        std::vector<uint32_t> table;
-        uint32_t offset = 0;  // used when the table is empty
-        uint32_t operator()(unsigned primID) const { return table.empty() ? offset + primID : table[primID]; }
-        void compact();  // drops a table that is offset + primID
-    };
-    std::array<PrimitiveMap, 3> primitiveOf_;
-
-    // The queries of a ray Embree cannot take as it is (see segmentsOf in the .cpp): in parts.
-    bool findNearestInParts(const Ray& ray, Hit& hit) const;
-    bool isOccludedInParts(const Ray& ray) const;
-    std::vector<Cone> cones_;  // the user geometry's primitives, read by its callbacks
-    PrimitiveSet built_;       // the last build's or update's, whose counts an update keeps
-    size_t primitives_ = 0;    // the last build's, for statistics()
-    std::optional<size_t> bytes_;
+    EmbreeDevice device_;
+    EmbreeScene scene_;  // after device_: released before it
 };
 
 }  // namespace bvhlab

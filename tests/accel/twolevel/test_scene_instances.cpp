@@ -53,5 +53,7 @@ TEST(SceneInstances, TwoLevelsAnswerAsBruteForceAtEveryFrame) { expectAnswersAsB
 
 TEST(SceneInstances, AnyStructureServesAsTheBottomLevel) { expectAnswersAsBruteForceAt("sahbvh"); }
 
+TEST(SceneInstances, EmbreesInstancesAnswerAsBruteForceAtEveryFrame) { expectAnswersAsBruteForceAt("embree"); }
+
 }  // namespace
 }  // namespace bvhlab::test
