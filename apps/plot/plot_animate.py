@@ -7,7 +7,8 @@ DATA is the folder that holds animate.json (the PNG files go to DATA/plots) or t
 (they go beside it); --out names another folder. Writes NAME_cost.png for NAME.json: per measured
 frame and contender, T_update, T_R of the primary and shadow rays, and their sum; and
 NAME_sah.png: each contender's SAH over its first frame's, for those that report a SAH (Embree's
-do not). Both mark the frames where a contender rebuilt. A contender that failed is left out.
+do not). Both mark the frames where a contender rebuilt. A contender that failed or was skipped
+(it cannot run its policy) is left out.
 """
 import json
 import os
@@ -89,14 +90,14 @@ def main():
     path = os.path.join(args.data, "animate.json") if folder else args.data
     with open(path) as f:
         results = json.load(f)
-    contenders = [c for c in results["contenders"] if "failed" not in c and c.get("rows")]
+    contenders = [c for c in results["contenders"] if "failed" not in c and "skipped" not in c and c.get("rows")]
     if not contenders:
-        raise SystemExit(f"{path}: no contender was measured (every one failed); nothing to plot")
+        raise SystemExit(f"{path}: no contender was measured (every one failed or was skipped); nothing to plot")
     out = args.out or (os.path.join(args.data, "plots") if folder else os.path.dirname(os.path.abspath(path)))
     os.makedirs(out, exist_ok=True)
     name = os.path.splitext(os.path.basename(path))[0]
     scene = results.get("scene", {}).get("name", "?")
-    setting = f'{scene}, {results.get("threads", "?")} thread(s), {results.get("width")}x{results.get("height")}'
+    setting = f'{scene}, {results.get("threads", "?")} thread(s)'
     style = styles(contenders)
 
     fig, axes = plt.subplots(1, 3, figsize=(15, 4.6))
