@@ -171,9 +171,9 @@ std::string animateSummaryTable(const json& results) {
     }
     return markdownTable(headers, alignments, rows) +
            fmt::format(
-               "\nFastest: {}; fastest Embree contender: {}. Totals include the first frame's build; the "
-               "ratios "
-               "divide a total by the fastest Embree contender's and by the fastest contender's of this run.\n",
+               "\nFastest: {}; fastest Embree contender: {}. Totals are over every measured frame, the first "
+               "(the build) included; the ratios divide a total by the fastest Embree contender's and by the "
+               "fastest contender's of this run.\n",
                nameAndTotal(best), nameAndTotal(bestEmbree));
 }
 
@@ -198,8 +198,8 @@ std::string animateFramesCsv(const json& results) {
             nTr.add(row, "n_tr");
             std::vector<std::string> cells = names;
             for (const std::string& cell :
-                 {jsonCell(memberOf(row, "frame")), jsonCell(memberOf(row, "time")), jsonCell(memberOf(row, "action")),
-                  jsonCell(memberOf(row, "update_ms"), "{:.4f}"),
+                 {jsonCell(memberOf(row, "frame")), jsonCell(memberOf(row, "time"), "{:.6g}"),
+                  jsonCell(memberOf(row, "action")), jsonCell(memberOf(row, "update_ms"), "{:.4f}"),
                   jsonCell(memberOf(memberOf(row, "primary"), "ms"), "{:.4f}"),
                   jsonCell(memberOf(memberOf(row, "shadow"), "ms"), "{:.4f}"), fixedCell(frameCostMs(row), 4),
                   jsonCell(memberOf(row, "sah"), "{:.6f}"), fixedCell(frameSahRatio(row, rows), 6),
