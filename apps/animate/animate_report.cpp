@@ -5,6 +5,7 @@
 #include <fmt/core.h>
 
 #include <cmath>
+#include <iterator>
 #include <vector>
 
 namespace bvhlab {
@@ -55,7 +56,7 @@ double frameSahRatio(const json& row, const json& rows) {
 
 // A contender's figures over its measured frames.
 struct ContenderTotals {
-    std::string label, failed;
+    std::string label, failed, skipped;  // why it failed, or why it could not run its policy
     bool embree = false;
     const json* rows = nullptr;
     size_t rebuilds = 0;  // after the first frame, whose build every policy pays
@@ -65,7 +66,7 @@ struct ContenderTotals {
     bool checked = false;
     double wrong = 0.0;
     double total() const { return update + trace; }
-    bool measured() const { return failed.empty() && !rows->empty() && std::isfinite(total()); }
+    bool measured() const { return failed.empty() && skipped.empty() && !rows->empty() && std::isfinite(total()); }
 };
 
 ContenderTotals totalsOf(const json& contender) {
@@ -73,6 +74,7 @@ ContenderTotals totalsOf(const json& contender) {
     ContenderTotals t;
     t.label = contender.at("label").get<std::string>();
     t.failed = contender.value("failed", std::string());
+    t.skipped = contender.value("skipped", std::string());
     t.embree = contender.value("embree", false);
     t.rows = memberOf(contender, "rows").is_array() ? &contender.at("rows") : &none;
     for (size_t i = 0; i < t.rows->size(); ++i) {
@@ -139,8 +141,8 @@ std::string animateSummaryTable(const json& results) {
     for (const ContenderTotals& t : all) {
         std::vector<std::string> cells(headers.size());
         cells[0] = markdownText(t.label);
-        if (!t.failed.empty()) {
-            cells[1] = "failed: " + markdownText(t.failed);
+        if (!t.failed.empty() || !t.skipped.empty()) {
+            cells[1] = t.failed.empty() ? "skipped: " + markdownText(t.skipped) : "failed: " + markdownText(t.failed);
             rows.push_back(cells);
             continue;
         }
@@ -169,9 +171,9 @@ std::string animateSummaryTable(const json& results) {
     }
     return markdownTable(headers, alignments, rows) +
            fmt::format(
-               "\nFastest: {}; fastest Embree contender: {}. Totals include the first frame's build; the "
-               "ratios "
-               "divide a total by the fastest Embree contender's and by the fastest contender's of this run.\n",
+               "\nFastest: {}; fastest Embree contender: {}. Totals are over every measured frame, the first "
+               "(the build) included; the ratios divide a total by the fastest Embree contender's and by the "
+               "fastest contender's of this run.\n",
                nameAndTotal(best), nameAndTotal(bestEmbree));
 }
 
@@ -181,7 +183,8 @@ std::string animateFramesCsv(const json& results) {
                                        "epo",       "n_it",       "n_tr",      "bytes"};
     const bool withCheck = anyChecked(results);
     if (withCheck) header.push_back("wrong");
-    header.push_back("failed");
+    constexpr const char* kOutcomes[] = {"failed", "skipped"};
+    for (const char* outcome : kOutcomes) header.push_back(outcome);
 
     std::string csv = csvLineOf(header);
     for (const json& contender : results.at("contenders")) {
@@ -195,8 +198,8 @@ std::string animateFramesCsv(const json& results) {
             nTr.add(row, "n_tr");
             std::vector<std::string> cells = names;
             for (const std::string& cell :
-                 {jsonCell(memberOf(row, "frame")), jsonCell(memberOf(row, "time")), jsonCell(memberOf(row, "action")),
-                  jsonCell(memberOf(row, "update_ms"), "{:.4f}"),
+                 {jsonCell(memberOf(row, "frame")), jsonCell(memberOf(row, "time"), "{:.6g}"),
+                  jsonCell(memberOf(row, "action")), jsonCell(memberOf(row, "update_ms"), "{:.4f}"),
                   jsonCell(memberOf(memberOf(row, "primary"), "ms"), "{:.4f}"),
                   jsonCell(memberOf(memberOf(row, "shadow"), "ms"), "{:.4f}"), fixedCell(frameCostMs(row), 4),
                   jsonCell(memberOf(row, "sah"), "{:.6f}"), fixedCell(frameSahRatio(row, rows), 6),
@@ -204,15 +207,17 @@ std::string animateFramesCsv(const json& results) {
                   jsonCell(memberOf(row, "bytes"))})
                 cells.push_back(cell);
             if (withCheck) cells.push_back(jsonCell(memberOf(memberOf(row, "agreement"), "wrong")));
-            cells.push_back("");  // not failed
+            cells.resize(header.size());  // neither failed nor skipped
             csv += csvLineOf(cells);
         }
-        if (contender.contains("failed")) {
-            std::vector<std::string> cells = names;
-            cells.resize(header.size());
-            cells.back() = csvText(contender.at("failed").get<std::string>());
-            csv += csvLineOf(cells);
-        }
+        for (size_t k = 0; k < std::size(kOutcomes); ++k)
+            if (contender.contains(kOutcomes[k])) {
+                std::vector<std::string> cells = names;
+                cells.resize(header.size());
+                cells[header.size() - std::size(kOutcomes) + k] =
+                    csvText(contender.at(kOutcomes[k]).get<std::string>());
+                csv += csvLineOf(cells);
+            }
     }
     return csv;
 }

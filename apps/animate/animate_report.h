@@ -15,14 +15,15 @@ namespace bvhlab {
 // ray, the bytes at the last frame, and the total over the fastest Embree contender's and over
 // the fastest contender's; with the answers checked, the wrong ones. Totals include the first
 // frame's build. A line under it names the fastest contender and the fastest Embree contender.
-// A contender that failed is a row with its reason, outside every ratio.
+// A contender that failed, or was skipped (it cannot run its policy), is a row with the reason,
+// outside every ratio.
 std::string animateSummaryTable(const nlohmann::json& results);
 
 // A CSV row per contender and measured frame: label,accel,policy,frame,time,action,update_ms,
 // primary_ms,shadow_ms,total_ms,sah,sah_ratio (to the contender's first frame),epo,n_it,n_tr
-// (per ray, primary and shadow together),bytes, then wrong where answers were checked, and failed
-// (the reason, on a row of its own after the frames the contender measured). Empty cells where a
-// figure is null.
+// (per ray, primary and shadow together),bytes, then wrong where answers were checked, failed and
+// skipped (the reason, on a row of its own after the frames the contender measured). Empty cells
+// where a figure is null.
 std::string animateFramesCsv(const nlohmann::json& results);
 
 }  // namespace bvhlab

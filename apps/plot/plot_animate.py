@@ -7,7 +7,8 @@ DATA is the folder that holds animate.json (the PNG files go to DATA/plots) or t
 (they go beside it); --out names another folder. Writes NAME_cost.png for NAME.json: per measured
 frame and contender, T_update, T_R of the primary and shadow rays, and their sum; and
 NAME_sah.png: each contender's SAH over its first frame's, for those that report a SAH (Embree's
-do not). Both mark the frames where a contender rebuilt. A contender that failed is left out.
+do not). Both mark the frames where a contender rebuilt. A contender that failed or was skipped
+(it cannot run its policy) is left out.
 """
 import json
 import os
@@ -66,12 +67,11 @@ def draw(ax, contenders, style, value):
         values += ys
     positive = [v for v in values if v > 0]
     if positive and max(positive) > LOG_SPAN * min(positive):
-        ax.set_yscale("log")
+        ax.set_yscale("log", nonpositive="mask")  # a zero (an update with nothing to do) has no place on it
         plain_log_axis(ax.yaxis)
     ax.grid(True, which="both", alpha=0.3)
     ax.set_xlabel("frame")
     ax.xaxis.set_major_locator(MaxNLocator(integer=True))
-    ax.legend(fontsize=7)
 
 
 def sah(row):
@@ -89,14 +89,14 @@ def main():
     path = os.path.join(args.data, "animate.json") if folder else args.data
     with open(path) as f:
         results = json.load(f)
-    contenders = [c for c in results["contenders"] if "failed" not in c and c.get("rows")]
+    contenders = [c for c in results["contenders"] if "failed" not in c and "skipped" not in c and c.get("rows")]
     if not contenders:
-        raise SystemExit(f"{path}: no contender was measured (every one failed); nothing to plot")
+        raise SystemExit(f"{path}: no contender was measured (every one failed or was skipped); nothing to plot")
     out = args.out or (os.path.join(args.data, "plots") if folder else os.path.dirname(os.path.abspath(path)))
     os.makedirs(out, exist_ok=True)
     name = os.path.splitext(os.path.basename(path))[0]
     scene = results.get("scene", {}).get("name", "?")
-    setting = f'{scene}, {results.get("threads", "?")} thread(s), {results.get("width")}x{results.get("height")}'
+    setting = f'{scene}, threads: {results.get("threads", "?")}'
     style = styles(contenders)
 
     fig, axes = plt.subplots(1, 3, figsize=(15, 4.6))
@@ -105,8 +105,10 @@ def main():
                                          (lambda c, r: total_ms(r), "update + trace [ms]")]):
         draw(ax, contenders, style, value)
         ax.set_title(title, fontsize=9)
+    handles, labels = axes[0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="lower center", ncol=min(len(labels), 4), fontsize=7, frameon=False)
     fig.suptitle(f"bvhlab animate: cost per frame ({setting}); dots: rebuilds; dashed: Embree", fontsize=10)
-    fig.tight_layout()
+    fig.tight_layout(rect=(0, 0.04 * ((len(labels) + 3) // 4), 1, 1))
     cost = os.path.join(out, name + "_cost.png")
     fig.savefig(cost, dpi=100)
     plt.close(fig)
@@ -116,6 +118,7 @@ def main():
     if with_sah:
         draw(ax, with_sah, style, sah_drift)
         ax.axhline(1, color="black", lw=0.5)
+        ax.legend(fontsize=7)
     else:
         ax.text(0.5, 0.5, "no contender reports its SAH (Embree's do not)", ha="center", va="center",
                 transform=ax.transAxes)

@@ -32,17 +32,23 @@ std::map<std::string, std::map<std::string, std::string>> summaryRowsByLabel(con
     return rows;
 }
 
-// The CSV's lines split at commas (the test's fields hold none but the failed reason, quoted last).
+// The CSV's lines split into fields, a quoted field unquoted.
 std::vector<std::vector<std::string>> framesCsvCells(const std::string& csv) {
     std::vector<std::vector<std::string>> lines;
     std::stringstream in(csv);
     for (std::string line; std::getline(in, line);) {
-        std::vector<std::string> cells;
-        const size_t quote = line.find('"');
-        std::stringstream fields(line.substr(0, quote));
-        for (std::string cell; std::getline(fields, cell, ',');) cells.push_back(cell);
-        if (line.ends_with(',')) cells.push_back("");
-        if (quote != std::string::npos) cells.push_back(line.substr(quote));
+        std::vector<std::string> cells(1);
+        bool quoted = false;
+        for (size_t i = 0; i < line.size(); ++i) {
+            if (line[i] == '"' && quoted && i + 1 < line.size() && line[i + 1] == '"')
+                cells.back() += '"', ++i;
+            else if (line[i] == '"')
+                quoted = !quoted;
+            else if (line[i] == ',' && !quoted)
+                cells.emplace_back();
+            else
+                cells.back() += line[i];
+        }
         lines.push_back(cells);
     }
     return lines;
@@ -56,7 +62,7 @@ json withoutCheck(json results) {
 
 TEST(AnimateReport, SummaryTotalsWorstFramesAndSahDrift) {
     auto rows = summaryRowsByLabel(animateSummaryTable(smallAnimateResults()));
-    ASSERT_EQ(rows.size(), 5u);
+    ASSERT_EQ(rows.size(), 6u);
     auto& refit = rows["sahbvh8/refit"];
     EXPECT_EQ(refit["frames"], "3");
     EXPECT_EQ(refit["rebuilds"], "0");
@@ -99,14 +105,16 @@ TEST(AnimateReport, SummaryRatiosToTheFastestEmbreeAndTheFastestContender) {
     EXPECT_EQ(rows["embree-low/rebuild"]["/ fastest Embree"], "1.19");
     EXPECT_EQ(rows["embree-low/rebuild"]["/ fastest"], "1.31");
     EXPECT_NE(table.find("\nFastest: sahbvh8/refit (88.000 ms); fastest Embree contender: embree-refit/refit (97.000 "
-                         "ms). Totals include the first frame's build;"),
+                         "ms). Totals are over every measured frame, the first (the build) included;"),
               std::string::npos)
         << table;
 }
 
-TEST(AnimateReport, SummaryFailedContenderIsARowWithItsReasonOutsideTheRatios) {
+TEST(AnimateReport, SummaryFailedOrSkippedContenderIsARowWithTheReasonOutsideTheRatios) {
     json results = smallAnimateResults();
     auto rows = summaryRowsByLabel(animateSummaryTable(results));
+    EXPECT_EQ(rows["embree-low/refit"]["frames"], "skipped: Embree at low quality has no refit");
+    EXPECT_EQ(rows["embree-low/refit"]["/ fastest Embree"], "");
     EXPECT_EQ(rows["kdtree/rebuild"]["frames"], "failed: threw: kdtree \\| cannot be updated, no refit");
     EXPECT_EQ(rows["kdtree/rebuild"]["total [ms]"], "");
     EXPECT_EQ(rows["kdtree/rebuild"]["/ fastest"], "");
@@ -134,27 +142,32 @@ TEST(AnimateReport, SummaryCountsWrongAnswersOnlyWhenChecked) {
 
 TEST(AnimateReport, FramesCsvHasARowPerContenderAndFrame) {
     const auto lines = framesCsvCells(animateFramesCsv(smallAnimateResults()));
-    const std::vector<std::string> header = {"label",     "accel",      "policy",    "frame",    "time",  "action",
-                                             "update_ms", "primary_ms", "shadow_ms", "total_ms", "sah",   "sah_ratio",
-                                             "epo",       "n_it",       "n_tr",      "bytes",    "wrong", "failed"};
-    ASSERT_EQ(lines.size(), 1u + 4 * 3 + 2);  // the failed contender: its partial frame, then its reason
+    const std::vector<std::string> header = {
+        "label", "accel",     "policy", "frame", "time", "action", "update_ms", "primary_ms", "shadow_ms", "total_ms",
+        "sah",   "sah_ratio", "epo",    "n_it",  "n_tr", "bytes",  "wrong",     "failed",     "skipped"};
+    // Four contenders' three frames; the skipped one's reason; the failed one's partial frame and reason.
+    ASSERT_EQ(lines.size(), 1u + 4 * 3 + 1 + 2);
     EXPECT_EQ(lines[0], header);
     for (const auto& line : lines) EXPECT_EQ(line.size(), header.size()) << line[0];
 
     // sahbvh8/adaptive at frame 20: the rebuild, its SAH back near frame 0's.
     EXPECT_EQ(lines[6], (std::vector<std::string>{"sahbvh8/adaptive", "sahbvh8", "adaptive", "20", "2", "rebuild",
                                                   "120.0000", "10.0000", "5.0000", "135.0000", "51.000000", "1.020000",
-                                                  "10.000000", "25.000", "5.000", "1200", "0", ""}));
+                                                  "10.000000", "25.000", "5.000", "1200", "0", "", ""}));
     // Embree: no SAH, EPO or counters, empty cells; embree-low was not checked.
     EXPECT_EQ(lines[7],
               (std::vector<std::string>{"embree-refit/refit", "embree-refit", "refit", "0", "0", "build", "50.0000",
-                                        "8.0000", "4.0000", "62.0000", "", "", "", "", "", "2000", "0", ""}));
+                                        "8.0000", "4.0000", "62.0000", "", "", "", "", "", "2000", "0", "", ""}));
+    EXPECT_EQ(lines[12][0], "embree-low/rebuild");
     EXPECT_EQ(lines[12][16], "");
-    EXPECT_EQ(lines[13], (std::vector<std::string>{"kdtree/rebuild", "kdtree", "rebuild", "0", "0", "build", "40.0000",
-                                                   "", "", "", "", "", "", "", "", "", "", ""}));
-    EXPECT_EQ(lines[14],
+    EXPECT_EQ(lines[13],
+              (std::vector<std::string>{"embree-low/refit", "embree-low", "refit", "", "", "", "", "", "", "", "", "",
+                                        "", "", "", "", "", "", "Embree at low quality has no refit"}));
+    EXPECT_EQ(lines[14], (std::vector<std::string>{"kdtree/rebuild", "kdtree", "rebuild", "0", "0", "build", "40.0000",
+                                                   "", "", "", "", "", "", "", "", "", "", "", ""}));
+    EXPECT_EQ(lines[15],
               (std::vector<std::string>{"kdtree/rebuild", "kdtree", "rebuild", "", "", "", "", "", "", "", "", "", "",
-                                        "", "", "", "", "\"threw: kdtree | cannot be updated, no refit\""}));
+                                        "", "", "", "", "threw: kdtree | cannot be updated, no refit", ""}));
 
     const auto unchecked = framesCsvCells(animateFramesCsv(withoutCheck(smallAnimateResults())));
     EXPECT_EQ(unchecked[0].size(), header.size() - 1);
