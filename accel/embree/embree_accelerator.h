@@ -13,12 +13,11 @@
 // everything else in the process (our builders and the renderer then run under the same limit,
 // which is what makes build times comparable).
 //
-// Interval semantics (see findNearest in the .cpp): ours is the closed [tmin, tmax]; Embree
-// makes no promise for hits exactly at (or very near) either end -- its default test excludes
-// t == tnear -- and it requires tnear >= 0 (for a negative tmin we trace the part behind the
-// origin from a moved origin, then the rest as usual). Rays
-// with an infinite or huge (> 1.844e18) origin or direction component miss without reaching
-// Embree, whose Debian build asserts on them.
+// Interval semantics (embree_rays.h): ours is the closed [tmin, tmax]; Embree makes no promise
+// for hits exactly at (or very near) either end -- its default test excludes t == tnear -- and it
+// requires tnear >= 0 (for a negative tmin we trace the part behind the origin from a moved
+// origin, then the rest as usual). Rays with an infinite or huge (> 1.844e18) origin or direction
+// component miss without reaching Embree, whose Debian build asserts on them.
 #pragma once
 
 #include "accel/embree/embree_device.h"
