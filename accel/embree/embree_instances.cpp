@@ -107,9 +107,4 @@ void EmbreeInstances::findNearestBatch(View<const Ray> rays, View<Hit> hits, Que
                              [this](const RTCHit& h) { return worldPrimitive(h.instID[0], h.geomID, h.primID); });
 }
 
-void EmbreeInstances::isOccludedBatch(View<const Ray> rays, View<uint8_t> occluded, QueryCounters& counters,
-                                      View<RayCost> costs, RayCoherence coherence) const {
-    embree::isOccludedBatch(top_.get(), rays, occluded, counters, costs, coherence);
-}
-
 }  // namespace bvhlab

@@ -109,8 +109,8 @@ nlohmann::json traceColumns(size_t rays, double ms, const QueryCounters& counter
     const bool counted = counters.counting && rays > 0;
     return {{"rays", rays},
             {"ms", ms},
-            {"n_it", counted ? nlohmann::json(double(counters.traversalSteps) / double(rays)) : nlohmann::json()},
-            {"n_tr", counted ? nlohmann::json(double(counters.intersectionTests) / double(rays)) : nlohmann::json()}};
+            {"n_it", counted ? nlohmann::json(double(counters.intersectionTests) / double(rays)) : nlohmann::json()},
+            {"n_tr", counted ? nlohmann::json(double(counters.traversalSteps) / double(rays)) : nlohmann::json()}};
 }
 
 // --check's decider where a contender and the reference (Embree) differ: the double-precision

@@ -56,12 +56,15 @@ FrameUpdate AnimatedStructure::start() {
     if (policy_ == UpdatePolicy::Refit || policy_ == UpdatePolicy::Adaptive) {
         if (!accel_->update(animated_.scene.primitives()))
             throw NoUpdateError(
-                fmt::format("{} has no update at its settings, so it cannot {} (for Embree: "
+                fmt::format("{} has no update at its settings, which policy {} needs (for Embree: "
                             "Embree::quality=refit)",
                             name_, toString(policy_)));
-        first.stats = statisticsOf(*accel_);  // the refitted tree's, which the next frames start from
+        // The refitted tree's statistics, which the next frames start from, with the build's time.
+        const BuildStats built = first.stats;
+        first.stats = statisticsOf(*accel_);
+        first.stats.buildMs = built.buildMs;
+        first.stats.buildCpuMs = built.buildCpuMs;
         builtSah_ = lastSah_ = first.stats.sah ? first.stats.sah->cost : 0.0;
-        first.stats.buildMs = first.stats.buildCpuMs = 0.0;
     }
     return first;
 }

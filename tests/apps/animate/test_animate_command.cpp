@@ -42,7 +42,7 @@ TEST(AnimateCommand, MeasuresEveryContenderAtEveryChosenFrame) {
             EXPECT_GT(row["agreement"]["checked"].get<size_t>(), 0u);
         }
         const bool ours = !c["embree"].get<bool>();
-        EXPECT_EQ(c["rows"][1]["primary"]["n_it"].is_number(), ours || c["policy"] == "twolevel");
+        EXPECT_EQ(c["rows"][1]["primary"]["n_it"].is_number(), ours);  // Embree counts nothing, its instances included
         EXPECT_EQ(c["rows"][1]["action"], c["policy"] == "twolevel" ? "move" : "refit");
     }
     EXPECT_EQ(skipped, 1u);
