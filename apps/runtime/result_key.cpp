@@ -7,6 +7,7 @@
 #include "apps/runtime/scene_loading.h"
 #include "framework/report/provenance.h"
 #include "framework/scene/scene_cache.h"
+#include "framework/scene/scene_loader.h"
 
 #include <fmt/core.h>
 #include <fmt/ranges.h>
@@ -116,14 +117,17 @@ std::string describeStructure(const json& structure) {
 }
 
 json sceneKey(const Env& env) {
-    // A key that some accelerator reads belongs to the structures that read it, not the scene.
+    const std::filesystem::path file = sceneFileOf(env);  // says which key to set when it is not there
+    // A key that some accelerator reads belongs to the structures that read it, not the scene;
+    // the frame decides only an animated scene.
+    const bool animated = !file.empty() && isAnimatedScene(file);
     json settings = json::object();
     const json values = env.toJson();
     for (const auto& [name, entry] : values.items())
         if (acceleratorsReading(name).empty() && !changesNoFigure(name) && !name.starts_with("ASDS::") &&
-            name != keys::Scene::dir.name() && name != keys::Scene::file.name())
+            name != keys::Scene::dir.name() && name != keys::Scene::file.name() &&
+            (animated || name != keys::Scene::frame.name()))
             settings[name] = entry.at("value");
-    const std::filesystem::path file = sceneFileOf(env);  // says which key to set when it is not there
     return {{"file", file.empty() ? json("embedded") : sceneFileContent(file)}, {"settings", settings}};
 }
 

@@ -33,7 +33,8 @@ nlohmann::json structureKey(const std::string& accelerator, const Env& env);
 
 // The scene `env` names: {"file": {"name", "size", "crc32", "adler32"} or "embedded", "settings":
 // {KEY: value}} with every key but the accelerators' own, ASDS::*, Scene::dir and Scene::file (the
-// content stands for them) and those that change no figure (changesNoFigure).
+// content stands for them), those that change no figure (changesNoFigure) and, for a still scene,
+// Scene::frame.
 nlohmann::json sceneKey(const Env& env);
 
 // A structure's part of a key as the tables show what ran: its own settings ("BVH::bins=16,

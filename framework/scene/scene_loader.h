@@ -13,6 +13,9 @@ Scene loadScene(const std::filesystem::path& file);
 // An animated scene (.aff, optionally .gz), at its start time. A still format is an error.
 AnimatedScene loadAnimatedScene(const std::filesystem::path& file);
 
+// True for an animated scene's format (.aff, optionally .gz), which loadAnimatedScene reads.
+bool isAnimatedScene(const std::filesystem::path& file);
+
 // True for a format whose scene can span other files (AFF's includes): a checksum of `file`
 // alone does not identify its content, so the scene cache passes it by.
 bool readsOtherFiles(const std::filesystem::path& file);
