@@ -13,6 +13,10 @@ struct PythonAccelerator {
     std::shared_ptr<PythonScene> scene;
     std::unique_ptr<Accelerator> accel;
     BuildStats stats;
+    uint64_t sceneMoves = 0;  // the scene's PythonScene::moves when built or last updated
+
+    // The scene, which must not have moved since: else InputError saying to update or rebuild.
+    const Scene& currentScene() const;
 };
 
 // The scene's env with `threads` (0: all hardware threads; else InputError below 0) and the

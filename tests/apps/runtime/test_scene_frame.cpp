@@ -5,6 +5,7 @@
 #include "framework/io/ray_file.h"
 #include "tests/support/cli_run.h"
 #include "tests/support/scratch_dir.h"
+#include "tests/support/test_paths.h"
 
 #include <fmt/core.h>
 #include <gtest/gtest.h>
@@ -14,50 +15,11 @@
 namespace bvhlab {
 namespace {
 
-// Frame k at t = k (three frames). Triangle 0 is static at z = -10; triangle 1 (`x mover`) covers
-// the view's centre at z = 0 at t = 0 and is 100 to the side at t = 2. The eye moves from z = 10
-// to z = 15, looking along -z.
-constexpr std::string_view kScene = R"(v
-from 0 0 10
-at 0 0 0
-up 0 1 0
-angle 30
-hither 0.01
-resolution 16 16
-p 3
--100 -100 -10
-100 -100 -10
-0 100 -10
-x mover
-{
-  p 3
-  -5 -5 0
-  5 -5 0
-  0 5 0
-}
-a 0 2 3
-k mover
-{
-  transl 4
-  -1  0 0 0  0 0 0
-   0  0 0 0  0 0 0
-   2  100 0 0  0 0 0
-   3  100 0 0  0 0 0
-}
-k camera
-{
-  transl 4
-  -1  0 0 10  0 0 0
-   0  0 0 10  0 0 0
-   2  0 0 15  0 0 0
-   3  0 0 15  0 0 0
-}
-)";
-
+// tests/support/moving_scene.aff: triangle 1 covers the view's centre at z = 0 at frame 0 and is
+// out of view at frame 2, where the static triangle 0 at z = -10 is seen; the eye moves from
+// z = 10 to z = 15.
 std::filesystem::path sceneFile() {
-    const std::filesystem::path dir = test::scratchDir("scene_frame");
-    std::ofstream(dir / "moving.aff") << kScene;
-    return dir / "moving.aff";
+    return std::filesystem::path(test::sourceTree()) / "tests/support/moving_scene.aff";
 }
 
 std::string withFrame(const std::string& command, int frame) {
@@ -80,7 +42,7 @@ TEST(SceneFrame, RenderSeesTheFramesGeometryFromTheFramesCamera) {
 
 TEST(SceneFrame, RaycastAnswersForTheFramesGeometry) {
     const std::filesystem::path dir = test::scratchDir("scene_frame");
-    writeRayFile(dir / "down.rays", {Ray{.org = Vec3(0, 0, 10), .dir = Vec3(0, 0, -1)}});
+    writeRayFile(dir / "down.rays", {Ray{.org = Vec3(1, -1, 10), .dir = Vec3(0, 0, -1)}});
     for (const auto& [frame, primitive, t] : {std::tuple{0, 1u, 10.0f}, std::tuple{2, 0u, 20.0f}}) {
         SCOPED_TRACE(frame);
         const test::Result r = test::run(withFrame("raycast", frame) + " --rays " + (dir / "down.rays").string() +
@@ -109,7 +71,7 @@ TEST(SceneFrame, AFramePastTheLastIsAnErrorAndAStillSceneIgnoresIt) {
     const std::filesystem::path dir = test::scratchDir("scene_frame");
     const test::Result past = test::run(withFrame("rays", 3) + " --out " + (dir / "x.rays").string());
     EXPECT_NE(past.exitCode, 0);
-    EXPECT_NE(past.output.find("Scene::frame 3 (from -DScene::frame): moving.aff has 3 frames, 0 to 2"),
+    EXPECT_NE(past.output.find("Scene::frame 3 (from -DScene::frame): moving_scene.aff has 3 frames, 0 to 2"),
               std::string::npos)
         << past.output;
 
