@@ -49,10 +49,14 @@ const json& sceneFileContent(const std::filesystem::path& file) {
     const auto it = known.find(absolute);
     if (it != known.end()) return it->second;
     const SceneCacheKey key = sceneCacheKey(absolute);
-    return known[absolute] = {{"name", absolute.filename().string()},
-                              {"size", key.size},
-                              {"crc32", fmt::format("{:08x}", key.crc32)},
-                              {"adler32", fmt::format("{:08x}", key.adler32)}};
+    json content = {{"name", absolute.filename().string()},
+                    {"size", key.size},
+                    {"crc32", fmt::format("{:08x}", key.crc32)},
+                    {"adler32", fmt::format("{:08x}", key.adler32)}};
+    // The files it includes decide the scene too (AFF).
+    for (const std::filesystem::path& included : includedFiles(absolute))
+        content["includes"][included.lexically_relative(absolute.parent_path()).string()] = contentOf(included);
+    return known[absolute] = content;
 }
 
 // The key's values by a path of readable names: "structure BVH::maxLeaf", "plugin crc32",

@@ -83,6 +83,11 @@ bool isAnimatedScene(const std::filesystem::path& file) { return lowercaseExtens
 
 bool readsOtherFiles(const std::filesystem::path& file) { return isAnimatedScene(file); }
 
+std::vector<std::filesystem::path> includedFiles(const std::filesystem::path& file) {
+    if (!readsOtherFiles(file)) return {};
+    return affIncludedFiles(file);
+}
+
 std::filesystem::path uncompressedName(const std::filesystem::path& file) {
     return lowercaseExtension(file) == ".gz" ? file.stem() : file.filename();
 }

@@ -66,6 +66,17 @@ std::string asText(std::string_view raw) {
     return bytes;
 }
 
+// The file `name` of an `i` line in `includer` names, relative to its folder; backslashes are
+// taken as slashes (a file written on Windows: sub\\part.aff) when no file has the name as written.
+fs::path includedPath(const fs::path& includer, std::string_view name) {
+    fs::path included = includer.parent_path() / fs::path(name);
+    std::error_code ec;
+    if (fs::is_regular_file(included, ec) || name.find('\\') == std::string_view::npos) return included;
+    std::string slashes(name);
+    std::replace(slashes.begin(), slashes.end(), '\\', '/');
+    return includer.parent_path() / fs::path(slashes);
+}
+
 glm::dmat4 staticTransform(const glm::dvec3& scale, const glm::dvec3& axis, double degrees,
                            const glm::dvec3& translation) {
     const glm::dmat4 r = glm::mat4_cast(quaternionFromAxisAngle(axis, glm::radians(degrees)));
@@ -267,13 +278,8 @@ void AffReader::readInclude(TextParser& text, const fs::path& file) {
     const std::string_view name = text.next();
     if (name.empty()) throw text.error("expected the file to include");
     if (level > detail_) return;
-    fs::path included = file.parent_path() / fs::path(name);
+    const fs::path included = includedPath(file, name);
     std::error_code ec;
-    if (!fs::is_regular_file(included, ec) && name.find('\\') != std::string_view::npos) {
-        std::string slashes(name);  // a file written on Windows: sub\part.aff
-        std::replace(slashes.begin(), slashes.end(), '\\', '/');
-        included = file.parent_path() / fs::path(slashes);
-    }
     if (!fs::is_regular_file(included, ec))
         throw text.error(fmt::format("cannot open the included file {}", quoted(name)));
     const fs::path canonical = fs::weakly_canonical(included);
@@ -612,6 +618,31 @@ AnimatedScene readAnimatedAff(const std::filesystem::path& file, const std::stri
     reader.readFile(file, bytes);
     reader.finish(file);
     return animated;
+}
+
+std::vector<std::filesystem::path> affIncludedFiles(const std::filesystem::path& file) {
+    // Every `i LEVEL NAME` of every file reached, whatever the detail level: a superset of what
+    // a read includes. A token `i` that is a name (`x i {`) has no LEVEL after it.
+    std::vector<fs::path> files;
+    std::vector<fs::path> seen = {fs::weakly_canonical(file)};
+    for (size_t next = 0; next <= files.size(); ++next) {
+        const fs::path current = next == 0 ? file : files[next - 1];
+        const std::string bytes = asText(readFileBytes(current));
+        TextParser text(current, bytes, /*hashComments=*/true);
+        text.alsoCommentWith('%');
+        int level;
+        for (std::string_view token = text.next(); !token.empty(); token = text.next()) {
+            if (token != "i" || !parseNumber(text.next(), level)) continue;
+            const fs::path included = includedPath(current, text.next());
+            std::error_code ec;
+            if (!fs::is_regular_file(included, ec)) continue;
+            const fs::path canonical = fs::weakly_canonical(included);
+            if (std::find(seen.begin(), seen.end(), canonical) != seen.end()) continue;
+            seen.push_back(canonical);
+            files.push_back(included.lexically_normal());
+        }
+    }
+    return files;
 }
 
 Scene readAff(const std::filesystem::path& file, const std::string& bytes) {

@@ -73,6 +73,23 @@ TEST(ResultKey, TheFrameIsPartOfAnAnimatedScene) {
     EXPECT_FALSE(key("a.obj", "2")["settings"].contains("Scene::frame"));
 }
 
+// An AFF scene is also the files it includes: the same root over another include is another scene.
+TEST(ResultKey, AnAffScenesIncludesArePartOfIt) {
+    const std::filesystem::path dir = test::scratchDir("result_key_includes");
+    json keys[2];
+    for (const int k : {0, 1}) {
+        const std::filesystem::path folder = dir / std::to_string(k);
+        std::filesystem::create_directories(folder / "sub");
+        std::ofstream(folder / "root.aff") << "i 0 sub/part.aff\n";
+        std::ofstream(folder / "sub" / "part.aff") << "p 3\n0 0 0\n1 0 0\n0 1 " << k << "\n";
+        keys[k] = sceneKey(envWith({"Scene::dir=" + folder.string(), "Scene::file=root.aff"}));
+    }
+    ASSERT_TRUE(keys[0]["file"]["includes"].contains("sub/part.aff")) << keys[0].dump();
+    const std::vector<std::string> changes = resultKeyChanges({{"scene", keys[0]}}, {{"scene", keys[1]}});
+    ASSERT_EQ(changes.size(), 1u);
+    EXPECT_TRUE(changes[0].starts_with("scene file includes sub/part.aff: 22-")) << changes[0];
+}
+
 TEST(ResultKey, TheProgramIsThisProcesssFiles) {
     const json& program = programIdentity();
     EXPECT_FALSE(program["commit"].get<std::string>().empty());

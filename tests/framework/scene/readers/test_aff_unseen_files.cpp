@@ -236,6 +236,23 @@ TEST(AffUnseenFiles, DeepBlocksWindowsPathsAndIncludesOfWhatIsNoFile) {
                      {"dir.aff:1:", "cannot open the included file 'folder.aff'"});
 }
 
+// What the result key checksums: every include at any detail level, nested ones, each once,
+// without reading the scene; names that are no file and a name `i` are passed by.
+TEST(AffUnseenFiles, IncludedFilesAreFoundWithoutReadingTheScene) {
+    TempDir dir;
+    fs::create_directories(dir.path() / "sub");
+    dir.write("sub/a.aff", "i 0 b.aff\ni 0 ../c.aff\n");
+    dir.write("sub/b.aff", "i 0 a.aff\n");
+    dir.write("c.aff", "p 3\n0 0 0\n1 0 0\n0 1 0\n");
+    const fs::path root = dir.write("root.aff",
+                                    "\xef\xbb\xbf% root\r\ni 0 sub\\a.aff\r\ni 7 c.aff\r\nx i\r\n{\r\n}\r\n"
+                                    "i 0 none.aff\r\n");
+    std::vector<std::string> names;
+    for (const fs::path& file : includedFiles(root)) names.push_back(file.lexically_relative(dir.path()).string());
+    EXPECT_EQ(names, (std::vector<std::string>{"sub/a.aff", "c.aff", "sub/b.aff"}));
+    EXPECT_TRUE(includedFiles(dir.write("still.obj", "v 0 0 0\n")).empty());
+}
+
 TEST(AffUnseenFiles, SurvivesTruncationsAndMutationsOfOtherEncodings) {
     fuzzReader(readAff,
                "\xef\xbb\xbfv\r\nfrom 0 0 5\r\nat 0 0 0\r\nup 0 1 0\r\nangle 40\r\nhither 1\r\n"
