@@ -18,13 +18,13 @@ namespace {
 // tests/support/moving_scene.aff: triangle 1 covers the view's centre at z = 0 at frame 0 and is
 // out of view at frame 2, where the static triangle 0 at z = -10 is seen; the eye moves from
 // z = 10 to z = 15.
-std::filesystem::path sceneFile() {
+std::filesystem::path movingSceneFile() {
     return std::filesystem::path(test::sourceTree()) / "tests/support/moving_scene.aff";
 }
 
 std::string withFrame(const std::string& command, int frame) {
-    return fmt::format("{} --no-global-env --threads 1 --scene {} -DScene::frame={}", command, sceneFile().string(),
-                       frame);
+    return fmt::format("{} --no-global-env --threads 1 --scene {} -DScene::frame={}", command,
+                       movingSceneFile().string(), frame);
 }
 
 TEST(SceneFrame, RenderSeesTheFramesGeometryFromTheFramesCamera) {

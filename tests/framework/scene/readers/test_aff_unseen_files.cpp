@@ -18,7 +18,7 @@ namespace {
 
 // Four keys making a spline that is `from` at t = 0 and `to` at t = 1 (the end keys shape the
 // tangents only): "transl", "scale" or, with an axis and degrees, "rot".
-std::string keys(std::string_view type, std::string_view from, std::string_view to) {
+std::string keyframes(std::string_view type, std::string_view from, std::string_view to) {
     return fmt::format(" {} 4\n -1 {} 0 0 0\n 0 {} 0 0 0\n 1 {} 0 0 0\n 2 {} 0 0 0\n", type, from, from, to, to);
 }
 
@@ -32,7 +32,7 @@ std::string sampleRoot() {
            "tpa 2\n0\n0 0 1 0 0 1\n1 0 1 0 0 1\n0 1 1 0 0 1\n1\n0 0 2 0 0 1\n1 0 2 0 0 1\n0 1 2 0 0 1\n"
            "a 0 1 2\n"
            "k caf\xe9\n{\n" +
-           keys("transl", "0 0 0", "5 0 0") + "}\nk camera\n{\n" + keys("transl", "0 0 10", "0 0 20") + "}\n";
+           keyframes("transl", "0 0 0", "5 0 0") + "}\nk camera\n{\n" + keyframes("transl", "0 0 10", "0 0 20") + "}\n";
 }
 constexpr std::string_view kIncluded = "p 3\n0 0 0\n1 0 0\n0 1 0\n";
 
@@ -103,11 +103,11 @@ TEST(AffUnseenFiles, ErrorsCountLinesOfEveryLineEnd) {
 TEST(AffUnseenFiles, KeyframeBlocksOfOnlyARotationOrAScale) {
     TempDir dir;
     const std::string triangle = "{\n p 3\n 1 0 0\n 2 0 0\n 1 1 0\n}\n";
-    const fs::path file =
-        dir.write("partial.aff", "x turn\n" + triangle + "x grow\n" + triangle + "x both\n" + triangle + "k turn\n{\n" +
-                                     keys("rot", "0 0 1 0", "0 0 1 90") + "}\nk grow\n{\n" +
-                                     keys("scale", "1 1 1", "2 2 2") + "}\nk both\n{\n" +
-                                     keys("scale", "1 1 1", "3 3 3") + keys("rot", "0 0 1 0", "0 0 1 180") + "}\n");
+    const fs::path file = dir.write(
+        "partial.aff", "x turn\n" + triangle + "x grow\n" + triangle + "x both\n" + triangle + "k turn\n{\n" +
+                           keyframes("rot", "0 0 1 0", "0 0 1 90") + "}\nk grow\n{\n" +
+                           keyframes("scale", "1 1 1", "2 2 2") + "}\nk both\n{\n" +
+                           keyframes("scale", "1 1 1", "3 3 3") + keyframes("rot", "0 0 1 0", "0 0 1 180") + "}\n");
     AnimatedScene animated = loadAnimatedScene(file);
     ASSERT_EQ(animated.parts.size(), 3u);
     expectVec(animated.scene.triangles[0].v0, {1, 0, 0});
@@ -123,12 +123,13 @@ TEST(AffUnseenFiles, KeyframeBlocksOfOnlyARotationOrAScale) {
 // between and below them stay in the chain.
 TEST(AffUnseenFiles, NestedAnimatedTransforms) {
     TempDir dir;
-    const fs::path file = dir.write(
-        "nested.aff",
-        "x outer\n{\n xs 1 1 1 0 0 1 0 0 0 3\n {\n  x inner\n  {\n   xs 2 2 2 0 0 1 0 0 0 0\n   {\n"
-        "    p 3\n    1 0 0\n    2 0 0\n    1 1 0\n   }\n  }\n }\n}\n"
-        "k outer\n{\n" +
-            keys("transl", "0 0 0", "10 0 0") + "}\nk inner\n{\n" + keys("rot", "0 0 1 0", "0 0 1 90") + "}\n");
+    const fs::path file =
+        dir.write("nested.aff",
+                  "x outer\n{\n xs 1 1 1 0 0 1 0 0 0 3\n {\n  x inner\n  {\n   xs 2 2 2 0 0 1 0 0 0 0\n   {\n"
+                  "    p 3\n    1 0 0\n    2 0 0\n    1 1 0\n   }\n  }\n }\n}\n"
+                  "k outer\n{\n" +
+                      keyframes("transl", "0 0 0", "10 0 0") + "}\nk inner\n{\n" +
+                      keyframes("rot", "0 0 1 0", "0 0 1 90") + "}\n");
     AnimatedScene animated = loadAnimatedScene(file);
     ASSERT_EQ(animated.parts.size(), 1u);
     EXPECT_EQ(animated.parts[0].positions[0], Vec3(2, 0, 0));  // the innermost xs, applied at load
@@ -164,8 +165,8 @@ TEST(AffUnseenFiles, CamerasAndLightsOfOtherTracks) {
     TempDir dir;
     constexpr std::string_view kView = "v\nfrom 1 2 3\nat 1 2 0\nup 0 1 0\nangle 45\nhither 0.01\nresolution 8 8\n";
     const std::string turning = std::string(kView) + "p 3\n0 0 0\n1 0 0\n0 1 0\nla lamp 4 5 6 0.5 0.5 0.5\n" +
-                                "k camera\n{\n" + keys("rot", "0 1 0 0", "0 1 0 90") + "}\nk lamp\n{\n" +
-                                keys("rot", "0 1 0 0", "0 1 0 90") + "}\n";
+                                "k camera\n{\n" + keyframes("rot", "0 1 0 0", "0 1 0 90") + "}\nk lamp\n{\n" +
+                                keyframes("rot", "0 1 0 0", "0 1 0 90") + "}\n";
     AnimatedScene turns = loadAnimatedScene(dir.write("turning.aff", turning));
     turns.setTime(1.0f);
     expectVec(turns.scene.camera->from, {1, 2, 3});  // only turned
@@ -174,8 +175,8 @@ TEST(AffUnseenFiles, CamerasAndLightsOfOtherTracks) {
     EXPECT_EQ(turns.scene.lights[0].intensity, Vec3(0.5f));
 
     // A camera track without a viewpoint block moves the default camera.
-    AnimatedScene noView = loadAnimatedScene(
-        dir.write("noview.aff", "p 3\n0 0 0\n1 0 0\n0 1 0\nk camera\n{\n" + keys("transl", "0 0 5", "0 0 9") + "}\n"));
+    AnimatedScene noView = loadAnimatedScene(dir.write(
+        "noview.aff", "p 3\n0 0 0\n1 0 0\n0 1 0\nk camera\n{\n" + keyframes("transl", "0 0 5", "0 0 9") + "}\n"));
     noView.setTime(1.0f);
     ASSERT_TRUE(noView.scene.camera.has_value());
     expectVec(noView.scene.camera->from, {0, 0, 9});
@@ -186,7 +187,8 @@ TEST(AffUnseenFiles, MalformedFilesNameFileAndLine) {
     const std::string t(kTriangle);
     // Truncated blocks.
     expectLoadError("k.aff", t + "k car\n{\n transl 4\n 0 0 0 0 0 0 0\n", {"k.aff:8:", "the end of the file"});
-    expectLoadError("kbrace.aff", t + "k car\n{\n" + keys("transl", "0 0 0", "1 0 0"), {"kbrace.aff:5:", "'k car'"});
+    expectLoadError("kbrace.aff", t + "k car\n{\n" + keyframes("transl", "0 0 0", "1 0 0"),
+                    {"kbrace.aff:5:", "'k car'"});
     expectLoadError("tpa.aff", t + "tpa 2\n0\n0 0 0 0 0 1\n", {"tpa.aff:7:", "the end of the file"});
     expectLoadError("mesh.aff", "m\nvertices 3\n0 0 0\n1 0 0\n", {"mesh.aff:4:", "the end of the file"});
     expectLoadError("view.aff", "v\nfrom 0 0 1\nat 0 0 0\n", {"view.aff:3:", "expected 'up'"});
