@@ -77,6 +77,49 @@ def test_a_structure_without_an_update_is_built_again(moving_aff):
     assert not np.any(hits["prim"] >= 1)  # the mover is out of the rays' reach
 
 
+# Triangle 1 collapses to a point from t = 0 to 1 while triangle 2 grows from one: as many valid
+# primitives at t = 1, but others.
+SWAP_AFF = """p 3
+0 0 -5
+10 0 -5
+0 10 -5
+tpa 2
+0
+0 0 0 0 0 1
+1 0 0 0 0 1
+0 1 0 0 0 1
+1
+0 0 0 0 0 1
+0 0 0 0 0 1
+0 0 0 0 0 1
+tpa 2
+0
+2 0 0 0 0 1
+2 0 0 0 0 1
+2 0 0 0 0 1
+1
+2 0 0 0 0 1
+3 0 0 0 0 1
+2 1 0 0 0 1
+a 0 1 2
+"""
+
+
+@pytest.mark.parametrize("name,env", [("sahbvh", {}), ("sahbvh8", {}), ("naive", {}),
+                                      ("embree", {"Embree::quality": "refit"})])
+def test_no_update_when_other_primitives_are_valid(tmp_path, name, env):
+    path = tmp_path / "swap.aff"
+    path.write_text(SWAP_AFF)
+    scene = bvhlab.load_scene(str(path))
+    accel = bvhlab.build(scene, name, env=env)
+    scene.set_time(1.0)
+    assert not accel.update(scene)
+    with pytest.raises(ValueError, match="moved"):
+        accel.intersect(np.float32([[2.2, 0.2, 1]]), np.float32([[0, 0, -1]]))
+    hit = bvhlab.build(scene, name, env=env).intersect(np.float32([[2.2, 0.2, 1]]), np.float32([[0, 0, -1]]))
+    assert (hit["prim"][0], hit["t"][0]) == (2, 1.0)
+
+
 def test_still_scenes_and_errors(moving_aff, quad_scene):
     assert (quad_scene.frame_count, quad_scene.start_time, quad_scene.end_time) == (1, 0.0, 0.0)
     accel = bvhlab.build(quad_scene, "sahbvh")
