@@ -39,30 +39,43 @@ void checkThreads(int threads) {
     if (threads < 0) throw InputError(fmt::format("threads {}: expected 0 (all hardware threads) or more", threads));
 }
 
+// FNV-1a of the valid primitives' indices.
+uint64_t hashOfValid(const Scene& scene) {
+    uint64_t hash = 14695981039346656037ull;
+    for (const uint32_t prim : scene.validPrimitives) hash = (hash ^ prim) * 1099511628211ull;
+    return hash;
+}
+
 PythonAccelerator build(std::shared_ptr<PythonScene> scene, const std::string& name, const py::object& envDict,
                         int threads) {
     if (!loadPluginFor(name)) throw InputError(unknownAcceleratorMessage(name));
     const Env env = envWith(*scene, envDict, threads);
-    PythonAccelerator built{scene, createAccelerator(name, env), {}};
+    PythonAccelerator built{scene,        createAccelerator(name, env),    {},
+                            scene->moves, scene->scene().primitiveCount(), hashOfValid(scene->scene())};
     py::gil_scoped_release release;
     tbb::task_arena(threads > 0 ? threads : tbb::info::default_concurrency()).execute([&] {
-        built.stats = timedBuild(*built.accel, scene->scene.primitives());
+        built.stats = timedBuild(*built.accel, scene->scene().primitives());
     });
     return built;
 }
 
 // The structure updated to `scene`'s primitives, timed as bvhlab times an update; false (and
-// nothing changed) when it has none.
+// nothing changed) when it has none, or when other primitives are valid at the same count (an
+// update keeps the set it was built over).
 bool update(PythonAccelerator& self, std::shared_ptr<PythonScene> scene, int threads) {
     checkThreads(threads);
+    const uint64_t validHash = hashOfValid(scene->scene());
+    if (scene->scene().primitiveCount() == self.primitives && validHash != self.validHash) return false;
     std::optional<BuildStats> stats;
     {
         py::gil_scoped_release release;
         tbb::task_arena(threads > 0 ? threads : tbb::info::default_concurrency()).execute([&] {
-            stats = timedUpdate(*self.accel, scene->scene.primitives());
+            stats = timedUpdate(*self.accel, scene->scene().primitives());
         });
     }
     if (!stats) return false;
+    self.sceneMoves = scene->moves;
+    self.validHash = validHash;
     self.scene = std::move(scene);  // the structure keeps views of its primitives
     self.stats = *stats;
     return true;
@@ -77,6 +90,7 @@ template <typename Record, typename Answer, typename Write>
 py::array answerInto(const PythonAccelerator& self, const RayArrays& rays, int threads, bool counters, bool coherent,
                      Write&& write) {
     checkThreads(threads);
+    self.currentScene();
     const bool counted = counters && self.accel->hasCounters();
     py::array_t<Record> result(py::ssize_t(rays.size()));
     Record* records = result.mutable_data();
@@ -132,6 +146,15 @@ py::array occluded(const PythonAccelerator& self, const py::handle& origins, con
 
 }  // namespace
 
+const Scene& PythonAccelerator::currentScene() const {
+    if (scene->moves != sceneMoves)
+        throw InputError(
+            fmt::format("the scene '{}' moved (set_time) since this {} was built or updated: "
+                        "accel.update(scene), or bvhlab.build again",
+                        scene->scene().name, accel->name()));
+    return scene->scene();
+}
+
 Env envWith(const PythonScene& scene, const py::object& envDict, int threads) {
     checkThreads(threads);
     Env env = scene.env;
@@ -172,11 +195,13 @@ void bindAccelerator(py::module_& m) {
              py::arg("counters") = false, py::arg("coherent") = false, occludedDoc.c_str())
         .def("update", &update, py::arg("scene"), py::arg("threads") = 0,
              "Updates the structure after the primitives moved: `scene` has the built scene's primitives (the "
-             "same counts and valid ones, e.g. the same file at another time) at new positions. True when it "
+             "same counts and valid ones: the same scene after set_time, or the same file at another time) at new "
+             "positions. True when it "
              "answers for them now (stats: the updated structure's, build_ms the update's time); False when the "
-             "structure has no update (build it again with bvhlab.build). Other counts: ValueError.")
+             "structure has no update or other primitives are valid now (a moving triangle became degenerate or "
+             "stopped being so): build it again with bvhlab.build. Other counts: ValueError.")
         .def("__repr__", [](const PythonAccelerator& a) {
-            return fmt::format("<bvhlab.Accelerator {} over '{}'>", a.accel->name(), a.scene->scene.name);
+            return fmt::format("<bvhlab.Accelerator {} over '{}'>", a.accel->name(), a.scene->scene().name);
         });
 
     m.def("build", &build, py::arg("scene"), py::arg("accelerator") = "sahbvh8", py::arg("env") = py::none(),

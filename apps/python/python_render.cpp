@@ -55,7 +55,7 @@ py::object renderStatsDict(const StatsRow& row) {
 
 py::dict renderAccelerator(const PythonAccelerator& accel, const py::object& envDict, int threads) {
     const Env env = envWith(*accel.scene, envDict, threads);
-    const Scene& scene = accel.scene->scene;
+    const Scene& scene = accel.currentScene();
     const Camera camera(resolveCamera(scene, env));
     const RenderSettings settings = RenderSettings::fromEnv(env, scene, camera.spec());
     Framebuffer fb(camera.width(), camera.height());

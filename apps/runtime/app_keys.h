@@ -11,6 +11,10 @@ inline constexpr PathKey dir{"Scene::dir", "../shared/scenes", "folder that rela
 inline constexpr TextKey file{"Scene::file", "",
                               "scene file (.obj .ply .off .nff .aff, optionally .gz), relative to Scene::dir; empty = "
                               "the embedded default scene"};
+inline constexpr IntKey frame{
+    "Scene::frame", "0", 0, (1 << 30) - 1,
+    "animated scenes (.aff): the frame to load, 0 = the animation's first; its geometry, camera and lights at that "
+    "frame's time. A frame past the last is an error; a still scene ignores the key (with a warning unless 0)"};
 inline constexpr PathKey cacheDir{
     "Scene::cacheDir", "$XDG_CACHE_HOME/bvhlab/scenes",
     "binary cache of parsed scenes, keyed by the source file's bytes (bvhlab batch); empty = no cache"};

@@ -18,6 +18,7 @@ namespace {
 void registerAppKeys(EnvRegistry& r) {
     r.add(keys::Scene::dir);
     r.add(keys::Scene::file);
+    r.add(keys::Scene::frame);
     r.add(keys::Scene::cacheDir);
     for (const BoolKey& key : {keys::Output::exr, keys::Output::png, keys::Output::heatmap}) r.add(key);
     r.add(keys::Output::heatmapScale);

@@ -7,6 +7,7 @@
 #include "apps/runtime/scene_loading.h"
 #include "framework/report/provenance.h"
 #include "framework/scene/scene_cache.h"
+#include "framework/scene/scene_loader.h"
 
 #include <fmt/core.h>
 #include <fmt/ranges.h>
@@ -48,10 +49,14 @@ const json& sceneFileContent(const std::filesystem::path& file) {
     const auto it = known.find(absolute);
     if (it != known.end()) return it->second;
     const SceneCacheKey key = sceneCacheKey(absolute);
-    return known[absolute] = {{"name", absolute.filename().string()},
-                              {"size", key.size},
-                              {"crc32", fmt::format("{:08x}", key.crc32)},
-                              {"adler32", fmt::format("{:08x}", key.adler32)}};
+    json content = {{"name", absolute.filename().string()},
+                    {"size", key.size},
+                    {"crc32", fmt::format("{:08x}", key.crc32)},
+                    {"adler32", fmt::format("{:08x}", key.adler32)}};
+    // The files it includes decide the scene too (AFF).
+    for (const std::filesystem::path& included : includedFiles(absolute))
+        content["includes"][included.lexically_relative(absolute.parent_path()).string()] = contentOf(included);
+    return known[absolute] = content;
 }
 
 // The key's values by a path of readable names: "structure BVH::maxLeaf", "plugin crc32",
@@ -116,14 +121,17 @@ std::string describeStructure(const json& structure) {
 }
 
 json sceneKey(const Env& env) {
-    // A key that some accelerator reads belongs to the structures that read it, not the scene.
+    const std::filesystem::path file = sceneFileOf(env);  // says which key to set when it is not there
+    // A key that some accelerator reads belongs to the structures that read it, not the scene;
+    // the frame decides only an animated scene.
+    const bool animated = !file.empty() && isAnimatedScene(file);
     json settings = json::object();
     const json values = env.toJson();
     for (const auto& [name, entry] : values.items())
         if (acceleratorsReading(name).empty() && !changesNoFigure(name) && !name.starts_with("ASDS::") &&
-            name != keys::Scene::dir.name() && name != keys::Scene::file.name())
+            name != keys::Scene::dir.name() && name != keys::Scene::file.name() &&
+            (animated || name != keys::Scene::frame.name()))
             settings[name] = entry.at("value");
-    const std::filesystem::path file = sceneFileOf(env);  // says which key to set when it is not there
     return {{"file", file.empty() ? json("embedded") : sceneFileContent(file)}, {"settings", settings}};
 }
 

@@ -6,8 +6,9 @@
 //               rebuild with uncommitted changes differs), and Embree's library;
 //   structure   the accelerator, the values of the keys it reads (no other structure's), and its
 //               plugin's file, size, CRC-32, ABI, compiler and flags;
-//   scene       the scene file's content (size and checksums), and every other value of the env
-//               that can change a figure: camera, lights, image size, samples, threads, ...;
+//   scene       the scene file's content (size and checksums; an AFF file's includes too), and
+//               every other value of the env that can change a figure: camera, lights, image
+//               size, samples, threads, the frame of an animated scene, ...;
 //   measurement what the command measures with (tradeoff's sizes and series, bench's rounds, ...).
 #pragma once
 
@@ -31,9 +32,11 @@ const nlohmann::json& programIdentity();
 // {"file", "size", "crc32", "abi", "compiler", "cxx_flags", "optimized"} or null}.
 nlohmann::json structureKey(const std::string& accelerator, const Env& env);
 
-// The scene `env` names: {"file": {"name", "size", "crc32", "adler32"} or "embedded", "settings":
+// The scene `env` names: {"file": {"name", "size", "crc32", "adler32", and for an AFF file
+// "includes": {PATH: "SIZE-CRC32"} of the files it includes} or "embedded", "settings":
 // {KEY: value}} with every key but the accelerators' own, ASDS::*, Scene::dir and Scene::file (the
-// content stands for them) and those that change no figure (changesNoFigure).
+// content stands for them), those that change no figure (changesNoFigure) and, for a still scene,
+// Scene::frame.
 nlohmann::json sceneKey(const Env& env);
 
 // A structure's part of a key as the tables show what ran: its own settings ("BVH::bins=16,

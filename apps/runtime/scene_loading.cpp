@@ -1,6 +1,7 @@
 #include "apps/runtime/scene_loading.h"
 
 #include "apps/runtime/app_keys.h"
+#include "apps/runtime/run_record.h"
 #include "framework/core/error.h"
 #include "framework/scene/procedural.h"
 #include "framework/scene/scene_cache.h"
@@ -26,24 +27,30 @@ std::filesystem::path sceneFileOf(const Env& env) {
     return path;
 }
 
-Scene loadSceneFor(const Env& env, bool useCache, SceneLoadInfo* info) {
-    const std::filesystem::path path = sceneFileOf(env);
-    const std::filesystem::path cacheDir = useCache ? env.get(keys::Scene::cacheDir) : std::filesystem::path();
-    SceneLoadInfo loaded;
-    const auto start = std::chrono::steady_clock::now();
-    Scene scene;
-    if (path.empty()) {
-        scene = makeDefaultScene();
-    } else if (cacheDir.empty() || readsOtherFiles(path)) {
-        scene = loadScene(path);
-    } else {
-        CachedScene cached = loadSceneCached(path, cacheDir);
-        if (!cached.note.empty()) fmt::print(stderr, "scene cache: {}\n", cached.note);
-        scene = std::move(cached.scene);
-        loaded.fromCache = cached.fromCache;
-        loaded.cacheFile = cached.cacheFile;
-    }
-    loaded.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+namespace {
+
+// The animated scene of `path` at the frame Scene::frame names.
+AnimatedScene loadAtFrame(const std::filesystem::path& path, const Env& env) {
+    AnimatedScene animated = loadAnimatedScene(path);
+    const int frame = env.get(keys::Scene::frame);
+    if (frame >= animated.frameCount)
+        throw InputError(fmt::format("Scene::frame {} (from {}): {} has {} frame{}, 0 to {}", frame,
+                                     env.origin(keys::Scene::frame.name()), path.filename().string(),
+                                     animated.frameCount, animated.frameCount == 1 ? "" : "s",
+                                     animated.frameCount - 1));
+    if (frame > 0) animated.setTime(animated.frameTime(frame));
+    return animated;
+}
+
+void warnOfIgnoredFrame(const Env& env, const Scene& scene) {
+    const int frame = env.get(keys::Scene::frame);
+    if (frame != 0)
+        warnOfRun(fmt::format("Scene::frame {} (from {}) ignored: {} is a still scene", frame,
+                              env.origin(keys::Scene::frame.name()), scene.name));
+}
+
+// Says on stderr what the load met.
+void reportLoad(const Scene& scene, const SceneLoadInfo& loaded) {
     fmt::print(stderr, "scene {}: {} triangles ({} degenerate, not built over) {} in {:.0f} ms\n", scene.name,
                scene.triangleCount(), scene.report.degenerateTriangles,
                loaded.fromCache ? "read from cache " + loaded.cacheFile.string() : std::string("loaded"), loaded.ms);
@@ -55,8 +62,55 @@ Scene loadSceneFor(const Env& env, bool useCache, SceneLoadInfo* info) {
                    scene.spheres.size(), scene.report.degenerateSpheres, scene.cones.size(),
                    scene.report.degenerateCones);
     for (const std::string& warning : scene.report.warnings) fmt::print(stderr, "warning: {}\n", warning);
+}
+
+double msSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+Scene loadSceneFor(const Env& env, bool useCache, SceneLoadInfo* info) {
+    const std::filesystem::path path = sceneFileOf(env);
+    const std::filesystem::path cacheDir = useCache ? env.get(keys::Scene::cacheDir) : std::filesystem::path();
+    SceneLoadInfo loaded;
+    const auto start = std::chrono::steady_clock::now();
+    Scene scene;
+    if (path.empty()) {
+        scene = makeDefaultScene();
+    } else if (isAnimatedScene(path)) {
+        scene = std::move(loadAtFrame(path, env).scene);
+    } else if (cacheDir.empty() || readsOtherFiles(path)) {
+        scene = loadScene(path);
+    } else {
+        CachedScene cached = loadSceneCached(path, cacheDir);
+        if (!cached.note.empty()) fmt::print(stderr, "scene cache: {}\n", cached.note);
+        scene = std::move(cached.scene);
+        loaded.fromCache = cached.fromCache;
+        loaded.cacheFile = cached.cacheFile;
+    }
+    loaded.ms = msSince(start);
+    reportLoad(scene, loaded);
+    if (!isAnimatedScene(path)) warnOfIgnoredFrame(env, scene);
     if (info) *info = loaded;
     return scene;
+}
+
+AnimatedScene loadAnimatedSceneFor(const Env& env) {
+    const std::filesystem::path path = sceneFileOf(env);
+    const auto start = std::chrono::steady_clock::now();
+    AnimatedScene animated;
+    if (!path.empty() && isAnimatedScene(path)) {
+        animated = loadAtFrame(path, env);
+    } else {
+        animated.scene = path.empty() ? makeDefaultScene() : loadScene(path);
+        animated.prepare();
+    }
+    SceneLoadInfo loaded;
+    loaded.ms = msSince(start);
+    reportLoad(animated.scene, loaded);
+    if (path.empty() || !isAnimatedScene(path)) warnOfIgnoredFrame(env, animated.scene);
+    return animated;
 }
 
 }  // namespace bvhlab

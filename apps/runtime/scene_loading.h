@@ -2,6 +2,7 @@
 #pragma once
 
 #include "framework/config/env.h"
+#include "framework/scene/animated_scene.h"
 #include "framework/scene/scene.h"
 
 #include <filesystem>
@@ -23,7 +24,14 @@ std::filesystem::path sceneFileOf(const Env& env);
 // (degenerate primitives, NFF spheres and cones, warnings) are reported on stderr. With `useCache`
 // a scene file is read from / stored into the binary cache in Scene::cacheDir (empty = no cache; see
 // framework/scene/scene_cache.h); only `bvhlab batch` uses it (docs/batch.md), every other
-// command parses its scenes each time and writes nothing outside its outputs.
+// command parses its scenes each time and writes nothing outside its outputs. An animated scene
+// (.aff, never cached: it spans files) is the one at the frame Scene::frame names, with its camera
+// and lights then; a frame past its last is an InputError, and a still scene ignores the key (a
+// warning of the run unless it is 0).
 Scene loadSceneFor(const Env& env, bool useCache = false, SceneLoadInfo* info = nullptr);
+
+// The same with what moves in it, for a caller that moves it to other times (Python): a still
+// scene comes as an animation of one frame at time 0 in which nothing moves.
+AnimatedScene loadAnimatedSceneFor(const Env& env);
 
 }  // namespace bvhlab

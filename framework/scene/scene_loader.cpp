@@ -79,7 +79,14 @@ std::string readFileBytes(const std::filesystem::path& file) {
     throw inputError(file, 0, fmt::format("cannot read: {}", message));
 }
 
-bool readsOtherFiles(const std::filesystem::path& file) { return lowercaseExtension(uncompressedName(file)) == ".aff"; }
+bool isAnimatedScene(const std::filesystem::path& file) { return lowercaseExtension(uncompressedName(file)) == ".aff"; }
+
+bool readsOtherFiles(const std::filesystem::path& file) { return isAnimatedScene(file); }
+
+std::vector<std::filesystem::path> includedFiles(const std::filesystem::path& file) {
+    if (!readsOtherFiles(file)) return {};
+    return affIncludedFiles(file);
+}
 
 std::filesystem::path uncompressedName(const std::filesystem::path& file) {
     return lowercaseExtension(file) == ".gz" ? file.stem() : file.filename();
@@ -106,8 +113,7 @@ Scene loadScene(const std::filesystem::path& file) {
 
 AnimatedScene loadAnimatedScene(const std::filesystem::path& file) {
     const std::filesystem::path uncompressed = uncompressedName(file);
-    if (lowercaseExtension(uncompressed) != ".aff")
-        throw inputError(file, 0, "not an animated scene: supported: .aff, optionally .gz");
+    if (!isAnimatedScene(file)) throw inputError(file, 0, "not an animated scene: supported: .aff, optionally .gz");
     const std::string bytes = readFileBytes(file);
     requireText(file, bytes, ".aff");
     AnimatedScene animated = readAnimatedAff(file, bytes);

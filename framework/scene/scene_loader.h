@@ -6,6 +6,8 @@
 #include "framework/scene/animated_scene.h"
 #include "framework/scene/scene.h"
 
+#include <vector>
+
 namespace bvhlab {
 
 Scene loadScene(const std::filesystem::path& file);
@@ -13,9 +15,17 @@ Scene loadScene(const std::filesystem::path& file);
 // An animated scene (.aff, optionally .gz), at its start time. A still format is an error.
 AnimatedScene loadAnimatedScene(const std::filesystem::path& file);
 
+// True for an animated scene's format (.aff, optionally .gz), which loadAnimatedScene reads.
+bool isAnimatedScene(const std::filesystem::path& file);
+
 // True for a format whose scene can span other files (AFF's includes): a checksum of `file`
 // alone does not identify its content, so the scene cache passes it by.
 bool readsOtherFiles(const std::filesystem::path& file);
+
+// The other files the scene of `file` may read, found without reading the scene (AFF: the files
+// its `i` lines name at any detail level, and theirs), each once; names that are no file are
+// left out. Empty for a format that reads no other files. Throws InputError if one is unreadable.
+std::vector<std::filesystem::path> includedFiles(const std::filesystem::path& file);
 
 // The file's name as loadScene reads it: without its folder and a trailing .gz (a10.obj.gz -> a10.obj).
 std::filesystem::path uncompressedName(const std::filesystem::path& file);
@@ -33,6 +43,7 @@ Scene readNff(const std::filesystem::path& file, const std::string& bytes);
 // AFF reads the files it includes itself (readers/aff_reader.cpp).
 Scene readAff(const std::filesystem::path& file, const std::string& bytes);
 AnimatedScene readAnimatedAff(const std::filesystem::path& file, const std::string& bytes);
+std::vector<std::filesystem::path> affIncludedFiles(const std::filesystem::path& file);
 
 // The whole file as bytes, gunzipped when it is gzip-compressed.
 std::string readFileBytes(const std::filesystem::path& file);

@@ -1,5 +1,5 @@
 # docs/python.md's examples run exactly as written: each python block, the builders' on the
-# embedded scene, the rays' compared with the output the page shows after it.
+# embedded scene, the rays' and the animation's compared with the output the page shows after it.
 import os
 import pathlib
 import re
@@ -23,6 +23,7 @@ def run(block, tmp_path, *arguments):
 def test_every_block_is_tested():
     assert [block.splitlines()[0] for block in BLOCKS] == [
         "# Rays as NumPy holds them: columns of a table of rays, an empty batch, and the counters of a",
+        "# An animated scene frame by frame: the structure updated after each move answers as a fresh build.",
         "# Trace time against SAH for bvhlab's builders on one scene (docs/builders.md), one thread.",
     ]
 
@@ -33,8 +34,14 @@ def test_numpy_rays_example(tmp_path):
     assert run(BLOCKS[0], tmp_path) == shown.group(1)
 
 
+def test_animation_example(tmp_path):
+    shown = re.search(r"```python\n# An animated scene.*?```\n\nIt prints .*?:\n\n```\n(.*?)```", TEXT, re.S)
+    assert shown, "the animation example is followed by 'It prints ...:' and its output"
+    assert run(BLOCKS[1], tmp_path) == shown.group(1)
+
+
 def test_builders_example(tmp_path):
     out = tmp_path / "builders.png"
-    stdout = run(BLOCKS[1], tmp_path, "", out)
+    stdout = run(BLOCKS[2], tmp_path, "", out)
     assert out.read_bytes().startswith(b"\x89PNG")
     assert f"wrote {out}" in stdout

@@ -17,4 +17,11 @@ inline void expectDerivedAsFinalize(const Scene& scene) {
     for (size_t i = 0; i < scene.triangleCount(); ++i) ASSERT_EQ(scene.triangles[i].v1, fresh.triangles[i].v1) << i;
 }
 
+// A point where it should be, to within `tolerance` in each coordinate.
+inline void expectVec(const Vec3& got, const Vec3& want, float tolerance = 1e-5f) {
+    EXPECT_NEAR(got.x, want.x, tolerance);
+    EXPECT_NEAR(got.y, want.y, tolerance);
+    EXPECT_NEAR(got.z, want.z, tolerance);
+}
+
 }  // namespace bvhlab::test

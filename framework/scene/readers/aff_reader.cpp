@@ -4,10 +4,12 @@
 // leaves open is decided here as BART's reference parser (parse.c, animation.c) and its files
 // decide it:
 // - Tokens are separated by any whitespace; CR LF, CR and LF all end lines; '#' and '%' start
-//   comments to the end of the line; bytes beyond ASCII are taken as they are. NFF's entities
+//   comments to the end of the line; a UTF-8 byte order mark is skipped; other bytes beyond
+//   ASCII are taken as they are. NFF's entities
 //   (v b l f p pp s c) keep their line layout (nff_entities.h); the rest is free-format.
-// - `i LEVEL FILE` includes FILE (relative to the including file's folder) when LEVEL is at
-//   most the detail level (`d N`, 0 by default), as BART's does; an include of a file that is
+// - `i LEVEL FILE` includes FILE (relative to the including file's folder; backslashes are
+//   taken as slashes when no file has the name as written) when LEVEL is at most the detail
+//   level (`d N`, 0 by default), as BART's does; an include of a file that is
 //   already being read is an error (a cycle), as is a missing file. A `{` block closes in the
 //   file that opens it.
 // - `xs sx sy sz  ax ay az degrees  tx ty tz { ... }` transforms its block by T * R * S;
@@ -40,6 +42,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <unordered_map>
@@ -51,12 +54,27 @@ namespace fs = std::filesystem;
 
 constexpr size_t kMaxIncludeDepth = 64;
 
-// Lone CRs (old Mac line ends) as LFs, so that lines and their numbers are right; CR LF stays.
-std::string withLineFeeds(std::string bytes) {
+// The text without a UTF-8 byte order mark (editors on Windows write one), and with lone CRs
+// (old Mac line ends) as LFs, so that lines and their numbers are right; CR LF stays.
+std::string asText(std::string_view raw) {
+    constexpr std::string_view kByteOrderMark = "\xef\xbb\xbf";
+    if (raw.starts_with(kByteOrderMark)) raw.remove_prefix(kByteOrderMark.size());
+    std::string bytes(raw);
     for (size_t i = 0; i < bytes.size(); ++i) {
         if (bytes[i] == '\r' && (i + 1 == bytes.size() || bytes[i + 1] != '\n')) bytes[i] = '\n';
     }
     return bytes;
+}
+
+// The file `name` of an `i` line in `includer` names, relative to its folder; backslashes are
+// taken as slashes (a file written on Windows: sub\\part.aff) when no file has the name as written.
+fs::path includedPath(const fs::path& includer, std::string_view name) {
+    fs::path included = includer.parent_path() / fs::path(name);
+    std::error_code ec;
+    if (fs::is_regular_file(included, ec) || name.find('\\') == std::string_view::npos) return included;
+    std::string slashes(name);
+    std::replace(slashes.begin(), slashes.end(), '\\', '/');
+    return includer.parent_path() / fs::path(slashes);
 }
 
 glm::dmat4 staticTransform(const glm::dvec3& scale, const glm::dvec3& axis, double degrees,
@@ -137,7 +155,7 @@ private:
 };
 
 void AffReader::readFile(const fs::path& file, const std::string& rawBytes) {
-    const std::string bytes = withLineFeeds(rawBytes);
+    const std::string bytes = asText(rawBytes);
     TextParser text(file, bytes, /*hashComments=*/true);
     text.alsoCommentWith('%');
     includeStack_.push_back(fs::weakly_canonical(file));
@@ -260,7 +278,7 @@ void AffReader::readInclude(TextParser& text, const fs::path& file) {
     const std::string_view name = text.next();
     if (name.empty()) throw text.error("expected the file to include");
     if (level > detail_) return;
-    const fs::path included = file.parent_path() / fs::path(name);
+    const fs::path included = includedPath(file, name);
     std::error_code ec;
     if (!fs::is_regular_file(included, ec))
         throw text.error(fmt::format("cannot open the included file {}", quoted(name)));
@@ -600,6 +618,31 @@ AnimatedScene readAnimatedAff(const std::filesystem::path& file, const std::stri
     reader.readFile(file, bytes);
     reader.finish(file);
     return animated;
+}
+
+std::vector<std::filesystem::path> affIncludedFiles(const std::filesystem::path& file) {
+    // Every `i LEVEL NAME` of every file reached, whatever the detail level: a superset of what
+    // a read includes. A token `i` that is a name (`x i {`) has no LEVEL after it.
+    std::vector<fs::path> files;
+    std::vector<fs::path> seen = {fs::weakly_canonical(file)};
+    for (size_t next = 0; next <= files.size(); ++next) {
+        const fs::path current = next == 0 ? file : files[next - 1];
+        const std::string bytes = asText(readFileBytes(current));
+        TextParser text(current, bytes, /*hashComments=*/true);
+        text.alsoCommentWith('%');
+        int level;
+        for (std::string_view token = text.next(); !token.empty(); token = text.next()) {
+            if (token != "i" || !parseNumber(text.next(), level)) continue;
+            const fs::path included = includedPath(current, text.next());
+            std::error_code ec;
+            if (!fs::is_regular_file(included, ec)) continue;
+            const fs::path canonical = fs::weakly_canonical(included);
+            if (std::find(seen.begin(), seen.end(), canonical) != seen.end()) continue;
+            seen.push_back(canonical);
+            files.push_back(included.lexically_normal());
+        }
+    }
+    return files;
 }
 
 Scene readAff(const std::filesystem::path& file, const std::string& bytes) {

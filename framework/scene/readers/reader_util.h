@@ -48,8 +48,7 @@ public:
     std::string_view next() {
         while (atLineEnd()) {
             if (pos_ == text_.size()) return {};
-            ++pos_;
-            ++line_;
+            passLineEnd();
         }
         return nextOnLine();
     }
@@ -67,10 +66,7 @@ public:
     // Drops the rest of the current line, whatever it holds.
     void skipLine() {
         while (pos_ < text_.size() && text_[pos_] != '\n') ++pos_;
-        if (pos_ < text_.size()) {
-            ++pos_;
-            ++line_;
-        }
+        if (pos_ < text_.size()) passLineEnd();
     }
 
     // Requires the current line to hold no more tokens, then moves past it.
@@ -98,6 +94,13 @@ public:
     InputError error(const std::string& message) const { return inputError(file_, line_, message); }
 
 private:
+    // Past the '\n' at pos_; the text's final '\n' starts no line, so that the end of a file
+    // ending in one is on its last line.
+    void passLineEnd() {
+        ++pos_;
+        if (pos_ < text_.size()) ++line_;
+    }
+
     static bool isSpace(char c) { return c == ' ' || c == '\n' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
 
     template <typename T>

@@ -58,6 +58,38 @@ TEST(ResultKey, TheSceneIsItsFilesContentAndTheRestOfTheEnv) {
     EXPECT_EQ(changes, std::vector<std::string>{"scene Camera::width: 64 -> 32"});
 }
 
+// The frame decides an animated scene's figures, and nothing of a still one's.
+TEST(ResultKey, TheFrameIsPartOfAnAnimatedScene) {
+    const std::filesystem::path dir = test::scratchDir("result_key_frame");
+    std::ofstream(dir / "a.obj") << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    std::ofstream(dir / "b.aff") << "p 3\n0 0 0\n1 0 0\n0 1 0\na 0 1 3\n";
+    const auto key = [&](const char* file, const char* frame) {
+        return sceneKey(envWith(
+            {"Scene::dir=" + dir.string(), std::string("Scene::file=") + file, std::string("Scene::frame=") + frame}));
+    };
+    EXPECT_EQ(resultKeyChanges({{"scene", key("b.aff", "0")}}, {{"scene", key("b.aff", "2")}}),
+              std::vector<std::string>{"scene Scene::frame: 0 -> 2"});
+    EXPECT_EQ(key("a.obj", "0"), key("a.obj", "2"));
+    EXPECT_FALSE(key("a.obj", "2")["settings"].contains("Scene::frame"));
+}
+
+// An AFF scene is also the files it includes: the same root over another include is another scene.
+TEST(ResultKey, AnAffScenesIncludesArePartOfIt) {
+    const std::filesystem::path dir = test::scratchDir("result_key_includes");
+    json keys[2];
+    for (const int k : {0, 1}) {
+        const std::filesystem::path folder = dir / std::to_string(k);
+        std::filesystem::create_directories(folder / "sub");
+        std::ofstream(folder / "root.aff") << "i 0 sub/part.aff\n";
+        std::ofstream(folder / "sub" / "part.aff") << "p 3\n0 0 0\n1 0 0\n0 1 " << k << "\n";
+        keys[k] = sceneKey(envWith({"Scene::dir=" + folder.string(), "Scene::file=root.aff"}));
+    }
+    ASSERT_TRUE(keys[0]["file"]["includes"].contains("sub/part.aff")) << keys[0].dump();
+    const std::vector<std::string> changes = resultKeyChanges({{"scene", keys[0]}}, {{"scene", keys[1]}});
+    ASSERT_EQ(changes.size(), 1u);
+    EXPECT_TRUE(changes[0].starts_with("scene file includes sub/part.aff: 22-")) << changes[0];
+}
+
 TEST(ResultKey, TheProgramIsThisProcesssFiles) {
     const json& program = programIdentity();
     EXPECT_FALSE(program["commit"].get<std::string>().empty());

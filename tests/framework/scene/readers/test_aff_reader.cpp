@@ -136,12 +136,6 @@ AnimatedScene loadSample(std::string_view lineEnd = "\n", std::string_view extra
     return loadAnimatedScene(dir.write("root.aff", replaceAll(root, "\n", lineEnd)));
 }
 
-void expectVec(const Vec3& got, const Vec3& want, float tolerance = 1e-5f) {
-    EXPECT_NEAR(got.x, want.x, tolerance);
-    EXPECT_NEAR(got.y, want.y, tolerance);
-    EXPECT_NEAR(got.z, want.z, tolerance);
-}
-
 TEST(AffReader, EveryConstructAtTheStartTime) {
     const AnimatedScene animated = loadSample();
     const Scene& scene = animated.scene;

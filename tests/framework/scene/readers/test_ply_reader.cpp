@@ -77,7 +77,7 @@ TEST(PlyReader, Errors) {
                     {"type.ply:4:", "'flt'"});
     expectLoadError("format.ply", "ply\nformat binary 1.0\nend_header\n", {"format.ply:2:"});
     expectLoadError("count.ply", "ply\nformat ascii 1.0\nelement vertex -3\nend_header\n", {"count.ply:3:"});
-    expectLoadError("noend.ply", vertexHeader, {"noend.ply:7:", "end_header"});
+    expectLoadError("noend.ply", vertexHeader, {"noend.ply:6:", "end_header"});
     expectLoadError("noz.ply",
                     "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\nend_header\n",
                     {"noz.ply:3:", "'z'"});
