@@ -70,7 +70,9 @@ FrameUpdate AnimatedStructure::start() {
 }
 
 FrameUpdate AnimatedStructure::advance(bool validChanged) {
-    if (validChanged) return rebuild(FrameAction::Rebuild);
+    // Two levels keep their instances' primitive sets whatever the world's validity (see
+    // scene_instances.h): a frame moves them.
+    if (validChanged && policy_ != UpdatePolicy::TwoLevel) return rebuild(FrameAction::Rebuild);
     switch (policy_) {
         case UpdatePolicy::Rebuild:
             return rebuild(FrameAction::Rebuild);

@@ -7,8 +7,9 @@
 //   Reading the SAH is part of its update time (it is what the policy decides by);
 // - twolevel: a structure per rigid part and one over the animated triangles, under a top level
 //   (framework/scene/scene_instances.h); a frame moves the instances and updates the deforming one.
-// Any policy rebuilds on a frame whose set of valid primitives changed (a moving triangle became
-// degenerate): no update can keep counts that changed.
+// Any policy but twolevel rebuilds on a frame whose set of valid primitives changed (a moving
+// triangle became degenerate): no update can keep counts that changed. Two levels build their
+// instances over primitive sets of their own, which no frame changes.
 #pragma once
 
 #include "framework/config/env.h"

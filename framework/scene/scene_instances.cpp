@@ -3,6 +3,11 @@
 #include <algorithm>
 
 namespace bvhlab {
+namespace {
+
+bool hasFiniteCorners(const Triangle& tri) { return isFinite(tri.v0) && isFinite(tri.v1) && isFinite(tri.v2); }
+
+}  // namespace
 
 SceneInstances::SceneInstances(const AnimatedScene& animated) : animated_(animated) {
     const Scene& scene = animated.scene;
@@ -25,8 +30,11 @@ SceneInstances::SceneInstances(const AnimatedScene& animated) : animated_(animat
         // Object index space: triangles, then spheres, then cones (PrimitiveSet's).
         const uint32_t triangles = uint32_t(object.triangles.size());
         const uint32_t spheres = uint32_t(part.objectSpheres.size());
+        // Every triangle with finite corners, slivers included: whether the world counts a
+        // sliver degenerate (its normal underflows in float) changes as the part turns, and a
+        // triangle the world builds over must be in its instance too.
         for (uint32_t i = 0; i < triangles; ++i)
-            if (!isDegenerate(object.triangles[i])) object.valid.push_back(i);
+            if (hasFiniteCorners(object.triangles[i])) object.valid.push_back(i);
         for (uint32_t j = 0; j < spheres; ++j)
             if (!isDegenerate(part.objectSpheres[j])) object.valid.push_back(triangles + j);
         for (uint32_t k = 0; k < part.objectCones.size(); ++k)
