@@ -41,11 +41,13 @@
 namespace bvhlab {
 namespace {
 
+constexpr const char* kAllPolicies = "rebuild,refit,adaptive,twolevel";
+
 struct AnimateOptions {
     EnvOptions env;
     std::string scene;
     std::string accels = "sahbvh,sahbvh8,ploc8,embree:Embree::quality=low,embree:Embree::quality=refit";
-    std::string policies = "rebuild,refit,adaptive,twolevel";
+    std::string policies;  // empty: see AnimateRun
     std::string frames = "all";
     int rounds = 3;
     bool check = false;
@@ -179,7 +181,12 @@ public:
                 fmt::format("{}: not an animated scene (bvhlab animate reads BART's .aff)", file_.string()));
         threads_ = base_.get(keys::SetRayTracing::threads);
         if (threads_ == 0) threads_ = tbb::info::default_concurrency();
-        for (const std::string& policy : splitCommaList(options.policies)) policies_.push_back(policy);
+        // --policies, else Animate::policy where an env file or -D set it, else all four.
+        std::string policies = options.policies;
+        if (policies.empty())
+            policies = base_.isExplicit(std::string(keys::Animate::policy.name())) ? base_.get(keys::Animate::policy)
+                                                                                   : kAllPolicies;
+        for (const std::string& policy : splitCommaList(policies)) policies_.push_back(policy);
         for (const std::string& policy : policies_) parseUpdatePolicy(policy);  // refused before any work
         out_ = prepareOutputFolder(options.out);
     }
@@ -253,10 +260,19 @@ private:
             env.set(kEpoKey, "0", "bvhlab animate: adaptive decides by the SAH alone");
     }
 
-    // Each structure under each policy, built at the first frame.
+    // The policies `config` runs under: its own Animate::policy (NAME:Animate::policy=refit),
+    // else each of --policies.
+    std::vector<std::string> policiesOf(const AccelConfig& config) const {
+        const std::string own = std::string(keys::Animate::policy.name()) + "=";
+        for (const std::string& assignment : config.overrides)
+            if (assignment.starts_with(own)) return {assignment.substr(own.size())};
+        return policies_;
+    }
+
+    // Each structure under each of its policies, built at the first frame.
     void startContenders() {
         for (const AccelConfig& config : configs_)
-            for (const std::string& policy : policies_) {
+            for (const std::string& policy : policiesOf(config)) {
                 AnimateContender c{config, policy, config.label + "/" + policy, accelConfigEnv(config, base_), {}, {},
                                    {},     {}};
                 c.env.set(keys::Animate::policy, policy, "bvhlab animate --policies");
@@ -388,11 +404,11 @@ void addAnimateCommand(CLI::App& app) {
         ->required();
     command->add_option("--accel", options->accels, "structures, NAME or NAME:Key=value, comma-separated")
         ->capture_default_str();
-    command
-        ->add_option("--policies", options->policies,
-                     "policies each structure runs under, comma-separated (Animate::policy: rebuild, refit, adaptive, "
-                     "twolevel)")
-        ->capture_default_str();
+    command->add_option(
+        "--policies", options->policies,
+        "policies each structure runs under, comma-separated (rebuild, refit, adaptive, twolevel); default: "
+        "Animate::policy where an env file or -D sets it, else all four; a structure given its own, "
+        "NAME:Animate::policy=P, runs under that one");
     command->add_option("--frames", options->frames, "all, or FIRST:END[:STRIDE] (END excluded)")
         ->capture_default_str();
     command->add_option("--rounds", options->rounds, "traces of each frame's rays per contender (median)")

@@ -54,7 +54,8 @@ namespace keys::Animate {
 inline constexpr std::string_view kPolicies[] = {"rebuild", "refit", "adaptive", "twolevel"};
 inline constexpr ChoiceKey policy{
     "Animate::policy", "adaptive", kPolicies,
-    "how a structure follows an animation (bvhlab animate, docs/animation.md): rebuild every frame; refit (the "
+    "how a structure follows an animation (bvhlab animate, docs/animation.md; per structure as --accel "
+    "NAME:Animate::policy=P): rebuild every frame; refit (the "
     "structure's update: BVH::update, Embree::quality=refit); adaptive (refit, and rebuild when the SAH has grown "
     "past Animate::sahGrowth or every Animate::rebuildEvery frames); twolevel (a structure per rigid part under a "
     "top level)"};

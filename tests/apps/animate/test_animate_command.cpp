@@ -50,6 +50,21 @@ TEST(AnimateCommand, MeasuresEveryContenderAtEveryChosenFrame) {
     EXPECT_TRUE(fs::exists(dir.path() / "out" / "frames.csv"));
 }
 
+TEST(AnimateCommand, AStructuresOwnPolicyWinsAndTheKeySetsTheOthers) {
+    TempDir dir;
+    const fs::path scene = dir.write("moving.aff", movingSceneText());
+    const Result r =
+        run(fmt::format("animate --scene {} --accel sahbvh:Animate::policy=rebuild,sahbvh8 "
+                        "-DAnimate::policy=refit --frames 0:2 --rounds 1 --quiet --out {}",
+                        scene.string(), (dir.path() / "out").string()));
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const nlohmann::json results = readJson(dir.path() / "out" / "animate.json");
+    ASSERT_EQ(results["contenders"].size(), 2u);
+    EXPECT_EQ(results["contenders"][0]["label"], "sahbvh:Animate::policy=rebuild/rebuild");
+    EXPECT_EQ(results["contenders"][1]["label"], "sahbvh8/refit");
+    EXPECT_EQ(results["contenders"][1]["rows"][1]["action"], "refit");
+}
+
 TEST(AnimateCommand, RefusesFramesOutsideTheAnimationAndStillScenes) {
     TempDir dir;
     const fs::path scene = dir.write("moving.aff", movingSceneText());
