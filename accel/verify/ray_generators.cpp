@@ -274,13 +274,14 @@ std::vector<Ray> generateRays(RayKind kind, const PrimitiveSet& prims, const Bou
 
 std::vector<Ray> raysTowardTriangles(const Scene& scene, size_t count, uint64_t seed) {
     std::vector<Ray> rays;
-    if (scene.validPrimitives.empty()) return rays;
+    const View<const uint32_t> valid = scene.primitives().validTriangles();  // not the quadrics after them
+    if (valid.empty()) return rays;
     VerifyRng rng(seed);
     const DVec3 centre(scene.bounds.center());
     const double radius = 0.5 * glm::length(DVec3(scene.bounds.diagonal()));
     rays.reserve(count);
     while (rays.size() < count) {
-        const Triangle& tri = scene.triangles[scene.validPrimitives[rng.index(scene.validPrimitives.size())]];
+        const Triangle& tri = scene.triangles[valid[rng.index(valid.size())]];
         double u, v;
         do {
             u = rng.uniform();
