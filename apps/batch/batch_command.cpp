@@ -8,6 +8,7 @@
 // (batch_resume.h). `--shard i/n` runs every n-th job; `--merge DIR...` joins the shards of one
 // batch; `--slurm N` submits the batch to Slurm as N shards and their merge (slurm_submission.h).
 #include "accel/registry.h"
+#include "apps/animate/animation_run.h"
 #include "apps/batch/batch_resume.h"
 #include "apps/batch/batch_settings.h"
 #include "apps/batch/batch_table.h"
@@ -35,6 +36,7 @@
 #include "framework/render/renderer.h"
 #include "framework/report/provenance.h"
 #include "framework/report/statistics.h"
+#include "framework/scene/scene_loader.h"
 
 #include <fmt/core.h>
 #include <fmt/ranges.h>
@@ -114,8 +116,10 @@ Env jobEnv(const Options& options, const Env& sceneEnv, const AccelConfig& confi
     return env;
 }
 
-// What a job's result depends on (result_key.h): batch renders without and with shadows.
-nlohmann::json jobResultKey(const AccelConfig& config, const Env& env) {
+// What a job's result depends on (result_key.h): batch renders without and with shadows, or
+// measures an animation (its frames and policy are keys of the env).
+nlohmann::json jobResultKey(const AccelConfig& config, const Env& env, bool animated) {
+    if (animated) return resultKey(config.name, env, {{"command", "batch"}, {"animation", {{"rounds", 1}}}});
     return resultKey(config.name, env, {{"command", "batch"}, {"renders", {"no_shadows", "shadows"}}});
 }
 
@@ -123,6 +127,7 @@ nlohmann::json jobResultKey(const AccelConfig& config, const Env& env) {
 struct BatchPlan {
     std::vector<SceneArgument> scenes;
     std::vector<Env> sceneEnvs;
+    std::vector<bool> animated;  // per scene: run as an animation (Batch::animate), not rendered
     std::vector<AccelConfig> accels;
     BatchSettings settings;
 };
@@ -138,6 +143,7 @@ struct BatchJob {
     const SceneArgument& scene() const { return plan.scenes[sceneIndex()]; }
     const Env& sceneEnv() const { return plan.sceneEnvs[sceneIndex()]; }
     const AccelConfig& accel() const { return plan.accels[accelIndex()]; }
+    bool animated() const { return plan.animated[sceneIndex()]; }
     std::string name() const { return batchJobName(scene().id, accel().label); }
     // Its place in the batch, as its job file records it.
     json order() const {
@@ -241,12 +247,68 @@ FinishedJob runJob(const Options& options, const BatchJob& job, const Scene& sce
         {"image", {{"width", camera.width()}, {"height", camera.height()}, {"samples", settings.samples}}},
         {"runs", runs},
         {"env", env.toJson()},
-        {"result_key", jobResultKey(config, env)},
+        {"result_key", jobResultKey(config, env, false)},
         {"run", runJson()},
         {"provenance", provenanceJson()}};
     writeFileAtomically(out / "jobs" / (name + ".json"), record.dump(2) + "\n");
     finished.job = std::move(record);
     return finished;
+}
+
+// An animated scene's job: the animation over Animate::frames under the job's Animate::policy,
+// each frame's update and its camera's primary and shadow rays measured as `bvhlab animate`
+// measures a contender (animation_run.h, one round); the job file holds the contender's record.
+// A contender that fails fails the job; one that cannot run its policy is kept, skipped.
+FinishedJob runAnimationJob(const Options& options, const BatchJob& job, Progress& progress,
+                            const std::string& jobLabel) {
+    const SceneArgument& entry = job.scene();
+    const AccelConfig& config = job.accel();
+    const Env env = jobEnv(options, job.sceneEnv(), config);
+    int threads = env.get(keys::SetRayTracing::threads);
+    if (threads == 0) threads = tbb::info::default_concurrency();
+
+    progress.phase(fmt::format("{} {} {}: loading the animation", jobLabel, entry.id, config.label));
+    const auto start = Progress::Clock::now();
+    AnimatedScene animated = loadAnimatedSceneFor(job.sceneEnv());
+    const double loadMs = std::chrono::duration<double, std::milli>(Progress::Clock::now() - start).count();
+    progress.finish();
+    const std::filesystem::path file = sceneFileOf(job.sceneEnv());
+    AnimationRun measure(
+        animated, job.sceneEnv(),
+        {parseFrames(env.get(keys::Animate::frames), animated.frameCount, std::string(keys::Animate::frames.name())), 1,
+         false, threads});
+    measure.addContender(config, env.get(keys::Animate::policy));
+    measure.run({});
+    const CameraSpec camera = resolveCamera(animated.scene, job.sceneEnv());  // the rays' image, at the last frame
+    nlohmann::json contender = measure.contenders().front();
+    if (contender.contains("failed")) throw std::runtime_error(contender.at("failed").get<std::string>());
+    contender["label"] = config.label;  // one policy per job: the table names the structure
+
+    json record = {
+        {"format", "bvhlab-batch-job-1"},
+        {"job", job.name()},
+        {"scene", entry.id},
+        {"settings", job.plan.settings.scene(entry.id)->hash},
+        {"batch", job.plan.settings.hash},
+        {"scene_name", animated.scene.name},
+        {"scene_env",
+         entry.envFile.empty() ? json() : json(std::filesystem::absolute(entry.envFile).lexically_normal().string())},
+        {"scene_file", file.string()},
+        {"scene_load_ms", loadMs},
+        {"accel", config.label},
+        {"animated", true},
+        {"order", job.order()},
+        {"shard", job.shardName()},
+        {"threads", threads},
+        {"image", {{"width", camera.width}, {"height", camera.height}}},
+        {"animation", measure.header(file)},
+        {"contender", contender},
+        {"env", env.toJson()},
+        {"result_key", jobResultKey(config, env, true)},
+        {"run", runJson()},
+        {"provenance", provenanceJson()}};
+    writeFileAtomically(std::filesystem::path(options.out) / "jobs" / (job.name() + ".json"), record.dump(2) + "\n");
+    return FinishedJob{std::move(record), false, 0, 0, {}};
 }
 
 // The job file of a job that failed: what ran (its result key, which a rerun does not keep: the
@@ -258,6 +320,7 @@ json failedJobRecord(const BatchJob& job, const json& resultKey, const JobOutcom
             {"settings", job.plan.settings.scene(job.scene().id)->hash},
             {"batch", job.plan.settings.hash},
             {"accel", job.accel().label},
+            {"animated", job.animated()},
             {"order", job.order()},
             {"shard", job.shardName()},
             {"failed", outcome.failure()},
@@ -379,7 +442,16 @@ BatchPlan planBatch(Options& options) {
     plan.scenes = expandSceneList(options.scenes, options.env);
     for (const SceneArgument& scene : plan.scenes) {
         plan.sceneEnvs.push_back(scene.load(options.env));
-        sceneFileOf(plan.sceneEnvs.back());  // throws, naming the key to set, when the file is not there
+        // Throws, naming the key to set, when the file is not there.
+        const std::filesystem::path file = sceneFileOf(plan.sceneEnvs.back());
+        const Env& env = plan.sceneEnvs.back();
+        plan.animated.push_back(!file.empty() && isAnimatedScene(file) && env.get(keys::Batch::animate));
+        if (plan.animated.back() && env.isExplicit(std::string(keys::Scene::frame.name())))
+            warnOfRun(
+                fmt::format("Scene::frame {} (from {}) ignored for {}: batch animates it over Animate::frames "
+                            "({}); Batch::animate=false renders that one frame",
+                            env.get(keys::Scene::frame), env.origin(keys::Scene::frame.name()), scene.id,
+                            env.get(keys::Animate::frames)));
     }
     std::vector<std::pair<std::string, Env>> idsAndEnvs;
     for (size_t s = 0; s < plan.scenes.size(); ++s) idsAndEnvs.emplace_back(plan.scenes[s].id, plan.sceneEnvs[s]);
@@ -410,6 +482,7 @@ json runJobHere(const Options& options, const BatchPlan& plan, const Shard& shar
     const BatchJob batchJob{plan, j, shard};
     const std::string jobLabel = fmt::format("[job {}]", job.substr(space + 1));
     Progress progress;
+    if (batchJob.animated()) return finishedJobJson(runAnimationJob(options, batchJob, progress, jobLabel));
     progress.phase(fmt::format("{} {}: loading the scene", jobLabel, batchJob.scene().id));
     SceneLoadInfo info;
     const Scene scene = loadSceneFor(batchJob.sceneEnv(), true, &info);
@@ -440,8 +513,9 @@ void runJobs(const Options& options, const BatchPlan& plan, const Shard& shard, 
         const size_t s = j / accels.size(), a = j % accels.size();
         const std::string name = batchJobName(scenes[s].id, accels[a].label);
         const Env env = jobEnv(options, sceneEnvs[s], accels[a]);
-        const StoredResult stored = options.fresh ? StoredResult{false, "of --fresh"}
-                                                  : checkFinishedJob(out, name, jobResultKey(accels[a], env), env);
+        const StoredResult stored =
+            options.fresh ? StoredResult{false, "of --fresh"}
+                          : checkFinishedJob(out, name, jobResultKey(accels[a], env, plan.animated[s]), env);
         resume.add(stored);
         if (stored.keep)
             kept[s].push_back(json::parse(std::ifstream(out / "jobs" / (name + ".json"))));
@@ -470,11 +544,13 @@ void runJobs(const Options& options, const BatchPlan& plan, const Shard& shard, 
             const BatchJob batchJob{plan, j, shard};
             writeFileAtomically(
                 out / "jobs" / (batchJob.name() + ".json"),
-                failedJobRecord(batchJob, jobResultKey(accels[a], jobEnv(options, sceneEnvs[s], accels[a])), outcome)
+                failedJobRecord(batchJob,
+                                jobResultKey(accels[a], jobEnv(options, sceneEnvs[s], accels[a]), plan.animated[s]),
+                                outcome)
                         .dump(2) +
                     "\n");
         }
-        if (sceneEnvs[s].get(keys::Output::heatmap) && !finished.empty())
+        if (sceneEnvs[s].get(keys::Output::heatmap) && !plan.animated[s] && !finished.empty())
             writeSceneHeatmaps(out, scenes[s].id, finished, sceneEnvs[s].get(keys::Output::heatmapScale),
                                keptHeatmapScale(kept[s]));
     }

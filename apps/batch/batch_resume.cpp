@@ -18,6 +18,7 @@ StoredResult checkFinishedJob(const std::filesystem::path& out, const std::strin
     if (!stored.keep) return stored;
     std::ifstream in(file);
     const json job = json::parse(in);
+    if (job.value("animated", false)) return stored;  // an animation's job writes no images
     for (const char* run : {"no_shadows", "shadows"}) {
         const json& record = job.at("runs").at(run);
         const json images = record.value("images", json::object());
@@ -36,6 +37,7 @@ std::optional<HeatmapScale> keptHeatmapScale(const std::vector<json>& keptJobs) 
     std::optional<float> steps;
     for (const json& job : keptJobs)
         for (const char* run : {"no_shadows", "shadows"}) {
+            if (!job.contains("runs")) continue;  // an animation's job
             const json record = job.at("runs").at(run).value("heatmap", json::object());
             if (!record.contains("scale")) continue;
             steps = record.at("scale").get<float>();

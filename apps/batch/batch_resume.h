@@ -3,7 +3,8 @@
 // now (apps/runtime/result_key.h: the program, the structure with its plugin, the scene's content
 // and settings) and this run's outputs are all there: its PNGs, its EXRs with Output::exr, and its
 // heat maps with Output::heatmap (drawn after its scene's last job: the jobs of a scene that was
-// interrupted have none, and run again, so that the scene's heat maps share one scale).
+// interrupted have none, and run again, so that the scene's heat maps share one scale). An
+// animated scene's job writes no images: its file is all.
 #pragma once
 
 #include "apps/runtime/result_key.h"

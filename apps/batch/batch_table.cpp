@@ -1,5 +1,6 @@
 #include "apps/batch/batch_table.h"
 
+#include "apps/animate/animate_report.h"
 #include "apps/batch/contact_sheet.h"
 #include "apps/runtime/output_paths.h"
 #include "apps/runtime/result_key.h"
@@ -15,6 +16,7 @@
 #include <map>
 #include <optional>
 #include <set>
+#include <sstream>
 
 namespace bvhlab {
 namespace {
@@ -57,6 +59,8 @@ json allQueries(const json& run) {
 }
 
 bool jobFailed(const json& job) { return job.contains("failed"); }
+// A job of an animated scene (Batch::animate): an animation measured, not two renders.
+bool isAnimationJob(const json& job) { return job.value("animated", false); }
 
 Row failedRow(const json& job) {
     Row row;
@@ -154,7 +158,7 @@ std::pair<std::vector<std::string>, std::vector<std::string>> settingsOf(const s
 std::vector<std::string> heatmapScaleWarnings(const std::vector<json>& jobs) {
     std::map<std::string, std::set<float>> scales;  // scene -> full scales of its heat maps
     for (const json& job : jobs) {
-        if (jobFailed(job)) continue;
+        if (jobFailed(job) || isAnimationJob(job)) continue;
         for (const auto& [name, run] : job.at("runs").items())
             if (run.contains("heatmap") && run["heatmap"].contains("scale"))
                 scales[job.at("scene").get<std::string>()].insert(run["heatmap"]["scale"].get<float>());
@@ -204,6 +208,47 @@ std::vector<std::string> structureLines(const std::vector<json>& jobs) {
 std::string readText(const std::filesystem::path& file) {
     std::ifstream in(file);
     return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// Per animated scene, in table order, its jobs as `bvhlab animate`'s results (animate_report.h):
+// the scene and frames of its first finished job, a contender per job (a failed one with its reason).
+std::vector<json> animationResults(const std::vector<json>& jobs) {
+    std::vector<json> animations;
+    for (const json& job : jobs) {
+        if (!isAnimationJob(job)) continue;
+        const std::string scene = job.at("scene").get<std::string>();
+        if (animations.empty() || animations.back().at("scene").at("id") != scene)
+            animations.push_back({{"scene", {{"id", scene}}}, {"contenders", json::array()}});
+        json& animation = animations.back();
+        if (jobFailed(job)) {
+            const std::string accel = job.at("accel").get<std::string>();
+            animation["contenders"].push_back(
+                {{"label", accel}, {"accel", accel}, {"failed", job.at("failed")}, {"rows", json::array()}});
+            continue;
+        }
+        if (!animation.contains("frames")) {
+            animation.update(job.at("animation"));
+            animation["scene"]["id"] = scene;
+        }
+        animation["contenders"].push_back(job.at("contender"));
+    }
+    return animations;
+}
+
+// An animated scene's section: animate's summary table of its jobs, under what they measured.
+std::string animationMarkdown(const json& animation) {
+    const json& scene = animation.at("scene");
+    std::string md = fmt::format("\n## {}: an animation\n\n", scene.at("id").get<std::string>());
+    if (animation.contains("frames")) {
+        const std::vector<int> frames = animation.at("frames").get<std::vector<int>>();
+        md += fmt::format(
+            "{} frames measured of {} ({} to {}), {} triangles; each structure under its Animate::policy, one "
+            "trace of each frame's primary and shadow rays per frame; threads: {} (animation_frames.csv has every "
+            "frame).\n\n",
+            frames.size(), scene.value("frame_count", 0), frames.front(), frames.back(),
+            scene.value("triangles", size_t(0)), animation.value("threads", 0));
+    }
+    return md + animateSummaryTable(animation);
 }
 
 // Markdown in the report's layout.
@@ -258,8 +303,8 @@ std::string batchMarkdown(const std::vector<json>& jobs, const std::vector<Row>&
         "no tree and counts nothing). failed: the job crashed, threw or ran out of time (--job-timeout), "
         "and left no results.\n\n";
     md += fmt::format(
-        "Jobs: {}{}{} (one build each, serving both renders); the scene came from the scene cache in {} "
-        "of them.",
+        "Jobs: {}{}{} (a still scene's: one build serving both renders; an animated scene's: a build and "
+        "an update per frame); the scene came from the scene cache in {} of them.",
         jobs.size(), jobs.size() < batchJobs ? fmt::format(" of the batch's {}", batchJobs) : "",
         failedJobs ? fmt::format(", {} of them failed", failedJobs) : "", fromCache);
     if (!jobs.empty()) {
@@ -372,7 +417,10 @@ std::vector<json> readBatchJobs(const std::filesystem::path& dir, const BatchSet
             json job = json::parse(readText(entry.path()));
             if (job.value("format", std::string()) != "bvhlab-batch-job-1")
                 throw std::runtime_error("not a batch job file");
-            if (!jobFailed(job)) makeRow(job, false), makeRow(job, true);  // has what the tables need
+            if (!jobFailed(job) && isAnimationJob(job))
+                (void)job.at("animation").at("scene"), (void)job.at("contender").at("rows");  // what the tables need
+            else if (!jobFailed(job))
+                makeRow(job, false), makeRow(job, true);
             const auto at = position(job);
             if (!at)
                 throw std::runtime_error(
@@ -395,18 +443,32 @@ BatchTables makeBatchTables(const std::vector<json>& jobs, size_t batchJobs) {
     for (const std::string& w : heatmapScaleWarnings(jobs)) t.warnings.push_back(w);
 
     std::vector<Row> rows;
+    std::vector<json> stillJobs;
     for (const json& job : jobs) {
-        if (jobFailed(job)) {
+        t.failedJobs += jobFailed(job);
+        if (isAnimationJob(job)) continue;
+        stillJobs.push_back(job);
+        if (jobFailed(job))
             rows.push_back(failedRow(job));
-            ++t.failedJobs;
-        } else {
+        else
             rows.push_back(makeRow(job, false)), rows.push_back(makeRow(job, true));
-        }
     }
+    const std::vector<json> animations = animationResults(jobs);
 
     t.markdown = batchMarkdown(jobs, rows, batchJobs, settings, t.warnings, t.failedJobs);
+    for (const json& animation : animations) t.markdown += animationMarkdown(animation);
     t.csv = batchCsv(rows);
-    t.json = batchJson(jobs, rows, settings, t.warnings, t.failedJobs);
+    t.json = batchJson(stillJobs, rows, settings, t.warnings, t.failedJobs);
+    t.json["animations"] = animations;
+    for (const json& animation : animations) {
+        const std::string id = animation.at("scene").at("id").get<std::string>();
+        // A column naming the scene before animate's own; the header once.
+        std::istringstream lines(animateFramesCsv(animation));
+        std::string line;
+        for (bool header = true; std::getline(lines, line); header = false)
+            if (!header || t.framesCsv.empty())
+                t.framesCsv += (header ? std::string("scene") : csvText(id)) + "," + line + "\n";
+    }
     return t;
 }
 
@@ -418,12 +480,14 @@ BatchTables writeBatchResults(const std::filesystem::path& dir) {
     std::ofstream(dir / "results.md") << t.markdown;
     std::ofstream(dir / "results.csv") << t.csv;
     std::ofstream(dir / "results.json") << t.json.dump(2) << "\n";
+    if (!t.framesCsv.empty()) std::ofstream(dir / "animation_frames.csv") << t.framesCsv;
 
     // The contact sheet: a row per scene, per accelerator the render without and with shadows.
     std::vector<std::vector<ContactImage>> sheet;
     std::string previousScene;
     std::vector<std::string> accels;  // in table order
     for (const json& job : jobs) {
+        if (isAnimationJob(job)) continue;  // no images
         const std::string scene = job.at("scene").get<std::string>(), accel = job.at("accel").get<std::string>();
         if (std::find(accels.begin(), accels.end(), accel) == accels.end()) accels.push_back(accel);
         if (sheet.empty() || scene != previousScene) sheet.emplace_back();

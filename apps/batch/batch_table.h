@@ -23,6 +23,7 @@ std::vector<nlohmann::json> readBatchJobs(const std::filesystem::path& dir, cons
 struct BatchTables {
     std::string markdown;               // results.md
     std::string csv;                    // results.csv
+    std::string framesCsv;              // animation_frames.csv: the animated scenes' frames; empty without
     nlohmann::json json;                // results.json
     std::vector<std::string> warnings;  // e.g. jobs run with different settings
     size_t failedJobs = 0;              // jobs that crashed, threw or timed out: a row with the reason each
@@ -32,6 +33,8 @@ struct BatchTables {
 // queries of that render (primary and shadow together) and N_Q counting them all. The JSON
 // keeps primary and shadow apart.
 // A job that failed (its file holds "failed": the reason) is one row with the reason.
+// An animated scene's jobs (Batch::animate) make a section of their own after the table:
+// `bvhlab animate`'s summary table, a row per job, and the JSON's "animations".
 // The title and the footer count the jobs shown, and the footer says when they are fewer than the
 // batch's `batchJobs` (a shard, an interrupted run).
 BatchTables makeBatchTables(const std::vector<nlohmann::json>& jobs, size_t batchJobs);

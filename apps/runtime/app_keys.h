@@ -36,7 +36,11 @@ inline constexpr IntKey threads{
     "Batch::threads", "1", 0, 1024,
     "bvhlab batch: render and Embree build threads, replacing SetRayTracing::threads; 1 = the report's setting, 0 = "
     "all hardware threads"};
-}
+inline constexpr BoolKey animate{
+    "Batch::animate", "true",
+    "bvhlab batch: an animated scene (.aff) runs as an animation, Animate::frames under Animate::policy, measured "
+    "as bvhlab animate measures a contender; false: rendered as a still scene at Scene::frame"};
+}  // namespace keys::Batch
 
 namespace keys::Spd {
 inline constexpr IntKey maxDepth{"Spd::maxDepth", "5", 1, 64,
@@ -64,6 +68,10 @@ inline constexpr FloatKey sahGrowth{
     "adaptive: rebuild once the refitted tree's SAH exceeds this factor of the SAH of its last build"};
 inline constexpr IntKey rebuildEvery{"Animate::rebuildEvery", "0", 0, 1000000,
                                      "adaptive: rebuild at least every this many frames; 0 = only when the SAH grew"};
+inline constexpr TextKey frames{
+    "Animate::frames", "all",
+    "the frames an animation measures (bvhlab animate without --frames, bvhlab batch): all, or FIRST:END[:STRIDE], END "
+    "excluded"};
 }  // namespace keys::Animate
 
 // Keys that change no figure of any run: what is written (Output::*) and where parsed scenes

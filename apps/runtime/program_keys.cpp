@@ -23,12 +23,14 @@ void registerAppKeys(EnvRegistry& r) {
     for (const BoolKey& key : {keys::Output::exr, keys::Output::png, keys::Output::heatmap}) r.add(key);
     r.add(keys::Output::heatmapScale);
     r.add(keys::Batch::threads);
+    r.add(keys::Batch::animate);
     r.add(keys::Spd::maxDepth);
     r.add(keys::Spd::reference);
     r.add(keys::Spd::twoSidedScenes);
     r.add(keys::Animate::policy);
     r.add(keys::Animate::sahGrowth);
     r.add(keys::Animate::rebuildEvery);
+    r.add(keys::Animate::frames);
 }
 
 }  // namespace

@@ -49,8 +49,8 @@ std::filesystem::path sceneEnvFor(const std::filesystem::path& sceneFile, const 
 void warnOfMissingSceneEnv(const std::filesystem::path& sceneFile) {
     warnOfRun(
         fmt::format("{}: no scene env file in {} names {}, so it is seen without one: the camera and lights of "
-                    "env/global.env, --env and -D, by default a view framing the scene and one light above the "
-                    "camera",
+                    "env/global.env, --env and -D over the scene file's own (NFF, AFF), else a view framing the "
+                    "scene and one light above the camera",
                     sceneFile.string(), dataFile("env/scenes").string(), uncompressedName(sceneFile).string()));
 }
 
