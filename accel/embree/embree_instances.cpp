@@ -65,6 +65,10 @@ void EmbreeInstances::moveInstances(View<const glm::dmat4> objectToWorld, View<c
         throw std::invalid_argument(
             fmt::format("embreeinstances: {} transforms for {} instances", objectToWorld.size(), instances_.size()));
     // The instance scenes first: the top scene's commit reads their new bounds.
+    for (uint32_t i : deformed)
+        if (i >= instances_.size())
+            throw std::invalid_argument(
+                fmt::format("embreeinstances: deformed instance {} of {} instances", i, instances_.size()));
     for (uint32_t i : deformed) scenes_[i].update(device_, instances_[i].prims);
     for (size_t i = 0; i < instances_.size(); ++i) {
         instances_[i].objectToWorld = objectToWorld[i];

@@ -120,6 +120,8 @@ TEST(EmbreeInstances, AnInstanceWithoutPrimitivesIsLeftOut) {
     EXPECT_THROW(accel.moveInstances(moved, {}), std::invalid_argument);  // one transform short
     scene.place(moved);
     moved.insert(moved.begin() + 1, glm::dmat4(1.0));
+    const uint32_t missing[] = {uint32_t(moved.size())};
+    EXPECT_THROW(accel.moveInstances(moved, missing), std::invalid_argument);  // no such instance
     accel.moveInstances(moved, {});
     expectAnswersAsBruteForce(accel, scene.world, 11);
 }

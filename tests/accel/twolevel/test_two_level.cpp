@@ -1,7 +1,7 @@
 // Two levels (accel/twolevel/two_level_accelerator.h): instances placed by rotations, scales and
 // translations answer rays as brute force over the same primitives put into the world does,
 // before and after they move, and after an instance deformed in place; hits name the world's
-// primitives; both levels' work is counted.
+// primitives; both levels' work is counted; a move of other instances is refused.
 #include "accel/registry.h"
 #include "accel/verify/verify_keys.h"
 #include "framework/core/error.h"
@@ -50,6 +50,19 @@ TEST(TwoLevel, CountsBothLevelsAndOneQueryPerRay) {
     // Brute force tests every primitive of each instance it reaches: whole objects only.
     EXPECT_GT(counters.intersectionTests, 0u);
     EXPECT_GT(counters.traversalSteps, counters.queries);  // the top level's nodes and the bottoms' one each
+}
+
+// Transforms of another count, or a deformed instance that is not there, are refused before
+// anything moves: the structure answers as before.
+TEST(TwoLevel, AMoveOfOtherInstancesIsRefusedAndChangesNothing) {
+    InstancedWorld scene;
+    const std::unique_ptr<InstancedAccelerator> twoLevel = builtAtTimeZero(scene, "sahbvh", Env(verify::verifyKeys()));
+    std::vector<glm::dmat4> moved = placements(1.0);
+    const std::vector<glm::dmat4> fewer(moved.begin(), moved.end() - 1);
+    EXPECT_THROW(twoLevel->moveInstances(fewer, {}), std::invalid_argument);
+    const uint32_t missing[] = {uint32_t(moved.size())};
+    EXPECT_THROW(twoLevel->moveInstances(moved, missing), std::invalid_argument);
+    expectAnswersAsBruteForce(*twoLevel, scene.world, 12);
 }
 
 TEST(TwoLevel, AnUnknownBottomStructureIsRefusedByName) {
