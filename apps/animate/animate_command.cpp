@@ -58,6 +58,11 @@ public:
         if (!isAnimatedScene(file_))
             throw InputError(
                 fmt::format("{}: not an animated scene (bvhlab animate reads BART's .aff)", file_.string()));
+        if (base_.isExplicit(std::string(keys::Scene::frame.name())))
+            warnOfRun(
+                fmt::format("Scene::frame {} (from {}) ignored: bvhlab animate measures the frames of --frames "
+                            "or Animate::frames",
+                            base_.get(keys::Scene::frame), base_.origin(keys::Scene::frame.name())));
         threads_ = base_.get(keys::SetRayTracing::threads);
         if (threads_ == 0) threads_ = tbb::info::default_concurrency();
         // --policies, else Animate::policy where an env file or -D set it, else all four.
