@@ -65,15 +65,16 @@ TEST(AnimateCommand, AStructuresOwnPolicyWinsAndTheKeySetsTheOthers) {
     EXPECT_EQ(results["contenders"][1]["rows"][1]["action"], "refit");
 }
 
-TEST(AnimateCommand, AnimateFramesChoosesTheFramesWithoutTheOption) {
+TEST(AnimateCommand, AnimateFramesChoosesTheFramesWithoutTheOptionAndSceneFrameIsIgnored) {
     TempDir dir;
     const fs::path scene = dir.write("moving.aff", movingSceneText());
     const Result r =
         run(fmt::format("animate --scene {} --accel sahbvh --policies refit -DAnimate::frames=1:5:3 "
-                        "--rounds 1 --quiet --out {}",
+                        "-DScene::frame=2 --rounds 1 --quiet --out {}",
                         scene.string(), (dir.path() / "out").string()));
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_EQ(readJson(dir.path() / "out" / "animate.json")["frames"], nlohmann::json({1, 4}));
+    EXPECT_NE(r.output.find("Scene::frame 2 (from -DScene::frame) ignored"), std::string::npos) << r.output;
 }
 
 TEST(AnimateCommand, RefusesFramesOutsideTheAnimationAndStillScenes) {
