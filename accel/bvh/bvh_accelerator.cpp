@@ -24,6 +24,14 @@ struct LayoutWidth<WideBvh<N>> {
     static constexpr int value = N;
 };
 
+// Adds the work counted from `before` to `after` to a ray's cost: a batch's quadric part, after
+// the kernel's batch call gave the triangles' part.
+void addWorkBetween(RayCost& cost, const QueryCounters& before, const QueryCounters& after) {
+    const RayCost work = Accelerator::costBetween(before, after);
+    cost.intersectionTests += work.intersectionTests;
+    cost.traversalSteps += work.traversalSteps;
+}
+
 }  // namespace
 
 template <typename Layout>
@@ -164,19 +172,31 @@ bool BvhAccelerator<Layout>::isOccluded(const Ray& ray, QueryCounters& counters)
 template <typename Layout>
 void BvhAccelerator<Layout>::findNearestBatch(View<const Ray> rays, View<Hit> hits, QueryCounters& counters,
                                               View<RayCost> costs, RayCoherence coherence) const {
+    kernels_.forCounters(counters, !costs.empty())
+        .findNearestBatch(tree_, rays, hits, counters, costs, traversal_, coherence);
     if (quadrics_.empty()) [[likely]]
-        return kernels_.forCounters(counters, !costs.empty())
-            .findNearestBatch(tree_, rays, hits, counters, costs, traversal_, coherence);
-    Accelerator::findNearestBatch(rays, hits, counters, costs, coherence);
+        return;
+    // The quadric tree's part ray by ray, up to each ray's triangle hit, as findNearest does.
+    for (size_t i = 0; i < rays.size(); ++i) {
+        const QueryCounters before = counters;
+        findNearestQuadric(rays[i], hits[i].found(), hits[i], counters);
+        if (!costs.empty()) addWorkBetween(costs[i], before, counters);
+    }
 }
 
 template <typename Layout>
 void BvhAccelerator<Layout>::isOccludedBatch(View<const Ray> rays, View<uint8_t> occluded, QueryCounters& counters,
                                              View<RayCost> costs, RayCoherence coherence) const {
+    kernels_.forCounters(counters, !costs.empty())
+        .isOccludedBatch(tree_, rays, occluded, counters, costs, traversal_, coherence);
     if (quadrics_.empty()) [[likely]]
-        return kernels_.forCounters(counters, !costs.empty())
-            .isOccludedBatch(tree_, rays, occluded, counters, costs, traversal_, coherence);
-    Accelerator::isOccludedBatch(rays, occluded, counters, costs, coherence);
+        return;
+    for (size_t i = 0; i < rays.size(); ++i) {
+        if (occluded[i]) continue;
+        const QueryCounters before = counters;
+        occluded[i] = isOccludedQuadric(rays[i], counters) ? 1 : 0;
+        if (!costs.empty()) addWorkBetween(costs[i], before, counters);
+    }
 }
 
 template <typename Layout>

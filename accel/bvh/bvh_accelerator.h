@@ -74,8 +74,8 @@ public:
     BuildStats buildStats() const override;
     bool findNearest(const Ray& ray, Hit& hit, QueryCounters& counters) const override;
     bool isOccluded(const Ray& ray, QueryCounters& counters) const override;
-    // Without quadrics a batch is the kernel's batch call (packets on the wide layouts); with
-    // them, ray by ray (the interface's default loop).
+    // The kernel's batch call over the triangles (packets on the wide layouts), then, in a
+    // scene with quadrics, the quadric tree's part ray by ray as the single-ray calls do it.
     void findNearestBatch(View<const Ray> rays, View<Hit> hits, QueryCounters& counters, View<RayCost> costs,
                           RayCoherence coherence) const override;
     void isOccludedBatch(View<const Ray> rays, View<uint8_t> occluded, QueryCounters& counters, View<RayCost> costs,
