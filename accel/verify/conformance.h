@@ -26,6 +26,7 @@ struct Subject {
 
 // A scene of the user's (`bvhlab check --scene`), which the checks that take scenes run beside
 // their generated ones, on its triangles (the reference's: its spheres and cones are left out).
+// Its names differ from the generated scenes' (the checks keep a scene's rays by its name).
 struct UserScene {
     NamedSceneFactory scene;
     // The same scene after its own motion, for the update check: an animated scene at another

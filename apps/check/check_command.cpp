@@ -55,7 +55,7 @@ verify::CheckResult runCheckHere(const std::string& name, const verify::Subject&
     progress.phase(fmt::format("check {}: {}", subject.name, name));
     verify::CheckOptions options;
     options.threads = threads;
-    if (verify::findCheck(name).takesScenes) options.scenes = check::userScenes(scenes);
+    options.scenes = check::userScenes(scenes);
     uint64_t lastDone = 0;
     options.progress = [&](uint64_t done, uint64_t /*total*/) {
         if (done > lastDone) progress.advance(done - lastDone);

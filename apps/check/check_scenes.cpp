@@ -7,6 +7,8 @@
 
 #include <fmt/format.h>
 
+#include <filesystem>
+
 namespace bvhlab::check {
 
 std::vector<std::shared_ptr<const CheckScene>> readCheckScenes(const std::vector<std::string>& arguments,
@@ -15,9 +17,10 @@ std::vector<std::shared_ptr<const CheckScene>> readCheckScenes(const std::vector
     if (arguments.empty()) return scenes;  // expandSceneList would take env/scenes.list
     for (const SceneArgument& argument : expandSceneList(arguments, options)) {
         const Env env = argument.load(options);
+        const std::filesystem::path file = sceneFileOf(env);
         AnimatedScene animated = loadAnimatedSceneFor(env);
         auto read = std::make_shared<CheckScene>();
-        read->id = read->name = argument.id;
+        read->fileName = read->name = (file.empty() ? argument.envFile : file).filename().string();
         read->frameCount = animated.frameCount;
         if (animated.frameCount > 1) {
             const int frame = env.get(keys::Scene::frame);
@@ -41,7 +44,7 @@ std::vector<verify::UserScene> userScenes(const std::vector<std::shared_ptr<cons
         verify::UserScene user;
         user.scene = {read->name, [read] { return read->scene; }};
         if (read->moved) {
-            user.moved = {fmt::format("{} from frame {} to {}", read->id, *read->frame, *read->movedFrame),
+            user.moved = {fmt::format("{} from frame {} to {}", read->fileName, *read->frame, *read->movedFrame),
                           [read] { return *read->moved; }};
         }
         users.push_back(std::move(user));

@@ -15,11 +15,13 @@
 
 namespace bvhlab::check {
 
-// One scene of --scene, read: at its frame and, if it is animated, at the frame after (before the
-// last one) for the update check.
+// One scene of --scene, read: at its frame and, if it is animated, at the next frame (the previous
+// one at the last) for the update check.
 struct CheckScene {
-    std::string id;    // its file's or env file's stem
-    std::string name;  // the id, "at frame K" after it when animated
+    // Its file's name (else its env file's), "at frame K" after it when animated: never a generated
+    // scene's name, which has no dot.
+    std::string name;
+    std::string fileName;  // the file's name alone
     Scene scene;
     int frameCount = 1;
     std::optional<int> frame, movedFrame;  // an animated scene's frame, and the update check's other one

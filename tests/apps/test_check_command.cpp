@@ -94,7 +94,7 @@ TEST(CheckCommand, ChecksAUsersAnimatedSceneAtAFrame) {
     std::ifstream in(json);
     const nlohmann::json j = nlohmann::json::parse(in);
     ASSERT_EQ(j["scenes"].size(), 1u) << j.dump();
-    EXPECT_EQ(j["scenes"][0]["name"], "moving at frame 2");
+    EXPECT_EQ(j["scenes"][0]["name"], "moving.aff at frame 2");
     EXPECT_EQ(j["scenes"][0]["file"], scene.string());
     EXPECT_EQ(j["scenes"][0]["frame"], 2);
     EXPECT_EQ(j["scenes"][0]["update_to_frame"], 3);
