@@ -120,12 +120,23 @@ std::vector<NamedSceneFactory> agreementScenes() {
     return scenes;
 }
 
+namespace {
+
+// The agreement scenes, then the user's.
+std::vector<NamedSceneFactory> agreementAndUserScenes(const CheckOptions& options) {
+    std::vector<NamedSceneFactory> scenes = agreementScenes();
+    for (NamedSceneFactory& f : userScenes(options)) scenes.push_back(std::move(f));
+    return scenes;
+}
+
+}  // namespace
+
 CheckResult agreement(const Subject& subject, const CheckOptions& options) {
-    return compareOnScenes(subject, options, "agreement", agreementScenes(), {}, Queries::Nearest);
+    return compareOnScenes(subject, options, "agreement", agreementAndUserScenes(options), {}, Queries::Nearest);
 }
 
 CheckResult anyHit(const Subject& subject, const CheckOptions& options) {
-    return compareOnScenes(subject, options, "any-hit", agreementScenes(), {}, Queries::Occlusion);
+    return compareOnScenes(subject, options, "any-hit", agreementAndUserScenes(options), {}, Queries::Occlusion);
 }
 
 CheckResult degenerateTriangles(const Subject& subject, const CheckOptions& options) {

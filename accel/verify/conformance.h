@@ -1,9 +1,11 @@
 // The conformance suite of an accelerator (`bvhlab check`, docs/accuracy.md): named checks, each
-// over a structure built afresh on generated scenes, each held to what the structure promises.
+// over a structure built afresh on generated scenes (and some on the user's, `--scene`), each held
+// to what the structure promises.
 // The gtest suite (tests/accel/verify/test_conformance.cpp) runs the same checks for every registered
 // accelerator; the reference is the double-precision oracle (accel/verify/oracle.h).
 #pragma once
 
+#include "accel/verify/generated_scenes.h"
 #include "framework/core/accelerator.h"
 
 #include <cstdint>
@@ -22,12 +24,23 @@ struct Subject {
     std::function<std::unique_ptr<Accelerator>()> make;
 };
 
+// A scene of the user's (`bvhlab check --scene`), which the checks that take scenes run beside
+// their generated ones, on its triangles (the reference's: its spheres and cones are left out).
+// Its names differ from the generated scenes' (the checks keep a scene's rays by its name).
+struct UserScene {
+    NamedSceneFactory scene;
+    // The same scene after its own motion, for the update check: an animated scene at another
+    // frame. Empty for a still scene, which the check moves as its generated ones (movedScene).
+    NamedSceneFactory moved;
+};
+
 struct CheckOptions {
     double rayScale = 1.0;           // multiplies every ray and probe count
     size_t edgePrimitives = 100000;  // of each builders' edge case
     double edgeMaxSeconds = 0.0;     // a slower edge build fails; 0: the default bound
     size_t maxExamples = 3;          // failures shown per check
     int threads = 0;                 // builds and probes; 0 = all hardware threads
+    std::vector<UserScene> scenes;   // checked beside the generated scenes (CheckInfo::takesScenes)
     // Called as the check goes, with units done (scenes, ray sets) of `total`.
     std::function<void(uint64_t done, uint64_t total)> progress;
 };
@@ -53,6 +66,7 @@ struct CheckInfo {
     std::string name;
     std::string description;
     CheckResult (*run)(const Subject&, const CheckOptions&);
+    bool takesScenes = false;  // runs CheckOptions::scenes too
 };
 
 // Every check, in the order `bvhlab check` runs them.

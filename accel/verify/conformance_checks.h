@@ -31,6 +31,12 @@ void addExample(CheckResult& result, const CheckOptions& options, const std::str
 std::unique_ptr<Accelerator> buildOn(const Subject& subject, const Scene& scene, CheckResult& result,
                                      const CheckOptions& options, BuildStats* stats = nullptr);
 
+// The scene without its spheres and cones (the oracle's are triangles only); the triangles keep
+// their indices.
+Scene trianglesOf(Scene scene);
+// The user's scenes (CheckOptions::scenes) as the checks take them: their triangles.
+std::vector<NamedSceneFactory> userScenes(const CheckOptions& options);
+
 // One scene with its oracle and, per ray kind, the rays and (when a check judges answers) the
 // oracle's answers: computed once per process (by the factory's name and the ray scale), shared
 // by every structure and check. `extraRays` join as a last set ("aimed").

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <span>
 #include <tuple>
 
 namespace bvhlab::verify {
@@ -162,14 +163,13 @@ CheckResult mixedPrimitives(const Subject& subject, const CheckOptions& options)
     return result;
 }
 
-CheckResult batch(const Subject& subject, const CheckOptions& options) {
-    CheckResult result = newResult("batch");
-    const Scene scene = makeBatchScene();
-    const auto accel = buildOn(subject, scene, result, options);
-    result.scenes = 1;
-    std::vector<Ray> rays = makeBatchRays();
-    rays.resize(std::min(rays.size(), scaled(rays.size(), options)));
+namespace {
 
+// The batch calls against the single-ray calls of the subject built over `scene`, on `rays`.
+void batchOn(const Subject& subject, const CheckOptions& options, const Scene& scene, std::span<const Ray> rays,
+             CheckResult& result) {
+    const auto accel = buildOn(subject, scene, result, options);
+    ++result.scenes;
     QueryCounters single, singleOcc;
     std::vector<Hit> expected(rays.size());
     std::vector<uint8_t> expectedOcc(rays.size());
@@ -227,6 +227,22 @@ CheckResult batch(const Subject& subject, const CheckOptions& options) {
                 counterProblem(fmt::format("{} {}: per-ray costs add up to N_IT {}, N_TR {}; its counters {}", hint,
                                            what, tests, steps, describeCounters(*total)));
         }
+    }
+}
+
+}  // namespace
+
+CheckResult batch(const Subject& subject, const CheckOptions& options) {
+    CheckResult result = newResult("batch");
+    std::vector<Ray> rays = makeBatchRays();
+    rays.resize(std::min(rays.size(), scaled(rays.size(), options)));
+    batchOn(subject, options, makeBatchScene(), rays, result);
+    // The user's scenes with the agreement check's rays of every kind.
+    for (const NamedSceneFactory& factory : userScenes(options)) {
+        const SceneCase& c = sceneCase(factory, {}, options.rayScale, false);
+        std::vector<Ray> all;
+        for (const auto& [kind, kindRays] : c.rays) all.insert(all.end(), kindRays.begin(), kindRays.end());
+        batchOn(subject, options, c.scene, all, result);
     }
     return result;
 }

@@ -230,7 +230,10 @@ size_t raysPerKind(const Scene& scene, RayKind kind) {
     if (kind == RayKind::Invalid) return 200;
     const size_t n = scene.validPrimitives.size();
     if (n <= 3) return 4000;
-    return n > 5000 ? 800 : 1500;
+    if (n <= 5000) return 1500;
+    // Past ~12k triangles (a user's scene) fewer rays, so that the oracle's work per kind stays
+    // near 1e7 triangle tests however large the scene.
+    return std::clamp<size_t>(10'000'000 / n, 100, 800);
 }
 
 std::vector<Ray> generateRays(RayKind kind, const PrimitiveSet& prims, const Bounds3& sceneBounds, size_t count,

@@ -26,8 +26,8 @@ inline constexpr RayKind kAllRayKinds[] = {RayKind::Outside,     RayKind::Inside
                                            RayKind::Interval,    RayKind::Invalid};
 const char* rayKindName(RayKind kind);
 
-// How many rays of `kind` the correctness checks send at `scene`: scenes are at most ~10k
-// triangles, so the oracle stays at O(1e8) tests.
+// How many rays of `kind` the correctness checks send at `scene`: the generated scenes are at
+// most ~10k triangles, and larger ones get fewer rays, so the oracle stays at O(1e8) tests.
 size_t raysPerKind(const Scene& scene, RayKind kind);
 
 // `bounds` is where random rays are aimed (an empty box is replaced by [-1,1]^3). Kinds that

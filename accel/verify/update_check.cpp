@@ -3,6 +3,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <iterator>
+
 namespace bvhlab::verify {
 namespace {
 
@@ -38,12 +41,52 @@ Differences differencesFromFresh(const Accelerator& updated, const Accelerator& 
     return d;
 }
 
-// The subject built over `original`, then updated to `moved`; null when it has no update.
+// The subject built over `original`, then updated to `moved`; null when it has no update. The
+// update is given the build's valid set with the moved positions, as its contract asks: a
+// primitive that became degenerate stays in it (and must never be hit).
 std::unique_ptr<Accelerator> updatedTo(const Subject& subject, const Scene& original, const Scene& moved,
                                        CheckResult& result, const CheckOptions& options) {
     auto accel = buildOn(subject, original, result, options);
-    if (!accel->update(moved.primitives())) return nullptr;
+    PrimitiveSet prims = moved.primitives();
+    prims.valid = original.validPrimitives;
+    if (!accel->update(prims)) return nullptr;
     return accel;
+}
+
+// `moved` as an update from `original` sees it: only the primitives valid in both. An update keeps
+// the build's valid set, so one that stopped being degenerate waits for a build.
+Scene validInBoth(Scene moved, const Scene& original) {
+    std::vector<uint32_t> valid;
+    std::ranges::set_intersection(moved.validPrimitives, original.validPrimitives, std::back_inserter(valid));
+    moved.validPrimitives = std::move(valid);
+    return moved;
+}
+
+// A scene and the same scene moved, for the examples named by the moved one.
+struct Motion {
+    NamedSceneFactory original, moved;
+};
+
+// The agreement scenes moved by movedScene; the user's scenes moved by their own motion (an
+// animated scene's frames), a still one by movedScene.
+std::vector<Motion> motions(const CheckOptions& options) {
+    std::vector<Motion> list;
+    const auto byMovedScene = [&](const NamedSceneFactory& f) {
+        list.push_back({f, {"moved " + f.name, [make = f.make] { return movedScene(make()); }}});
+    };
+    for (const NamedSceneFactory& f : agreementScenes()) byMovedScene(f);
+    const std::vector<NamedSceneFactory> users = userScenes(options);
+    for (size_t i = 0; i < users.size(); ++i) {
+        const NamedSceneFactory& moved = options.scenes[i].moved;
+        if (!moved.make) {
+            byMovedScene(users[i]);
+            continue;
+        }
+        list.push_back({users[i], {moved.name, [original = users[i].make, make = moved.make] {
+                                       return validInBoth(trianglesOf(make()), original());
+                                   }}});
+    }
+    return list;
 }
 
 struct Tally {
@@ -63,14 +106,14 @@ struct Tally {
     }
 };
 
-// The agreement check's scenes, moved: each ray set (a quarter of the agreement check's rays:
-// the reference's answers, computed once per process, are most of the check's time) against the
-// oracle of the moved scene and against a fresh build over it.
+// The agreement check's scenes and the user's, moved: each ray set (a quarter of the agreement
+// check's rays: the reference's answers, computed once per process, are most of the check's time)
+// against the oracle of the moved scene and against a fresh build over it.
 void checkAgreementAfterUpdate(const Subject& subject, const CheckOptions& options, CheckResult& result, Tally& tally) {
-    for (const NamedSceneFactory& factory : agreementScenes()) {
-        const SceneCase& c = sceneCase({"moved " + factory.name, [&] { return movedScene(factory.make()); }}, {},
-                                       0.25 * options.rayScale, true);
-        const Scene original = factory.make();
+    const std::vector<Motion> all = motions(options);
+    for (const Motion& motion : all) {
+        const SceneCase& c = sceneCase(motion.moved, {}, 0.25 * options.rayScale, true);
+        const Scene original = motion.original.make();
         const auto updated = updatedTo(subject, original, c.scene, result, options);
         if (!updated) {
             tally.noUpdate = true;
@@ -80,7 +123,7 @@ void checkAgreementAfterUpdate(const Subject& subject, const CheckOptions& optio
         ++result.scenes;
         for (size_t k = 0; k < c.rays.size(); ++k) {
             const auto& [kind, rays] = c.rays[k];
-            const std::string label = fmt::format("moved {}/{}", factory.name, rayKindName(kind));
+            const std::string label = fmt::format("{}/{}", motion.moved.name, rayKindName(kind));
             const ComparisonReport r =
                 compareWithReference(*updated, c.reference[k], *c.oracle, rays, options.maxExamples, true);
             result.cases += r.rays;
@@ -96,7 +139,7 @@ void checkAgreementAfterUpdate(const Subject& subject, const CheckOptions& optio
             else
                 tally.add(subject, d.count, d.rays, d.examples, label, options, result);
         }
-        reportProgress(options, result.scenes, agreementScenes().size() + 2);
+        reportProgress(options, result.scenes, all.size() + 2);
     }
 }
 

@@ -1,12 +1,14 @@
-// `bvhlab check --accel NAME`: the conformance suite (accel/verify/conformance.h) for one
-// accelerator, each check in a child process (apps/check/check_process.h) unless --in-process.
+// `bvhlab check --accel NAME [--scene FILE]`: the conformance suite (accel/verify/conformance.h)
+// for one accelerator, on the user's scenes too, each check in a child process
+// (apps/check/check_process.h) unless --in-process.
 // One line per check on stdout (PASS/WARN/FAIL/SKIP, counts, time) and the failures' rays under
 // it; exit 0 when every check passes (a warning included), 1 when one fails (a crash, an exception
 // or a time-out, --job-timeout, included), 2 on bad input (an unknown accelerator or check, a bad
-// env file or -D).
+// env file or -D, a scene file missing or malformed).
 #include "accel/registry.h"
 #include "accel/verify/conformance.h"
 #include "apps/check/check_process.h"
+#include "apps/check/check_scenes.h"
 #include "apps/cli/command_line.h"
 #include "apps/cli/commands.h"
 #include "apps/runtime/accel_config.h"
@@ -29,7 +31,8 @@ namespace {
 struct CheckCommandOptions {
     EnvOptions env;
     std::string accel;
-    std::string checks;  // empty: all
+    std::string checks;               // empty: all
+    std::vector<std::string> scenes;  // --scene, as given
     std::string json;
     bool inProcess = false;
     double timeoutSeconds = 0;
@@ -46,11 +49,13 @@ std::string resultLine(const verify::CheckResult& r) {
 
 // Runs a check here on `threads` (0: all hardware threads), its progress on stderr. A check that
 // throws (a plugin's exception, which the guard names) fails with the message as its example.
-verify::CheckResult runCheckHere(const std::string& name, const verify::Subject& subject, int threads) {
+verify::CheckResult runCheckHere(const std::string& name, const verify::Subject& subject, int threads,
+                                 const std::vector<std::shared_ptr<const check::CheckScene>>& scenes) {
     Progress progress;
     progress.phase(fmt::format("check {}: {}", subject.name, name));
     verify::CheckOptions options;
     options.threads = threads;
+    options.scenes = check::userScenes(scenes);
     uint64_t lastDone = 0;
     options.progress = [&](uint64_t done, uint64_t /*total*/) {
         if (done > lastDone) progress.advance(done - lastDone);
@@ -86,8 +91,13 @@ int runChecks(CheckCommandOptions options) {
     // Named as registered: the checks look up what the structure promises by name.
     const verify::Subject subject{config.name, [&] { return createAccelerator(config.name, env); }};
     const int threads = env.get(keys::SetRayTracing::threads);
+    // Read here before any check runs (a scene missing or malformed is bad input), and again in
+    // each child whose check takes scenes.
+    const bool readScenes = !options.child.isChild() || verify::findCheck(options.child.job).takesScenes;
+    const auto scenes = readScenes ? check::readCheckScenes(options.scenes, options.env)
+                                   : std::vector<std::shared_ptr<const check::CheckScene>>();
     if (options.child.isChild()) {
-        options.child.run([&] { return check::toJson(runCheckHere(options.child.job, subject, threads)); });
+        options.child.run([&] { return check::toJson(runCheckHere(options.child.job, subject, threads, scenes)); });
         return 0;
     }
     const std::filesystem::path json =
@@ -97,7 +107,7 @@ int runChecks(CheckCommandOptions options) {
     std::vector<std::string> warned;
     nlohmann::json results = nlohmann::json::array();
     for (const std::string& name : names) {
-        const verify::CheckResult r = options.inProcess ? runCheckHere(name, subject, threads)
+        const verify::CheckResult r = options.inProcess ? runCheckHere(name, subject, threads, scenes)
                                                         : check::runCheckInChild(name, options.timeoutSeconds);
         fmt::print("{}\n", resultLine(r));
         for (const std::string& e : r.examples) fmt::print("    {}\n", e);
@@ -109,12 +119,21 @@ int runChecks(CheckCommandOptions options) {
     const std::string warnings = warned.empty() ? "" : fmt::format(", with a warning ({})", fmt::join(warned, ", "));
     fmt::print("check {}: {}\n", options.accel, failed ? "FAILED" : "all checks passed" + warnings);
     if (!json.empty()) {
-        const nlohmann::json out = {
-            {"accel", options.accel},         {"passed", !failed}, {"checks", results}, {"env", env.toJson()},
-            {"provenance", provenanceJson()}, {"run", runJson()}};
+        nlohmann::json sceneList = nlohmann::json::array();
+        for (const auto& scene : scenes) sceneList.push_back(check::toJson(*scene));
+        const nlohmann::json out = {{"accel", options.accel}, {"passed", !failed},   {"scenes", sceneList},
+                                    {"checks", results},      {"env", env.toJson()}, {"provenance", provenanceJson()},
+                                    {"run", runJson()}};
         writeFileAtomically(json, out.dump(2) + "\n");
     }
     return failed ? 1 : 0;
+}
+
+std::vector<std::string> sceneTakingChecks() {
+    std::vector<std::string> names;
+    for (const verify::CheckInfo& c : verify::conformanceChecks())
+        if (c.takesScenes) names.push_back(c.name);
+    return names;
 }
 
 }  // namespace
@@ -135,6 +154,12 @@ void addCheckCommand(CLI::App& app) {
     command->add_option(
         "--checks", options->checks,
         fmt::format("comma-separated checks to run (default: all of {})", fmt::join(verify::checkNames(), ",")));
+    command->add_option(
+        "--scene", options->scenes,
+        fmt::format("a scene to check beside the generated ones in the checks that take scenes ({}): a scene file "
+                    "(here or in Scene::dir; an animated .aff at Scene::frame), a scene env file, a .list file or a "
+                    "scene's name; repeatable or comma-separated",
+                    fmt::join(sceneTakingChecks(), ",")));
     command->add_option("--json", options->json, "write the results as JSON to this file");
     command->add_flag("--in-process", options->inProcess,
                       "run the checks in this process, not each in a child process: a crash ends the run "

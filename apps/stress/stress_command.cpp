@@ -42,7 +42,6 @@
 #include "framework/render/camera.h"
 #include "framework/render/renderer.h"
 #include "framework/report/provenance.h"
-#include "framework/scene/scene_loader.h"
 
 #include <fmt/core.h>
 #include <fmt/ranges.h>
@@ -310,28 +309,26 @@ private:
 
     // --- watertightness ---------------------------------------------------------------------
 
-    // The meshes --scenes names: generated families (small and large variants), or files.
-    std::vector<std::function<std::optional<Scene>()>> meshes() const {
-        std::vector<std::function<std::optional<Scene>()>> list;
+    // The meshes --scenes names: generated families (small and large variants), or files, each read
+    // through its scene's env (an animated one at Scene::frame). One that cannot be had (a file
+    // that is not there, a frame past the last) throws InputError when made: it is skipped.
+    std::vector<std::function<Scene()>> meshes() const {
+        std::vector<std::function<Scene()>> list;
         for (const std::string& argument : options_.scenes)
             for (const std::string& name : splitCommaList(argument)) {
                 const std::vector<std::function<Scene()>> family = closedMeshFamily(name);
-                for (const auto& make : family) list.push_back([make]() -> std::optional<Scene> { return make(); });
+                list.insert(list.end(), family.begin(), family.end());
                 if (!family.empty()) continue;
-                // What the other commands' --scenes take; one that is not there is skipped, said why.
-                std::vector<std::filesystem::path> files;
+                // What the other commands' --scenes take.
+                std::vector<Env> envs;
                 try {
                     for (const SceneArgument& scene : expandSceneList({name}, options_.env))
-                        files.push_back(sceneFileOf(scene.load(options_.env)));
+                        envs.push_back(scene.load(options_.env));
                 } catch (const InputError& missing) {
-                    list.push_back([why = std::string(missing.what())]() -> std::optional<Scene> {
-                        fmt::print(stderr, "skipping: {}\n", why);
-                        return std::nullopt;
-                    });
+                    list.push_back([missing]() -> Scene { throw missing; });
                     continue;
                 }
-                for (const std::filesystem::path& file : files)
-                    list.push_back([file]() -> std::optional<Scene> { return loadScene(file); });
+                for (const Env& env : envs) list.push_back([env] { return loadSceneFor(env); });
             }
         return list;
     }
@@ -341,9 +338,12 @@ private:
         for (const auto& make : meshes()) {
             const size_t caseIndex = mesh++;
             const auto start = Clock::now();
-            const std::optional<Scene> scene = make();
-            if (!scene) {
-                results_["skipped"].push_back("watertight: a scene file was not found");
+            std::optional<Scene> scene;
+            try {
+                scene = make();
+            } catch (const InputError& e) {
+                fmt::print(stderr, "skipping: {}\n", e.what());
+                results_["skipped"].push_back(fmt::format("watertight: {}", e.what()));
                 continue;
             }
             const MeshTopology topology = MeshTopology::of(*scene);
@@ -634,11 +634,14 @@ void addStressCommand(CLI::App& app) {
             const std::filesystem::path out = prepareOutputFile(options->out);
             std::ofstream(out) << results.dump(2) << "\n";
             for (const auto& f : results["failures"]) fmt::print("FAIL {}\n", f.get<std::string>());
-            fmt::print("{}\n",
+            const nlohmann::json skipped = results.value("skipped", nlohmann::json::array());
+            for (const auto& s : skipped) fmt::print("SKIP {}\n", s.get<std::string>());
+            fmt::print("{}{}\n",
                        run.failed()
                            ? fmt::format("stress: {} failures{}", results["failures"].size(),
                                          run.failedJobs() ? fmt::format(" ({} jobs failed)", run.failedJobs()) : "")
-                           : std::string("stress: all checks passed (Embree's leaks are reported only)"));
+                           : std::string("stress: all checks passed (Embree's leaks are reported only)"),
+                       skipped.empty() ? "" : fmt::format(", {} skipped", skipped.size()));
             fmt::print(stderr, "wrote {} ({:.0f} s)\n", out.string(), secondsSince(start));
             failedCode = run.failedJobs() ? kSomeJobsFailedExitCode : run.failed() ? 1 : 0;
         });

@@ -1,6 +1,8 @@
 // `bvhlab check` end to end: one line per check, exit 0 when all pass, 2 on bad input; a crash
-// fails its check and the others run; a correct but costly structure passes with a warning.
+// fails its check and the others run; a correct but costly structure passes with a warning; a
+// user's animated scene is checked at the frame asked for.
 #include "tests/support/cli_run.h"
+#include "tests/support/moving_scene.h"
 #include "tests/support/scratch_dir.h"
 #include "tests/support/test_paths.h"
 
@@ -77,6 +79,43 @@ TEST(CheckCommand, UnknownAcceleratorOrCheckExitsTwoListingTheKnownOnes) {
 
     r = run("check --accel sahbvh -DBVH::nosuchkey=1 --checks batch");
     EXPECT_EQ(r.exitCode, 2) << r.output;
+}
+
+// --scene: a scene file beside the generated scenes, an animated one at Scene::frame, read again in
+// the child process of each check that takes scenes; named with its frame in --json.
+TEST(CheckCommand, ChecksAUsersAnimatedSceneAtAFrame) {
+    const auto dir = bvhlab::test::scratchDir("check_scene");
+    const auto scene = dir / "moving.aff", json = dir / "scene.json";
+    std::ofstream(scene) << bvhlab::test::movingSceneText();
+    const Result r = run("check --accel sahbvh --scene " + scene.string() +
+                         " -DScene::frame=2 --checks batch --quiet --json " + json.string());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_TRUE(std::regex_search(r.output, std::regex("(^|\\n)PASS batch +2 scenes"))) << r.output;
+    std::ifstream in(json);
+    const nlohmann::json j = nlohmann::json::parse(in);
+    ASSERT_EQ(j["scenes"].size(), 1u) << j.dump();
+    EXPECT_EQ(j["scenes"][0]["name"], "moving.aff at frame 2");
+    EXPECT_EQ(j["scenes"][0]["file"], scene.string());
+    EXPECT_EQ(j["scenes"][0]["frame"], 2);
+    EXPECT_EQ(j["scenes"][0]["update_to_frame"], 3);
+    EXPECT_EQ(j["scenes"][0]["spheres_and_cones_left_out"], 1);
+}
+
+TEST(CheckCommand, AMissingOrMalformedSceneOrAFramePastTheLastExitsTwoNamingIt) {
+    const auto dir = bvhlab::test::scratchDir("check_scene");
+    std::ofstream(dir / "moving.aff") << bvhlab::test::movingSceneText();
+    std::ofstream(dir / "malformed.aff") << "v\nfrom 0 0 1\nnot a viewpoint\n";
+    const std::string missing = (dir / "missing.obj").string();
+    for (const auto& [arguments, message] :
+         {std::pair<std::string, std::string>{"--scene " + missing, "--scene " + missing + ": no such file"},
+          {"--scene " + (dir / "malformed.aff").string(), (dir / "malformed.aff").string() + ":3: "},
+          {"--scene " + (dir / "moving.aff").string() + " -DScene::frame=5",
+           "Scene::frame 5 (from -DScene::frame): moving.aff has 5 frames, 0 to 4"}}) {
+        const Result r = run("check --accel sahbvh --checks batch --quiet " + arguments);
+        EXPECT_EQ(r.exitCode, 2) << r.output;
+        EXPECT_NE(r.output.find("error: " + message), std::string::npos) << r.output;
+        EXPECT_EQ(r.output.find("PASS"), std::string::npos) << "no check runs on bad input:\n" << r.output;
+    }
 }
 
 const std::string kPlugins = bvhlab::test::testPlugins();

@@ -76,5 +76,48 @@ TEST(StressCommand, ScenesAreTakenAsTheOtherCommandsTakeThem) {
     EXPECT_NE(j["run"]["warnings"][0].get<std::string>().find("tetra.obj: no scene env file in"), std::string::npos);
 }
 
+// An animated scene file is read through its env, at Scene::frame: a frame past its last skips it,
+// said why, and the run goes on.
+TEST(StressCommand, AnAnimatedSceneIsTakenAtSceneFrame) {
+    const auto dir = test::scratchDir("stress_frame");
+    // A closed tetrahedron that travels along x over 5 frames.
+    std::string tetra = "v\nfrom 0 0 10\nat 0 0 0\nup 0 1 0\nangle 45\nhither 0.01\nresolution 32 32\n";
+    tetra += "x travel\n{\n";
+    for (const char* face :
+         {"0 0 0\n0 1 0\n1 0 0", "0 0 0\n1 0 0\n0 0 1", "0 0 0\n0 0 1\n0 1 0", "1 0 0\n0 1 0\n0 0 1"})
+        tetra += std::string("p 3\n") + face + "\n";
+    tetra += "}\na 0 4 5\nk travel\n{\n transl 4\n -1 0 0 0 0 0 0\n 0 0 0 0 0 0 0\n 4 3 0 0 0 0 0\n";
+    tetra += " 5 3 0 0 0 0 0\n}\n";
+    std::ofstream(dir / "tetra.aff") << tetra;
+    const auto out = dir / "stress.json";
+    const std::string command = "stress --rays 500 --scenes " + (dir / "tetra.aff").string() +
+                                " --parts watertight --accel sahbvh --threads 1 --out " + out.string();
+
+    test::Result r = test::run(command + " -DScene::frame=2");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    {
+        std::ifstream in(out);
+        const nlohmann::json j = nlohmann::json::parse(in);
+        ASSERT_EQ(j["watertight"].size(), 1u) << j.dump();
+        EXPECT_EQ(j["watertight"][0]["mesh"], "tetra");
+        EXPECT_EQ(j["watertight"][0]["leaks"], 0);
+        EXPECT_FALSE(j.contains("skipped")) << j.dump();
+    }
+
+    r = test::run(command + " -DScene::frame=5");
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const std::string why = "Scene::frame 5 (from -DScene::frame): tetra.aff has 5 frames, 0 to 4";
+    EXPECT_NE(r.output.find("skipping: " + why), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("\nSKIP watertight: " + why + "\n"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("stress: all checks passed (Embree's leaks are reported only), 1 skipped"),
+              std::string::npos)
+        << r.output;
+    std::ifstream in(out);
+    const nlohmann::json j = nlohmann::json::parse(in);
+    EXPECT_TRUE(j["watertight"].empty()) << j.dump();
+    ASSERT_EQ(j["skipped"].size(), 1u) << j.dump();
+    EXPECT_EQ(j["skipped"][0], "watertight: " + why);
+}
+
 }  // namespace
 }  // namespace bvhlab

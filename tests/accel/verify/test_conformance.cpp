@@ -1,16 +1,22 @@
 // The conformance suite (`bvhlab check`, accel/verify/conformance.h) for every registered
 // accelerator, one test per check: Registered/CheckSuite.Passes/<accelerator>_<check>. And the
-// suite must be able to fail: an accelerator that drops hits fails it, naming a ray.
+// suite must be able to fail: an accelerator that drops hits fails it, naming a ray. A user's
+// animated scene at a frame is checked beside the generated ones, its update to the next frame too.
 #include "accel/registry.h"
 #include "accel/verify/conformance.h"
+#include "accel/verify/conformance_checks.h"
 #include "accel/verify/verify_keys.h"
 #include "framework/core/error.h"
+#include "framework/scene/scene_loader.h"
+#include "tests/support/moving_scene.h"
+#include "tests/support/scratch_dir.h"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <atomic>
+#include <fstream>
 #include <tuple>
 
 namespace bvhlab {
@@ -146,6 +152,47 @@ TEST(CheckSuiteCanFail, AnUpdateThatMovesNothingFailsAndNoUpdateIsSkipped) {
                                   }};
     const verify::CheckResult none = verify::runCheck("update", rebuilt, options);
     EXPECT_TRUE(none.skipped) << report(none);
+}
+
+// The small animated scene of the tests (a sphere among its triangles) at frame 2, moved to frame 3,
+// as `bvhlab check --scene moving.aff -DScene::frame=2` gives it to the checks.
+verify::UserScene movingSceneAtFrame2() {
+    const auto file = test::scratchDir("conformance") / "moving.aff";
+    std::ofstream(file) << test::movingSceneText();
+    AnimatedScene animated = loadAnimatedScene(file);
+    animated.setTime(animated.frameTime(2));
+    const Scene at = animated.scene;
+    animated.setTime(animated.frameTime(3));
+    const Scene next = animated.scene;
+    return {{"moving at frame 2", [at] { return at; }}, {"moving from frame 2 to 3", [next] { return next; }}};
+}
+
+TEST(CheckSuiteOnUserScenes, AnAnimatedSceneAtAFrameIsCheckedBesideTheGeneratedOnesAndPasses) {
+    verify::CheckOptions options;
+    options.rayScale = 0.1;
+    options.scenes = {movingSceneAtFrame2()};
+    const size_t generated = verify::agreementScenes().size();
+    for (const auto& [check, scenes] : {std::pair<std::string, size_t>{"agreement", generated + 1},
+                                        {"any-hit", generated + 1},
+                                        {"batch", 2},
+                                        {"update", generated + 1 + 4}}) {  // + the mixed scene, 3 closed meshes
+        SCOPED_TRACE(check);
+        const verify::CheckResult r = verify::runCheck(check, registered("sahbvh"), options);
+        EXPECT_TRUE(r.passed()) << report(r);
+        EXPECT_EQ(r.scenes, scenes) << report(r);
+    }
+}
+
+TEST(CheckSuiteCanFail, AnUpdateThatMovesNothingFailsOnAnAnimatedSceneMovedToItsNextFrame) {
+    verify::CheckOptions options;
+    options.rayScale = 0.2;
+    options.maxExamples = 1000000;
+    options.scenes = {movingSceneAtFrame2()};
+    const verify::CheckResult stale =
+        verify::runCheck("update", {"stale-update", [] { return std::make_unique<StaleUpdate>(); }}, options);
+    EXPECT_TRUE(std::ranges::any_of(stale.examples, [](const std::string& e) {
+        return e.starts_with("update on moving from frame 2 to 3/");
+    })) << report(stale);
 }
 
 TEST(CheckSuiteCanFail, UnknownCheckIsAnInputErrorListingTheKnownOnes) {
