@@ -2,7 +2,6 @@
 #include "accel/embree/embree_rays.h"
 
 #include <embree3/rtcore.h>
-#include <fmt/format.h>
 
 #include <memory>
 #include <stdexcept>
@@ -59,16 +58,9 @@ void EmbreeInstances::build(const PrimitiveSet&) {
     if (bytes > 0) bytes_ = bytes;
 }
 
-void EmbreeInstances::moveInstances(View<const glm::dmat4> objectToWorld, View<const uint32_t> deformed) {
+void EmbreeInstances::move(View<const glm::dmat4> objectToWorld, View<const uint32_t> deformed) {
     if (!top_) throw std::logic_error("EmbreeInstances::moveInstances before build()");
-    if (objectToWorld.size() != instances_.size())
-        throw std::invalid_argument(
-            fmt::format("embreeinstances: {} transforms for {} instances", objectToWorld.size(), instances_.size()));
     // The instance scenes first: the top scene's commit reads their new bounds.
-    for (uint32_t i : deformed)
-        if (i >= instances_.size())
-            throw std::invalid_argument(
-                fmt::format("embreeinstances: deformed instance {} of {} instances", i, instances_.size()));
     for (uint32_t i : deformed) scenes_[i].update(device_, instances_[i].prims);
     for (size_t i = 0; i < instances_.size(); ++i) {
         instances_[i].objectToWorld = objectToWorld[i];

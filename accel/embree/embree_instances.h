@@ -33,7 +33,6 @@ public:
 
     const char* name() const override { return "embreeinstances"; }
     void build(const PrimitiveSet& prims) override;
-    void moveInstances(View<const glm::dmat4> objectToWorld, View<const uint32_t> deformed) override;
     size_t instanceCount() const override { return instances_.size(); }
     // The instances, their primitives summed, Embree's bytes of the last build.
     void statistics(BuildStatistics& out) const override;
@@ -48,6 +47,9 @@ public:
     bool hasCounters() const override { return false; }
 
     const EmbreeConfig& config() const { return config_; }
+
+protected:
+    void move(View<const glm::dmat4> objectToWorld, View<const uint32_t> deformed) override;
 
 private:
     void place(size_t i);  // instance i's transform onto its geometry in the top scene

@@ -1,7 +1,6 @@
 #include "accel/twolevel/two_level_accelerator.h"
 
 #include <bvhlab/quadric.h>
-#include <fmt/format.h>
 
 #include <glm/gtc/matrix_inverse.hpp>
 
@@ -55,14 +54,7 @@ void TwoLevelAccelerator::build(const PrimitiveSet&) {
     buildTop();
 }
 
-void TwoLevelAccelerator::moveInstances(View<const glm::dmat4> objectToWorld, View<const uint32_t> deformed) {
-    if (objectToWorld.size() != instances_.size())
-        throw std::invalid_argument(
-            fmt::format("twolevel: {} transforms for {} instances", objectToWorld.size(), instances_.size()));
-    for (uint32_t i : deformed)
-        if (i >= instances_.size())
-            throw std::invalid_argument(
-                fmt::format("twolevel: deformed instance {} of {} instances", i, instances_.size()));
+void TwoLevelAccelerator::move(View<const glm::dmat4> objectToWorld, View<const uint32_t> deformed) {
     for (uint32_t i : deformed) {
         if (!bottoms_[i]->update(instances_[i].prims)) bottoms_[i]->build(instances_[i].prims);
         objectBoxes_[i] = boundsOfValid(instances_[i].prims);

@@ -22,7 +22,6 @@ public:
 
     const char* name() const override { return "twolevel"; }
     void build(const PrimitiveSet& prims) override;
-    void moveInstances(View<const glm::dmat4> objectToWorld, View<const uint32_t> deformed) override;
     size_t instanceCount() const override { return instances_.size(); }
     // The instances, the top level's nodes and leaves, the bottoms' primitives and bytes summed.
     void statistics(BuildStatistics& out) const override;
@@ -30,6 +29,9 @@ public:
     bool isOccluded(const Ray& ray, QueryCounters& counters) const override;
 
     const Accelerator& bottom(size_t i) const { return *bottoms_[i]; }
+
+protected:
+    void move(View<const glm::dmat4> objectToWorld, View<const uint32_t> deformed) override;
 
 private:
     // An instance as the queries use it: the world-to-object transform in float, applied to a

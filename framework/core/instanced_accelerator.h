@@ -8,7 +8,10 @@
 
 #include "framework/core/accelerator.h"
 
+#include <fmt/format.h>
 #include <glm/glm.hpp>
+
+#include <stdexcept>
 
 namespace bvhlab {
 
@@ -43,9 +46,23 @@ public:
 
     // Places instance i at objectToWorld[i] (one per instance), brings the bottom level of each
     // instance in `deformed` up to its moved primitives (an update where that structure has
-    // one, else a rebuild), then rebuilds the top level once.
-    virtual void moveInstances(View<const glm::dmat4> objectToWorld, View<const uint32_t> deformed) = 0;
+    // one, else a rebuild), then rebuilds the top level once. Transforms of another count or a
+    // deformed instance that is not there throw std::invalid_argument before anything moves.
+    void moveInstances(View<const glm::dmat4> objectToWorld, View<const uint32_t> deformed) {
+        if (objectToWorld.size() != instanceCount())
+            throw std::invalid_argument(
+                fmt::format("{}: {} transforms for {} instances", name(), objectToWorld.size(), instanceCount()));
+        for (uint32_t i : deformed)
+            if (i >= instanceCount())
+                throw std::invalid_argument(
+                    fmt::format("{}: deformed instance {} of {} instances", name(), i, instanceCount()));
+        move(objectToWorld, deformed);
+    }
     virtual size_t instanceCount() const = 0;
+
+protected:
+    // moveInstances, its arguments checked.
+    virtual void move(View<const glm::dmat4> objectToWorld, View<const uint32_t> deformed) = 0;
 };
 
 }  // namespace bvhlab

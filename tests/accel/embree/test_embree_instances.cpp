@@ -112,7 +112,9 @@ TEST(EmbreeInstances, AnInstanceWithoutPrimitivesIsLeftOut) {
     std::vector<Instance> instances = scene.instances(placements(0.0));
     instances.insert(instances.begin() + 1, Instance{});
     EmbreeInstances accel(std::move(instances));
-    EXPECT_THROW(accel.moveInstances(placements(1.0), {}), std::logic_error);  // before build()
+    std::vector<glm::dmat4> early = placements(1.0);
+    early.insert(early.begin() + 1, glm::dmat4(1.0));
+    EXPECT_THROW(accel.moveInstances(early, {}), std::logic_error);  // before build()
     accel.build({});
     expectAnswersAsBruteForce(accel, scene.world, 10);
 
